@@ -1,0 +1,1 @@
+"""Generated code; see :mod:`quadric_contact.codegen`."""

@@ -1,0 +1,353 @@
+"""Derive the package's closed forms with sympy and emit them as straight-line code.
+
+Nothing in :mod:`quadric_contact._generated.formulas` is typed in by hand: this
+module derives every formula symbolically, checks it against an independent
+sympy computation, and writes it out as plain Python that uses only ``+``,
+``-``, ``*`` and integer literals.  Such code runs unchanged on every number
+type the package uses (``int``, ``Fraction``, ``float``, numpy arrays, mpmath
+numbers, flint ``arb`` balls), which is what "one formula, many number modes"
+means in practice.
+
+Derivations
+-----------
+``pencil_coefficients``
+    The coefficients ``c0 .. c4`` of ``P(lambda) = det(lambda*E + Q)``
+    (paper eq. (1)) for symmetric ``E`` and ``Q`` given by their ten upper
+    entries.  Derived by the Laplace expansion of the 4x4 determinant along
+    rows (0, 1) against rows (2, 3): each 2x2 minor of ``lambda*E + Q`` is a
+    quadratic in lambda (an E-minor, a Q-minor and a mixed term), and the
+    coefficients are sums of products of those.  Checked against sympy's
+    determinant expanded in lambda.
+``discrimination_sequence_n`` (n = 1 .. 4)
+    The principal minors ``D_1 .. D_n`` of even order of the discrimination
+    matrix of a degree-n polynomial and its derivative (Yang 1999, the
+    subresultant-based "complete discrimination system").
+``paper_deltas``
+    The paper's normalisation (Section 3.2) of Yang's minors for the quartic:
+    ``Delta_2 = D_2 / c4**2``, ``Delta_3 = D_3 / (2*c4**2)``,
+    ``Delta_4 = D_4 / c4**2``; the divisions are exact polynomial divisions
+    done by sympy, and the positive factors are what make the signs agree.
+
+Regenerate with ``python -m quadric_contact.codegen`` (or
+``quadric-contact codegen``); the test suite checks that regenerating
+reproduces the committed file byte for byte.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+
+import sympy as sp
+
+ENTRY_INDICES: tuple[tuple[int, int], ...] = (
+    (0, 0),
+    (0, 1),
+    (0, 2),
+    (0, 3),
+    (1, 1),
+    (1, 2),
+    (1, 3),
+    (2, 2),
+    (2, 3),
+    (3, 3),
+)
+"""The ten independent entries of a symmetric 4x4 matrix, in argument order."""
+
+GENERATED_PATH = Path(__file__).with_name("_generated") / "formulas.py"
+
+
+# -- symbolic building blocks ---------------------------------------------------
+
+
+def symmetric_matrix(prefix: str) -> tuple[sp.Matrix, list[sp.Symbol]]:
+    """A symbolic symmetric 4x4 matrix with entries ``{prefix}ij`` (i <= j)."""
+    syms = {ij: sp.Symbol(f"{prefix}{ij[0]}{ij[1]}") for ij in ENTRY_INDICES}
+    m = sp.Matrix(4, 4, lambda i, j: syms[(min(i, j), max(i, j))])
+    return m, [syms[ij] for ij in ENTRY_INDICES]
+
+
+def coefficient_symbols(n: int = 4) -> list[sp.Symbol]:
+    """``c0 .. cn`` (``c_k`` multiplies ``lambda**k``)."""
+    return list(sp.symbols(f"c0:{n + 1}"))
+
+
+def charpoly_by_determinant(E: sp.Matrix, Q: sp.Matrix) -> list[sp.Expr]:
+    """``[c0, .., c4]`` of det(lambda*E + Q), straight from sympy's determinant."""
+    lam = sp.Symbol("lambda")
+    poly = sp.Poly(sp.expand((lam * E + Q).det(method="berkowitz")), lam)
+    return [sp.expand(poly.coeff_monomial(lam**k)) for k in range(5)]
+
+
+_PAIRS = ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))
+
+
+def _pair_sign(cols: tuple[int, int]) -> int:
+    """Sign of the Laplace term for rows (0, 1) and columns ``cols``."""
+    return -1 if (cols[0] + cols[1] + 0 + 1) % 2 else 1
+
+
+def derive_pencil() -> tuple[list[tuple[sp.Symbol, sp.Expr]], list[sp.Expr], list[sp.Symbol]]:
+    """Straight-line program for the coefficients of det(lambda*E + Q).
+
+    Returns ``(assignments, outputs, arguments)``: ``assignments`` is a list
+    of ``(temporary, expression)`` in evaluation order, ``outputs`` the
+    expressions for ``c0 .. c4`` in terms of arguments and temporaries.
+    """
+    E, es = symmetric_matrix("e")
+    Q, qs = symmetric_matrix("q")
+    assignments: list[tuple[sp.Symbol, sp.Expr]] = []
+
+    def minors(rows: tuple[int, int], cols: tuple[int, int], tag: str) -> tuple[sp.Symbol, ...]:
+        (r0, r1), (a, b) = rows, cols
+        ee = E[r0, a] * E[r1, b] - E[r0, b] * E[r1, a]
+        qq = Q[r0, a] * Q[r1, b] - Q[r0, b] * Q[r1, a]
+        mm = E[r0, a] * Q[r1, b] + Q[r0, a] * E[r1, b] - E[r0, b] * Q[r1, a] - Q[r0, b] * E[r1, a]
+        out = []
+        for kind, expr in (("E", ee), ("M", mm), ("Q", qq)):
+            s = sp.Symbol(f"{kind}{tag}{a}{b}")
+            assignments.append((s, expr))
+            out.append(s)
+        return tuple(out)
+
+    c = [sp.Integer(0)] * 5
+    for cols in _PAIRS:
+        rest = tuple(sorted(set(range(4)) - set(cols)))
+        top_e, top_m, top_q = minors((0, 1), cols, "t")
+        bot_e, bot_m, bot_q = minors((2, 3), rest, "b")  # type: ignore[arg-type]
+        s = _pair_sign(cols)
+        # (top_e L^2 + top_m L + top_q) * (bot_e L^2 + bot_m L + bot_q)
+        c[4] += s * top_e * bot_e
+        c[3] += s * (top_e * bot_m + top_m * bot_e)
+        c[2] += s * (top_e * bot_q + top_m * bot_m + top_q * bot_e)
+        c[1] += s * (top_m * bot_q + top_q * bot_m)
+        c[0] += s * top_q * bot_q
+    return assignments, c, es + qs
+
+
+def substitute_program(
+    assignments: Sequence[tuple[sp.Symbol, sp.Expr]], outputs: Sequence[sp.Expr]
+) -> list[sp.Expr]:
+    """Inline the temporaries of a straight-line program (for verification)."""
+    env: dict[sp.Symbol, sp.Expr] = {}
+    for sym, expr in assignments:
+        env[sym] = expr.xreplace(env)
+    return [sp.expand(o.xreplace(env)) for o in outputs]
+
+
+def verify_pencil() -> None:
+    """Raise AssertionError unless the generated program equals sympy's determinant."""
+    assignments, outputs, _ = derive_pencil()
+    E, _ = symmetric_matrix("e")
+    Q, _ = symmetric_matrix("q")
+    derived = substitute_program(assignments, outputs)
+    reference = charpoly_by_determinant(E, Q)
+    for k, (d, r) in enumerate(zip(derived, reference, strict=True)):
+        if sp.expand(d - r) != 0:
+            raise AssertionError(f"pencil coefficient c{k} differs from sympy's determinant")
+
+
+def discrimination_matrix(coeffs_high_first: Sequence[sp.Expr]) -> sp.Matrix:
+    """Yang's discrimination matrix Discr(f) of f and f' (2n x 2n).
+
+    ``coeffs_high_first`` are ``a0 .. an`` with ``f = a0 x^n + ... + an``.
+    Rows alternate between shifted copies of ``f`` and of ``f'``.
+    """
+    a = list(coeffs_high_first)
+    n = len(a) - 1
+    da = [(n - i) * a[i] for i in range(n)]
+    M = sp.zeros(2 * n, 2 * n)
+    for i in range(n):
+        for j, coef in enumerate(a):
+            M[2 * i, i + j] = coef
+        for j, coef in enumerate(da):
+            M[2 * i + 1, i + 1 + j] = coef
+    return M
+
+
+def derive_discrimination_sequence(n: int) -> list[sp.Expr]:
+    """``[D_1, .., D_n]`` for ``f = c_n x^n + ... + c_0`` (Yang 1999, Definition 1)."""
+    c = coefficient_symbols(n)
+    M = discrimination_matrix(list(reversed(c)))
+    return [sp.expand(M[: 2 * k, : 2 * k].det(method="berkowitz")) for k in range(1, n + 1)]
+
+
+def derive_paper_deltas() -> list[sp.Expr]:
+    """``[Delta_2, Delta_3, Delta_4]``: Yang's D_k divided by their positive
+    factors ``c4**2``, ``2*c4**2``, ``c4**2`` (exact polynomial division)."""
+    c = coefficient_symbols(4)
+    D = derive_discrimination_sequence(4)
+    out = []
+    for Dk, factor in ((D[1], c[4] ** 2), (D[2], 2 * c[4] ** 2), (D[3], c[4] ** 2)):
+        q, r = sp.div(sp.Poly(Dk, *c), sp.Poly(factor, *c))
+        if not r.is_zero:
+            raise AssertionError("the paper's normalisation is not an exact division")
+        out.append(q.as_expr())
+    return out
+
+
+# -- emission -------------------------------------------------------------------
+
+
+def _monomial_code(
+    powers: Sequence[int], names: Sequence[str], temps: dict[tuple[int, int], str]
+) -> list[str]:
+    factors: list[str] = []
+    for idx, p in enumerate(powers):
+        if p == 0:
+            continue
+        if p == 1:
+            factors.append(names[idx])
+        elif (idx, p) in temps:
+            factors.append(temps[(idx, p)])
+        else:
+            factors.extend([names[idx]] * p)
+    return factors
+
+
+def _emit_polynomial(expr: sp.Expr, variables: Sequence[sp.Symbol], temps: dict[tuple[int, int], str]) -> str:
+    """Emit an integer polynomial as a sum of monomials; powers use shared temporaries."""
+    poly = sp.Poly(expr, *variables)
+    names = [str(v) for v in variables]
+    parts: list[str] = []
+    for powers, coef in poly.terms():  # deterministic (lex) order
+        if not coef.is_Integer:
+            raise AssertionError(f"non-integer coefficient {coef} in generated formula")
+        factors = _monomial_code(powers, names, temps)
+        k = int(coef)
+        body = "*".join(factors) if factors else "1"
+        if abs(k) != 1:
+            body = f"{abs(k)}*{body}" if factors else str(abs(k))
+        parts.append(("- " if k < 0 else "+ ") + body)
+    if not parts:
+        return "0"
+    text = " ".join(parts)
+    return text[2:] if text.startswith("+ ") else "-" + text[2:]
+
+
+def _power_temps(
+    exprs: Sequence[sp.Expr], variables: Sequence[sp.Symbol]
+) -> tuple[list[str], dict[tuple[int, int], str]]:
+    needed: set[tuple[int, int]] = set()
+    for e in exprs:
+        for powers, _ in sp.Poly(e, *variables).terms():
+            needed.update((i, p) for i, p in enumerate(powers) if p > 1)
+    lines: list[str] = []
+    temps: dict[tuple[int, int], str] = {}
+    for i, p in sorted(needed):
+        name = f"{variables[i]}_{p}"
+        temps[(i, p)] = name
+    for i, p in sorted(needed):
+        base = str(variables[i])
+        prev = temps.get((i, p - 1), base if p - 1 == 1 else None)
+        rhs = f"{prev}*{base}" if prev is not None else "*".join([base] * p)
+        lines.append(f"    {temps[(i, p)]} = {rhs}")
+    return lines, temps
+
+
+def _emit_expression(expr: sp.Expr) -> str:
+    """Print an integer polynomial in its free symbols; powers become products."""
+    expr = sp.expand(expr)
+    variables = sorted(expr.free_symbols, key=str)
+    return _emit_polynomial(expr, variables, {}) if variables else str(int(expr))
+
+
+def emit_formulas() -> str:
+    """The full text of ``_generated/formulas.py``."""
+    out: list[str] = [
+        '"""Closed forms of quadric-contact, generated by ``quadric_contact.codegen``.',
+        "",
+        "Do not edit: regenerate with ``python -m quadric_contact.codegen``.  Every",
+        "function is straight-line code over ``+ - *`` with integer literals, so it runs",
+        "on int, Fraction, float, numpy arrays, mpmath and flint arb alike.",
+        '"""',
+        "",
+        "# ruff: noqa",
+        "",
+    ]
+    # Pencil coefficients.
+    assignments, outputs, args = derive_pencil()
+    arg_names = ", ".join(str(a) for a in args)
+    out += [
+        f"def pencil_coefficients({arg_names}):",
+        '    """(c0, c1, c2, c3, c4) of det(lambda*E + Q) from the upper entries eij of E and qij of Q',
+        '    (Laplace expansion along rows 0, 1; each 2x2 minor split into E, mixed and Q parts)."""',
+    ]
+    for sym, expr in assignments:
+        out.append(f"    {sym} = {_emit_expression(expr)}")
+    for k, o in enumerate(outputs):
+        out.append(f"    c{k} = {_emit_expression(o)}")
+    out += ["    return (c0, c1, c2, c3, c4)", "", ""]
+    # The determinant of one symmetric matrix: the Q-only part of the same program.
+    q_only = [(sym, expr) for sym, expr in assignments if str(sym).startswith("Q")]
+    q_args = ", ".join(str(a) for a in args[10:])
+    out += [
+        f"def det_symmetric_4({q_args}):",
+        '    """det(Q) for the symmetric Q with upper entries qij (the c0 part of pencil_coefficients)."""',
+    ]
+    for sym, expr in q_only:
+        out.append(f"    {sym} = {_emit_expression(expr)}")
+    out += [f"    return {_emit_expression(outputs[0])}", "", ""]
+    # Discrimination sequences.
+    for n in range(1, 5):
+        c = coefficient_symbols(n)
+        D = derive_discrimination_sequence(n)
+        lines, temps = _power_temps(D, c)
+        out += [
+            f"def discrimination_sequence_{n}({', '.join(str(s) for s in c)}):",
+            f'    """Yang\'s (D_1, .., D_{n}) for c{n}*x^{n} + ... + c0: the even-order principal',
+            '    minors of the discrimination matrix of f and f\'."""',
+            *lines,
+        ]
+        for k, Dk in enumerate(D, 1):
+            out.append(f"    D{k} = {_emit_polynomial(Dk, c, temps)}")
+        out += [f"    return ({', '.join(f'D{k}' for k in range(1, n + 1))}{',' if n == 1 else ''})", "", ""]
+    # Paper deltas.
+    c = coefficient_symbols(4)
+    deltas = derive_paper_deltas()
+    lines, temps = _power_temps(deltas, c)
+    out += [
+        "def paper_deltas(c0, c1, c2, c3, c4):",
+        '    """(Delta_2, Delta_3, Delta_4) of Section 3.2: D_2/c4^2, D_3/(2 c4^2), D_4/c4^2."""',
+        *lines,
+    ]
+    for name, d in zip(("Delta2", "Delta3", "Delta4"), deltas, strict=True):
+        out.append(f"    {name} = {_emit_polynomial(d, c, temps)}")
+    out += ["    return (Delta2, Delta3, Delta4)", ""]
+    return "\n".join(out)
+
+
+def regenerate(path: Path = GENERATED_PATH, check: bool = False) -> bool:
+    """Write (or with ``check=True`` only compare) the generated module.
+
+    Returns True when the file on disk equals the freshly generated text.
+    """
+    verify_pencil()
+    text = emit_formulas()
+    current = path.read_text() if path.exists() else None
+    if check:
+        return current == text
+    path.parent.mkdir(parents=True, exist_ok=True)
+    init = path.parent / "__init__.py"
+    if not init.exists():
+        init.write_text('"""Generated code; see :mod:`quadric_contact.codegen`."""\n')
+    path.write_text(text)
+    return current == text
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="quadric-contact codegen", description=__doc__.split("\n")[0])
+    parser.add_argument("--check", action="store_true", help="only check that the file is current")
+    args = parser.parse_args(argv)
+    same = regenerate(check=args.check)
+    if args.check:
+        print("generated formulas are current" if same else "generated formulas are OUT OF DATE")
+        return 0 if same else 1
+    print(f"wrote {GENERATED_PATH} ({'unchanged' if same else 'changed'})")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

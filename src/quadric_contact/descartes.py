@@ -1,0 +1,105 @@
+"""Descartes' rule of signs and exact root-sign patterns.
+
+For a polynomial whose roots are all real, the number of positive roots
+(with multiplicity) *equals* the number of sign variations of its
+coefficients, and the number of negative roots equals that of ``P(-x)``:
+the rule is exact (Curtiss 1918).  Where ``P`` has non-real roots the rule
+only bounds, so the pattern is obtained by certified root isolation instead
+(FLINT's ``arb_fmpz_poly_complex_roots``: isolating balls, real roots
+certified real, refined until every real root's sign is decided).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from .classification import sign_variations
+from .discriminants import RootStructure, _to_int_poly, root_structure, strip
+
+__all__ = ["RootSigns", "root_signs", "sign_variations"]
+
+
+@dataclass(frozen=True)
+class RootSigns:
+    """How many roots are negative, zero, positive and non-real (with multiplicity).
+
+    ``method`` is ``"descartes"`` (exact sign variations; the polynomial is
+    real-rooted) or ``"isolation"`` (certified root isolation).
+    """
+
+    negative: int
+    zero: int
+    positive: int
+    nonreal: int
+    method: str
+
+    @property
+    def pattern(self) -> str:
+        """The signs of the real roots in increasing order, e.g. ``'--0+'``;
+        non-real roots are appended as ``'c'``."""
+        return "-" * self.negative + "0" * self.zero + "+" * self.positive + "c" * self.nonreal
+
+    def negated(self) -> RootSigns:
+        """The pattern of ``P(-x)``."""
+        return RootSigns(self.positive, self.zero, self.negative, self.nonreal, self.method)
+
+    def __str__(self) -> str:
+        return self.pattern
+
+
+def root_signs(coeffs: Sequence[Any], structure: RootStructure | None = None) -> RootSigns:
+    """Exact counts of negative, zero, positive and non-real roots of ``sum coeffs[k] x^k``.
+
+    Parameters
+    ----------
+    coeffs : exact numbers ``c0, c1, ...``
+    structure : the :func:`~quadric_contact.discriminants.root_structure`, if already known
+
+    Examples
+    --------
+    Example 17, the bee and the hyperboloid S2 (the bee is outside, ``R+``):
+
+    >>> from fractions import Fraction as F
+    >>> root_signs([F(1, 4), F(-933, 80), F(273, 8), F(3659, 80), F(-3, 10)]).pattern
+    '-+++'
+    """
+    c = strip(coeffs)
+    if structure is None:
+        structure = root_structure(c)
+    zero = next(i for i, v in enumerate(c) if v != 0)
+    if structure.all_real:
+        positive = sign_variations(c)
+        negative = sign_variations([v if k % 2 == 0 else -v for k, v in enumerate(c)])
+        return RootSigns(negative, zero, positive, 0, "descartes")
+    negative, positive = _isolate(c[zero:])
+    return RootSigns(negative, zero, positive, 2 * structure.nonreal_pairs, "isolation")
+
+
+def _isolate(c: Sequence[Any]) -> tuple[int, int]:
+    """(negative, positive) real roots with multiplicity of a polynomial with ``c[0] != 0``."""
+    import flint
+
+    f = flint.fmpz_poly(_to_int_poly(c))
+    old = flint.ctx.prec
+    try:
+        prec = max(old, 64)
+        while True:
+            flint.ctx.prec = prec
+            negative = positive = 0
+            undecided = False
+            for root, mult in f.complex_roots():
+                if not (root.imag.is_exact() and root.imag == 0):
+                    continue
+                if root.real > 0:
+                    positive += mult
+                elif root.real < 0:
+                    negative += mult
+                else:
+                    undecided = True
+            if not undecided:
+                return negative, positive
+            prec *= 2
+    finally:
+        flint.ctx.prec = old

@@ -1,0 +1,86 @@
+"""The package's exception hierarchy.
+
+Every error raised at the public boundary is a :class:`QuadricContactError`
+and also a :class:`ValueError` or :class:`TypeError`, so callers can catch
+either the package's own classes or the built-in ones.  Each error names the
+violated condition in its message and carries the offending object in
+``.value`` (and, where it helps, more context in ``.details``).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+
+class QuadricContactError(Exception):
+    """Base class of every error the package raises on purpose."""
+
+    def __init__(self, message: str, value: Any = None, **details: Any) -> None:
+        super().__init__(message)
+        self.value = value
+        self.details = details
+
+
+# -- bad numbers and bad shapes -------------------------------------------------
+
+
+class NotANumberError(QuadricContactError, TypeError):
+    """An entry is not a real number (a string that does not parse, a complex,
+    a bool, an arbitrary object)."""
+
+
+class NonFiniteError(QuadricContactError, ValueError):
+    """An entry is NaN or an infinity."""
+
+
+class NotRationalError(QuadricContactError, ValueError):
+    """An entry is a real number that is not rational (``sqrt(2)``, ``pi``)."""
+
+
+class ShapeError(QuadricContactError, ValueError):
+    """A matrix does not have the required shape (4x4, or a stack (..., 4, 4))."""
+
+
+class NotSymmetricError(QuadricContactError, ValueError):
+    """A matrix that must be symmetric is not; ``.details['entry']`` is the
+    first ``(i, j)`` with ``M[i, j] != M[j, i]``."""
+
+
+class EquationError(QuadricContactError, ValueError):
+    """An equation cannot be read as a polynomial of degree <= 2 in x, y, z."""
+
+
+# -- wrong kinds of quadric -----------------------------------------------------
+
+
+class NotAnEllipsoidError(QuadricContactError, ValueError):
+    """An argument that must be a real (non-empty, non-degenerate) ellipsoid is
+    not; ``.details['kind']`` is what it is."""
+
+
+class NotAPlaneError(QuadricContactError, ValueError):
+    """An argument that must be a plane is not."""
+
+
+class ExcludedQuadricError(QuadricContactError, ValueError):
+    """The quadric type is excluded by the theory for this question (cones,
+    intersecting planes, coincident planes, imaginary quadrics, or a plane
+    where Theorem 14 rather than Theorem 2 applies)."""
+
+
+class DegeneratePencilError(QuadricContactError, ValueError):
+    """The pencil lambda*E + Q is degenerate (its characteristic polynomial
+    vanishes identically), so no root-based statement is possible."""
+
+
+# -- undecided answers ----------------------------------------------------------
+
+
+class UndecidedError(QuadricContactError, ValueError):
+    """A result was used as a definite answer (for instance with ``bool()``)
+    although the theory it relies on did not decide it."""
+
+
+class SceneError(QuadricContactError, ValueError):
+    """A scene file is malformed; the message names the file, the key and what
+    was expected."""

@@ -1,0 +1,219 @@
+"""Relative position R-/R+ (Theorem 13, Table 4; Theorem 14 for planes).
+
+For a small ellipsoid not in transversal contact with ``Q`` (tangency
+allowed), the signs of the roots of ``P`` tell where it is.  The table below
+was *derived* (:func:`derive_root_sign_table`), the way Lemma 12 does: place
+a small ellipsoid at one point of ``R-`` and one of ``R+`` of each standard
+form of Table 1 and read off the root signs exactly; the pattern cannot
+change inside a region because no root crosses 0 there (for the cylinders
+and parallel planes the zero roots are structural).  A test re-derives it.
+
+The patterns hold for ``Q`` with the sign of its standard form
+(:attr:`Quadric.canonical_sign`); for ``-Q`` the roots change sign and
+``R-``/``R+`` swap, which is how the caller's matrix is handled.
+
+================================================  ========  ========
+type of Q                                          R-        R+
+================================================  ========  ========
+ellipsoid, hyperboloid of two sheets,              ``----``  ``--++``
+elliptic paraboloid
+hyperboloid of one sheet, hyperbolic paraboloid    ``---+``  ``-+++``
+elliptic cylinder, parabolic cylinder              ``---0``  ``-0++``
+hyperbolic cylinder                                ``--0+``  ``0+++``
+parallel planes; a plane (Theorem 14)              ``--00``  ``00++``
+================================================  ========  ========
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from typing import Any
+
+from .classification import TABLE_1_KINDS, QuadricKind
+from .contact import NO_REAL_POINTS, decide_transversal
+from .errors import ExcludedQuadricError
+from .pencil import CharacteristicPolynomial, characteristic_polynomial
+from .quadric import Quadric
+from .results import Region, RegionResult
+
+__all__ = ["ROOT_SIGN_TABLE", "derive_root_sign_table", "relative_position"]
+
+K = QuadricKind
+ROOT_SIGN_TABLE: dict[QuadricKind, dict[Region, str]] = {
+    K.ELLIPSOID: {Region.R_MINUS: "----", Region.R_PLUS: "--++"},
+    K.HYPERBOLOID_TWO_SHEETS: {Region.R_MINUS: "----", Region.R_PLUS: "--++"},
+    K.ELLIPTIC_PARABOLOID: {Region.R_MINUS: "----", Region.R_PLUS: "--++"},
+    K.HYPERBOLOID_ONE_SHEET: {Region.R_MINUS: "---+", Region.R_PLUS: "-+++"},
+    K.HYPERBOLIC_PARABOLOID: {Region.R_MINUS: "---+", Region.R_PLUS: "-+++"},
+    K.ELLIPTIC_CYLINDER: {Region.R_MINUS: "---0", Region.R_PLUS: "-0++"},
+    K.PARABOLIC_CYLINDER: {Region.R_MINUS: "---0", Region.R_PLUS: "-0++"},
+    K.HYPERBOLIC_CYLINDER: {Region.R_MINUS: "--0+", Region.R_PLUS: "0+++"},
+    K.PARALLEL_PLANES: {Region.R_MINUS: "--00", Region.R_PLUS: "00++"},
+    K.PLANE: {Region.R_MINUS: "--00", Region.R_PLUS: "00++"},
+}
+"""Root-sign pattern of ``det(lambda*E + s*Q)`` (``s`` the canonical sign) in each region."""
+
+# Where to put a probe ellipsoid in each region of the standard forms used by
+# derive_root_sign_table (parameters a=3, b=2, c=1): far from the surface.
+_PROBES: dict[QuadricKind, tuple[tuple[int, ...], tuple[int, int, int], tuple[int, int, int]]] = {
+    K.ELLIPSOID: ((3, 2, 1), (0, 0, 0), (10, 0, 0)),
+    K.HYPERBOLOID_ONE_SHEET: ((3, 2, 1), (0, 0, 0), (10, 0, 0)),
+    K.HYPERBOLOID_TWO_SHEETS: ((3, 2, 1), (0, 0, 10), (0, 0, 0)),
+    K.ELLIPTIC_PARABOLOID: ((3, 2), (0, 0, 10), (0, 0, -10)),
+    K.HYPERBOLIC_PARABOLOID: ((3, 2), (0, 0, 10), (0, 0, -10)),
+    K.ELLIPTIC_CYLINDER: ((3, 2), (0, 0, 0), (10, 0, 0)),
+    K.HYPERBOLIC_CYLINDER: ((3, 2), (0, 0, 0), (10, 0, 0)),
+    K.PARABOLIC_CYLINDER: ((3,), (0, 0, 10), (0, 0, -10)),
+    K.PARALLEL_PLANES: ((3,), (0, 0, 0), (10, 0, 0)),
+}
+
+
+def derive_root_sign_table(
+    probe: Quadric | None = None,
+) -> dict[QuadricKind, dict[Region, str]]:
+    """Re-derive :data:`ROOT_SIGN_TABLE` by exact construction.
+
+    A small ellipsoid (semi-axes 1/10, 1/20, 1/30, rotated by the quaternion
+    (1, 2, 3, 4)) is centred at a point of ``R-`` and a point of ``R+`` of each
+    standard form; the root signs are read off exactly, after checking that
+    the probe is inside the region (sign of ``Q`` at the centre) and not in
+    transversal contact (all roots real).
+    """
+    table: dict[QuadricKind, dict[Region, str]] = {}
+    for kind in TABLE_1_KINDS:
+        params, p_minus, p_plus = _PROBES[kind]
+        q = Quadric.standard(kind, **dict(zip("abc", params, strict=False)))
+        row: dict[Region, str] = {}
+        for region, point in ((Region.R_MINUS, p_minus), (Region.R_PLUS, p_plus)):
+            e = (
+                probe.translated(point)
+                if probe is not None
+                else Quadric.ellipsoid(
+                    Fraction(1, 10), Fraction(1, 20), Fraction(1, 30), center=point, rotation=(1, 2, 3, 4)
+                )
+            )
+            value = q.value_at(point)
+            assert (value < 0) == (region is Region.R_MINUS), (kind, point)
+            P = characteristic_polynomial(e, q)
+            assert P.structure.all_real, (kind, point)
+            row[region] = P.signs.pattern
+        table[kind] = row
+    plane = Quadric.plane((0, 0, 1), 0)
+    row = {}
+    for region, z in ((Region.R_MINUS, -1), (Region.R_PLUS, 1)):
+        P = characteristic_polynomial(Quadric.sphere(Fraction(1, 2), (0, 0, z)), plane)
+        row[region] = P.signs.pattern
+    table[K.PLANE] = row
+    return table
+
+
+def decide_region(
+    P: CharacteristicPolynomial, *, small: bool | None = None, method: str = "auto"
+) -> RegionResult:
+    """Decide the region from an already computed characteristic polynomial."""
+    Q = P.Q
+    kind = Q.kind
+    if kind in NO_REAL_POINTS or (
+        kind not in ROOT_SIGN_TABLE and P.structure.all_real and method == "theory"
+    ):
+        raise ExcludedQuadricError(
+            f"relative position needs Q of a type of Table 1 or a plane; Q is {kind.value}"
+            + (f" ({kind.excluded_reason})" if kind.excluded_reason else ""),
+            Q,
+            kind=kind,
+        )
+    contact = decide_transversal(P, small=small, method=method)
+    sign = Q.canonical_sign
+    expected = {r.value: p for r, p in ROOT_SIGN_TABLE.get(kind, {}).items()}
+    if sign < 0 and expected:
+        # The patterns for the caller's matrix -Q_std: roots negated, regions swapped.
+        flip = str.maketrans("-+", "+-")
+        expected = {
+            Region(r).swapped().value: "".join(sorted(p.translate(flip), key="-0+".index))
+            for r, p in expected.items()
+        }
+    if contact.transversal:
+        return RegionResult(Region.CONTACT, contact.decided_by, contact.reason, P, contact, expected)
+    if contact.transversal is None:
+        return RegionResult(None, None, contact.reason, P, contact, expected)
+    if contact.geometric is not None:
+        return RegionResult(
+            contact.geometric.region, "geometric decision", contact.reason, P, contact, expected
+        )
+    if contact.decided_by == "no real points":  # pragma: no cover - excluded above
+        raise ExcludedQuadricError(f"Q is {kind.value}: it has no regions", Q, kind=kind)
+    pattern = P.signs.pattern
+    for region_value, p in expected.items():
+        if p == pattern:
+            by = "Theorem 14" if kind is K.PLANE else "Theorem 13 / Table 4"
+            return RegionResult(
+                Region(region_value),
+                by,
+                f"root signs {pattern} ({contact.decided_by}: no transversal contact)",
+                P,
+                contact,
+                expected,
+            )
+    return RegionResult(
+        None,
+        None,
+        f"root-sign pattern {pattern} matches no row of Table 4 for {kind.value} ({expected}); "
+        "the smallness hypothesis must be failing",
+        P,
+        contact,
+        expected,
+    )
+
+
+def relative_position(
+    E: Any,
+    Q: Any,
+    *,
+    small: bool | None = None,
+    method: str = "auto",
+    mode: str = "certified",
+) -> Any:
+    """Where is the ellipsoid ``E`` with respect to ``Q``: ``R-``, ``R+`` or in contact?
+
+    Parameters
+    ----------
+    E, Q : Quadric, matrix-like or equation; or stacks ``(..., 4, 4)``
+    small : bool, optional
+        Assert smallness instead of deciding it (Table 2).
+    method : {"auto", "theory"}
+        As for :func:`~quadric_contact.transversal_contact`.
+    mode : {"certified", "exact", "float", "ball", "mpmath"}
+        Number mode; stacks go to the array predicates.
+
+    Returns
+    -------
+    RegionResult
+        ``.region`` is a :class:`Region` (``R-``, ``R+``, ``contact``) or None
+        when undecided; the result compares equal to its region.  For stacks,
+        a numpy array of region codes.
+
+    Raises
+    ------
+    NotAnEllipsoidError, ExcludedQuadricError
+
+    References
+    ----------
+    Theorem 13 and Table 4 (root signs), Lemma 12, Theorem 14 (planes).
+
+    Examples
+    --------
+    Example 17: the bee is outside the hyperboloid S2 (``R+``):
+
+    >>> bee = "(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1"
+    >>> r = relative_position(bee, "x**2 + y**2 - 0.25*(z-3)**2 - 1")
+    >>> r.region, r.decided_by, r.polynomial.signs.pattern
+    (<Region.R_PLUS: 'R+'>, 'Theorem 13 / Table 4', '-+++')
+    """
+    from .batch import is_stack
+
+    if is_stack(E) or is_stack(Q) or mode not in ("certified", "exact"):
+        from .batch import relative_position_batch
+
+        return relative_position_batch(E, Q, mode=mode)
+    P = characteristic_polynomial(E, Q)
+    return decide_region(P, small=small, method=method)

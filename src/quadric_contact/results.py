@@ -1,0 +1,246 @@
+"""Result objects of the predicates.
+
+Every answer says which result of the paper decided it and the values it
+looked at, so that a user can audit it; an answer the theory did not decide
+says so (``decided is False``) and refuses to be read as a boolean.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from enum import StrEnum
+from fractions import Fraction
+from typing import TYPE_CHECKING, Any
+
+from .errors import UndecidedError
+
+if TYPE_CHECKING:
+    from .descartes import RootSigns
+    from .discriminants import RootStructure
+    from .pencil import CharacteristicPolynomial
+
+__all__ = ["ContactResult", "PlaneSideResult", "Region", "RegionResult"]
+
+
+class Region(StrEnum):
+    """Where the ellipsoid is with respect to ``Q`` (paper eq. (8)).
+
+    ``R-`` is ``{X^T Q X <= 0}``, ``R+`` is ``{X^T Q X >= 0}`` for the matrix
+    *as given*; tangent contact still counts as ``R-`` or ``R+``; ``contact``
+    means transversal contact.
+    """
+
+    R_MINUS = "R-"
+    R_PLUS = "R+"
+    CONTACT = "contact"
+
+    def __str__(self) -> str:
+        return self.value
+
+    def swapped(self) -> Region:
+        """The region for ``-Q``."""
+        return {Region.R_MINUS: Region.R_PLUS, Region.R_PLUS: Region.R_MINUS}.get(self, self)
+
+
+def _frac(x: Any) -> Any:
+    if isinstance(x, Fraction):
+        return str(x) if x.denominator != 1 else int(x)
+    return x
+
+
+def _poly_dict(P: CharacteristicPolynomial) -> dict[str, Any]:
+    d2, d3, d4 = P.deltas()
+    return {
+        "polynomial": str(P),
+        "coefficients": [_frac(c) for c in P.coefficients],
+        "delta2": _frac(d2),
+        "delta3": _frac(d3),
+        "delta4": _frac(d4),
+        "roots": P.structure.describe(),
+        "root_signs": P.signs.pattern,
+        "root_signs_method": P.signs.method,
+        "e_flipped": P.e_flipped,
+    }
+
+
+@dataclass(frozen=True)
+class ContactResult:
+    """Answer of :func:`~quadric_contact.transversal_contact`.
+
+    Attributes
+    ----------
+    transversal : bool or None
+        None when the theory did not decide.
+    decided_by : str or None
+        The result that decided it ("Remark 9", "Corollary 10", "Theorem 14",
+        "geometric decision", ...).
+    reason : str
+        One sentence on why.
+    polynomial : CharacteristicPolynomial
+    smallness : object
+        The smallness report used (or ``"asserted by caller"``, or None).
+    """
+
+    transversal: bool | None
+    decided_by: str | None
+    reason: str
+    polynomial: CharacteristicPolynomial
+    smallness: Any = None
+    geometric: Any = None
+
+    @property
+    def decided(self) -> bool:
+        return self.transversal is not None
+
+    def __bool__(self) -> bool:
+        if self.transversal is None:
+            raise UndecidedError(f"transversal contact is undecided: {self.reason}", self)
+        return self.transversal
+
+    @property
+    def delta3(self) -> Fraction:
+        return self.polynomial.deltas()[1]
+
+    @property
+    def delta4(self) -> Fraction:
+        return self.polynomial.deltas()[2]
+
+    @property
+    def root_structure(self) -> RootStructure:
+        return self.polynomial.structure
+
+    @property
+    def root_signs(self) -> RootSigns:
+        return self.polynomial.signs
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "transversal_contact": self.transversal,
+            "decided": self.decided,
+            "decided_by": self.decided_by,
+            "reason": self.reason,
+            "smallness": _smallness_repr(self.smallness),
+            **_poly_dict(self.polynomial),
+            "geometric": None if self.geometric is None else str(self.geometric),
+        }
+
+    def __str__(self) -> str:
+        verdict = {True: "transversal contact", False: "no transversal contact", None: "UNDECIDED"}[
+            self.transversal
+        ]
+        return f"{verdict} ({self.decided_by or 'no result applies'}: {self.reason})"
+
+
+def _smallness_repr(s: Any) -> Any:
+    if s is None or isinstance(s, (str, bool)):
+        return s
+    verdict = getattr(s, "small", None)
+    return {"small": verdict, "report": str(s)}
+
+
+@dataclass(frozen=True)
+class RegionResult:
+    """Answer of :func:`~quadric_contact.relative_position`.
+
+    Compares equal to its :class:`Region` (``result == "R-"`` works).
+    """
+
+    region: Region | None
+    decided_by: str | None
+    reason: str
+    polynomial: CharacteristicPolynomial
+    contact: ContactResult
+    expected: dict[str, str] = field(default_factory=dict)
+
+    @property
+    def decided(self) -> bool:
+        return self.region is not None
+
+    def require(self) -> Region:
+        """The region, or :class:`UndecidedError` if the theory did not decide."""
+        if self.region is None:
+            raise UndecidedError(f"relative position is undecided: {self.reason}", self)
+        return self.region
+
+    def __bool__(self) -> bool:
+        raise TypeError("a RegionResult has no truth value; compare it with a Region")
+
+    def __eq__(self, other: object) -> bool:
+        if isinstance(other, RegionResult):
+            return self.region == other.region and self.polynomial == other.polynomial
+        if isinstance(other, (Region, str)):
+            return self.region is not None and self.region == Region(other)
+        return NotImplemented
+
+    def __hash__(self) -> int:
+        return hash(self.region)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "region": self.region.value if self.region else None,
+            "decided": self.decided,
+            "decided_by": self.decided_by,
+            "reason": self.reason,
+            "table_4_patterns": self.expected,
+            **_poly_dict(self.polynomial),
+        }
+
+    def __str__(self) -> str:
+        where = self.region.value if self.region else "UNDECIDED"
+        return f"{where} ({self.decided_by or 'no result applies'}: {self.reason})"
+
+
+@dataclass(frozen=True)
+class PlaneSideResult:
+    """Answer of :func:`~quadric_contact.plane_side` (Theorem 14, Corollary 15).
+
+    ``zone`` is ``R-`` (Algorithm 1's Zone 2), ``R+`` (Zone 1) or ``contact``
+    (Zone 0, transversal contact); ``tangent`` is True when the plane touches
+    the ellipsoid (a double non-zero root).
+    """
+
+    zone: Region
+    tangent: bool
+    decided_by: str
+    reason: str
+    polynomial: CharacteristicPolynomial
+    c2: Fraction
+    c3: Fraction
+    c4: Fraction
+    center_value: Fraction
+
+    @property
+    def discriminant(self) -> Fraction:
+        """``c3^2 - 4 c4 c2``: negative exactly when the contact is transversal."""
+        return self.c3 * self.c3 - 4 * self.c4 * self.c2
+
+    def __eq__(self, other: object) -> bool:
+        if isinstance(other, (Region, str)):
+            return self.zone == Region(other)
+        if isinstance(other, PlaneSideResult):
+            return self.zone == other.zone and self.polynomial == other.polynomial
+        return NotImplemented
+
+    def __hash__(self) -> int:
+        return hash(self.zone)
+
+    @property
+    def algorithm_1_zone(self) -> int:
+        """Zone number of Algorithm 1: 1 for R+, 2 for R-, 0 for contact."""
+        return {Region.R_PLUS: 1, Region.R_MINUS: 2, Region.CONTACT: 0}[self.zone]
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "zone": self.zone.value,
+            "algorithm_1_zone": self.algorithm_1_zone,
+            "tangent": self.tangent,
+            "decided_by": self.decided_by,
+            "reason": self.reason,
+            "c3_squared_minus_4_c4_c2": _frac(self.discriminant),
+            "center_value": _frac(self.center_value),
+            **_poly_dict(self.polynomial),
+        }
+
+    def __str__(self) -> str:
+        t = " (tangent)" if self.tangent else ""
+        return f"{self.zone.value}{t} ({self.decided_by}: {self.reason})"

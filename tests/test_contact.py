@@ -1,0 +1,87 @@
+"""Transversal contact against numeric root finders away from tangency, and
+against the exact geometry of constructed configurations."""
+
+from fractions import Fraction
+
+import mpmath
+import numpy as np
+import pytest
+from hypothesis import assume, given
+
+from quadric_contact import Quadric, characteristic_polynomial, transversal_contact
+from quadric_contact.strategies import ellipsoids, quadrics, tangent_pairs
+
+
+def _numeric_nonreal(P, digits=50):
+    """Non-real roots by mpmath polyroots at ``digits``, or None if too close to call."""
+    with mpmath.workdps(digits):
+        coeffs = [mpmath.mpf(c.numerator) / c.denominator for c in reversed(P.coefficients)]
+        roots = mpmath.polyroots(coeffs, maxsteps=400, extraprec=4 * digits)
+        scale = max(1, max(abs(r) for r in roots))
+        imag = [abs(mpmath.im(r)) / scale for r in roots]
+        if any(mpmath.mpf(10) ** (-digits // 2) < v < mpmath.mpf(10) ** (-digits // 4) for v in imag):
+            return None
+        return any(v > mpmath.mpf(10) ** (-digits // 4) for v in imag)
+
+
+def _eig_nonreal(E, Q):
+    """Non-real eigenvalues of -Q E^-1 (numpy), or None if too close to call."""
+    M = -Q.to_numpy() @ np.linalg.inv(E.to_numpy())
+    w = np.linalg.eigvals(M)
+    scale = max(1.0, float(np.max(np.abs(w))))
+    im = np.abs(w.imag) / scale
+    if np.any((im > 1e-12) & (im < 1e-6)):
+        return None
+    return bool(np.any(im >= 1e-6))
+
+
+@given(e=ellipsoids(), q=quadrics())
+def test_nonreal_roots_agree_with_mpmath_and_numpy(e, q):
+    P = characteristic_polynomial(e, q)
+    exact = not P.structure.all_real
+    numeric = _numeric_nonreal(P)
+    assume(numeric is not None)
+    assert exact == numeric
+    eig = _eig_nonreal(P.E, q)
+    if eig is not None:
+        assert exact == eig
+
+
+@given(pair=tangent_pairs())
+def test_exact_tangency_is_never_transversal(pair):
+    e, q = pair
+    P = characteristic_polynomial(e, q)
+    assert P.deltas()[2] == 0  # tangency: a multiple root
+    assert P.structure.all_real
+    r = transversal_contact(e, q, small=True)
+    assert r.decided and not r
+
+
+def test_sphere_crossing_and_clear_of_an_ellipsoid():
+    q = Quadric.ellipsoid(4, 3, 2)
+    crossing = transversal_contact(Quadric.sphere(Fraction(1, 2), (4, 0, 0)), q)
+    assert bool(crossing) and crossing.decided_by == "Remark 9"
+    inside = transversal_contact(Quadric.sphere(Fraction(1, 2)), q, small=True)
+    assert not inside and inside.decided_by == "Corollary 10"
+
+
+def test_plane_uses_theorem_14_without_smallness():
+    E = Quadric.ellipsoid(5, 1, 1)  # large: no smallness needed for a plane
+    r = transversal_contact(E, "x - 6")
+    assert r.decided_by == "Theorem 14" and not r
+    r = transversal_contact(E, "x - 4")
+    assert bool(r) and r.decided_by == "Remark 9"
+
+
+@pytest.mark.parametrize("eq", ["x**2 + y**2 + z**2 + 1", "x**2 + y**2 + 1", "x**2 + 4"])
+def test_quadrics_without_real_points_are_never_touched(eq):
+    r = transversal_contact(Quadric.sphere(1), eq)
+    assert r.decided and not r and r.decided_by == "no real points"
+
+
+def test_result_reports_what_it_looked_at():
+    r = transversal_contact("2*x**2 + 2*y**2 + 3*z**2 - 1", "x**2 + y**2 + 8*z")
+    d = r.to_dict()
+    assert d["transversal_contact"] is True and d["delta4"] == 0 and d["delta3"] == -13790208
+    assert d["coefficients"] == [-16, -64, -67, -12, -12]
+    assert "non-real" in r.reason
