@@ -84,3 +84,8 @@ class UndecidedError(QuadricContactError, ValueError):
 class SceneError(QuadricContactError, ValueError):
     """A scene file is malformed; the message names the file, the key and what
     was expected."""
+
+
+class ProofsNotFoundError(QuadricContactError, FileNotFoundError):
+    """The ``proofs/`` directory of a checkout could not be found (``quadric-contact
+    prove`` runs from a checkout, or with ``--proofs DIR``)."""

@@ -16,7 +16,31 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["ERRATA", "PRINTED", "Erratum"]
+__all__ = ["ERRATA", "NUMBERED_RESULTS", "PRINTED", "Erratum"]
+
+NUMBERED_RESULTS: tuple[str, ...] = (
+    "eq. (1)",
+    "Theorem 2",
+    "Lemma 3",
+    "Lemma 4",
+    "Theorem 5",
+    "Example 6",
+    "Lemma 7",
+    "Lemma 8",
+    "Remark 9",
+    "Section 3.2",
+    "Corollary 10",
+    "Example 11",
+    "Lemma 12",
+    "Theorem 13",
+    "Theorem 14",
+    "Corollary 15",
+    "Remark 16",
+    "Example 17",
+)
+"""The paper's numbered results in the paper's order (Definition 1 is a
+definition; the formulas of Section 3.2 are unnumbered but proved too).
+Tables 1-4 and the numbered equations belong to the results that state them."""
 
 PRINTED: dict[str, str] = {
     # Section 3.2, the two members of the discrimination system used by Corollary 10.
@@ -45,10 +69,60 @@ PRINTED: dict[str, str] = {
     "Example 17 P0 Delta3": "0.121875",
     "Example 17 P2": "-0.3*lambda**4 + 45.7375*lambda**3 + 34.125*lambda**2 - 11.6625*lambda + 0.25",
     "Example 17 P2 Delta4": "6.90965e8",
+    # Table 4, read row by row (the extraction shifts the quadric names; the rows are grouped as the
+    # mathematics forces: see proofs/theorem_13_table_4.py).  One entry per row:
+    # "group | region | root signs | coefficients".
+    "Table 4 rows": (
+        "ellipsoid, hyperboloid of two sheets, elliptic paraboloid | R- | ---- | c4, c0 < 0; No sign changes;"
+        " c_i <= 0 for i = 1, 2, 3\n"
+        "ellipsoid, hyperboloid of two sheets, elliptic paraboloid | R+ | --++ | c4, c0 < 0; 2 sign changes;"
+        " c_i > 0 for some i = 1, 2, 3\n"
+        "hyperboloid of one sheet, hyperbolic paraboloid | R- | ---+ | c4 < 0, c0 > 0; No sign changes;"
+        " c_i > 0 => c_j >= 0 for all j > i\n"
+        "hyperboloid of one sheet, hyperbolic paraboloid | R+ | -+++ | c4 < 0, c0 > 0; 3 sign changes;"
+        " c_i <= 0, c_j > 0 for some i < j\n"
+        "elliptic cylinder, parabolic cylinder | R- | ---0 | c4 < 0, c0 = 0; No sign changes;"
+        " c_i <= 0 for all i = 1, 2, 3\n"
+        "elliptic cylinder, parabolic cylinder | R+ | -0++ | c4 < 0, c0 = 0; 1 sign change;"
+        " c_i > 0 for some i = 1, 2, 3\n"
+        "hyperbolic cylinder | R- | --0+ | c4 < 0, c0 = 0; 1 sign change; c_i < 0 => c_j <= 0 for all j > i\n"
+        "hyperbolic cylinder | R+ | 0+++ | c4 < 0, c0 = 0; No sign changes;"
+        " (-1)^i c_i <= 0 for all i = 1, 2, 3\n"
+        "parallel planes | R- | --00 | c_i < 0 for i = 2, 3, 4; c0 = c1 = 0\n"
+        "parallel planes | R+ | 00++ | (-1)^i c_i <= 0 for i = 2, 3, 4; c0 = c1 = 0"
+    ),
     # Corollary 15 (1).
     "Corollary 15 (1)": "c3**2 < 4*c1*c2",
     # Remark 16.
     "Remark 16 c3": "(a*x_c + b*y_c + c*z_c - d)/(alpha**2*beta**2*gamma**2)",
+    # Lemma 3 (proof): the conic computations.
+    "eq. (3) E": "(x - a + beta)**2/beta**2 + y**2/alpha**2 - 1",
+    "eq. (3) C1": "x**2/a**2 + y**2/b**2 - 1",
+    "Lemma 3 second x": "a*(a**2*alpha**2 - 2*a*alpha**2*beta + b**2*beta**2)/(a**2*alpha**2 - b**2*beta**2)",
+    "eq. (4)": "-4*a*alpha**2*b**2*beta*(a - beta)*(b**2*beta - a*alpha**2)/((b*beta - "
+        "a*alpha)**2*(a*alpha + b*beta)**2)",
+    "Lemma 3 sign step": "if y^2 < 0, since beta < a, all factors in (4) have to be positive, so we "
+        "conclude that "
+    "b^2 beta - a alpha^2 < 0",
+    "Lemma 3 relation": "b**2*beta - a*alpha**2 >= 0",
+    "Lemma 3 ellipse curvature": "a*b/sqrt(a**2*sin(t)**2 + b**2*cos(t)**2)",
+    "Lemma 3 ellipse-ellipse": "a/b**2 <= beta/alpha**2",
+    "eq. (5) E": "(x - a - beta)**2/beta**2 + y**2/alpha**2 - 1",
+    "eq. (5) C2": "x**2/a**2 - y**2/b**2 - 1",
+    "Lemma 3 ellipse-hyperbola": "a/b**2 <= beta/alpha**2",
+    "Lemma 3 parabola E": "x**2/alpha**2 + (y - beta)**2/beta**2 - 1",
+    "Lemma 3 parabola C3": "x**2/a**2 - y",
+    "Lemma 3 ellipse-parabola": "2/a**2 <= beta/alpha**2",
+    # Lemma 12: the two-sheet hyperboloid H = diag(1/a^2, 1/b^2, -1/c^2, 1) and the unit sphere (10)
+    # centred at (x_c, y_c, z_c).
+    "eq. (11)": (
+        "-lambda**4 + ((x_c**2 - 1)/a**2 + (y_c**2 - 1)/b**2 + (1 - z_c**2)/c**2 + 1)*lambda**3"
+        " + ((c**2*(a**2 + b**2 - 1) + a**2 + b**2 - a**2*b**2 - (a**2 + b**2)*z_c**2 + (c**2 - a**2)*y_c**2"
+        " + (c**2 - b**2)*x_c**2)/(a**2*b**2*c**2))*lambda**2"
+        " - (a**2 + b**2 - c**2 + x_c**2 + y_c**2 + z_c**2 - 1)/(a**2*b**2*c**2)*lambda - 1/(a**2*b**2*c**2)"
+    ),
+    "Lemma 12 at (0, 0, 0)": "-(lambda - 1)*(a**2*lambda + 1)*(b**2*lambda + 1)*(c**2*lambda - 1)",
+    "Lemma 12 at (0, 0, c + 1)": "-(a**2*lambda + 1)*(b**2*lambda + 1)*(c*lambda + 1)**2",
     # Theorem 14, eq. (12).
     "eq. (12)": "-lambda**2*(r**2 + 4*lambda*(lambda - z_c))/(4*r**6)",
 }
@@ -94,5 +168,56 @@ ERRATA: tuple[Erratum, ...] = (
         evidence="for a plane c1 = c0 = 0 (eq. (12)), so the printed condition never holds; "
         "Delta_3 with c0 = c1 = 0 is c2^2 (c3^2 - 4 c4 c2). tests/test_plane.py::test_corollary_15_misprint",
         consequence="the printed test would never detect contact with a plane",
+    ),
+    Erratum(
+        key="table-4-one-sheet-r-minus",
+        location="Table 4, row 'hyperboloid of one sheet / hyperbolic paraboloid, X^T Q X <= 0' "
+            "(root signs ---+)",
+        printed="c4 < 0, c0 > 0; No sign changes; c_i > 0 => c_j >= 0 for all j > i",
+        corrected="c4 < 0, c0 > 0; 1 sign change; c_i < 0 => c_j <= 0 for all j > i "
+        "(equivalently c_i > 0 => c_j >= 0 for all j < i)",
+        evidence="with c4 < 0 < c0 there is at least one sign change, and the printed rule applied to i = 0 "
+        "forces c4 >= 0, so it never holds; exhaustive case analysis over the 49 realisable sign vectors of "
+        "real-rooted quartics: every vector of root pattern ---+ has exactly 1 sign change and the corrected "
+        "rule holds exactly for them among the patterns ---+ and -+++ "
+        "(proofs/theorem_13_table_4.py::row_03). The extraction garbles Table 4, so this may be a layout "
+        "artefact; the cell as it reads is wrong",
+        consequence="a classifier coded from the printed row never reports R- for one-sheet hyperboloids "
+        "and hyperbolic paraboloids",
+    ),
+    Erratum(
+        key="table-4-sign-change-counts",
+        location="Table 4, rows 'elliptic / parabolic cylinder, X^T Q X >= 0' (-0++) and "
+        "'hyperbolic cylinder, X^T Q X >= 0' (0+++)",
+        printed="-0++: '1 sign change'; 0+++: 'No sign changes'",
+        corrected="-0++: 2 sign changes; 0+++: 3 sign changes (Descartes: one per positive root)",
+        evidence="exhaustive case analysis over the realisable sign vectors of real-rooted quartics: every "
+        "vector of pattern -0++ has 2 sign changes and every vector of pattern 0+++ has 3; the rules printed "
+        "beside them (c_i > 0 for some i; (-1)^i c_i <= 0) are right "
+        "(proofs/theorem_13_table_4.py::row_06, row_08)",
+        consequence="none if the rules are used; the counts as printed contradict the root signs in "
+            "the same row",
+    ),
+    Erratum(
+        key="lemma-3-sign-step",
+        location="Lemma 3, proof, ellipse-ellipse case, after eq. (4)",
+        printed="if y^2 < 0, since beta < a, all factors in (4) have to be positive, so we conclude that "
+        "b^2 beta - a alpha^2 < 0",
+        corrected="y^2 < 0 iff b^2 beta - a alpha^2 > 0: (4) is -K (b^2 beta - a alpha^2) with K > 0",
+        evidence="symbolic identity (4) = -K (b^2 beta - a alpha^2), K = 4 a alpha^2 b^2 beta (a - beta) / "
+        "((b beta - a alpha)^2 (a alpha + b beta)^2); a = 3, b = 2, alpha = beta = 1 gives y^2 < 0 with "
+        "b^2 beta - a alpha^2 = 1 > 0 (proofs/lemma_03_curvature.py::sign_step)",
+        consequence="none: the lemma's conclusion b^2 beta - a alpha^2 >= 0 is right",
+    ),
+    Erratum(
+        key="lemma-3-curvature-exponent",
+        location="Lemma 3, proof, curvature of the ellipse (a cos t, b sin t)",
+        printed="kappa_1(t) = a b / sqrt(a^2 sin^2 t + b^2 cos^2 t)",
+        corrected="kappa_1(t) = a b / (a^2 sin^2 t + b^2 cos^2 t)^(3/2)",
+        evidence="the curvature |x'y'' - y'x''| / (x'^2 + y'^2)^(3/2) of (a cos t, b sin t), by "
+            "sympy; the printed "
+        "formula gives kappa_1(0) = a, not the maximum a/b^2 the proof uses next "
+        "(proofs/lemma_03_curvature.py::ellipse_curvature_formula). Possibly an exponent lost in typesetting",
+        consequence="none: the extreme values a/b^2 and beta/alpha^2 the proof uses are right",
     ),
 )
