@@ -99,11 +99,14 @@ PRINTED: dict[str, str] = {
     "eq. (3) E": "(x - a + beta)**2/beta**2 + y**2/alpha**2 - 1",
     "eq. (3) C1": "x**2/a**2 + y**2/b**2 - 1",
     "Lemma 3 second x": "a*(a**2*alpha**2 - 2*a*alpha**2*beta + b**2*beta**2)/(a**2*alpha**2 - b**2*beta**2)",
-    "eq. (4)": "-4*a*alpha**2*b**2*beta*(a - beta)*(b**2*beta - a*alpha**2)/((b*beta - "
-        "a*alpha)**2*(a*alpha + b*beta)**2)",
-    "Lemma 3 sign step": "if y^2 < 0, since beta < a, all factors in (4) have to be positive, so we "
-        "conclude that "
-    "b^2 beta - a alpha^2 < 0",
+    "eq. (4)": (
+        "-4*a*alpha**2*b**2*beta*(a - beta)*(b**2*beta - a*alpha**2)"
+        "/((b*beta - a*alpha)**2*(a*alpha + b*beta)**2)"
+    ),
+    "Lemma 3 sign step": (
+        "if y^2 < 0, since beta < a, all factors in (4) have to be positive, so we conclude that "
+        "b^2 beta - a alpha^2 < 0"
+    ),
     "Lemma 3 relation": "b**2*beta - a*alpha**2 >= 0",
     "Lemma 3 ellipse curvature": "a*b/sqrt(a**2*sin(t)**2 + b**2*cos(t)**2)",
     "Lemma 3 ellipse-ellipse": "a/b**2 <= beta/alpha**2",
@@ -172,7 +175,7 @@ ERRATA: tuple[Erratum, ...] = (
     Erratum(
         key="table-4-one-sheet-r-minus",
         location="Table 4, row 'hyperboloid of one sheet / hyperbolic paraboloid, X^T Q X <= 0' "
-            "(root signs ---+)",
+        "(root signs ---+)",
         printed="c4 < 0, c0 > 0; No sign changes; c_i > 0 => c_j >= 0 for all j > i",
         corrected="c4 < 0, c0 > 0; 1 sign change; c_i < 0 => c_j <= 0 for all j > i "
         "(equivalently c_i > 0 => c_j >= 0 for all j < i)",
@@ -196,7 +199,7 @@ ERRATA: tuple[Erratum, ...] = (
         "beside them (c_i > 0 for some i; (-1)^i c_i <= 0) are right "
         "(proofs/theorem_13_table_4.py::row_06, row_08)",
         consequence="none if the rules are used; the counts as printed contradict the root signs in "
-            "the same row",
+        "the same row",
     ),
     Erratum(
         key="lemma-3-sign-step",
@@ -214,9 +217,8 @@ ERRATA: tuple[Erratum, ...] = (
         location="Lemma 3, proof, curvature of the ellipse (a cos t, b sin t)",
         printed="kappa_1(t) = a b / sqrt(a^2 sin^2 t + b^2 cos^2 t)",
         corrected="kappa_1(t) = a b / (a^2 sin^2 t + b^2 cos^2 t)^(3/2)",
-        evidence="the curvature |x'y'' - y'x''| / (x'^2 + y'^2)^(3/2) of (a cos t, b sin t), by "
-            "sympy; the printed "
-        "formula gives kappa_1(0) = a, not the maximum a/b^2 the proof uses next "
+        evidence="the curvature |x'y'' - y'x''| / (x'^2 + y'^2)^(3/2) of (a cos t, b sin t), by sympy; "
+        "the printed formula gives kappa_1(0) = a, not the maximum a/b^2 the proof uses next "
         "(proofs/lemma_03_curvature.py::ellipse_curvature_formula). Possibly an exponent lost in typesetting",
         consequence="none: the extreme values a/b^2 and beta/alpha^2 the proof uses are right",
     ),
