@@ -116,6 +116,20 @@ PRINTED: dict[str, str] = {
     "Lemma 3 parabola E": "x**2/alpha**2 + (y - beta)**2/beta**2 - 1",
     "Lemma 3 parabola C3": "x**2/a**2 - y",
     "Lemma 3 ellipse-parabola": "2/a**2 <= beta/alpha**2",
+    # Table 1 (Lemma 4): "type | standard equation | order of the parameters | conditions".
+    "Table 1": (
+        "ellipsoid | x**2/a**2 + y**2/b**2 + z**2/c**2 - 1 | a >= b >= c | c >= alpha; a/c**2 <= gamma/alpha**2\n"
+        "hyperboloid of one sheet | x**2/a**2 + y**2/b**2 - z**2/c**2 - 1 | a >= b | b >= alpha;"
+        " a/c**2 <= gamma/alpha**2\n"
+        "hyperboloid of two sheets | x**2/a**2 + y**2/b**2 - z**2/c**2 + 1 | a >= b | c >= alpha;"
+        " c/b**2 <= gamma/alpha**2\n"
+        "elliptic paraboloid | x**2/a**2 + y**2/b**2 - z | a >= b | 2/b**2 <= gamma/alpha**2\n"
+        "hyperbolic paraboloid | x**2/a**2 - y**2/b**2 - z | a >= b | 2/b**2 <= gamma/alpha**2\n"
+        "elliptic cylinder | x**2/a**2 + y**2/b**2 - 1 | a >= b | b >= alpha; a/b**2 <= gamma/alpha**2\n"
+        "hyperbolic cylinder | x**2/a**2 - y**2/b**2 - 1 |  | a >= alpha; a/b**2 <= gamma/alpha**2\n"
+        "parabolic cylinder | x**2/a**2 - z |  | 2/a**2 <= gamma/alpha**2\n"
+        "parallel planes | x**2/a**2 - 1 |  | a >= alpha"
+    ),
     # Lemma 12: the two-sheet hyperboloid H = diag(1/a^2, 1/b^2, -1/c^2, 1) and the unit sphere (10)
     # centred at (x_c, y_c, z_c).
     "eq. (11)": (
@@ -221,5 +235,20 @@ ERRATA: tuple[Erratum, ...] = (
         "the printed formula gives kappa_1(0) = a, not the maximum a/b^2 the proof uses next "
         "(proofs/lemma_03_curvature.py::ellipse_curvature_formula). Possibly an exponent lost in typesetting",
         consequence="none: the extreme values a/b^2 and beta/alpha^2 the proof uses are right",
+    ),
+    Erratum(
+        key="table-1-one-sheet-curvature",
+        location="Table 1 (and Table 2), hyperboloid of one sheet x^2/a^2 + y^2/b^2 - z^2/c^2 = 1, a >= b",
+        printed="b >= alpha; a/c^2 <= gamma/alpha^2",
+        corrected="b >= alpha; a/c^2 <= gamma/alpha^2 and a/b^2 <= gamma/alpha^2 (kappa_max = max(a/b^2, a/c^2); "
+        "in Table 2 also a'/(d' b'^2) <= gamma'/(delta' alpha'^2))",
+        evidence="the principal curvatures at (a, 0, 0) are a/b^2 (along the waist ellipse) and a/c^2, and "
+        "|A p| >= 1/a everywhere, so kappa_max = max(a/b^2, a/c^2) (proofs/lemma_04_table_1.py::"
+        "curvature_one_sheet); counterexample: Q = x^2/100 + y^2/4 - z^2/10000 - 1 and the sphere of radius 1/2 "
+        "centred at (949/100, 0, 0) satisfy the printed conditions, yet P has four distinct real roots and the "
+        "sphere has rational points on both sides of Q (two intersection curves), contradicting Theorem 2 "
+        "(proofs/lemma_04_table_1.py::one_sheet_counterexample)",
+        consequence="a smallness test coded from Table 1/2 accepts pairs for which Corollary 10 misses a "
+        "transversal contact",
     ),
 )
