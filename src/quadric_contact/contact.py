@@ -73,7 +73,6 @@ def decide_transversal(
     """
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
-    kind = P.Q.kind
     structure = P.structure
     reading = _corollary_10_reading(P)
     if not structure.all_real:
@@ -84,6 +83,7 @@ def decide_transversal(
             "transversal contact for any pair",
             P,
         )
+    kind = P.Q.kind
     if kind is QuadricKind.PLANE:
         return ContactResult(
             False, "Theorem 14", f"all roots of P are real ({reading}): no transversal contact", P
