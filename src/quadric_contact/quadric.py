@@ -22,7 +22,7 @@ from fractions import Fraction
 from typing import Any
 
 from .classification import QuadricKind, classify, principal_minor_sums_3
-from .codegen import ENTRY_INDICES
+from .entries import ENTRY_INDICES
 from .errors import (
     EquationError,
     NonFiniteError,
