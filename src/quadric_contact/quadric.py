@@ -296,6 +296,28 @@ class Quadric:
         return cls.diagonal(_inverse_square(a, "a"), 0, 0, -1)
 
     @classmethod
+    def two_parallel_planes(cls, normal: Sequence[Any], offset1: Any, offset2: Any) -> Quadric:
+        """The planes ``n . x = offset1`` and ``n . x = offset2``: the quadric
+        ``(n . x - offset1)(n . x - offset2) = 0``, with ``R-`` the slab between them.
+
+        Raises
+        ------
+        NotANumberError
+            If the normal is zero or the offsets are equal (a double plane).
+        """
+        n = [to_fraction(t) for t in normal]
+        if len(n) != 3:
+            raise ShapeError("normal must have 3 components", normal)
+        if not any(n):
+            raise NotANumberError("the normal of a plane must not be zero", normal)
+        d1, d2 = to_fraction(offset1), to_fraction(offset2)
+        if d1 == d2:
+            raise NotANumberError("equal offsets give one double plane, not two parallel planes", (d1, d2))
+        m = [[n[i] * n[j] for j in range(3)] + [-(d1 + d2) * n[i] / 2] for i in range(3)]
+        m.append([m[i][3] for i in range(3)] + [d1 * d2])
+        return cls._from_upper(tuple(m[i][j] for i, j in ENTRY_INDICES))
+
+    @classmethod
     def plane(cls, normal: Sequence[Any], offset: Any = 0) -> Quadric:
         """The plane ``n . x - offset = 0``; ``R-`` is the side ``n . x <= offset``.
 
