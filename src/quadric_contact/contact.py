@@ -48,10 +48,8 @@ def _corollary_10_reading(P: CharacteristicPolynomial) -> str:
 
 def _known_smallness(E: Any, Q: Any) -> tuple[bool | None, Any]:
     """Exact smallness of ``E`` w.r.t. ``Q`` when the smallness module can decide it."""
-    try:
-        from .smallness import smallness
-    except ImportError:  # pragma: no cover - smallness lands with the Tables 1/2 work
-        return None, None
+    from .smallness import smallness
+
     report = smallness(E, Q)
     return report.small, report
 
