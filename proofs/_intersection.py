@@ -36,7 +36,7 @@ distinct real roots, as in Tu et al. (2009) and the paper.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import sympy as sp

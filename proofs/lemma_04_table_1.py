@@ -125,7 +125,8 @@ def curvature_check(kind: str, vertices: list[tuple[sp.Expr, ...]], bound: str) 
     missing = [k for k in maximal if k != shown]
     return differs(
         f"{kind}: kappa_max = {shown} ({'; '.join(table_1()[kind][2])})",
-        f"the principal curvatures at the vertices are {values}; kappa_max = max({', '.join(map(str, maximal))}) "
+        f"the principal curvatures at the vertices are {values}; "
+        f"kappa_max = max({', '.join(map(str, maximal))}) "
         f"(each can be the larger), so {' and '.join(map(str, missing))} <= gamma/alpha**2 is needed too",
     )
 
@@ -163,7 +164,7 @@ def curvature_ellipsoid() -> Finding:
 @proof.check(
     "hyperboloid of one sheet: kappa_max = a/c^2",
     method=Method.IDENTITY,
-    erratum="table-1-one-sheet-curvature",
+    erratum="table-1-h1-curvature",
 )
 def curvature_one_sheet() -> Finding:
     # On the surface x^2/a^2 + y^2/b^2 - z^2/c^2 = 1: |A p|^2 - 1/a^2 >= 0 (a >= b).
@@ -241,7 +242,7 @@ def curvature_parabolic_cylinder() -> Finding:
 @proof.check(
     "a sphere satisfying Table 1 for a one-sheet hyperboloid, in transversal contact with 4 real roots",
     method=Method.CONSTRUCTION,
-    erratum="table-1-one-sheet-curvature",
+    erratum="table-1-h1-curvature",
 )
 def one_sheet_counterexample() -> Finding:
     A, B, C = 10, 2, 100
@@ -250,7 +251,7 @@ def one_sheet_counterexample() -> Finding:
     Q = Quadric.hyperboloid_one_sheet(A, B, C)
     E = Quadric.sphere(r, centre)
     # Table 1 as printed: b >= alpha and a/c^2 <= gamma/alpha^2 (alpha = gamma = r for a sphere).
-    printed_small = B >= r and Fraction(A, C**2) <= r / r**2
+    printed_small = r <= B and Fraction(A, C**2) <= r / r**2
     ensure(printed_small, "the printed conditions of Table 1 hold")
     P = characteristic_polynomial(E, Q)
     ensure(P.structure.all_real and P.structure.real == (1, 1, 1, 1), P.structure.describe())
@@ -266,7 +267,8 @@ def one_sheet_counterexample() -> Finding:
     return differs(
         f"small (b = {B} >= alpha = 1/2, a/c^2 = {Fraction(A, C**2)} <= gamma/alpha^2 = 2)",
         f"x^2/100 + y^2/4 - z^2/10000 = 1 and the sphere of radius 1/2 centred at (949/100, 0, 0) meet in "
-        f"two curves: P has four distinct real roots while Q takes the values {float(Q.value_at(p1)):.3g} and "
+        f"two curves: P has four distinct real roots while Q takes the values "
+        f"{float(Q.value_at(p1)):.3g} and "
         f"{float(Q.value_at(p2)):.3g} on the sphere, contradicting Theorem 2; the missing condition "
         f"a/b^2 = 5/2 <= gamma/alpha^2 = 2 fails",
     )
@@ -387,7 +389,7 @@ def curvature_necessary() -> Finding:
     wrong = {label: kind for label, kind in kinds.items() if kind != "two curves"}
     ensure(not wrong, f"not two curves: {wrong}")
     return agrees(
-        "a sphere meeting the size condition but not the curvature one, on the convex side of the section "
-        "of maximal curvature, touching its vertex and moved 1/20 (1/50 for the one-sheet hyperboloid) away from it, meets the quadric in two "
-        f"curves: {'; '.join(kinds)}"
+        "a sphere meeting the size condition but not the curvature one, on the convex side of the "
+        "section of maximal curvature, touching its vertex and moved 1/20 (1/50 for the one-sheet "
+        f"hyperboloid) away from it, meets the quadric in two curves: {'; '.join(kinds)}"
     )
