@@ -393,3 +393,30 @@ def curvature_necessary() -> Finding:
         "section of maximal curvature, touching its vertex and moved 1/20 (1/50 for the one-sheet "
         f"hyperboloid) away from it, meets the quadric in two curves: {'; '.join(kinds)}"
     )
+
+
+@proof.check(
+    "ellipsoid row: are c >= alpha and a/c^2 <= gamma/alpha^2 necessary?",
+    method=Method.IDENTITY,
+    erratum="table-1-ellipsoid-enclosing",
+)
+def ellipsoid_enclosing() -> Finding:
+    # Two spheres, any radii and centres: the difference of their normalised equations is affine, so
+    # they meet in a plane section of a sphere (a circle, a point or nothing), never in two curves.
+    r1, r2 = sp.symbols("r1 r2", positive=True)
+    m = sp.symbols("m1:7", real=True)
+    s1 = (x - m[0]) ** 2 + (y - m[1]) ** 2 + (z - m[2]) ** 2 - r1**2
+    s2 = (x - m[3]) ** 2 + (y - m[4]) ** 2 + (z - m[5]) ** 2 - r2**2
+    difference = sp.Poly(sp.expand(s1 - s2), x, y, z)
+    ensure(difference.total_degree() <= 1, "the radical 'plane' is affine")
+    # Table 1 for E = sphere of radius 2 and Q = sphere of radius 1: c = 1 < alpha = 2.
+    printed = table_1()["ellipsoid"][2]
+    values = {a: 1, b: 1, c: 1, al: 2, be: 2, ga: 2}
+    verdict = all(bool(sp.sympify(cond, locals=NAMES).subs(values)) for cond in printed)
+    ensure(not verdict, "Table 1 says: not small")
+    return differs(
+        "E small w.r.t. an ellipsoid only if c >= alpha and a/c^2 <= gamma/alpha^2 (Lemma 4: necessary)",
+        "a sphere of radius 2 is small w.r.t. a sphere of radius 1 (two spheres always meet in a plane "
+        "section: a circle, a point or nothing), though c = 1 < alpha = 2: for two ellipsoids Definition 1 "
+        "is symmetric and the printed conditions are sufficient, not necessary",
+    )

@@ -407,3 +407,30 @@ def _nparams(kind: QuadricKind) -> int:
     if kind in (K.ELLIPSOID, K.HYPERBOLOID_ONE_SHEET, K.HYPERBOLOID_TWO_SHEETS):
         return 3
     return 1 if kind in (K.PARABOLIC_CYLINDER, K.PARALLEL_PLANES) else 2
+
+
+@proof.check(
+    "an enclosing ellipsoid, small by Definition 1: does Table 4 still tell its region?",
+    method=Method.CONSTRUCTION,
+    erratum="table-1-ellipsoid-enclosing",
+)
+def enclosing_case() -> Finding:
+    from quadric_contact.smallness import smallness
+
+    E = Quadric.sphere(2)  # encloses Q: its whole surface lies in R+ of Q
+    Q = Quadric.sphere(1)
+    P = characteristic_polynomial(E, Q)
+    ensure(P.structure.all_real, "no transversal contact")
+    ensure(all(Q.value_at(p) > 0 for p in ((2, 0, 0), (0, -2, 0), (0, 0, 2))), "E lies in R+ of Q")
+    report = smallness(E, Q)
+    ensure(report.small and not report.table_4_applies, "small (Definition 1) but enclosing")
+    pattern = P.signs.pattern
+    table = {r: p for r, p in ROOT_SIGN_TABLE[K.ELLIPSOID].items()}
+    if table[Region.R_PLUS] == pattern:
+        return agrees("Table 4 gives R+")
+    return differs(
+        "E small w.r.t. Q and not in transversal contact => Table 4 tells the region "
+        f"(R+ is {table[Region.R_PLUS]})",
+        f"the sphere of radius 2 around the unit sphere is small by Definition 1 and lies in R+, but "
+        f"P = {P} has root signs {pattern}, the R- row: Theorem 13 needs E not to enclose Q",
+    )

@@ -158,6 +158,30 @@ PRINTED: dict[str, str] = {
         "parabolic cylinder | x**2/a**2 - z |  | 2/a**2 <= gamma/alpha**2\n"
         "parallel planes | x**2/a**2 - 1 |  | a >= alpha"
     ),
+    # Table 2 (Theorem 5): "type | invariant formula | reduced equation | conditions", primed names
+    # written a_, b_, ...; detQ, J, K, Jp are det(Q), J, K, J' of Section 2.4.
+    "Table 2 E": "al_**-2, be_**-2, ga_**-2 | de_**2 = -al_**2*be_**2*ga_**2*detE"
+    " | x**2/al_**2 + y**2/be_**2 + z**2/ga_**2 - de_**2",
+    "Table 2": (
+        "ellipsoid | d_**2 = -a_**2*b_**2*c_**2*detQ | x**2/a_**2 + y**2/b_**2 + z**2/c_**2 - d_**2"
+        " | d_*c_ >= de_*al_; a_/(d_*c_**2) <= ga_/(de_*al_**2)\n"
+        "hyperboloid of one sheet | d_**2 = a_**2*b_**2*c_**2*detQ"
+        " | x**2/a_**2 + y**2/b_**2 - z**2/c_**2 - d_**2"
+        " | b_*d_ >= de_*al_; a_/(d_*c_**2) <= ga_/(de_*al_**2)\n"
+        "hyperboloid of two sheets | d_**2 = -a_**2*b_**2*c_**2*detQ"
+        " | x**2/a_**2 + y**2/b_**2 - z**2/c_**2 + d_**2"
+        " | c_*d_ >= de_*al_; c_/(d_*b_**2) <= ga_/(de_*al_**2)\n"
+        "elliptic paraboloid | L**2 = -4*detQ/J | x**2/a_**2 + y**2/b_**2 - L*z"
+        " | 2/(L*b_**2) <= ga_/(de_*al_**2)\n"
+        "hyperbolic paraboloid | L**2 = -4*detQ/J | x**2/a_**2 - y**2/b_**2 - L*z"
+        " | 2/(L*b_**2) <= ga_/(de_*al_**2)\n"
+        "elliptic cylinder | M**2 = -K/J | x**2/a_**2 + y**2/b_**2 - M**2"
+        " | M*b_ >= de_*al_; a_/(M*b_**2) <= ga_/(de_*al_**2)\n"
+        "hyperbolic cylinder | M**2 = -K/J | x**2/a_**2 - y**2/b_**2 - M**2"
+        " | M*b_ >= de_*al_; a_/(M*b_**2) <= ga_/(de_*al_**2)\n"
+        "parabolic cylinder | d_**2 = 4*K*a_**2 | x**2/a_**2 - d_*z | 2/(d_*a_**2) <= ga_/(de_*al_**2)\n"
+        "parallel planes | d_**2 = -a_**2*Jp | x**2/a_**2 - d_**2 | a_*d_ >= al_*de_"
+    ),
     # Lemma 12: the two-sheet hyperboloid H = diag(1/a^2, 1/b^2, -1/c^2, 1) and the unit sphere (10)
     # centred at (x_c, y_c, z_c).
     "eq. (11)": (

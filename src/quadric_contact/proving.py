@@ -279,7 +279,8 @@ class CheckRecord:
         return f.statement if f is not None else ""
 
 
-_ERRATA_KEYS = {e.key for e in ERRATA}
+_ERRATA_BY_KEY = {e.key: e for e in ERRATA}
+_ERRATA_KEYS = set(_ERRATA_BY_KEY)
 
 
 def run_check(spec: CheckSpec) -> CheckRecord:
@@ -344,7 +345,9 @@ class ProofRecord:
         return sum(c.seconds for c in self.checks)
 
     def line(self) -> str:
-        """The one-line summary printed by ``quadric-contact prove``."""
+        """The one-line summary printed by ``quadric-contact prove``: the status, the result, and for
+        each erratum demonstrated what the paper prints and what is true (the registered wording;
+        ``-v`` shows what each check computed), or why a check failed."""
         p = self.proof
         ran = [c for c in self.checks if c.status is not Status.SKIPPED]
         head = f"{self.status.value:<8} {p.name}  {p.result}: {p.title}"
@@ -352,7 +355,17 @@ class ProofRecord:
         skipped = len(self.checks) - len(ran)
         if skipped:
             counts += f", {skipped} slow skipped"
-        notes = [c.describe() for c in self.checks if c.status in (Status.DIFFERS, Status.FAIL, Status.ERROR)]
+        notes: list[str] = []
+        for c in self.checks:
+            if c.status is Status.DIFFERS:
+                e = _ERRATA_BY_KEY[c.spec.erratum]  # type: ignore[index]
+                note = f"printed {e.printed}; true {e.corrected} [{e.key}]"
+            elif c.status in (Status.FAIL, Status.ERROR):
+                note = f"{c.spec.name}: {c.describe()}"
+            else:
+                continue
+            if note not in notes:
+                notes.append(note)
         detail = f" -- {' | '.join(notes)}" if notes else ""
         return f"{head} ({counts}){detail}"
 
