@@ -182,6 +182,15 @@ PRINTED: dict[str, str] = {
         "parabolic cylinder | d_**2 = 4*K*a_**2 | x**2/a_**2 - d_*z | 2/(d_*a_**2) <= ga_/(de_*al_**2)\n"
         "parallel planes | d_**2 = -a_**2*Jp | x**2/a_**2 - d_**2 | a_*d_ >= al_*de_"
     ),
+    # Table 3 (Theorem 2): "type of contact | Segre types | roots | Delta conditions" (the proof of
+    # Theorem 2 lists the same Segre types, except that it gives only [(111)1]_2 for the curve of tangency).
+    "Table 3": (
+        "no contact | [1111]_4, [(111)1]_2, [(11)11]_3, [(11)(11)]_2 | R | D4 > 0 or D4 = 0 and D3 >= 0\n"
+        "1 isolated tangent point | [211]_3, [2(11)]_2, [(21)1]_3, [(211)]_1 | R | D4 = 0 and D3 >= 0\n"
+        "2 isolated tangent points | [(11)11]_3, [2(11)]_2 | R | D4 = 0 and D3 >= 0\n"
+        "curve with no tangent points | [1111]_2, [(11)11]_1 | C | D4 < 0 or D4 = 0 and D3 < 0\n"
+        "curve of tangency | [(111)1]_2, [(11)11]_3 | R | D4 = 0 and D3 >= 0"
+    ),
     # Lemma 12: the two-sheet hyperboloid H = diag(1/a^2, 1/b^2, -1/c^2, 1) and the unit sphere (10)
     # centred at (x_c, y_c, z_c).
     "eq. (11)": (
@@ -338,5 +347,50 @@ ERRATA: tuple[Erratum, ...] = (
         "tests/test_smallness.py::test_parabolic_cylinder_printed_d_is_imaginary; "
         "tests/test_table_2_symbolic.py::test_table_2_reduces_to_table_1",
         consequence="the printed row cannot be evaluated (d' would be imaginary)",
+    ),
+    Erratum(
+        key="table-3-two-tangent-points",
+        location="Table 3, rows 'No contact' and '2 isolated tangent points'; proof of Theorem 2, items (1) "
+        "and (2b)",
+        printed="no contact: [1111]_4, [(11)11]_3, [(111)1]_2, [(11)(11)]_2; 2 isolated tangent points: "
+        "[(11)11]_3, [2(11)]_2",
+        corrected="no contact: [1111]_4, [(11)11]_3, [(111)1]_2; 2 isolated tangent points: [(11)11]_3, "
+        "[(11)(11)]_2 ([2(11)]_2 gives one isolated tangent point, never two)",
+        evidence="[(11)(11)] with real roots splits R^4 into two E-orthogonal planes U, V on which Q = -l1 "
+        "E, -l2 E; E has inertia (3, 1), so one of E|U, E|V is definite and the other has two real null "
+        "lines: E and Q always meet in exactly two points, both tangent (exhaustive over the placements of "
+        "the negative eigenvalue); exact construction: the unit sphere between the sheets of x^2 - y^2/4 - "
+        "z^2/4 = 1 (small, Table 1) is [(11)(11)]_2 with two isolated tangent points. For [2(11)]: the "
+        "eigenvector of the size-2 Jordan block is E-isotropic, hence a real tangent point p; if the rank-2 "
+        "member is a complex plane pair, E and Q meet only on its real line, which misses p; so it is a "
+        "real plane pair and E, Q meet in (E cap Pi1) cup (E cap Pi2): with only isolated points the planes "
+        "are tangent to E, their line misses E, and a second point would not be a tangent point "
+        "(proofs/theorem_02_table_3.py)",
+        consequence="none for Theorem 2 (all roots are real in both rows); a contact classifier built from "
+        "Table 3 would report 'no contact' for two tangent points",
+    ),
+    Erratum(
+        key="table-3-21-1-subscript",
+        location="Table 3, row '1 isolated tangent point'; proof of Theorem 2, item (2a)",
+        printed="[(21)1]_3",
+        corrected="[(21)1]_2 (the subscript counts distinct real eigenvalues, as in every other entry; "
+        "(21)1 has two)",
+        evidence="the sphere of radius 1/2 centred at (3/2, 0, 0) inside the elliptic cylinder x^2/4 + y^2 "
+        "= 1 (small, at the boundary of Table 1) has Segre characteristic [(21)1] with two distinct real "
+        "eigenvalues and one isolated tangent point (proofs/theorem_02_table_3.py)",
+        consequence="none",
+    ),
+    Erratum(
+        key="table-3-curve-of-tangency",
+        location="Table 3, row 'Curve of tangency'",
+        printed="[(111)1]_2, [(11)11]_3",
+        corrected="[(111)1]_2 only (as the proof of Theorem 2, item (3b), says)",
+        evidence="if E and Q are tangent along a curve C, each point of C lies in the kernel of l E + Q for "
+        "a root l, so one kernel contains infinitely many points of C and is a plane: some member has rank "
+        "1 (a double plane), i.e. an eigenvalue of geometric multiplicity 3; in [(11)11] every eigenvalue "
+        "has geometric multiplicity <= 2. Exact constructions: the curves of tangency (sphere in a "
+        "cylinder, in a one-sheet hyperboloid, in a spheroid) all have a rank-1 member "
+        "(proofs/theorem_02_table_3.py, proofs/lemma_08_tangent_circle.py)",
+        consequence="none",
     ),
 )
