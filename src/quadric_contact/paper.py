@@ -393,4 +393,15 @@ ERRATA: tuple[Erratum, ...] = (
         "(proofs/theorem_02_table_3.py, proofs/lemma_08_tangent_circle.py)",
         consequence="none",
     ),
+    Erratum(
+        key="example-17-s2-label",
+        location="Example 17, smallness of E with respect to S2",
+        printed="E - S2: d2 c2 = 1 >= 0.316228 = delta alpha",
+        corrected="b2 d2 = 1 >= 0.316228 = delta alpha (Table 2, one sheet: b'd' >= delta' alpha'); d2 c2 = "
+        "2",
+        evidence="for S2: x^2 + y^2 - (z - 3)^2/4 = 1, a2 = b2 = 1, c2 = 2, d2 = 1 (as the example itself "
+        "states), so d2 c2 = 2 and the printed value 1 is b2 d2 "
+        "(proofs/example_17_bee_and_tree.py::smallness_s2)",
+        consequence="none: the condition holds either way",
+    ),
 )

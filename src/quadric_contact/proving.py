@@ -539,8 +539,11 @@ def _demonstrations(proofs: Sequence[Proof]) -> dict[str, list[tuple[Proof, Chec
     return out
 
 
-def _first_paragraph(doc: str) -> str:
-    return " ".join(doc.split("\n\n", 1)[0].split())
+def _body_paragraphs(doc: str) -> list[str]:
+    """The docstring's paragraphs after its heading line, each joined into one line."""
+    text = re.sub(r":\w+:`~?([^`]+)`", r"`\1`", doc)  # reST roles -> code spans
+    paragraphs = [" ".join(p.split()) for p in text.split("\n\n")]
+    return [p for p in paragraphs[1:] if p]
 
 
 def render_report(proofs: Sequence[Proof], errata: Sequence[Erratum] = ERRATA) -> str:
@@ -580,7 +583,9 @@ def render_report(proofs: Sequence[Proof], errata: Sequence[Erratum] = ERRATA) -
         lines.append(f"| {_cell(result)} | `{p.name}` | {status} | {methods} | {len(p.checks)} |")
     lines += ["", "## Checks", ""]
     for p in proofs:
-        lines += [f"### {p.result}: {p.title}", "", _first_paragraph(p.doc), ""]
+        lines += [f"### {p.result}: {p.title}", ""]
+        for paragraph in _body_paragraphs(p.doc):
+            lines += [paragraph, ""]
         lines += ["| Check | Method | Status |", "| --- | --- | --- |"]
         for c in p.checks:
             status = c.expected_status.value + (f" ({c.erratum})" if c.erratum else "")
