@@ -224,3 +224,67 @@ def test_cli_list(capsys):
     assert main(["prove", "--proofs", str(PROOFS_DIR), "--list", "section_3_2"]) == 0
     out = capsys.readouterr().out
     assert "delta4" in out and "[erratum delta4-term]" in out
+
+
+def test_cli_report_writes_a_report_from_the_declarations(tmp_path, capsys):
+    d = _write_fake(
+        tmp_path,
+        '''
+        """Remark 16, fake.
+
+        Claim. One plus one is two.
+
+        What is checked and how. The sum is computed.
+        """
+        from quadric_contact.proving import Method, Proof, agrees, differs
+        proof = Proof("Remark 16", "fake")
+
+        @proof.check("one plus one", method=Method.COMPUTATION)
+        def sum_():
+            return agrees("1 + 1 = 2")
+
+        @proof.check("Example 11's Delta_3", method=Method.COMPUTATION, erratum="example-11-delta3")
+        def printed():
+            return differs("-400", "-13790208")
+        ''',
+    )
+    try:
+        assert main(["prove", "--proofs", str(d), "--report"]) == 0
+        report = (d / REPORT_NAME).read_text()
+        row = "| Remark 16 | `remark_16_fake` | DIFFERS (example-11-delta3) | exact computation | 2 |"
+        assert row in report
+        assert "Claim. One plus one is two." in report
+        assert "- **Demonstrated by:** `remark_16_fake::printed`" in report
+        assert "- **Demonstrated by:** no proof module" in report  # the other errata, in this fake directory
+        assert capsys.readouterr().out.rstrip().endswith(f"wrote {d / REPORT_NAME}")
+    finally:
+        load_proofs(PROOFS_DIR)
+
+
+def test_cli_fast_skips_slow_checks(tmp_path, capsys):
+    d = _write_fake(
+        tmp_path,
+        '''
+        """Remark 16, fake.
+
+        A claim whose slow check is skipped.
+        """
+        from quadric_contact.proving import Method, Proof, agrees
+        proof = Proof("Remark 16", "fake")
+
+        @proof.check("fast", method=Method.COMPUTATION)
+        def fast():
+            return agrees("fast")
+
+        @proof.check("slow", method=Method.COMPUTATION, slow=True)
+        def slow():
+            raise AssertionError("not run with --fast")
+        ''',
+    )
+    try:
+        assert main(["prove", "--proofs", str(d), "--fast"]) == 0
+        assert "(1 check, 1 slow skipped)" in capsys.readouterr().out
+        assert main(["prove", "--proofs", str(d)]) == 1  # the slow check runs and raises
+        assert "ERROR" in capsys.readouterr().out
+    finally:
+        load_proofs(PROOFS_DIR)

@@ -619,11 +619,23 @@ def write_report(
 ) -> tuple[Path, list[ProofRecord]]:
     """Run every check (slow ones included) and write ``REPORT.md`` if all matched.
 
+    Parameters
+    ----------
+    directory : path, optional
+        The proofs directory (default :func:`find_proofs_dir`).
+    on_check : callable, optional
+        Called with each :class:`CheckRecord` as it completes (progress output).
+
     Returns
     -------
     (path, records)
-        ``path`` is None-free: the report's path; it is written only when
-        every record is ``ok``.
+        The report's path and the records of every proof.  The file is written
+        only when every record is ``ok``; otherwise it is left untouched.
+
+    Raises
+    ------
+    ProofsNotFoundError
+        If the proofs directory is not found.
     """
     path = find_proofs_dir(directory)
     proofs = load_proofs(path)
