@@ -504,7 +504,8 @@ class PieceValue:
         parts = [{True: "contact", False: "no contact", None: "contact undecided"}[self.contact]]
         if self.region is not None and self.region is not Region.CONTACT:
             parts.append(self.region.value)
-        if self.kind is not None:
+        redundant = (("transversal", True), ("none", False))
+        if self.kind is not None and (self.kind, self.contact) not in redundant:
             parts.append(self.kind)
         return ", ".join(parts)
 

@@ -34,7 +34,7 @@ import functools
 import sys
 import time
 from collections.abc import Callable, Iterable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from fractions import Fraction
 from typing import Any
 
@@ -399,10 +399,13 @@ class SimulationResult:
         for w in self.warnings:
             lines.append(f"warning: {w}")
         show_zones = "zone" in self.plan.effects
+        show_timeline = bool(
+            {"zone", "contact", "contact_kind", "relative_position"} & set(self.plan.effects)
+        )
         for p in self.pairs:
             lines.append("")
             lines.append(f"{p.ellipsoid} vs {p.object.name}")
-            if p.complete:
+            if p.complete and show_timeline:
                 start = p.initial.summary(p.object, with_zones=show_zones)
                 lines.append(f"  t = {_fmt_time(self.scene.span[0], places)}: start: {start}")
                 for ev in p.events:
@@ -602,6 +605,29 @@ def _first_contact(
     return None
 
 
+def _tangent_boundaries(
+    entries: list[tuple[str, TimePoint, TimePoint, ObjectState, Fraction | None]],
+) -> None:
+    """At an instant that bounds an interval of transversal contact with a piece and
+    is not itself transversal, the surfaces touch without crossing (the contact set
+    is closed, the transversal one open): an undetermined contact kind there is a
+    tangency."""
+    for i, (kind, start, end, state, sample) in enumerate(entries):
+        if kind != "instant":
+            continue
+        changed = False
+        pieces: list[tuple[str, PieceValue | None]] = []
+        for name, v in state.pieces:
+            if v is not None and v.contact is False and v.kind == "undetermined":
+                near = [dict(entries[j][3].pieces).get(name) for j in (i - 1, i + 1) if 0 <= j < len(entries)]
+                if any(n is not None and n.contact for n in near):
+                    v = replace(v, kind="tangent", decided_by=v.decided_by + "; bounds a transversal contact")
+                    changed = True
+            pieces.append((name, v))
+        if changed:
+            entries[i] = (kind, start, end, ObjectState(state.zones, tuple(pieces)), sample)
+
+
 def _episodes(
     entries: Sequence[tuple[str, TimePoint, TimePoint, ObjectState, Fraction | None]],
 ) -> list[Episode]:
@@ -732,6 +758,8 @@ def simulate(
                 if bar is not None and done < len(segs):
                     bar.update(len(segs) - done)
                 complete = done == len(segs)
+                if plan.kind:
+                    _tangent_boundaries(entries)
                 pairs.append(
                     PairResult(
                         e.name,
