@@ -149,7 +149,9 @@ class Composite:
         pieces = tuple(pieces)
         if not pieces:
             raise QuadricContactError(f"object {name} has no pieces", pieces)
-        return cls(name, None if len(pieces) > 1 else pieces[0], pieces[1:] if len(pieces) > 1 else ())
+        if len(pieces) == 1:
+            return cls(name, pieces[0])
+        return cls(name, None, pieces)
 
     def _walk(self, node: Node | None) -> Iterator[Node]:
         if node is None:
