@@ -49,3 +49,10 @@ def test_paper_deltas_are_positive_multiples_of_yang_minors():
     assert sp.expand(D[1] - c[4] ** 2 * d2) == 0
     assert sp.expand(D[2] - 2 * c[4] ** 2 * d3) == 0
     assert sp.expand(D[3] - c[4] ** 2 * d4) == 0
+
+
+def test_quartic_sign_forms_are_positive_multiples_of_the_deltas():
+    c = codegen.coefficient_symbols(4)
+    d2, d3, d4 = formulas.paper_deltas(*c)
+    s2, s3, s27 = formulas.quartic_sign_forms(*c)
+    assert sp.expand(s2 - d2) == 0 and sp.expand(s3 - d3) == 0 and sp.expand(s27 - 27 * d4) == 0

@@ -87,3 +87,24 @@ def test_certified_roots_enclose_true_roots():
     roots = P.roots()
     real = [(r, m) for r, m in roots if r.imag == 0]
     assert len(real) == 1 and real[0][1] == 2 and real[0][0].real.contains(-0.5)
+
+
+@given(e=ellipsoids(), q=quadrics())
+def test_pencil_root_signs_equal_certified_isolation(e, q):
+    import flint
+
+    P = characteristic_polynomial(e, q)
+    f = flint.fmpq_poly([flint.fmpq(c.numerator, c.denominator) for c in P.coefficients])
+    old = flint.ctx.prec
+    flint.ctx.prec = 300
+    try:
+        counts = {"-": 0, "0": 0, "+": 0}
+        for r, m in f.complex_roots():
+            if r.imag.is_exact() and r.imag == 0:
+                key = "0" if (r.real.is_exact() and r.real == 0) else ("+" if r.real > 0 else "-")
+                assert key == "0" or not r.real.contains(0)
+                counts[key] += m
+    finally:
+        flint.ctx.prec = old
+    s = P.signs
+    assert (s.negative, s.zero, s.positive) == (counts["-"], counts["0"], counts["+"])

@@ -8,7 +8,7 @@ from hypothesis import strategies as st
 
 from quadric_contact import Quadric, QuadricKind, RigidMotion, rotation_from_quaternion
 from quadric_contact.classification import TABLE_1_KINDS
-from quadric_contact.errors import EquationError, NotSymmetricError, ShapeError
+from quadric_contact.errors import EquationError, NotANumberError, NotSymmetricError, ShapeError
 from quadric_contact.strategies import ellipsoids, quadrics, rigid_motions
 
 K = QuadricKind
@@ -196,3 +196,18 @@ def test_as_ellipsoid_normalises_sign():
     e = Quadric.from_equation("1 - x**2 - y**2/4 - z**2/9")
     n = e.as_ellipsoid()
     assert n == -e and n.as_ellipsoid() is n
+
+
+@given(q=st.tuples(*[st.fractions(-3, 3)] * 3).filter(any), d1=st.fractions(-5, 5), d2=st.fractions(-5, 5))
+def test_two_parallel_planes(q, d1, d2):
+    if d1 == d2:
+        with pytest.raises(NotANumberError):
+            Quadric.two_parallel_planes(q, d1, d2)
+        return
+    pp = Quadric.two_parallel_planes(q, d1, d2)
+    assert pp.kind is K.PARALLEL_PLANES and pp.canonical_sign == 1
+    n2 = sum(v * v for v in q)
+    # A point on each plane is on the quadric; the midpoint is in R- (the slab).
+    for d in (d1, d2):
+        assert pp.value_at([v * d / n2 for v in q]) == 0
+    assert pp.value_at([v * (d1 + d2) / 2 / n2 for v in q]) < 0

@@ -42,19 +42,7 @@ from pathlib import Path
 
 import sympy as sp
 
-ENTRY_INDICES: tuple[tuple[int, int], ...] = (
-    (0, 0),
-    (0, 1),
-    (0, 2),
-    (0, 3),
-    (1, 1),
-    (1, 2),
-    (1, 3),
-    (2, 2),
-    (2, 3),
-    (3, 3),
-)
-"""The ten independent entries of a symmetric 4x4 matrix, in argument order."""
+from .entries import ENTRY_INDICES
 
 GENERATED_PATH = Path(__file__).with_name("_generated") / "formulas.py"
 
@@ -188,6 +176,20 @@ def derive_paper_deltas() -> list[sp.Expr]:
     return out
 
 
+def derive_quartic_invariants() -> tuple[sp.Expr, sp.Expr]:
+    """The invariants ``I``, ``J`` of the binary quartic with
+    ``4 I^3 - J^2 = 27 Delta_4`` (checked here, not assumed)."""
+    c0, c1, c2, c3, c4 = coefficient_symbols(4)
+    # a x^4 + b x^3 + c x^2 + d x + e with a = c4, ..., e = c0
+    a, b, c, d, e = c4, c3, c2, c1, c0
+    Iv = 12 * a * e - 3 * b * d + c**2
+    Jv = 72 * a * c * e + 9 * b * c * d - 27 * a * d**2 - 27 * b**2 * e - 2 * c**3
+    delta4 = derive_paper_deltas()[2]
+    if sp.expand(4 * Iv**3 - Jv**2 - 27 * delta4) != 0:
+        raise AssertionError("4 I^3 - J^2 != 27 Delta_4")
+    return Iv, Jv
+
+
 # -- emission -------------------------------------------------------------------
 
 
@@ -315,7 +317,20 @@ def emit_formulas() -> str:
     ]
     for name, d in zip(("Delta2", "Delta3", "Delta4"), deltas, strict=True):
         out.append(f"    {name} = {_emit_polynomial(d, c, temps)}")
-    out += ["    return (Delta2, Delta3, Delta4)", ""]
+    out += ["    return (Delta2, Delta3, Delta4)", "", ""]
+    # Sign forms: the same signs with far fewer operations.
+    Iv, Jv = derive_quartic_invariants()
+    out += [
+        "def quartic_sign_forms(c0, c1, c2, c3, c4):",
+        '    """(Delta_2, Delta_3, 27*Delta_4) with 27*Delta_4 = 4*I^3 - J^2 from the invariants I, J',
+        '    of the quartic: the signs of paper_deltas at a fraction of the cost."""',
+        f"    I = {_emit_expression(Iv)}",
+        f"    J = {_emit_expression(Jv)}",
+        f"    Delta2 = {_emit_expression(deltas[0])}",
+        f"    Delta3 = {_emit_expression(deltas[1])}",
+        "    return (Delta2, Delta3, 4*I*I*I - J*J)",
+        "",
+    ]
     return "\n".join(out)
 
 

@@ -48,10 +48,8 @@ def _corollary_10_reading(P: CharacteristicPolynomial) -> str:
 
 def _known_smallness(E: Any, Q: Any) -> tuple[bool | None, Any]:
     """Exact smallness of ``E`` w.r.t. ``Q`` when the smallness module can decide it."""
-    try:
-        from .smallness import smallness
-    except ImportError:  # pragma: no cover - smallness lands with the Tables 1/2 work
-        return None, None
+    from .smallness import smallness
+
     report = smallness(E, Q)
     return report.small, report
 
@@ -73,7 +71,6 @@ def decide_transversal(
     """
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
-    kind = P.Q.kind
     structure = P.structure
     reading = _corollary_10_reading(P)
     if not structure.all_real:
@@ -84,6 +81,7 @@ def decide_transversal(
             "transversal contact for any pair",
             P,
         )
+    kind = P.Q.kind
     if kind is QuadricKind.PLANE:
         return ContactResult(
             False, "Theorem 14", f"all roots of P are real ({reading}): no transversal contact", P

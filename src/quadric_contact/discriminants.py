@@ -175,8 +175,12 @@ def _counts(c: Sequence[Any]) -> tuple[int, int, int, tuple[int, ...]]:
     n = len(c) - 1
     if n == 0:
         return 0, 0, 0, ()
-    D = discrimination_sequence(c)
-    signs = tuple(_sign(d) for d in D)
+    if n == 4:
+        # D_1 = 4 c4^2 > 0 and D_k = (positive) * Delta_k for k = 2, 3, 4: the
+        # paper's normalisation has the same signs and much smaller numbers.
+        signs = (1, *(_sign(d) for d in formulas.quartic_sign_forms(*c)))
+    else:
+        signs = tuple(_sign(d) for d in discrimination_sequence(c))
     rev = revised_sign_list(list(signs))
     nonzero = [s for s in rev if s]
     v = sum(1 for a, b in pairwise(nonzero) if a != b)

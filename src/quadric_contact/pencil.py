@@ -132,9 +132,10 @@ class CharacteristicPolynomial:
         return Fraction(d2), Fraction(d3), Fraction(d4)
 
     def delta_signs(self) -> tuple[int, int, int]:
-        """Signs of ``(Delta_2, Delta_3, Delta_4)``, computed on the integer polynomial."""
-        d2, d3, d4 = paper_deltas(self._ints)
-        return ((d2 > 0) - (d2 < 0), (d3 > 0) - (d3 < 0), (d4 > 0) - (d4 < 0))
+        """Signs of ``(Delta_2, Delta_3, Delta_4)``: those of Yang's ``D_2 .. D_4``
+        (positive multiples), already computed on the integer polynomial."""
+        _, s2, s3, s4 = self.structure.sequence_signs
+        return (s2, s3, s4)
 
     def roots(self, digits: int = 17) -> list[tuple[Any, int]]:
         """Certified root enclosures ``(acb ball, multiplicity)`` (python-flint),

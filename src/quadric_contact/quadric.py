@@ -16,12 +16,13 @@ result that used it.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Sequence
 from fractions import Fraction
 from typing import Any
 
 from .classification import QuadricKind, classify, principal_minor_sums_3
-from .codegen import ENTRY_INDICES
+from .entries import ENTRY_INDICES
 from .errors import (
     EquationError,
     NonFiniteError,
@@ -124,6 +125,11 @@ class Quadric:
         """
         if isinstance(matrix, Quadric):
             return matrix
+        fast = _from_float_array(matrix, symmetrize)
+        if fast is not None:
+            obj = cls._from_upper(fast[0])
+            obj._ints = fast[1]
+            return obj
         m = as_square_matrix(matrix, 4)
         if symmetrize:
             upper = tuple((m[i][j] + m[j][i]) / 2 for i, j in ENTRY_INDICES)
@@ -290,6 +296,28 @@ class Quadric:
         return cls.diagonal(_inverse_square(a, "a"), 0, 0, -1)
 
     @classmethod
+    def two_parallel_planes(cls, normal: Sequence[Any], offset1: Any, offset2: Any) -> Quadric:
+        """The planes ``n . x = offset1`` and ``n . x = offset2``: the quadric
+        ``(n . x - offset1)(n . x - offset2) = 0``, with ``R-`` the slab between them.
+
+        Raises
+        ------
+        NotANumberError
+            If the normal is zero or the offsets are equal (a double plane).
+        """
+        n = [to_fraction(t) for t in normal]
+        if len(n) != 3:
+            raise ShapeError("normal must have 3 components", normal)
+        if not any(n):
+            raise NotANumberError("the normal of a plane must not be zero", normal)
+        d1, d2 = to_fraction(offset1), to_fraction(offset2)
+        if d1 == d2:
+            raise NotANumberError("equal offsets give one double plane, not two parallel planes", (d1, d2))
+        m = [[n[i] * n[j] for j in range(3)] + [-(d1 + d2) * n[i] / 2] for i in range(3)]
+        m.append([m[i][3] for i in range(3)] + [d1 * d2])
+        return cls._from_upper(tuple(m[i][j] for i, j in ENTRY_INDICES))
+
+    @classmethod
     def plane(cls, normal: Sequence[Any], offset: Any = 0) -> Quadric:
         """The plane ``n . x - offset = 0``; ``R-`` is the side ``n . x <= offset``.
 
@@ -425,7 +453,8 @@ class Quadric:
     def kind(self) -> QuadricKind:
         """Exact affine type (see :mod:`quadric_contact.classification`)."""
         if self._kind is None:
-            self._kind = classify(self._u)
+            # Inertia is unchanged by the positive factor of the integer form.
+            self._kind = classify(self.integer_form()[0])
         return self._kind[0]
 
     @property
@@ -433,7 +462,7 @@ class Quadric:
         """``+1`` if this matrix has the sign of the paper's standard form of
         its type (``-1`` if its negative does)."""
         if self._kind is None:
-            self._kind = classify(self._u)
+            self._kind = classify(self.integer_form()[0])
         return self._kind[1]
 
     def center(self) -> tuple[Fraction, Fraction, Fraction] | None:
@@ -539,6 +568,35 @@ class Quadric:
 
     def __reduce__(self) -> tuple[Any, ...]:
         return (Quadric._from_upper, (self._u,))
+
+
+_UPPER_FLAT = tuple(4 * i + j for i, j in ENTRY_INDICES)
+_LOWER_FLAT = tuple(4 * j + i for i, j in ENTRY_INDICES)
+
+
+def _from_float_array(
+    matrix: Any, symmetrize: bool
+) -> tuple[tuple[Fraction, ...], tuple[tuple[int, ...], int] | None] | None:
+    """Fast exact path for a finite, symmetric float64 numpy (4, 4) array: the
+    upper entries and, when symmetric, the integer form (every denominator is a
+    power of two, so the least common one is the largest).  None otherwise."""
+    if type(matrix).__module__ != "numpy" or getattr(matrix, "dtype", None) is None:
+        return None
+    if matrix.dtype.kind != "f" or matrix.dtype.itemsize != 8 or matrix.shape != (4, 4):
+        return None
+    flat = matrix.ravel().tolist()
+    if not all(math.isfinite(v) for v in flat):
+        return None  # the general path names the offending entry
+    upper = [flat[k] for k in _UPPER_FLAT]
+    lower = [flat[k] for k in _LOWER_FLAT]
+    if upper != lower:
+        if not symmetrize:
+            return None  # the general path raises NotSymmetricError with the entry
+        return tuple((Fraction(a) + Fraction(b)) / 2 for a, b in zip(upper, lower, strict=True)), None
+    ratios = [v.as_integer_ratio() for v in upper]
+    den = max(d for _, d in ratios)
+    ints = tuple(n * (den // d) for n, d in ratios)
+    return tuple(Fraction(n, d) for n, d in ratios), (ints, den)
 
 
 def _rotation(rotation: Any) -> Any:

@@ -30,7 +30,7 @@ from fractions import Fraction
 from typing import Any
 
 from .classification import TABLE_1_KINDS, QuadricKind
-from .contact import NO_REAL_POINTS, decide_transversal
+from .contact import NO_REAL_POINTS, _geometric, decide_transversal
 from .errors import ExcludedQuadricError
 from .pencil import CharacteristicPolynomial, characteristic_polynomial
 from .quadric import Quadric
@@ -142,6 +142,17 @@ def decide_region(
         )
     if contact.decided_by == "no real points":  # pragma: no cover - excluded above
         raise ExcludedQuadricError(f"Q is {kind.value}: it has no regions", Q, kind=kind)
+    if getattr(contact.smallness, "table_4_applies", True) is False:
+        # E is small only in the enclosing sense (two ellipsoids, Q small w.r.t. E):
+        # Corollary 10 holds but Theorem 13 / Table 4 do not (erratum table-1-ellipsoid-enclosing).
+        why = (
+            f"{contact.reason}; but E can enclose Q (it is small only because Q is small with respect "
+            "to E), where Theorem 13 / Table 4 do not apply"
+        )
+        geo = _geometric(P.E, P.Q) if method == "auto" else None
+        if geo is not None:
+            return RegionResult(geo.region, "geometric decision", why, P, contact, expected)
+        return RegionResult(None, None, why, P, contact, expected)
     pattern = P.signs.pattern
     for region_value, p in expected.items():
         if p == pattern:

@@ -151,3 +151,13 @@ def paper_deltas(c0, c1, c2, c3, c4):
     Delta3 = 16*c0*c2*c4_2 - 6*c0*c3_2*c4 - 18*c1_2*c4_2 + 14*c1*c2*c3*c4 - 3*c1*c3_3 - 4*c2_3*c4 + c2_2*c3_2
     Delta4 = 256*c0_3*c4_3 - 192*c0_2*c1*c3*c4_2 - 128*c0_2*c2_2*c4_2 + 144*c0_2*c2*c3_2*c4 - 27*c0_2*c3_4 + 144*c0*c1_2*c2*c4_2 - 6*c0*c1_2*c3_2*c4 - 80*c0*c1*c2_2*c3*c4 + 18*c0*c1*c2*c3_3 + 16*c0*c2_4*c4 - 4*c0*c2_3*c3_2 - 27*c1_4*c4_2 + 18*c1_3*c2*c3*c4 - 4*c1_3*c3_3 - 4*c1_2*c2_3*c4 + c1_2*c2_2*c3_2
     return (Delta2, Delta3, Delta4)
+
+
+def quartic_sign_forms(c0, c1, c2, c3, c4):
+    """(Delta_2, Delta_3, 27*Delta_4) with 27*Delta_4 = 4*I^3 - J^2 from the invariants I, J
+    of the quartic: the signs of paper_deltas at a fraction of the cost."""
+    I = 12*c0*c4 - 3*c1*c3 + c2*c2
+    J = 72*c0*c2*c4 - 27*c0*c3*c3 - 27*c1*c1*c4 + 9*c1*c2*c3 - 2*c2*c2*c2
+    Delta2 = -8*c2*c4 + 3*c3*c3
+    Delta3 = 16*c0*c2*c4*c4 - 6*c0*c3*c3*c4 - 18*c1*c1*c4*c4 + 14*c1*c2*c3*c4 - 3*c1*c3*c3*c3 - 4*c2*c2*c2*c4 + c2*c2*c3*c3
+    return (Delta2, Delta3, 4*I*I*I - J*J)
