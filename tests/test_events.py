@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from fractions import Fraction as F
 
 import flint
@@ -79,6 +80,8 @@ def test_simplest_between():
 
 
 def run(E, obj, motion, span, effects=("zone", "contact", "relative_position", "first_contact")):
+    """Simulate one ellipsoid against one object; pairs that are not small are kept
+    (their contacts with all roots real are then undecided)."""
     scene = Scene(
         "test",
         (obj,),
@@ -86,9 +89,11 @@ def run(E, obj, motion, span, effects=("zone", "contact", "relative_position", "
         span,
         tuple(effects),
         source="<test>",
+        on_not_small="warn",
     )
-    scene.check_smallness()
-    return simulate(scene, effects=effects)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return simulate(scene, effects=effects)
 
 
 def times(result, obj="o"):
@@ -215,13 +220,24 @@ def test_a_plane_touched_for_an_instant_is_reported_as_such():
 # -- dense sampling against the static predicates ---------------------------------------
 
 
-def static_state(E, Q):
+def static_state(E, Q, check=None):
+    """(transversal contact, region) by the static predicates; ``check`` is the
+    scene's smallness check of the pair (None: a plane)."""
     if Q.kind.value == "plane":
         side = plane_side(E, Q)
         return side.zone is Region.CONTACT, side.zone
     P = characteristic_polynomial(E, Q)
-    c = decide_transversal(P, small=True, method="theory")
-    return c.transversal, decide_region(P, small=True, method="theory").region
+    small = check.small
+    c = decide_transversal(P, small=small, method="theory")
+    if c.transversal is False and not check.table_4_applies:
+        return False, None
+    if c.transversal is None:
+        return None, None
+    return c.transversal, decide_region(P, small=small, method="theory").region
+
+
+def check_of(result):
+    return next(iter(result.scene.smallness.values()), None)
 
 
 @settings(max_examples=25, deadline=None)
@@ -245,7 +261,7 @@ def test_event_timeline_matches_dense_sampling(E, Q, v, a):
         t = F(i, 10)
         state = dict(pair.state_at(t).pieces)["o"]
         Et = ell.trajectory.placed(ell.quadric, t, *scene.span)
-        contact, region = static_state(Et, Q)
+        contact, region = static_state(Et, Q, check_of(res))
         assert (state.contact, state.region) == (contact, region), t
     for ev in pair.events:
         before = ev.before
@@ -261,8 +277,8 @@ def test_event_timeline_matches_dense_sampling(E, Q, v, a):
                 and hi < 4
                 and all(e2 is ev or abs(float(e2.time) - float(t)) > 1e-6 for e2 in pair.events)
             ):
-                s_lo = static_state(ell.trajectory.placed(ell.quadric, lo, *scene.span), Q)
-                s_hi = static_state(ell.trajectory.placed(ell.quadric, hi, *scene.span), Q)
+                s_lo = static_state(ell.trajectory.placed(ell.quadric, lo, *scene.span), Q, check_of(res))
+                s_hi = static_state(ell.trajectory.placed(ell.quadric, hi, *scene.span), Q, check_of(res))
                 assert s_lo != s_hi
 
 
@@ -281,7 +297,7 @@ def test_rotating_ellipsoid_matches_dense_sampling():
         t = F(i, 20)
         Et = ell.trajectory.placed(ell.quadric, t, *res.scene.span)
         state = dict(pair.state_at(t).pieces)["o"]
-        assert (state.contact, state.region) == static_state(Et, Q), t
+        assert (state.contact, state.region) == static_state(Et, Q, check_of(res)), t
 
 
 def test_rational_instants_agree_with_static_predicates():
@@ -295,7 +311,7 @@ def test_rational_instants_agree_with_static_predicates():
     assert first.time.value == F(5, 2)
     Et = res.scene.ellipsoids[0].trajectory.placed(res.scene.ellipsoids[0].quadric, F(5, 2), *res.scene.span)
     at = dict(first.at.pieces)["o"]
-    assert (at.contact, at.region) == static_state(Et, Q) == (False, Region.R_PLUS)
+    assert (at.contact, at.region) == static_state(Et, Q, check_of(res)) == (False, Region.R_PLUS)
 
 
 def test_root_of_rational_and_irrational_comparisons_mix():
@@ -332,4 +348,4 @@ def test_rotating_motion_matches_dense_sampling(E, Q, v, q):
         t = F(i, 10)
         state = dict(pair.state_at(t).pieces)["o"]
         Et = ell.trajectory.placed(ell.quadric, t, *res.scene.span)
-        assert (state.contact, state.region) == static_state(Et, Q), t
+        assert (state.contact, state.region) == static_state(Et, Q, check_of(res)), t

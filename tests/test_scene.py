@@ -256,14 +256,92 @@ def test_load_scene_from_file_and_by_name(tmp_path):
         load_scene(bad)
 
 
-def test_unchecked_smallness_is_a_recorded_warning_until_the_module_exists():
-    """Without quadric_contact.smallness the check cannot run: the scene records it."""
-    try:
-        import quadric_contact.smallness  # noqa: F401
-    except ImportError:
-        s = parse_scene(GOOD, "x.toml")
-        assert all(c.small is None for c in s.smallness.values()) and len(s.smallness) == 2
-        assert any("not verified" in w for w in s.warnings)
-    else:  # pragma: no cover - exercised once the smallness module has landed
-        s = parse_scene(GOOD, "x.toml")
-        assert all(c.small is True for c in s.smallness.values())
+NOT_SMALL = """
+[scene]
+name = "flat ellipsoid in a throat"
+time = [0, 1]
+effects = ["contact", "relative_position"]
+{policy}
+
+[[object]]
+name = "tower"
+
+[[object.piece]]
+name = "throat"
+equation = "x^2 + y^2 - z^2/100 = 1"
+
+[[ellipsoid]]
+name = "disc"
+standard = "ellipsoid"
+semi_axes = [0.1, 1, 1]
+center = [0.85, 0, 0]
+"""
+
+
+def test_smallness_is_checked_per_piece_at_load():
+    """Example 17: the bee is small with respect to the crown and the trunk (Table 2)."""
+    s = builtin_scene()
+    checks = {k[2]: c for k, c in s.smallness.items()}
+    assert set(checks) == {"crown", "trunk"}
+    assert all(c.small and c.table_4_applies for c in checks.values())
+    assert s.work.done["smallness_checks"] == 2
+    # not needed by the effects: not checked
+    zone_only = parse_scene(GOOD.replace('effects = ["zone", "contact"]', 'effects = ["zone"]'), "z.toml")
+    assert zone_only.smallness == {} and zone_only.work.done["smallness_checks"] == 0
+
+
+def test_not_small_is_refused_by_default():
+    """The corrected hyperboloid row (erratum table-1-h1-curvature): a flat ellipsoid
+    against the throat is not small, although the printed Table 1 says it is."""
+    with pytest.raises(SceneError) as info:
+        parse_scene(NOT_SMALL.format(policy=""), "throat.toml")
+    msg = str(info.value)
+    assert msg.startswith("throat.toml: ") and "'disc' is not small with respect to piece 'throat'" in msg
+    assert "on_not_small" in msg and info.value.details["key"] == "scene.on_not_small"
+    assert info.value.value.report.paper_small is True
+
+
+def test_not_small_with_warn_keeps_the_scene_and_leaves_contact_undecided():
+    from quadric_contact.simulate import simulate
+
+    with pytest.warns(UserWarning, match="not small"):
+        s = parse_scene(NOT_SMALL.format(policy='on_not_small = "warn"'), "throat.toml")
+    (check,) = s.smallness.values()
+    assert check.small is False and "NOT small" in str(check)
+    r = simulate(s)
+    state = dict(r.pairs[0].initial.pieces)["throat"]
+    # four real roots (the two curves of Remark 9): Corollary 10 may not conclude
+    assert state.contact is None and state.region is None
+    assert "contact undecided, region undecided" in r.format_text()
+
+
+def test_enclosing_pair_is_small_but_table_4_is_not_used():
+    """A sphere of radius 2 around a sphere of radius 1 (erratum
+    table-1-ellipsoid-enclosing): small, contact decided, region undecided."""
+    from quadric_contact.simulate import simulate
+
+    text = """
+[scene]
+name = "enclosing"
+time = [0, 1]
+effects = ["contact", "relative_position"]
+[[object]]
+name = "ball"
+[[object.piece]]
+name = "ball"
+standard = "sphere"
+radius = 1
+[[ellipsoid]]
+name = "shell"
+standard = "sphere"
+radius = 2
+motion = { type = "linear", velocity = [0.5, 0, 0] }
+"""
+    s = parse_scene(text, "enc.toml")
+    (check,) = s.smallness.values()
+    assert check.small and not check.table_4_applies
+    r = simulate(s)
+    pair = r.pairs[0]
+    assert r.pairs[0].events == []  # the shell (radius 2) moves by 1/2: it never reaches the ball
+    value = dict(pair.initial.pieces)["ball"]
+    assert value.contact is False and value.region is None

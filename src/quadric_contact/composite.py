@@ -318,7 +318,7 @@ def algorithm_2(
     E: Any,
     composite: Composite,
     *,
-    small: bool | Mapping[str, bool | None] | None = None,
+    small: Any = None,
     region: bool = False,
     ledger: Ledger | None = None,
 ) -> CompositeContact:
@@ -333,9 +333,11 @@ def algorithm_2(
     ----------
     E : Quadric, matrix-like or equation
     composite : Composite
-    small : bool or mapping piece name -> bool, optional
+    small : bool, smallness report, or mapping piece name -> either, optional
         Smallness of ``E`` with respect to each piece (Corollary 10 needs it
-        to conclude "no contact"); by default decided by the package.
+        to conclude "no contact"); by default decided exactly
+        (:func:`~quadric_contact.smallness.smallness`).  A report also says
+        whether Table 4 applies (not in the enclosing case of two ellipsoids).
     region : bool
         Also decide the relative position (Theorem 13, Table 4) per piece.
     ledger : Ledger, optional
@@ -365,7 +367,6 @@ def algorithm_2(
     contacts: dict[str, ContactResult] = {}
     regions: dict[str, RegionResult] = {}
     for piece in zone.pieces:
-        s = small.get(piece.name) if isinstance(small, Mapping) else small
         if piece.is_plane:
             side = plane_side(e, piece.quadric)
             if ledger is not None:
@@ -379,16 +380,33 @@ def algorithm_2(
                     side.zone, "Theorem 14", side.reason, side.polynomial, contacts[piece.name]
                 )
             continue
+        given = small.get(piece.name) if isinstance(small, Mapping) else small
+        if given is None:
+            from .smallness import smallness
+
+            given = smallness(e, piece.quadric)
+            if ledger is not None:
+                ledger.add("smallness_checks", target=piece.name)
+        is_small = given if isinstance(given, bool) else bool(given.small)
+        table_4 = True if isinstance(given, bool) else bool(getattr(given, "table_4_applies", is_small))
         P = characteristic_polynomial(e, piece.quadric)
         if ledger is not None:
             ledger.add("characteristic_polynomials", target=piece.name)
             ledger.add("discriminants", target=piece.name)
-        result = decide_transversal(P, small=s, method="theory")
+        result = decide_transversal(P, small=is_small, method="theory")
         if result.transversal is not None:
-            assert result.transversal == _corollary_10(P) or not result.transversal, (
-                "Corollary 10 and the root structure disagree"
-            )
+            assert result.transversal == _corollary_10(P), "Corollary 10 and the root structure disagree"
         contacts[piece.name] = result
         if region:
-            regions[piece.name] = decide_region(P, small=s, method="theory")
+            if result.transversal is False and not table_4:
+                regions[piece.name] = RegionResult(
+                    None,
+                    None,
+                    f"{result.reason}; but E is small only in the enclosing sense, where Theorem 13 / "
+                    "Table 4 do not apply",
+                    P,
+                    result,
+                )
+            else:
+                regions[piece.name] = decide_region(P, small=is_small, method="theory")
     return CompositeContact(zone, contacts, regions)

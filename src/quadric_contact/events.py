@@ -406,7 +406,7 @@ def simplest_between(a: Fraction, b: Fraction) -> Fraction:
     Examples
     --------
     >>> simplest_between(Fraction(31, 10), Fraction(33, 10)), simplest_between(Fraction(1, 3), Fraction(1, 2))
-    (Fraction(16, 5), Fraction(2, 5))
+    (Fraction(13, 4), Fraction(2, 5))
     """
     if not a < b:
         raise ValueError(f"empty interval ({a}, {b})")
@@ -499,11 +499,14 @@ class PieceValue:
     region: Region | None = None
     kind: str | None = None
     decided_by: str = ""
+    region_asked: bool = False
 
     def __str__(self) -> str:
         parts = [{True: "contact", False: "no contact", None: "contact undecided"}[self.contact]]
         if self.region is not None and self.region is not Region.CONTACT:
             parts.append(self.region.value)
+        elif self.region is None and self.region_asked and self.contact is not True:
+            parts.append("region undecided")
         redundant = (("transversal", True), ("none", False))
         if self.kind is not None and (self.kind, self.contact) not in redundant:
             parts.append(self.kind)
@@ -670,10 +673,12 @@ class PieceTrack(_Track):
         region: bool,
         kind: bool,
         E_at: Callable[[Fraction], Quadric] | None = None,
+        table_4: bool = True,
     ) -> None:
         super().__init__(label, t0, t1, ledger)
         self.Q = Q
         self.small = small
+        self.table_4 = table_4
         self.want_region = region
         self.want_kind = kind
         self.E_at = E_at
@@ -742,7 +747,7 @@ class PieceTrack(_Track):
         if self.want_region:
             if contact:
                 region = Region.CONTACT
-            elif contact is False:
+            elif contact is False and self.table_4:
                 pattern = _descartes_pattern([sign(ck) for ck in self.c])
                 for reg, pat in self.patterns.items():
                     if pat == pattern:
@@ -750,7 +755,13 @@ class PieceTrack(_Track):
         kind: str | None = None
         if self.want_kind:
             kind = self._kind(contact, s4, t)
-        return PieceValue(contact, region, kind, by)
+        if self.want_region and region is None and contact is False:
+            by += "; region undecided: " + (
+                "Table 4 does not apply (E is small only in the enclosing sense)"
+                if not self.table_4
+                else "the root signs match no row of Table 4"
+            )
+        return PieceValue(contact, region, kind, by, self.want_region)
 
     def _kind(self, contact: bool | None, s4: int, t: TimePoint) -> str:
         if contact:

@@ -158,19 +158,26 @@ class MovingEllipsoid:
 class SmallnessCheck:
     """Smallness of one moving ellipsoid with respect to one piece.
 
-    ``small`` is True, False, or None when it could not be decided (no
-    smallness module available); ``report`` is the module's report.
+    ``small`` is the exact verdict of :func:`~quadric_contact.smallness.smallness`
+    (False also when the piece's type admits no small ellipsoid: ``note``
+    says why); ``report`` is the smallness report.
     """
 
     ellipsoid: str
     object: str
     piece: str
-    small: bool | None
+    small: bool
     report: Any = None
     note: str = ""
 
+    @property
+    def table_4_applies(self) -> bool:
+        return self.small and bool(getattr(self.report, "table_4_applies", True))
+
     def __str__(self) -> str:
-        verdict = {True: "small", False: "NOT small", None: "not checked"}[self.small]
+        verdict = "small" if self.small else "NOT small"
+        if self.small and not self.table_4_applies:
+            verdict += " (only in the enclosing sense: Table 4 does not apply)"
         text = f"{self.ellipsoid} vs {self.object}/{self.piece}: {verdict}"
         if self.note:
             text += f" ({self.note})"
@@ -220,64 +227,52 @@ class Scene:
         """Check every (moving ellipsoid, quadric piece) pair once (Tables 1, 2).
 
         Planes need no smallness (Theorem 14).  Raises :class:`SceneError`
-        if a pair is not small and the policy is ``"refuse"``.
+        if a pair is not small and the policy is ``"refuse"``; with ``"warn"``
+        the pair is kept, a warning is recorded, and its contacts with all
+        roots real are undecided (Remark 9).
         """
+        from .smallness import smallness
+
         policy = on_not_small or self.on_not_small
-        try:
-            from .smallness import smallness
-        except ImportError:
-            smallness = None
         for ell in self.ellipsoids:
             for obj in self.objects:
                 for piece in obj.pieces:
                     key = (ell.name, obj.name, piece.name)
                     if piece.is_plane or key in self.smallness:
                         continue
-                    if smallness is None:
-                        check = SmallnessCheck(
-                            ell.name,
-                            obj.name,
-                            piece.name,
-                            None,
-                            None,
-                            "the smallness module is not available; Algorithm 2 assumes smallness",
+                    self.work.add("smallness_checks", target=f"{obj.name}/{piece.name}")
+                    try:
+                        report = smallness(ell.quadric, piece.quadric)
+                        check = SmallnessCheck(ell.name, obj.name, piece.name, bool(report.small), report)
+                    except QuadricContactError as exc:
+                        check = SmallnessCheck(ell.name, obj.name, piece.name, False, None, str(exc))
+                    if not check.small:
+                        text = (
+                            f"{self.source}: ellipsoid {ell.name!r} is not small with respect to piece "
+                            f"{piece.name!r} of object {obj.name!r}: {check.report or check.note}"
                         )
-                        pair = f"{ell.name} w.r.t. {obj.name}/{piece.name}"
-                        msg = f"smallness of {pair} not verified: {check.note}"
-                        if msg not in self.warnings:
-                            self.warnings.append(msg)
-                    else:
-                        self.work.add("smallness_checks", target=f"{obj.name}/{piece.name}")
-                        try:
-                            report = smallness(ell.quadric, piece.quadric)
-                            check = SmallnessCheck(ell.name, obj.name, piece.name, bool(report.small), report)
-                        except QuadricContactError as exc:
-                            check = SmallnessCheck(ell.name, obj.name, piece.name, False, None, str(exc))
-                        if check.small is False:
-                            text = (
-                                f"{self.source}: ellipsoid {ell.name!r} is not small with respect to piece "
-                                f"{piece.name!r} of object {obj.name!r}: {check.report or check.note}"
+                        if policy == "refuse":
+                            raise SceneError(
+                                text + "\n(set scene.on_not_small = 'warn' to keep the scene; its contacts "
+                                "with all roots real are then undecided)",
+                                check,
+                                file=self.source,
+                                key="scene.on_not_small",
                             )
-                            if policy == "refuse":
-                                raise SceneError(
-                                    text + " (set scene.on_not_small = 'warn' to keep the scene; contacts "
-                                    "with all roots real are then undecided)",
-                                    check,
-                                )
-                            warnings.warn(text, stacklevel=2)
-                            self.warnings.append(text)
+                        warnings.warn(text, stacklevel=2)
+                        self.warnings.append(text)
                     self.smallness[key] = check
 
     def small(self, ellipsoid: str, obj: str, piece: str) -> bool | None:
-        """What the contact decisions may assume about smallness for this pair.
-
-        True if checked small, or if it could not be checked (the paper's
-        algorithm presumes it; a warning is recorded); False if checked not small.
-        """
+        """The checked smallness of this pair (None if it was not checked)."""
         check = self.smallness.get((ellipsoid, obj, piece))
-        if check is None or check.small is None:
-            return True
-        return check.small
+        return None if check is None else check.small
+
+    def table_4_applies(self, ellipsoid: str, obj: str, piece: str) -> bool:
+        """Theorem 13 / Table 4 may be used for this pair: small, and not only in the
+        enclosing sense of two ellipsoids (erratum ``table-1-ellipsoid-enclosing``)."""
+        check = self.smallness.get((ellipsoid, obj, piece))
+        return check is not None and check.table_4_applies
 
     def describe(self) -> str:
         lines = [f"scene: {self.name}  ({self.source})"]

@@ -489,6 +489,7 @@ class _SegmentRun:
                 seg.t1,
                 self.ledger,
                 small=self.scene.small(self.ell.name, self.obj.name, target.name),
+                table_4=self.scene.table_4_applies(self.ell.name, self.obj.name, target.name),
                 region=self.plan.region,
                 kind=self.plan.kind,
                 E_at=self.E_at,
@@ -711,7 +712,7 @@ def simulate(
     plan = Plan.from_effects(scene.effects if effects is None else effects, full=full)
     started = time.perf_counter()
     ledger = Ledger()
-    if scene.needs_smallness(plan.effects):
+    if plan.full or scene.needs_smallness(plan.effects):
         scene.check_smallness(on_not_small=on_not_small)  # a no-op for the pairs checked at load time
         for key, n in scene.work.by_target.items():
             ledger.add("smallness_checks", n["smallness_checks"], target=key)
