@@ -45,7 +45,7 @@ from typing import Any
 
 import flint
 
-from ._generated.formulas import discrimination_sequence_4, pencil_coefficients
+from ._generated.formulas import paper_deltas, pencil_coefficients
 from .classification import QuadricKind
 from .descartes import sign_variations
 from .discriminants import revised_sign_list
@@ -309,7 +309,6 @@ def _ball_interval(ball: Any) -> tuple[Fraction, Fraction]:
     return mid - rad, mid + rad
 
 
-@functools.lru_cache(maxsize=4096)
 def _isolate_irreducible(coeffs: tuple[int, ...]) -> tuple[tuple[Fraction, Fraction], ...]:
     """Isolating intervals of all real roots of an irreducible integer polynomial."""
     f = flint.fmpz_poly(list(coeffs))
@@ -536,17 +535,36 @@ def _descartes_pattern(signs: Sequence[int]) -> str:
     return "-" * negative + "0" * zero + "+" * positive
 
 
+def reduce_positive(g: Any, positive: Any = None) -> Any:
+    """``g`` divided by its (positive) content and by every power of ``positive`` (a
+    polynomial without real roots and positive leading coefficient, such as
+    ``|q(t)|^2``) that divides it: same sign everywhere, lower degree."""
+    if g.is_zero():
+        return g
+    num = flint.fmpz_poly(g.numer())
+    content = abs(int(num.content()))
+    g = flint.fmpq_poly(num) / content if content > 1 else flint.fmpq_poly(num)
+    if positive is not None and positive.degree() >= 1:
+        while True:
+            q, r = divmod(g, positive)
+            if not r.is_zero():
+                break
+            g = q
+    return g
+
+
 class _Track:
     """Shared machinery: critical polynomials, their roots in a segment, cached states."""
 
     label: str
     critical: list[Any]
 
-    def __init__(self, label: str, t0: Fraction, t1: Fraction, ledger: Ledger) -> None:
+    def __init__(self, label: str, t0: Fraction, t1: Fraction, ledger: Ledger, positive: Any = None) -> None:
         self.label = label
         self.t0 = t0
         self.t1 = t1
         self.ledger = ledger
+        self.positive = positive
         self.roots: list[RealRoot] = []
         self._interval_cache: dict[int, Any] = {}
         self._root_cache: dict[int, Any] = {}
@@ -605,14 +623,22 @@ class PlaneTrack(_Track):
     """
 
     def __init__(
-        self, label: str, E_upper: Sequence[Any], plane: Quadric, t0: Fraction, t1: Fraction, ledger: Ledger
+        self,
+        label: str,
+        E_upper: Sequence[Any],
+        plane: Quadric,
+        t0: Fraction,
+        t1: Fraction,
+        ledger: Ledger,
+        positive: Any = None,
     ) -> None:
-        super().__init__(label, t0, t1, ledger)
+        super().__init__(label, t0, t1, ledger, positive)
         c = pencil_coefficients(*E_upper, *_upper_polys(plane))
         ledger.add("characteristic_polynomials", target=label)
         assert c[0].is_zero() and c[1].is_zero(), "a plane gives c0 = c1 = 0 (eq. (12))"
-        self.c2, self.c3, self.c4 = c[2], c[3], c[4]
-        self.disc = self.c3 * self.c3 - 4 * self.c4 * self.c2
+        self.c2, self.c4 = c[2], c[4]
+        self.c3 = reduce_positive(c[3], positive)
+        self.disc = reduce_positive(c[3] * c[3] - 4 * c[4] * c[2], positive)
         ledger.add("discriminants", target=label)
         self.critical = [self.disc]
         self._find_roots()
@@ -674,8 +700,9 @@ class PieceTrack(_Track):
         kind: bool,
         E_at: Callable[[Fraction], Quadric] | None = None,
         table_4: bool = True,
+        positive: Any = None,
     ) -> None:
-        super().__init__(label, t0, t1, ledger)
+        super().__init__(label, t0, t1, ledger, positive)
         self.Q = Q
         self.small = small
         self.table_4 = table_4
@@ -684,15 +711,20 @@ class PieceTrack(_Track):
         self.E_at = E_at
         self.is_plane = Q.kind is QuadricKind.PLANE
         self.patterns = table_4_patterns(Q)
-        c = pencil_coefficients(*E_upper, *_upper_polys(Q))
+        raw = pencil_coefficients(*E_upper, *_upper_polys(Q))
         ledger.add("characteristic_polynomials", target=label)
+        # signs only matter: drop positive factors (content, powers of |q(t)|^2)
+        c = tuple(reduce_positive(ck, positive) for ck in raw)
         self.c = c
         if self.is_plane:
-            self.D: tuple[Any, ...] = (c[3] * c[3] - 4 * c[4] * c[2],)
+            self.D: tuple[Any, ...] = (reduce_positive(raw[3] * raw[3] - 4 * raw[4] * raw[2], positive),)
             ledger.add("discriminants", target=label)
             self.critical = [self.D[0]]
         else:
-            self.D = tuple(discrimination_sequence_4(*c))
+            # (1, Delta_2, Delta_3, Delta_4) have the signs of Yang's (D1, .., D4):
+            # D1 = 4 c4^2 > 0, D2 = c4^2 Delta_2, D3 = 2 c4^2 Delta_3, D4 = c4^2 Delta_4
+            deltas = paper_deltas(*raw)
+            self.D = (flint.fmpq_poly([1]), *(reduce_positive(d, positive) for d in deltas))
             ledger.add("discriminants", 3, target=label)
             self.critical = list(self.D[1:])
             if region or kind:

@@ -146,12 +146,12 @@ class MovingEllipsoid:
     name: str
     quadric: Quadric
     trajectory: Trajectory
+    center: tuple[Fraction, Fraction, Fraction] = field(init=False, repr=False, compare=False)
 
-    @property
-    def center(self) -> tuple[Fraction, Fraction, Fraction]:
+    def __post_init__(self) -> None:
         c = self.quadric.center()
-        assert c is not None
-        return c
+        assert c is not None, "an ellipsoid has a centre"
+        object.__setattr__(self, "center", c)
 
 
 @dataclass(frozen=True)

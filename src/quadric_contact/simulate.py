@@ -438,11 +438,6 @@ class SimulationResult:
 # -- the run -------------------------------------------------------------------------
 
 
-class _Need(Exception):
-    def __init__(self, label: str) -> None:
-        self.label = label
-
-
 def _plane_label(obj: Composite, s: Split) -> str:
     return f"{obj.name}: plane {s.name}"
 
@@ -465,6 +460,7 @@ class _SegmentRun:
     ) -> None:
         self.scene, self.plan, self.ell, self.obj, self.seg, self.ledger = scene, plan, ell, obj, seg, ledger
         self.E_upper = seg.moved_upper(ell.quadric, ell.center)
+        self.positive = seg.norm_poly()  # |q(t)|^2 > 0: its powers carry no sign information
         self.targets: dict[str, Split | Piece] = {}
         for s in obj.splits():
             self.targets[_plane_label(obj, s)] = s
@@ -479,7 +475,9 @@ class _SegmentRun:
         target = self.targets[label]
         seg = self.seg
         if isinstance(target, Split):
-            self.tracks[label] = PlaneTrack(label, self.E_upper, target.plane, seg.t0, seg.t1, self.ledger)
+            self.tracks[label] = PlaneTrack(
+                label, self.E_upper, target.plane, seg.t0, seg.t1, self.ledger, self.positive
+            )
         else:
             self.tracks[label] = PieceTrack(
                 label,
@@ -493,6 +491,7 @@ class _SegmentRun:
                 region=self.plan.region,
                 kind=self.plan.kind,
                 E_at=self.E_at,
+                positive=self.positive,
             )
 
     def descend(self, get: Callable[[str], Any]) -> ObjectState:
@@ -507,7 +506,9 @@ class _SegmentRun:
                 if node not in active:
                     active.append(node)
                 return
-            z: ZoneValue = get(_plane_label(obj, node))
+            z: ZoneValue | None = get(_plane_label(obj, node))
+            if z is None:  # not computed yet: the next pass will have it
+                return
             zones.append((node.name, z))
             if z.region in (Region.R_PLUS, Region.CONTACT):
                 visit(node.plus)
@@ -526,10 +527,15 @@ class _SegmentRun:
             for label in self.targets:
                 self.make_track(label)
         while True:
-            try:
-                return self._evaluate()
-            except _Need as need:
-                self.make_track(need.label)
+            # Each pass evaluates every time point with the tracks computed so far and
+            # collects the targets the descent reached without a track; those are
+            # computed (only they) and the pass is repeated: at most depth + 1 passes.
+            self.missing: dict[str, None] = {}
+            entries = self._evaluate()
+            if not self.missing:
+                return entries
+            for label in self.missing:
+                self.make_track(label)
 
     def _evaluate(self) -> list[tuple[str, TimePoint, TimePoint, ObjectState, Fraction | None]]:
         seg = self.seg
@@ -563,7 +569,8 @@ class _SegmentRun:
         def at_rational(t: Fraction) -> Callable[[str], Any]:
             def get(label: str) -> Any:
                 if label not in self.tracks:
-                    raise _Need(label)
+                    self.missing[label] = None
+                    return None
                 return self.tracks[label].state_at_rational(t)
 
             return get
@@ -571,7 +578,8 @@ class _SegmentRun:
         def on_interval(i: int) -> Callable[[str], Any]:
             def get(label: str) -> Any:
                 if label not in self.tracks:
-                    raise _Need(label)
+                    self.missing[label] = None
+                    return None
                 return self.tracks[label].state_on_interval(prefix[label][i], samples[i])
 
             return get
@@ -579,7 +587,8 @@ class _SegmentRun:
         def at_root(k: int) -> Callable[[str], Any]:
             def get(label: str) -> Any:
                 if label not in self.tracks:
-                    raise _Need(label)
+                    self.missing[label] = None
+                    return None
                 tr = self.tracks[label]
                 if label in owners[k]:
                     return tr.state_at_root(owners[k][label])

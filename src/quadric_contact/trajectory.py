@@ -107,6 +107,12 @@ class MotionSegment:
             d = max(d, 2 * max(p.degree() for p in self.quaternion))
         return max(d, 0)
 
+    def norm_poly(self) -> Any:
+        """``n(t) = |q(t)|^2`` (positive on the segment), or None without rotation."""
+        if self.quaternion is None:
+            return None
+        return sum((c * c for c in self.quaternion), flint.fmpq_poly([]))
+
     def center_at(self, t: Any) -> Vec3:
         t = to_fraction(t)
         x, y, z = (poly_eval(p, t) for p in self.center)
