@@ -206,7 +206,8 @@ def main(argv=None):
     zt, zr = timed(lambda: simulate(zone, progress=False), args.repeat)
     pencils = sum(v["characteristic_polynomials"] for k, v in zr.ledger.by_target.items() if "/" in k)
     print(
-        f"\n== the same scene with effects ['zone'] only: {zt * 1000:.1f} ms; pencils of pieces formed: {pencils}"
+        f"\n== the same scene with effects ['zone'] only: {zt * 1000:.1f} ms; "
+        f"pencils of pieces formed: {pencils}"
     )
 
 
