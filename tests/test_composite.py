@@ -158,3 +158,19 @@ def test_static_pencil_equals_time_pencil_at_rational_times(tree):
         for k in range(5):
             # det(lambda n^2 E + Q): c_k scales by n^(2k)
             assert poly_eval(coeffs[k], t) == static[k] * n ** (2 * k)
+
+
+def test_zone_0_counts_contact_with_the_part_of_a_surface_beyond_its_plane(tree):
+    """Algorithm 2 as printed: in Zone 0 a contact with the *whole* quadric S1 is a
+    contact.  The crown's ellipsoid reaches below z = 6 down to its pole at
+    z = 8.36291 - sqrt(20/3) = 5.78092..., inside the trunk, where it is not part
+    of the tree.  A small sphere around that pole, straddling z = 6, touches no
+    surface of the tree, yet Algorithm 2 reports a contact with the crown."""
+    E = Quadric.sphere(F(1, 5), (0, 0, F(117, 20)))  # centre z = 5.85, spans 5.65 .. 6.05
+    r = algorithm_2(E, tree, small=True, region=True)
+    assert r.zone.zones == {"z - 6": 0}
+    assert r.touching == ["crown"]
+    assert r.regions["trunk"].region is Region.R_MINUS  # well inside the trunk
+    # the contact points are all below the plane, outside Zone 1 where the crown belongs
+    crown = Quadric.from_equation("x^2 + y^2 + 3(z - 8.36291)^2 - 20")
+    assert crown.value_at((0, 0, F(578, 100))) > 0 > crown.value_at((0, 0, F(579, 100)))  # pole in between
