@@ -114,6 +114,21 @@ def _surface_points(q: Quadric, box: Sequence[tuple[float, float]], n: int = 70)
     return np.concatenate(pts) if pts else np.zeros((0, 3))
 
 
+def _ellipsoid_mesh(E: Quadric, n: int = 14) -> tuple[Any, Any, Any]:
+    """A (float) mesh of the surface of the ellipsoid ``E``."""
+    import numpy as np
+
+    M = E.to_numpy(float)
+    A, b, c = M[:3, :3], M[:3, 3], M[3, 3]
+    centre = -np.linalg.solve(A, b)
+    k = b @ np.linalg.solve(A, b) - c
+    w, V = np.linalg.eigh(A / k)
+    u, v = np.meshgrid(np.linspace(0, 2 * np.pi, n), np.linspace(0, np.pi, n))
+    S = np.stack([np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v)], axis=-1) / np.sqrt(w)
+    P = S @ V.T + centre
+    return P[..., 0], P[..., 1], P[..., 2]
+
+
 def _plane_value(plane: Quadric, P: Any) -> Any:
     import numpy as np
 
@@ -151,7 +166,9 @@ def _draw_pair(fig: Any, spec: Any, result: Any, pair: Any, samples: int) -> Non
             if len(P):
                 P = P[side * _plane_value(plane, P) >= 0]
         if len(P):
-            ax.scatter(*P.T, s=0.4, alpha=0.25, color=palette[i % len(palette)], label=piece.name)
+            ax.scatter(
+                *P.T, s=1.2, alpha=0.3, color=palette[i % len(palette)], label=piece.name, linewidths=0
+            )
     for split in pair.object.splits():
         n = split.plane.to_numpy(float)[:3, 3] * 2
         d = -split.plane.to_numpy(float)[3, 3]
@@ -163,16 +180,24 @@ def _draw_pair(fig: Any, spec: Any, result: Any, pair: Any, samples: int) -> Non
         grid[k], grid[o[0]], grid[o[1]] = W, U, V
         ax.plot_surface(*grid, alpha=0.12, color="#999999")
     for i in range(len(C) - 1):
-        ax.plot(*C[i : i + 2].T, color=_colour(cats[i]), linewidth=2.2)
-    for ev in pair.events:
+        ax.plot(*C[i : i + 2].T, color=_colour(cats[i]), linewidth=2.2, zorder=5)
+    # the ellipsoid where it starts and where it first touches
+    shown = [t0] + ([pair.first_contact[0].approx(8)] if pair.first_contact else [])
+    for t in shown:
+        X, Y, Z = _ellipsoid_mesh(ell.trajectory.placed(ell.quadric, t, t0, t1))
+        ax.plot_wireframe(X, Y, Z, color="black", linewidth=0.3, alpha=0.6)
+    for k, ev in enumerate(pair.events):
         t = ev.time.approx(6)
         seg = next((s for s in segs if s.t0 <= t <= s.t1), segs[-1])
         p = [float(v) for v in seg.center_at(t)]
-        ax.scatter(*p, color="black", s=12)
-        ax.text(*p, f" {float(ev.time):.3f}", fontsize=6)
+        ax.scatter(*p, color="black", s=10, zorder=6)
+        if len(pair.events) <= 12:
+            ax.text(*p, f" {k + 1}", fontsize=6)
     ax.set_xlim(*box[0])
     ax.set_ylim(*box[1])
     ax.set_zlim(*box[2])
+    extent = np.array([b_[1] - b_[0] for b_ in box])
+    ax.set_box_aspect(tuple(np.maximum(extent / extent.max(), 0.25)))  # true proportions, within 1:4
     ax.set_xlabel("x")
     ax.set_ylabel("y")
     ax.set_zlabel("z")
@@ -184,8 +209,10 @@ def _draw_pair(fig: Any, spec: Any, result: Any, pair: Any, samples: int) -> Non
         a, b = float(ep.start), float(ep.end)
         cat = ep.state.category(pair.object)
         tl.barh(0, max(b - a, (float(t1) - float(t0)) / 400), left=a, color=_colour(cat), height=0.5)
-    for ev in pair.events:
+    for k, ev in enumerate(pair.events):
         tl.axvline(float(ev.time), color="black", linewidth=0.5)
+        if len(pair.events) <= 12:
+            tl.text(float(ev.time), 0.3, f"{k + 1}", fontsize=6, ha="center", va="bottom")
     seen: dict[str, str] = {}
     for ep in pair.episodes:
         cat = ep.state.category(pair.object)
