@@ -329,6 +329,18 @@ def _isolate_irreducible(coeffs: tuple[int, ...]) -> tuple[tuple[Fraction, Fract
     return tuple(out)
 
 
+def _descartes_bound(f: Any, a: Fraction, b: Fraction) -> int:
+    """An upper bound (exact parity) on the number of roots of ``f`` in ``(a, b)``:
+    the sign variations of ``(1 + u)^n f((a + b u) / (1 + u))`` (Descartes' rule
+    after the Moebius map of ``(0, oo)`` onto ``(a, b)``).  0 means no root."""
+    h = flint.fmpq_poly(f)(flint.fmpq_poly([_fmpq(a), _fmpq(b - a)]))  # roots of f in (a, b) <-> h in (0, 1)
+    coeffs = h.coeffs()
+    rev = flint.fmpq_poly(list(reversed(coeffs)))  # y^n h(1/y)
+    g = rev(flint.fmpq_poly([1, 1]))  # roots of h in (0, 1) <-> positive roots of g
+    signs = [1 if c > 0 else -1 for c in g.coeffs() if c != 0]
+    return sum(1 for x, y in pairwise(signs) if x != y)
+
+
 def _primitive(p: Any) -> Any:
     """The primitive integer polynomial with positive leading coefficient of an fmpq_poly/fmpz_poly."""
     z = flint.fmpz_poly(flint.fmpq_poly(p).numer())
@@ -377,6 +389,9 @@ def real_roots(
     for f in irreducible_factors(p):
         if ledger is not None:
             ledger.add("root_isolations", target=target)
+        if f.degree() > 1 and a < b and _descartes_bound(f, a, b) == 0:
+            # no root inside; an irreducible f of degree > 1 has no rational root at a or b
+            continue
         for lo, hi in _isolate_irreducible(tuple(int(c) for c in f.coeffs())):
             r = RealRoot(f, lo, hi)
             ca, cb = r.compare(a), r.compare(b)
@@ -423,6 +438,30 @@ def simplest_between(a: Fraction, b: Fraction) -> Fraction:
     return fl + 1 / simplest_between(1 / hi, 1 / lo)
 
 
+def dyadic_between(lo: Fraction, hi: Fraction) -> Fraction:
+    """A short dyadic rational ``m / 2^k`` (smallest ``k``) in the open interval ``(lo, hi)``.
+
+    Examples
+    --------
+    >>> dyadic_between(Fraction(31, 10), Fraction(33, 10)), dyadic_between(Fraction(1, 3), Fraction(2))
+    (Fraction(13, 4), Fraction(1, 1))
+    """
+    if not lo < hi:
+        raise ValueError(f"empty interval ({lo}, {hi})")
+    w = hi - lo
+    k = max(0, w.denominator.bit_length() - w.numerator.bit_length() + 1)  # 2^-k < w
+    best = None
+    while k >= 0:
+        m = math.floor(lo * (1 << k)) + 1
+        x = Fraction(m, 1 << k)
+        if not x < hi:
+            break
+        best = x
+        k -= 1
+    assert best is not None
+    return best
+
+
 def sample_between(left: TimePoint, right: TimePoint) -> Fraction:
     """A simple rational strictly between two time points (rationals or roots)."""
     if isinstance(left, RealRoot):
@@ -445,7 +484,7 @@ def sample_between(left: TimePoint, right: TimePoint) -> Fraction:
         lo = left.lo
     if isinstance(right, RealRoot) and right.is_rational:
         hi = right.lo
-    return simplest_between(lo, hi)
+    return dyadic_between(lo, hi)
 
 
 def sign_at(p: Any, t: TimePoint, ledger: Ledger | None = None) -> int:

@@ -467,6 +467,17 @@ class _SegmentRun:
         for p in obj.pieces:
             self.targets[_piece_label(obj, p)] = p
         self.tracks: dict[str, _Track] = {}
+        self._samples: dict[tuple[Any, Any], Fraction] = {}
+
+    def _sample(self, left: TimePoint, right: TimePoint) -> Fraction:
+        """A rational time strictly between two points (cached across passes)."""
+        key = (
+            id(left) if isinstance(left, RealRoot) else left,
+            id(right) if isinstance(right, RealRoot) else right,
+        )
+        if key not in self._samples:
+            self._samples[key] = sample_between(left, right)
+        return self._samples[key]
 
     def E_at(self, t: Fraction) -> Quadric:
         return Quadric._from_upper(tuple(poly_eval(p, t) for p in self.E_upper))
@@ -562,7 +573,7 @@ class _SegmentRun:
                 counts.append(counts[-1] + (1 if label in own else 0))
             prefix[label] = counts
         points: list[TimePoint] = [seg.t0, *merged, seg.t1]
-        samples = [sample_between(points[i], points[i + 1]) for i in range(len(points) - 1)]
+        samples = [self._sample(points[i], points[i + 1]) for i in range(len(points) - 1)]
 
         entries: list[tuple[str, TimePoint, TimePoint, ObjectState, Fraction | None]] = []
 
