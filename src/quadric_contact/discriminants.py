@@ -64,8 +64,8 @@ def discrimination_sequence(coeffs: Sequence[Any]) -> tuple[Any, ...]:
     Example 11: ``P = -(1 + 2 lambda)^2 (16 + 3 lambda^2)``.
 
     >>> P = [-16, -64, -67, -12, -12]
-    >>> discrimination_sequence(P)[2:]   # D_3 = 2 c4^2 Delta_3, D_4 = c4^2 Delta_4
-    (-115200, 0)
+    >>> discrimination_sequence(P)   # D_3 = 2 c4^2 Delta_3, D_4 = c4^2 Delta_4
+    (576, -864000, -3971579904, 0)
     """
     c = strip(coeffs)
     n = len(c) - 1
@@ -81,10 +81,12 @@ def paper_deltas(coeffs: Sequence[Any]) -> tuple[Any, Any, Any]:
 
     Examples
     --------
-    Example 11 (the paper prints ``Delta_4 = 0`` and ``Delta_3 = -400``):
+    Example 11.  The paper prints ``Delta_4 = 0`` and ``Delta_3 = -400``; the
+    printed formula gives ``Delta_3 = -13790208`` (same sign; see
+    :data:`quadric_contact.paper.ERRATA`):
 
-    >>> paper_deltas([-16, -64, -67, -12, -12])[1:]
-    (-400, 0)
+    >>> paper_deltas([-16, -64, -67, -12, -12])
+    (-6000, -13790208, 0)
     """
     c = list(coeffs) + [0] * (5 - len(coeffs))
     return formulas.paper_deltas(*c[:5])

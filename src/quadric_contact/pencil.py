@@ -67,7 +67,7 @@ class CharacteristicPolynomial:
     >>> P
     CharacteristicPolynomial(-12*lambda**4 - 12*lambda**3 - 67*lambda**2 - 64*lambda - 16)
     >>> P.deltas()[1:]
-    (Fraction(-400, 1), Fraction(0, 1))
+    (Fraction(-13790208, 1), Fraction(0, 1))
     """
 
     def __init__(self, E: Quadric, Q: Quadric, e_flipped: bool = False) -> None:

@@ -79,8 +79,8 @@ class Quadric:
     >>> bee = Quadric.from_equation("(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1")
     >>> bee.kind
     <QuadricKind.ELLIPSOID: 'ellipsoid'>
-    >>> bee[3, 3]
-    Fraction(2157, 20)
+    >>> bee[3, 3]   # 9 + 9 + 3 * 5.5**2 - 0.1
+    Fraction(2173, 20)
     """
 
     __slots__ = ("_hash", "_ints", "_kind", "_u")
