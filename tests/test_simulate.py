@@ -185,13 +185,3 @@ def test_ledger_rejects_unknown_items():
         led.add_full("samples")
     led.add("samples", 0, target="x")
     assert led.cost("x") == 0 and "samples" in led.format()
-
-
-@pytest.mark.parametrize("name", ["composite", "events", "scene", "simulate", "trajectory"])
-def test_doctests(name):
-    import doctest
-    import importlib
-
-    module = importlib.import_module(f"quadric_contact.{name}")
-    result = doctest.testmod(module, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
-    assert result.failed == 0 and result.attempted > 0
