@@ -349,3 +349,29 @@ def test_rotating_motion_matches_dense_sampling(E, Q, v, q):
         state = dict(pair.state_at(t).pieces)["o"]
         Et = ell.trajectory.placed(ell.quadric, t, *res.scene.span)
         assert (state.contact, state.region) == static_state(Et, Q, check_of(res)), t
+
+
+@pytest.mark.slow
+@settings(max_examples=500, deadline=None)
+@given(
+    E=ellipsoids(max_axis=1, bound=4),
+    Q=quadrics(bound=3),
+    v=st.tuples(*[rationals(min_value=-3, max_value=3, max_denominator=4)] * 3),
+    a=st.tuples(*[rationals(min_value=-1, max_value=1, max_denominator=4)] * 3),
+)
+def test_event_timeline_matches_dense_sampling_exhaustive(E, Q, v, a):
+    """The dense-sampling check on 500 random pairs and quadratic motions (slow profile)."""
+    test_event_timeline_matches_dense_sampling.hypothesis.inner_test(E, Q, v, a)
+
+
+@pytest.mark.slow
+@settings(max_examples=200, deadline=None)
+@given(
+    E=ellipsoids(max_axis=1, bound=3),
+    Q=quadrics(bound=3),
+    v=st.tuples(*[rationals(min_value=-2, max_value=2, max_denominator=3)] * 3),
+    q=st.tuples(*[st.integers(-2, 2)] * 8),
+)
+def test_rotating_motion_matches_dense_sampling_exhaustive(E, Q, v, q):
+    """The rotating dense-sampling check on 200 random pairs (slow profile)."""
+    test_rotating_motion_matches_dense_sampling.hypothesis.inner_test(E, Q, v, q)

@@ -540,9 +540,15 @@ class PieceValue:
     region_asked: bool = False
 
     def __str__(self) -> str:
+        return self.describe()
+
+    def describe(self, inside: Region | None = None) -> str:
+        """One line; with ``inside`` (the piece's inside region) ``R-``/``R+`` are
+        glossed as inside/outside."""
         parts = [{True: "contact", False: "no contact", None: "contact undecided"}[self.contact]]
         if self.region is not None and self.region is not Region.CONTACT:
-            parts.append(self.region.value)
+            gloss = "" if inside is None else (" (inside)" if self.region is inside else " (outside)")
+            parts.append(self.region.value + gloss)
         elif self.region is None and self.region_asked and self.contact is not True:
             parts.append("region undecided")
         redundant = (("transversal", True), ("none", False))

@@ -127,9 +127,9 @@ class Ledger:
             if k in FULL_ITEMS and self.full.get(k, 0):
                 full = self.full[k]
                 saved = f"{100 * (full - done) / full:5.1f}%" if full else ""
-                lines.append(f"{k:<{width}}  {done:>8}  {full:>8}  {saved}")
+                lines.append(f"{k:<{width}}  {done:>8}  {full:>8}  {saved}".rstrip())
             else:
-                lines.append(f"{k:<{width}}  {done:>8}  {'':>8}")
+                lines.append(f"{k:<{width}}  {done:>8}")
         return "\n".join(lines)
 
     def __str__(self) -> str:

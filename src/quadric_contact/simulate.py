@@ -160,8 +160,9 @@ class ObjectState:
         if with_zones and self.zones:
             parts.append("zone " + ", ".join(f"[{n}] {z}" for n, z in self.zones))
         evaluated = [(n, v) for n, v in self.pieces if v is not None]
+        inside = {p.name: p.inside for p in obj.pieces} if obj is not None else {}
         if evaluated:
-            parts.append("; ".join(f"{n}: {v}" for n, v in evaluated))
+            parts.append("; ".join(f"{n}: {v.describe(inside.get(n))}" for n, v in evaluated))
         elif self.pieces:
             parts.append("pieces in zone: " + ", ".join(n for n, _ in self.pieces))
         else:
@@ -233,8 +234,9 @@ class Event:
     at: ObjectState
     after: ObjectState | None
 
-    def changes(self) -> list[str]:
-        """Human-readable descriptions of what changed."""
+    def changes(self, obj: Composite | None = None) -> list[str]:
+        """Human-readable descriptions of what changed (``obj`` glosses R-/R+ as inside/outside)."""
+        inside = {p.name: p.inside for p in obj.pieces} if obj is not None else {}
         out: list[str] = []
         b = self.before or self.at
         a = self.after or self.at
@@ -254,7 +256,7 @@ class Event:
             describe("zone of plane ", name, x, y, z)
         pb, pt, pa = dict(b.pieces), dict(self.at.pieces), dict(a.pieces)
         for name in dict.fromkeys([*pb, *pt, *pa]):
-            x, y, z = (_piece_text(d, name) for d in (pb, pt, pa))
+            x, y, z = (_piece_text(d, name, inside.get(name)) for d in (pb, pt, pa))
             describe("", name, x, y, z)
         return out
 
@@ -323,11 +325,11 @@ class PairResult:
         return out
 
 
-def _piece_text(d: dict[str, PieceValue | None], name: str) -> str:
+def _piece_text(d: dict[str, PieceValue | None], name: str, inside: Region | None = None) -> str:
     if name not in d:
         return "not in zone"
     v = d[name]
-    return "in zone" if v is None else str(v)
+    return "in zone" if v is None else v.describe(inside)
 
 
 def _as_root(t: TimePoint) -> RealRoot:
@@ -399,6 +401,10 @@ class SimulationResult:
         for w in self.warnings:
             lines.append(f"warning: {w}")
         show_zones = "zone" in self.plan.effects
+        lines.append(
+            f"event times: exact real algebraic numbers, shown to {places} decimal places "
+            "(--places N; --json gives each one's polynomial and isolating interval)"
+        )
         show_timeline = bool(
             {"zone", "contact", "contact_kind", "relative_position"} & set(self.plan.effects)
         )
@@ -409,7 +415,7 @@ class SimulationResult:
                 start = p.initial.summary(p.object, with_zones=show_zones)
                 lines.append(f"  t = {_fmt_time(self.scene.span[0], places)}: start: {start}")
                 for ev in p.events:
-                    changes = ev.changes()
+                    changes = ev.changes(p.object)
                     if not show_zones:
                         changes = [c for c in changes if not c.startswith("zone of plane")]
                         if not changes:
