@@ -57,6 +57,16 @@ def test_compare_and_signs_at_algebraic_numbers():
     assert r.sign_of(-q, led) == -1
 
 
+def test_sign_at_a_root_escalates_only_when_needed():
+    """From the wide isolating interval [1, 2] of sqrt 2, the sign of t + 1 is read at
+    once; that of t - 1.41421356 needs the interval refined (one escalation)."""
+    led = Ledger()
+    r = RealRoot(flint.fmpz_poly([-2, 0, 1]), F(1), F(2))
+    assert r.sign_of(flint.fmpq_poly([1, 1]), led) == 1 and led.done["escalations"] == 0
+    assert r.sign_of(flint.fmpq_poly([flint.fmpq(-141421356, 10**8), 1]), led) == 1
+    assert led.done["escalations"] == 1 and r.hi - r.lo < F(1, 10**8)
+
+
 def test_sign_of_a_huge_polynomial_with_cancellation():
     """g = 10^40 (t^2 - 2 - 10^-20)^9 (t - 3) at sqrt 2 is about 1.6e-140 (positive),
     next to coefficients of size 1e40: ball arithmetic alone would need 600 bits."""
