@@ -185,3 +185,33 @@ def test_ledger_rejects_unknown_items():
         led.add_full("samples")
     led.add("samples", 0, target="x")
     assert led.cost("x") == 0 and "samples" in led.format()
+
+
+def test_contact_kind_between_events_uses_the_segre_analysis():
+    """A unit sphere sliding along the axis inside a cylinder of radius 1 touches it along
+    a circle all the time (Table 3: curve of tangency), with all roots real and a
+    persistent multiple root; the kind needs the singular members of the pencil."""
+    pytest.importorskip("quadric_contact.contact_kind")
+    text = """
+[scene]
+name = "piston"
+time = [0, 1]
+effects = ["contact", "contact_kind"]
+[[object]]
+name = "bore"
+[[object.piece]]
+name = "bore"
+standard = "elliptic cylinder"
+a = 1
+b = 1
+[[ellipsoid]]
+name = "piston"
+standard = "sphere"
+radius = 1
+motion = { type = "linear", velocity = [0, 0, 1] }
+"""
+    r = simulate(parse_scene(text, "piston.toml"))
+    pair = r.pairs[0]
+    assert pair.events == []
+    value = dict(pair.initial.pieces)["bore"]
+    assert value.contact is False and value.kind == "tangent_curve"

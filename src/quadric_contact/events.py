@@ -707,12 +707,16 @@ NO_REAL_POINTS = frozenset(
 )
 
 
-def _external_contact_kind() -> Callable[[Any, Any], Any] | None:
-    """``contact_kind(E, Q)`` (Table 3 via the Segre characteristic) when the package provides it."""
+def _external_contact_kind() -> Callable[..., Any] | None:
+    """``contact_kind(E, Q, small=...)`` (Table 3 via the Segre characteristic) when the
+    package provides it (module :mod:`quadric_contact.contact_kind`)."""
     import importlib
 
-    package = importlib.import_module(__package__ or "quadric_contact")
-    fn = getattr(package, "contact_kind", None)
+    try:
+        module = importlib.import_module(f"{__package__ or 'quadric_contact'}.contact_kind")
+    except ImportError:
+        return None
+    fn = getattr(module, "contact_kind", None)
     return fn if callable(fn) else None
 
 
@@ -848,6 +852,6 @@ class PieceTrack(_Track):
         if s4 != 0:
             return "none"  # all roots real and simple: Segre type [1111], no contact (Table 3)
         if self._kind_fn is not None and isinstance(t, Fraction) and self.E_at is not None:
-            result = self._kind_fn(self.E_at(t), self.Q)
+            result = self._kind_fn(self.E_at(t), self.Q, small=self.small)
             return str(getattr(result, "value", result))
         return "undetermined"
