@@ -81,3 +81,23 @@ def test_bad_options_exit_2(tmp_path, capsys):
     assert "does not exist" in capsys.readouterr().err
     assert main(["simulate", str(tmp_path / "missing.toml")]) == 2
     assert "no such file" in capsys.readouterr().err
+
+
+def test_not_small_is_refused_with_the_failing_condition(tmp_path, capsys):
+    scene = tmp_path / "throat.toml"
+    scene.write_text(
+        BROKEN.replace('velocity = [1, 0, "fast"]', "velocity = [0.2, 0, 0]")
+        .replace(
+            'equation = "x^2 + y^2 + z^2 = 1"\n[[ellipsoid]]',
+            'equation = "x^2 + y^2 - z^2/100 = 1"\n[[ellipsoid]]',
+        )
+        .replace(
+            'name = "e"\nequation = "x^2 + y^2 + z^2 = 1"', 'name = "e"\nequation = "100x^2 + y^2 + z^2 = 1"'
+        )
+    )
+    assert main(["simulate", str(scene), "--effects", "contact"]) == 2
+    err = capsys.readouterr().err
+    assert "not small with respect to piece 'p'" in err and "FAILS" in err and "on_not_small" in err
+    assert main(["simulate", str(scene), "--effects", "contact", "--on-not-small", "warn"]) == 0
+    out = capsys.readouterr().out
+    assert "NOT small" in out and "contact undecided" in out

@@ -299,6 +299,7 @@ def test_not_small_is_refused_by_default():
     assert msg.startswith("throat.toml: ") and "'disc' is not small with respect to piece 'throat'" in msg
     assert "on_not_small" in msg and info.value.details["key"] == "scene.on_not_small"
     assert info.value.value.report.paper_small is True
+    assert "a/b^2 <= gamma/alpha^2" in msg and "FAILS" in msg  # the failing condition is shown
 
 
 def test_not_small_with_warn_keeps_the_scene_and_leaves_contact_undecided():

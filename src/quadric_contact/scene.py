@@ -247,9 +247,10 @@ class Scene:
                     except QuadricContactError as exc:
                         check = SmallnessCheck(ell.name, obj.name, piece.name, False, None, str(exc))
                     if not check.small:
+                        why = str(check.report) if check.report is not None else check.note
                         text = (
                             f"{self.source}: ellipsoid {ell.name!r} is not small with respect to piece "
-                            f"{piece.name!r} of object {obj.name!r}: {check.report or check.note}"
+                            f"{piece.name!r} of object {obj.name!r}:\n  " + why.replace("\n", "\n  ")
                         )
                         if policy == "refuse":
                             raise SceneError(

@@ -7,6 +7,7 @@ import json
 import os
 import sys
 import tempfile
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -95,9 +96,11 @@ def run(args: argparse.Namespace) -> int:
         from ..plotting import _matplotlib
 
         _matplotlib()  # fail early when matplotlib is missing
-    result = simulate(
-        scene, effects=effects, full=args.full, progress=args.progress, on_not_small=args.on_not_small
-    )
+    with warnings.catch_warnings():  # the report prints the scene's warnings itself
+        warnings.simplefilter("ignore")
+        result = simulate(
+            scene, effects=effects, full=args.full, progress=args.progress, on_not_small=args.on_not_small
+        )
     places = args.places
     payload = json.dumps(result.to_dict(places), indent=2) + "\n"
     png = None
