@@ -84,3 +84,8 @@ class UndecidedError(QuadricContactError, ValueError):
 class SceneError(QuadricContactError, ValueError):
     """A scene file is malformed; the message names the file, the key and what
     was expected."""
+
+
+class MissingDependencyError(QuadricContactError, ImportError):
+    """An optional dependency needed for the requested feature is not installed
+    (for instance matplotlib for plots: ``pip install 'quadric-contact[plot]'``)."""
