@@ -211,3 +211,13 @@ def test_two_parallel_planes(q, d1, d2):
     for d in (d1, d2):
         assert pp.value_at([v * d / n2 for v in q]) == 0
     assert pp.value_at([v * (d1 + d2) / 2 / n2 for v in q]) < 0
+
+
+@given(e=ellipsoids())
+def test_center_is_the_exact_critical_point(e):
+    import sympy
+
+    c = e.center()
+    A = sympy.Matrix(e.quadratic_part)
+    b = sympy.Matrix(e.linear_part)
+    assert sympy.Matrix(c) == -A.LUsolve(b)

@@ -466,16 +466,26 @@ class Quadric:
         return self._kind[1]
 
     def center(self) -> tuple[Fraction, Fraction, Fraction] | None:
-        """The centre ``-Q00^-1 b`` when the quadratic part is invertible, else None."""
-        a = (self._u[0], self._u[1], self._u[2], self._u[4], self._u[5], self._u[7])
-        if principal_minor_sums_3(a)[2] == 0:
-            return None
-        import sympy
+        """The centre ``-Q00^-1 b`` when the quadratic part is invertible, else None.
 
-        A = sympy.Matrix(self.quadratic_part)
-        b = sympy.Matrix(self.linear_part)
-        c = -A.LUsolve(b)
-        return (to_fraction(c[0]), to_fraction(c[1]), to_fraction(c[2]))
+        Exact (Cramer's rule with the adjugate of the symmetric 3x3 block).
+        """
+        a00, a01, a02, b0, a11, a12, b1, a22, b2, _ = self._u
+        det = principal_minor_sums_3((a00, a01, a02, a11, a12, a22))[2]
+        if det == 0:
+            return None
+        # adjugate of [[a00, a01, a02], [a01, a11, a12], [a02, a12, a22]] (symmetric)
+        c00 = a11 * a22 - a12 * a12
+        c01 = a02 * a12 - a01 * a22
+        c02 = a01 * a12 - a02 * a11
+        c11 = a00 * a22 - a02 * a02
+        c12 = a01 * a02 - a00 * a12
+        c22 = a00 * a11 - a01 * a01
+        return (
+            -(c00 * b0 + c01 * b1 + c02 * b2) / det,
+            -(c01 * b0 + c11 * b1 + c12 * b2) / det,
+            -(c02 * b0 + c12 * b1 + c22 * b2) / det,
+        )
 
     # -- ellipsoids -------------------------------------------------------------
 

@@ -1,0 +1,735 @@
+"""Scenes: objects, moving ellipsoids, a time span and the effects wanted, read from TOML.
+
+A scene file (TOML; numbers are read *exactly*: ``5.5`` is ``11/2``, and a
+string such as ``"1/3"`` or ``"8.36291"`` is accepted wherever a number is)::
+
+    [scene]
+    name = "The bee and the tree (Example 17)"
+    time = [0, 8]                      # the time span
+    effects = ["zone", "contact", "relative_position", "first_contact"]
+    on_not_small = "refuse"            # or "warn" (see below)
+    places = 12                        # decimal places printed for event times
+
+    [[object]]
+    name = "tree"
+    tree = { plane = "z = 6", plus = "crown", minus = "trunk" }
+
+    [[object.piece]]
+    name = "crown"
+    equation = "x^2 + y^2 + 3(z - 8.36291)^2 = 20"
+
+    [[object.piece]]
+    name = "trunk"
+    equation = "x^2 + y^2 - 0.25(z - 3)^2 = 1"
+
+    [[ellipsoid]]
+    name = "bee"
+    equation = "(x - 3)^2 + (y - 3)^2 + 3(z - 5.5)^2 = 0.1"
+    motion = { type = "keyframes", keys = [
+        { t = 0, at = [3, 3, 5.5] },
+        { t = 2, at = [1.2, 0, 5], rotation = [1, 0, 0, 0] } ] }
+
+Quadrics (pieces and ellipsoids) are given by exactly one of
+``equation = "..."`` (in ``x, y, z``; ``"lhs = rhs"`` allowed),
+``matrix = [[...], ...]`` (symmetric 4x4), ``standard = "<type>"`` with
+``a``, ``b``, ``c`` (the forms of Table 1, e.g. ``"hyperboloid of one
+sheet"``), ``standard = "ellipsoid"`` with ``semi_axes = [a, b, c]``,
+``standard = "sphere"`` with ``radius``, or ``standard = "plane"`` with
+``normal`` and ``offset`` (``n . x = offset``; ``R-`` is ``n . x <= offset``).
+Optional ``rotation = [w, x, y, z]`` (a rational quaternion, applied about the
+origin) then ``center = [x, y, z]`` (a translation) place a standard form.
+A piece may say which of its regions is the object's inside: ``inside = "R-"``
+(default) or ``"R+"``.
+
+An object is one ``[[object]]`` with ``[[object.piece]]`` s and an optional
+``tree``: a plane with what lies on its ``plus`` (``R+``, Zone 1) and
+``minus`` (``R-``, Zone 2) side, each a piece name, another ``{ plane = ...,
+plus = ..., minus = ... }`` or absent (nothing there).  Without a tree every
+piece is checked everywhere.
+
+Motions (``[ellipsoid.motion]``; the default is ``type = "still"``):
+
+``type = "linear"``
+    ``velocity = [vx, vy, vz]``; the centre is at its initial place at
+    ``start`` (default the start of the span).
+``type = "polynomial"``
+    ``translation = [[x0, x1, ...], [y0, ...], [z0, ...]]``: the centre's
+    displacement ``sum x_k t^k``; optional ``quaternion = [[w0, w1, ...],
+    [x...], [y...], [z...]]``: the rotation about the centre of the
+    quaternion with these polynomial components.
+``type = "keyframes"``
+    ``keys = [{ t = ..., at = [x, y, z], rotation = [w, x, y, z] }, ...]``:
+    the centre passes through ``at`` at time ``t`` (linear in between);
+    ``rotation`` (optional) is the orientation relative to the initial one,
+    interpolated linearly in the quaternion's components.
+
+Effects: ``zone`` (Algorithm 1), ``contact`` (Algorithm 2),
+``contact_kind`` (Table 3), ``relative_position`` (Table 4),
+``first_contact``, ``smallness`` (report the smallness of every moving
+ellipsoid with respect to every piece).  Only what they need is computed.
+
+Smallness (Tables 1, 2) of each moving ellipsoid with respect to each
+quadric piece is checked when the scene is loaded, if its effects rely on
+Theorem 2; ``on_not_small = "refuse"`` rejects a scene where it fails,
+``"warn"`` keeps it, with a warning, and the contact where all roots are real
+is then reported as undecided.
+
+Every error names the file, the key and what was expected
+(:class:`~quadric_contact.errors.SceneError`).
+"""
+
+from __future__ import annotations
+
+import tomllib
+import warnings
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from fractions import Fraction
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+from .classification import QuadricKind
+from .composite import Composite, Piece, Split
+from .errors import QuadricContactError, SceneError
+from .ledger import Ledger
+from .quadric import Quadric
+from .rational import to_fraction
+from .results import Region
+from .trajectory import Keyframes, PolynomialMotion, Stationary, Trajectory
+
+__all__ = [
+    "EFFECTS",
+    "MovingEllipsoid",
+    "Scene",
+    "SmallnessCheck",
+    "builtin_scene",
+    "builtin_scene_names",
+    "load_scene",
+    "parse_scene",
+]
+
+EFFECTS: tuple[str, ...] = (
+    "zone",
+    "contact",
+    "contact_kind",
+    "relative_position",
+    "first_contact",
+    "smallness",
+)
+"""The effects a scene can ask for."""
+
+THEOREM_2_EFFECTS = frozenset({"contact", "contact_kind", "relative_position", "first_contact", "smallness"})
+"""Effects that rely on the smallness hypothesis (through Theorem 2, Corollary 10, Theorem 13)."""
+
+EXCLUDED_KINDS = frozenset(
+    {
+        QuadricKind.CONE,
+        QuadricKind.INTERSECTING_PLANES,
+        QuadricKind.COINCIDENT_PLANES,
+        QuadricKind.IMAGINARY_ELLIPSOID,
+        QuadricKind.IMAGINARY_CONE,
+        QuadricKind.IMAGINARY_ELLIPTIC_CYLINDER,
+        QuadricKind.IMAGINARY_INTERSECTING_PLANES,
+        QuadricKind.IMAGINARY_PARALLEL_PLANES,
+        QuadricKind.EMPTY,
+        QuadricKind.ZERO,
+    }
+)
+"""Piece types the scene loader refuses: the theory excludes them, or they have no real surface."""
+
+
+@dataclass(frozen=True)
+class MovingEllipsoid:
+    """A moving ellipsoid: its initial placement (normalised so that ``det E < 0``) and trajectory."""
+
+    name: str
+    quadric: Quadric
+    trajectory: Trajectory
+    center: tuple[Fraction, Fraction, Fraction] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        c = self.quadric.center()
+        assert c is not None, "an ellipsoid has a centre"
+        object.__setattr__(self, "center", c)
+
+
+@dataclass(frozen=True)
+class SmallnessCheck:
+    """Smallness of one moving ellipsoid with respect to one piece.
+
+    ``small`` is the exact verdict of :func:`~quadric_contact.smallness.smallness`
+    (False also when the piece's type admits no small ellipsoid: ``note``
+    says why); ``report`` is the smallness report.
+    """
+
+    ellipsoid: str
+    object: str
+    piece: str
+    small: bool
+    report: Any = None
+    note: str = ""
+
+    @property
+    def table_4_applies(self) -> bool:
+        return self.small and bool(getattr(self.report, "table_4_applies", True))
+
+    def __str__(self) -> str:
+        verdict = "small" if self.small else "NOT small"
+        if self.small and not self.table_4_applies:
+            verdict += " (only in the enclosing sense: Table 4 does not apply)"
+        text = f"{self.ellipsoid} vs {self.object}/{self.piece}: {verdict}"
+        if self.note:
+            text += f" ({self.note})"
+        return text
+
+
+@dataclass
+class Scene:
+    """A scene: objects, moving ellipsoids, a time span and the effects wanted.
+
+    Build one with :func:`load_scene` / :func:`builtin_scene` or directly.
+    """
+
+    name: str
+    objects: tuple[Composite, ...]
+    ellipsoids: tuple[MovingEllipsoid, ...]
+    span: tuple[Fraction, Fraction]
+    effects: tuple[str, ...] = ("zone", "contact", "first_contact")
+    description: str = ""
+    source: str = "<scene>"
+    on_not_small: str = "refuse"
+    places: int = 12
+    smallness: dict[tuple[str, str, str], SmallnessCheck] = field(default_factory=dict)
+    warnings: list[str] = field(default_factory=list)
+    work: Ledger = field(default_factory=Ledger)
+    """Work done on the scene itself (the smallness checks), whenever it was done."""
+
+    def __post_init__(self) -> None:
+        t0, t1 = (to_fraction(v) for v in self.span)
+        if not t0 < t1:
+            raise SceneError(f"{self.source}: scene.time: expected [start, end] with start < end", self.span)
+        self.span = (t0, t1)
+        bad = [e for e in self.effects if e not in EFFECTS]
+        if bad:
+            raise SceneError(
+                f"{self.source}: scene.effects: unknown effect(s) {bad}; expected some of {EFFECTS}"
+            )
+        if self.on_not_small not in ("refuse", "warn"):
+            raise SceneError(
+                f"{self.source}: scene.on_not_small: expected 'refuse' or 'warn'", self.on_not_small
+            )
+
+    def needs_smallness(self, effects: Sequence[str] | None = None) -> bool:
+        return bool(THEOREM_2_EFFECTS & set(self.effects if effects is None else effects))
+
+    def check_smallness(self, *, on_not_small: str | None = None) -> None:
+        """Check every (moving ellipsoid, quadric piece) pair once (Tables 1, 2).
+
+        Planes need no smallness (Theorem 14).  Raises :class:`SceneError`
+        if a pair is not small and the policy is ``"refuse"``; with ``"warn"``
+        the pair is kept, a warning is recorded, and its contacts with all
+        roots real are undecided (Remark 9).
+        """
+        from .smallness import smallness
+
+        policy = on_not_small or self.on_not_small
+        for ell in self.ellipsoids:
+            for obj in self.objects:
+                for piece in obj.pieces:
+                    key = (ell.name, obj.name, piece.name)
+                    if piece.is_plane or key in self.smallness:
+                        continue
+                    self.work.add("smallness_checks", target=f"{obj.name}/{piece.name}")
+                    try:
+                        report = smallness(ell.quadric, piece.quadric)
+                        check = SmallnessCheck(ell.name, obj.name, piece.name, bool(report.small), report)
+                    except QuadricContactError as exc:
+                        check = SmallnessCheck(ell.name, obj.name, piece.name, False, None, str(exc))
+                    if not check.small:
+                        why = str(check.report) if check.report is not None else check.note
+                        text = (
+                            f"{self.source}: ellipsoid {ell.name!r} is not small with respect to piece "
+                            f"{piece.name!r} of object {obj.name!r}:\n  " + why.replace("\n", "\n  ")
+                        )
+                        if policy == "refuse":
+                            raise SceneError(
+                                text + "\n(set scene.on_not_small = 'warn' to keep the scene; its contacts "
+                                "with all roots real are then undecided)",
+                                check,
+                                file=self.source,
+                                key="scene.on_not_small",
+                            )
+                        warnings.warn(text, stacklevel=2)
+                        self.warnings.append(text)
+                    self.smallness[key] = check
+
+    def small(self, ellipsoid: str, obj: str, piece: str) -> bool | None:
+        """The checked smallness of this pair (None if it was not checked)."""
+        check = self.smallness.get((ellipsoid, obj, piece))
+        return None if check is None else check.small
+
+    def table_4_applies(self, ellipsoid: str, obj: str, piece: str) -> bool:
+        """Theorem 13 / Table 4 may be used for this pair: small, and not only in the
+        enclosing sense of two ellipsoids (erratum ``table-1-ellipsoid-enclosing``)."""
+        check = self.smallness.get((ellipsoid, obj, piece))
+        return check is not None and check.table_4_applies
+
+    def describe(self) -> str:
+        lines = [f"scene: {self.name}  ({self.source})"]
+        if self.description:
+            lines.append(f"  {self.description}")
+        lines.append(f"  time span: [{self.span[0]}, {self.span[1]}]; effects: {', '.join(self.effects)}")
+        for o in self.objects:
+            lines.append(f"  object {o.describe()}")
+        for e in self.ellipsoids:
+            lines.append(
+                f"  ellipsoid {e.name}: {e.quadric.equation()} = 0; motion: {e.trajectory.describe()}"
+            )
+        return "\n".join(lines)
+
+
+# -- reading TOML ----------------------------------------------------------------------
+
+
+class _BadFloat:
+    """A TOML float that is not a finite number (inf, nan), kept for the error message."""
+
+    def __init__(self, text: str) -> None:
+        self.text = text
+
+    def __repr__(self) -> str:
+        return self.text
+
+
+def _parse_float(text: str) -> Any:
+    try:
+        return Fraction(text)
+    except (ValueError, ZeroDivisionError):
+        return _BadFloat(text)
+
+
+_MISSING = object()
+
+
+def _show(value: Any) -> str:
+    if isinstance(value, Fraction):
+        return str(value)
+    if isinstance(value, dict):
+        return "a table"
+    if isinstance(value, list):
+        return "a list" if value else "an empty list"
+    if isinstance(value, str):
+        return repr(value)
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return repr(value)
+
+
+class _Reader:
+    def __init__(self, source: str) -> None:
+        self.source = source
+
+    def error(self, key: str, expected: str, got: Any = _MISSING, cause: str = "") -> SceneError:
+        msg = f"{self.source}: {key}: expected {expected}"
+        if got is not _MISSING:
+            msg += f", got {_show(got)}"
+        if cause:
+            msg += f" ({cause})"
+        return SceneError(msg, None if got is _MISSING else got, file=self.source, key=key, expected=expected)
+
+    def keys(self, table: Mapping[str, Any], key: str, allowed: Sequence[str]) -> None:
+        for k in table:
+            if k not in allowed:
+                where = f"{key}.{k}" if key else k
+                raise self.error(where, f"one of the keys {', '.join(allowed)}", cause=f"unknown key {k!r}")
+
+    def table(self, parent: Mapping[str, Any], name: str, key: str, required: bool = True) -> dict[str, Any]:
+        v = parent.get(name, _MISSING)
+        if v is _MISSING:
+            if required:
+                raise self.error(key, "a table", cause="missing")
+            return {}
+        if not isinstance(v, dict):
+            raise self.error(key, "a table", v)
+        return v
+
+    def array_of_tables(self, parent: Mapping[str, Any], name: str, key: str) -> list[dict[str, Any]]:
+        v = parent.get(name, _MISSING)
+        if v is _MISSING:
+            raise self.error(key, f"at least one [[{key}]] table", cause="missing")
+        if not isinstance(v, list) or not v or not all(isinstance(t, dict) for t in v):
+            raise self.error(key, f"at least one [[{key}]] table", v)
+        return v
+
+    def string(self, table: Mapping[str, Any], name: str, key: str, default: Any = _MISSING) -> str:
+        v = table.get(name, _MISSING)
+        if v is _MISSING:
+            if default is _MISSING:
+                raise self.error(key, "a string", cause="missing")
+            return str(default)
+        if not isinstance(v, str) or not v.strip():
+            raise self.error(key, "a non-empty string", v)
+        return v
+
+    def number(self, value: Any, key: str, *, positive: bool = False) -> Fraction:
+        if value is _MISSING:
+            raise self.error(key, "a finite number", cause="missing")
+        if isinstance(value, (bool, dict, list)) or value is None:
+            raise self.error(key, "a finite number", value)
+        if isinstance(value, _BadFloat):
+            raise self.error(key, "a finite number", value)
+        try:
+            x = to_fraction(value)
+        except QuadricContactError as exc:
+            raise self.error(key, "a finite number", value, str(exc)) from exc
+        if positive and x <= 0:
+            raise self.error(key, "a positive number", value)
+        return x
+
+    def vector(self, value: Any, key: str, n: int) -> tuple[Fraction, ...]:
+        if not isinstance(value, list) or len(value) != n:
+            raise self.error(key, f"a list of {n} numbers", value)
+        return tuple(self.number(v, f"{key}[{i}]") for i, v in enumerate(value))
+
+    def poly_list(self, value: Any, key: str, n: int) -> tuple[tuple[Fraction, ...], ...]:
+        if not isinstance(value, list) or len(value) != n:
+            raise self.error(key, f"a list of {n} coefficient lists (ascending powers of t)", value)
+        out = []
+        for i, comp in enumerate(value):
+            if not isinstance(comp, list):
+                raise self.error(f"{key}[{i}]", "a list of coefficients (ascending powers of t)", comp)
+            out.append(tuple(self.number(c, f"{key}[{i}][{j}]") for j, c in enumerate(comp)))
+        return tuple(out)
+
+
+_QUADRIC_KEYS = (
+    "equation",
+    "matrix",
+    "standard",
+    "a",
+    "b",
+    "c",
+    "semi_axes",
+    "radius",
+    "normal",
+    "offset",
+    "rotation",
+    "center",
+)
+
+
+def _quadric(r: _Reader, t: Mapping[str, Any], key: str) -> Quadric:
+    given = [k for k in ("equation", "matrix", "standard") if k in t]
+    if len(given) != 1:
+        raise r.error(
+            key,
+            "exactly one of equation, matrix or standard",
+            cause=f"found {', '.join(given) if given else 'none'}",
+        )
+    how = given[0]
+    try:
+        if how == "equation":
+            q = Quadric.from_equation(r.string(t, "equation", f"{key}.equation"))
+        elif how == "matrix":
+            m = t["matrix"]
+            if not isinstance(m, list) or len(m) != 4:
+                raise r.error(f"{key}.matrix", "a 4x4 matrix (a list of 4 rows)", m)
+            rows = [r.vector(row, f"{key}.matrix[{i}]", 4) for i, row in enumerate(m)]
+            q = Quadric.from_matrix(rows)
+        else:
+            q = _standard(r, t, key)
+    except SceneError:
+        raise
+    except QuadricContactError as exc:
+        raise r.error(f"{key}.{how}", "a valid quadric", t[how], str(exc)) from exc
+    if how != "standard":
+        for extra in ("a", "b", "c", "semi_axes", "radius", "normal", "offset"):
+            if extra in t:
+                raise r.error(f"{key}.{extra}", f"no parameters with {how} (they belong to standard = ...)")
+    placed = q
+    if "rotation" in t:
+        quat = r.vector(t["rotation"], f"{key}.rotation", 4)
+        if not any(quat):
+            raise r.error(f"{key}.rotation", "a non-zero quaternion [w, x, y, z]", t["rotation"])
+        placed = placed.rotated(quat)
+    if "center" in t:
+        placed = placed.translated(r.vector(t["center"], f"{key}.center", 3))
+    return placed
+
+
+_STANDARD = {
+    "ellipsoid",
+    "sphere",
+    "plane",
+    *(k.value for k in QuadricKind if k.in_table_1),
+}
+
+
+def _standard(r: _Reader, t: Mapping[str, Any], key: str) -> Quadric:
+    kind = r.string(t, "standard", f"{key}.standard")
+    if kind not in _STANDARD:
+        raise r.error(f"{key}.standard", f"one of {sorted(_STANDARD)}", kind)
+    if kind == "sphere":
+        return Quadric.sphere(r.number(t.get("radius", _MISSING), f"{key}.radius", positive=True))
+    if kind == "plane":
+        normal = r.vector(t.get("normal", _MISSING), f"{key}.normal", 3)
+        if not any(normal):
+            raise r.error(f"{key}.normal", "a non-zero normal vector", t.get("normal"))
+        return Quadric.plane(normal, r.number(t.get("offset", 0), f"{key}.offset"))
+    if kind == "ellipsoid" and "semi_axes" in t:
+        a, b, c = (
+            r.number(v, f"{key}.semi_axes[{i}]", positive=True)
+            for i, v in enumerate(r.vector(t["semi_axes"], f"{key}.semi_axes", 3))
+        )
+        return Quadric.ellipsoid(a, b, c)
+    needed = {
+        "ellipsoid": "abc",
+        "hyperboloid of one sheet": "abc",
+        "hyperboloid of two sheets": "abc",
+        "elliptic paraboloid": "ab",
+        "hyperbolic paraboloid": "ab",
+        "elliptic cylinder": "ab",
+        "hyperbolic cylinder": "ab",
+        "parabolic cylinder": "a",
+        "parallel planes": "a",
+    }[kind]
+    params = {p: r.number(t.get(p, _MISSING), f"{key}.{p}", positive=True) for p in needed}
+    return Quadric.standard(kind, **params)
+
+
+def _piece(r: _Reader, t: Mapping[str, Any], key: str) -> Piece:
+    r.keys(t, key, ("name", "inside", *_QUADRIC_KEYS))
+    name = r.string(t, "name", f"{key}.name")
+    q = _quadric(r, t, key)
+    if q.kind in EXCLUDED_KINDS:
+        reason = q.kind.excluded_reason or q.kind.real_points
+        raise r.error(key, "a quadric of Table 1 or a plane", q.kind.value, reason)
+    inside = r.string(t, "inside", f"{key}.inside", default="R-")
+    if inside not in ("R-", "R+"):
+        raise r.error(f"{key}.inside", "'R-' or 'R+'", inside)
+    return Piece(name, q, Region(inside))
+
+
+def _tree(r: _Reader, node: Any, key: str, pieces: dict[str, Piece], used: list[str]) -> Split | Piece | None:
+    if isinstance(node, str):
+        if node not in pieces:
+            raise r.error(key, f"the name of a piece of this object ({', '.join(pieces)})", node)
+        used.append(node)
+        return pieces[node]
+    if not isinstance(node, dict):
+        raise r.error(key, "a piece name or a table { plane = ..., plus = ..., minus = ... }", node)
+    r.keys(node, key, ("plane", "plus", "minus"))
+    text = r.string(node, "plane", f"{key}.plane")
+    try:
+        plane = Quadric.from_equation(text)
+    except QuadricContactError as exc:
+        raise r.error(f"{key}.plane", "the equation of a plane", text, str(exc)) from exc
+    if plane.kind is not QuadricKind.PLANE:
+        raise r.error(f"{key}.plane", "the equation of a plane", text, f"it is a {plane.kind.value}")
+    plus = _tree(r, node["plus"], f"{key}.plus", pieces, used) if "plus" in node else None
+    minus = _tree(r, node["minus"], f"{key}.minus", pieces, used) if "minus" in node else None
+    return Split(plane, plus, minus, name=text)
+
+
+def _object(r: _Reader, t: Mapping[str, Any], key: str) -> Composite:
+    r.keys(t, key, ("name", "piece", "tree"))
+    name = r.string(t, "name", f"{key}.name")
+    plist = [
+        _piece(r, p, f"{key}.piece[{i}]") for i, p in enumerate(r.array_of_tables(t, "piece", f"{key}.piece"))
+    ]
+    pieces: dict[str, Piece] = {}
+    for i, p in enumerate(plist):
+        if p.name in pieces:
+            raise r.error(f"{key}.piece[{i}].name", "a name not used by another piece of the object", p.name)
+        pieces[p.name] = p
+    if "tree" not in t:
+        return Composite.union(name, plist)
+    used: list[str] = []
+    root = _tree(r, t["tree"], f"{key}.tree", pieces, used)
+    unused = [n for n in pieces if n not in used]
+    if unused:
+        raise r.error(f"{key}.tree", f"every piece placed in the tree (missing: {', '.join(unused)})")
+    return Composite(name, root)
+
+
+def _motion(r: _Reader, t: Mapping[str, Any], key: str, span: tuple[Fraction, Fraction]) -> Trajectory:
+    kind = r.string(t, "type", f"{key}.type", default="still")
+    if kind == "still":
+        r.keys(t, key, ("type",))
+        return Stationary()
+    if kind == "linear":
+        r.keys(t, key, ("type", "velocity", "start"))
+        v = r.vector(t.get("velocity", _MISSING), f"{key}.velocity", 3)
+        start = r.number(t.get("start", span[0]), f"{key}.start")
+        return PolynomialMotion.linear(v, start)
+    if kind == "polynomial":
+        r.keys(t, key, ("type", "translation", "quaternion"))
+        tr = r.poly_list(t.get("translation", _MISSING), f"{key}.translation", 3)
+        quat = r.poly_list(t["quaternion"], f"{key}.quaternion", 4) if "quaternion" in t else None
+        return PolynomialMotion(tr, quat)
+    if kind == "keyframes":
+        r.keys(t, key, ("type", "keys"))
+        keys = t.get("keys", _MISSING)
+        if not isinstance(keys, list) or not keys:
+            raise r.error(f"{key}.keys", "a non-empty list of { t = ..., at = [x, y, z] } tables", keys)
+        parsed = []
+        last: Fraction | None = None
+        for i, k in enumerate(keys):
+            kk = f"{key}.keys[{i}]"
+            if not isinstance(k, dict):
+                raise r.error(kk, "a table { t = ..., at = [x, y, z], rotation = [w, x, y, z] }", k)
+            r.keys(k, kk, ("t", "at", "rotation"))
+            time = r.number(k.get("t", _MISSING), f"{kk}.t")
+            if last is not None and time <= last:
+                raise r.error(f"{kk}.t", f"a time after the previous key's ({last})", time)
+            last = time
+            at = r.vector(k.get("at", _MISSING), f"{kk}.at", 3)
+            rot = None
+            if "rotation" in k:
+                rot = r.vector(k["rotation"], f"{kk}.rotation", 4)
+                if not any(rot):
+                    raise r.error(f"{kk}.rotation", "a non-zero quaternion [w, x, y, z]", k["rotation"])
+            parsed.append((time, at, rot))
+        return Keyframes(parsed)
+    raise r.error(f"{key}.type", "one of 'still', 'linear', 'polynomial', 'keyframes'", kind)
+
+
+def _ellipsoid(
+    r: _Reader, t: Mapping[str, Any], key: str, span: tuple[Fraction, Fraction]
+) -> MovingEllipsoid:
+    r.keys(t, key, ("name", "motion", *[k for k in _QUADRIC_KEYS if k not in ("normal", "offset")]))
+    name = r.string(t, "name", f"{key}.name")
+    q = _quadric(r, t, key)
+    try:
+        e = q.as_ellipsoid()
+    except QuadricContactError as exc:
+        raise r.error(key, "a real ellipsoid", q.kind.value, str(exc)) from exc
+    motion = r.table(t, "motion", f"{key}.motion", required=False)
+    traj = _motion(r, motion, f"{key}.motion", span)
+    try:  # validate the motion on the span now (e.g. a vanishing quaternion)
+        traj.segments(span[0], span[1], e.center() or (Fraction(0),) * 3)
+    except SceneError as exc:
+        raise r.error(f"{key}.motion", "a motion defined on the whole time span", cause=str(exc)) from exc
+    return MovingEllipsoid(name, e, traj)
+
+
+def parse_scene(
+    text: str, source: str = "<scene>", *, check_smallness: bool = True, on_not_small: str | None = None
+) -> Scene:
+    """Build a :class:`Scene` from TOML text (see the module documentation for the format).
+
+    Raises
+    ------
+    SceneError
+        For any problem, naming ``source``, the key and what was expected.
+    """
+    r = _Reader(source)
+    try:
+        data = tomllib.loads(text, parse_float=_parse_float)
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError(f"{source}: not valid TOML: {exc}", text, file=source) from exc
+    r.keys(data, "", ("scene", "object", "ellipsoid"))
+    meta = r.table(data, "scene", "scene")
+    r.keys(meta, "scene", ("name", "description", "time", "effects", "on_not_small", "places"))
+    name = r.string(meta, "name", "scene.name")
+    description = meta.get("description", "")
+    if not isinstance(description, str):
+        raise r.error("scene.description", "a string", description)
+    span_raw = meta.get("time", _MISSING)
+    if span_raw is _MISSING:
+        raise r.error("scene.time", "[start, end]", cause="missing")
+    span_v = r.vector(span_raw, "scene.time", 2)
+    if not span_v[0] < span_v[1]:
+        raise r.error("scene.time", "[start, end] with start < end", span_raw)
+    span = (span_v[0], span_v[1])
+    effects_raw = meta.get("effects", ["zone", "contact", "first_contact"])
+    if (
+        not isinstance(effects_raw, list)
+        or not effects_raw
+        or not all(isinstance(e, str) for e in effects_raw)
+    ):
+        raise r.error("scene.effects", f"a non-empty list of effect names from {list(EFFECTS)}", effects_raw)
+    for i, e in enumerate(effects_raw):
+        if e not in EFFECTS:
+            raise r.error(f"scene.effects[{i}]", f"one of {list(EFFECTS)}", e)
+    policy = r.string(meta, "on_not_small", "scene.on_not_small", default="refuse")
+    if policy not in ("refuse", "warn"):
+        raise r.error("scene.on_not_small", "'refuse' or 'warn'", policy)
+    places_raw = meta.get("places", 12)
+    if isinstance(places_raw, bool) or not isinstance(places_raw, int) or not 0 <= places_raw <= 1000:
+        raise r.error("scene.places", "an integer number of decimal places in [0, 1000]", places_raw)
+    objects = tuple(
+        _object(r, t, f"object[{i}]") for i, t in enumerate(r.array_of_tables(data, "object", "object"))
+    )
+    names = [o.name for o in objects]
+    if len(set(names)) != len(names):
+        raise r.error("object", "objects with distinct names", names)
+    ells = tuple(
+        _ellipsoid(r, t, f"ellipsoid[{i}]", span)
+        for i, t in enumerate(r.array_of_tables(data, "ellipsoid", "ellipsoid"))
+    )
+    enames = [e.name for e in ells]
+    if len(set(enames)) != len(enames):
+        raise r.error("ellipsoid", "ellipsoids with distinct names", enames)
+    scene = Scene(
+        name, objects, ells, span, tuple(dict.fromkeys(effects_raw)), description, source, policy, places_raw
+    )
+    if check_smallness and scene.needs_smallness():
+        scene.check_smallness(on_not_small=on_not_small)
+    return scene
+
+
+def builtin_scene_names() -> list[str]:
+    """Names of the scenes shipped with the package (``quadric_contact/scenes/*.toml``)."""
+    folder = resources.files("quadric_contact").joinpath("scenes")
+    return sorted(p.name[: -len(".toml")] for p in folder.iterdir() if p.name.endswith(".toml"))
+
+
+def builtin_scene(name: str = "bee_and_tree", **kwargs: Any) -> Scene:
+    """Load a built-in scene by name (default: the bee and the tree of Example 17).
+
+    Examples
+    --------
+    >>> s = builtin_scene()
+    >>> s.name, [o.name for o in s.objects], [e.name for e in s.ellipsoids]
+    ('The bee and the tree (Example 17)', ['tree'], ['bee'])
+    """
+    if name not in builtin_scene_names():
+        raise SceneError(
+            f"no built-in scene {name!r}; built-in scenes: {', '.join(builtin_scene_names())}", name
+        )
+    res = resources.files("quadric_contact").joinpath("scenes", f"{name}.toml")
+    return parse_scene(res.read_text(encoding="utf-8"), f"<built-in scene {name}>", **kwargs)
+
+
+def load_scene(path: str | Path, **kwargs: Any) -> Scene:
+    """Load a scene from a TOML file, or a built-in scene by name.
+
+    Parameters
+    ----------
+    path : str or Path
+        A file, or the name of a built-in scene (:func:`builtin_scene_names`).
+    check_smallness : bool, default True
+        Check smallness now if the scene's effects need it.
+    on_not_small : {"refuse", "warn"}, optional
+        Override the scene's policy.
+
+    Raises
+    ------
+    SceneError
+    """
+    p = Path(path)
+    if not p.exists():
+        if str(path) in builtin_scene_names():
+            return builtin_scene(str(path), **kwargs)
+        raise SceneError(
+            f"{path}: no such file (built-in scenes: {', '.join(builtin_scene_names())})",
+            str(path),
+            file=str(path),
+        )
+    try:
+        text = p.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise SceneError(f"{path}: cannot read the scene file: {exc}", str(path), file=str(path)) from exc
+    return parse_scene(text, str(path), **kwargs)

@@ -1,0 +1,103 @@
+"""``quadric-contact simulate``: the default scene, JSON, plots, and no half-written output."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from quadric_contact.cli import main
+
+BROKEN = """
+[scene]
+name = "broken"
+time = [0, 1]
+[[object]]
+name = "o"
+[[object.piece]]
+name = "p"
+equation = "x^2 + y^2 + z^2 = 1"
+[[ellipsoid]]
+name = "e"
+equation = "x^2 + y^2 + z^2 = 1"
+motion = { type = "linear", velocity = [1, 0, "fast"] }
+"""
+
+
+def test_default_runs_the_bee_and_the_tree(capsys):
+    assert main(["simulate"]) == 0
+    out = capsys.readouterr().out
+    assert "The bee and the tree (Example 17)" in out
+    assert "bee vs tree" in out and "first contact: t = " in out
+    assert "work ledger" in out and "characteristic_polynomials" in out and "time:" in out
+
+
+def test_json_and_output_file(capsys, tmp_path):
+    target = tmp_path / "run.json"
+    assert main(["simulate", "capsule_pipe", "--json", "--places", "25", "-o", str(target)]) == 0
+    printed = json.loads(capsys.readouterr().out)
+    assert json.loads(target.read_text()) == printed | {"seconds": json.loads(target.read_text())["seconds"]}
+    ev = printed["pairs"][0]["events"][0]
+    assert len(ev["time"]["decimal"].split(".")[1]) == 25
+
+
+def test_effects_override_and_list(capsys):
+    assert main(["simulate", "--effects", "zone", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["effects"] == ["zone"]
+    assert data["ledger"]["by_target"].get("tree/crown") is None
+    assert main(["simulate", "--list"]) == 0
+    out = capsys.readouterr().out
+    assert "bee_and_tree" in out and "drone_cooling_tower" in out
+
+
+def test_plot_writes_a_png(tmp_path, capsys):
+    pytest.importorskip("matplotlib")
+    target = tmp_path / "bee.png"
+    assert main(["simulate", "--plot", str(target)]) == 0
+    assert target.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert "plot written" in capsys.readouterr().out
+    assert [p.name for p in tmp_path.iterdir()] == ["bee.png"]  # no temporary files left
+
+
+def test_bad_scene_exits_2_and_writes_nothing(tmp_path, capsys):
+    scene = tmp_path / "broken.toml"
+    scene.write_text(BROKEN)
+    out = tmp_path / "out.json"
+    png = tmp_path / "out.png"
+    assert main(["simulate", str(scene), "-o", str(out), "--plot", str(png)]) == 2
+    err = capsys.readouterr().err
+    assert (
+        str(scene) in err and "ellipsoid[0].motion.velocity[2]" in err and "expected a finite number" in err
+    )
+    assert not out.exists() and not png.exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["broken.toml"]
+
+
+def test_bad_options_exit_2(tmp_path, capsys):
+    assert main(["simulate", "--effects", "zone,teleport"]) == 2
+    assert "--effects" in capsys.readouterr().err
+    assert main(["simulate", "--plot", str(tmp_path / "no" / "such" / "dir.png")]) == 2
+    assert "does not exist" in capsys.readouterr().err
+    assert main(["simulate", str(tmp_path / "missing.toml")]) == 2
+    assert "no such file" in capsys.readouterr().err
+
+
+def test_not_small_is_refused_with_the_failing_condition(tmp_path, capsys):
+    scene = tmp_path / "throat.toml"
+    scene.write_text(
+        BROKEN.replace('velocity = [1, 0, "fast"]', "velocity = [0.2, 0, 0]")
+        .replace(
+            'equation = "x^2 + y^2 + z^2 = 1"\n[[ellipsoid]]',
+            'equation = "x^2 + y^2 - z^2/100 = 1"\n[[ellipsoid]]',
+        )
+        .replace(
+            'name = "e"\nequation = "x^2 + y^2 + z^2 = 1"', 'name = "e"\nequation = "100x^2 + y^2 + z^2 = 1"'
+        )
+    )
+    assert main(["simulate", str(scene), "--effects", "contact"]) == 2
+    err = capsys.readouterr().err
+    assert "not small with respect to piece 'p'" in err and "FAILS" in err and "on_not_small" in err
+    assert main(["simulate", str(scene), "--effects", "contact", "--on-not-small", "warn"]) == 0
+    out = capsys.readouterr().out
+    assert "NOT small" in out and "contact undecided" in out
