@@ -21,7 +21,9 @@ coefficient signs.  Smallness with the package's exact
 :func:`~quadric_contact.smallness.smallness` (and with the corrected one-sheet
 condition ``a2/(d2 b2^2) <= gamma/(delta alpha^2)``).  Algorithms 1 and 2 are
 implemented here from the printed pseudo-code (with the discriminants of
-Section 3.2 as derived there) and run on the bee and on four more placements
+Section 3.2 as derived there) and also run through the package's
+:mod:`quadric_contact.composite` (which forms no pencil with the crown in Zone
+2), on the bee and on four more placements
 whose answer is certified independently: a bee centred on a surface crosses
 it (the centre is a regular point of the surface), and a bee whose bounding
 ball keeps a surface's equation of one sign (an exact Taylor bound) does not
@@ -37,6 +39,10 @@ from fractions import Fraction
 import sympy as sp
 
 from quadric_contact import Quadric, QuadricKind, Region, characteristic_polynomial, paper, relative_position
+from quadric_contact.composite import Composite, Piece
+from quadric_contact.composite import algorithm_1 as package_algorithm_1
+from quadric_contact.composite import algorithm_2 as package_algorithm_2
+from quadric_contact.ledger import Ledger
 from quadric_contact.proving import Finding, Method, Proof, agrees, differs, ensure
 from quadric_contact.smallness import smallness
 
@@ -162,6 +168,21 @@ def printed_poly(key: str) -> sp.Expr:
     return sp.sympify(P[key].replace("lambda", "LAM"), locals={"LAM": LAM}, rational=True)
 
 
+def tree() -> Composite:
+    """The tree of Fig. 8 with the package's composite objects: crown in Zone 1, trunk in Zone 2."""
+    return Composite.separated("tree", PLANE_, plus=Piece("crown", q(S1_)), minus=Piece("trunk", q(S2_)))
+
+
+def package_answer(E: str) -> tuple[int, bool, Ledger]:
+    """Zone and contact from :mod:`quadric_contact.composite` (Algorithms 1 and 2)."""
+    ledger = Ledger()
+    result = package_algorithm_2(E, tree(), ledger=ledger)
+    (zone,) = result.zone.zones.values()
+    ensure(package_algorithm_1(E, tree()).zones == result.zone.zones, "Algorithm 1 alone agrees")
+    ensure(result.contact is not None, f"decided: {result.contacts}")
+    return zone, bool(result.contact), ledger
+
+
 def algorithm_1(E: str, plane: str) -> tuple[int, Fraction, Fraction]:
     """Algorithm 1 as printed: Zone 0 if Delta_3 < 0, else Zone 1 if c3 > 0, else Zone 2."""
     P0 = characteristic_polynomial(E, plane)
@@ -196,7 +217,12 @@ def zone() -> Finding:
     ensure(d3 == Fraction(P["Example 17 P0 Delta3"]) == Fraction(39, 320), f"Delta_3 = {d3}")
     ensure(c3 == Fraction(-3, 2), f"c3 = {c3}")
     ensure(z == 2, f"zone {z}")
-    return agrees("P0 as printed; Delta_3 = 39/320 = 0.121875 > 0 and c3 = -3/2 < 0: Zone 2 (R- of z - 6)")
+    zone_pkg, _, _ = package_answer(E_)
+    ensure(zone_pkg == 2, f"the package's Algorithm 1 says zone {zone_pkg}")
+    return agrees(
+        "P0 as printed; Delta_3 = 39/320 = 0.121875 > 0 and c3 = -3/2 < 0: Zone 2 (R- of z - 6), by the "
+        "printed pseudo-code and by quadric_contact.composite.algorithm_1"
+    )
 
 
 @proof.check("Algorithm 2: P2 as printed, Delta_4 = 6.90965e8 > 0: no contact", method=Method.COMPUTATION)
@@ -209,7 +235,13 @@ def contact() -> Finding:
         f"{d4}",
     )
     ensure(not algorithm_2(2, E_, S1_, S2_), "no contact")
-    return agrees(f"P2 as printed; Delta_4 = {d4} = {float(d4):.6g} > 0: no contact with S2")
+    _, contact_pkg, ledger = package_answer(E_)
+    ensure(not contact_pkg, "the package's Algorithm 2: no contact")
+    ensure(ledger.cost("crown") == 0, "the crown's pencil is not computed in Zone 2")
+    return agrees(
+        f"P2 as printed; Delta_4 = {d4} = {float(d4):.6g} > 0: no contact with S2 (printed pseudo-code and "
+        "quadric_contact.composite.algorithm_2, which forms no pencil with the crown)"
+    )
 
 
 @proof.check(
@@ -297,5 +329,10 @@ def algorithms() -> Finding:
             ensure(all(certainly_clear(S, c) for S in pieces), f"{name}: certified clear")
         found = algorithm_2(zone_found, bee, S1_, S2_)
         ensure(found == contact_expected, f"{name}: algorithm 2 says {found}")
+        zone_pkg, contact_pkg, _ = package_answer(bee)
+        ensure((zone_pkg, contact_pkg) == (zone_expected, contact_expected), f"{name}: package {zone_pkg}")
         done.append(f"{name}: zone {zone_found}, {'contact' if found else 'no contact'}")
-    return agrees("; ".join(done) + " (each certified without the pencil)")
+    return agrees(
+        "; ".join(done) + " (printed pseudo-code and quadric_contact.composite agree; each answer certified "
+        "without the pencil)"
+    )
