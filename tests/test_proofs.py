@@ -288,3 +288,38 @@ def test_cli_fast_skips_slow_checks(tmp_path, capsys):
         assert "ERROR" in capsys.readouterr().out
     finally:
         load_proofs(PROOFS_DIR)
+
+
+def test_a_missing_dependency_is_a_clear_error(tmp_path, capsys):
+    d = _write_fake(
+        tmp_path,
+        '''
+        """Remark 16, fake.
+
+        Needs a package that does not exist.
+        """
+        import no_such_package_for_the_proofs  # noqa: F401
+        ''',
+    )
+    try:
+        assert main(["prove", "--proofs", str(d)]) == 2
+        assert "no_such_package_for_the_proofs" in capsys.readouterr().err
+    finally:
+        load_proofs(PROOFS_DIR)
+
+
+def test_intersection_helpers_on_known_configurations():
+    from quadric_contact import Quadric
+
+    helpers = __import__("quadric_contact_proofs._intersection", fromlist=["contact_type"])
+    sphere, big = Quadric.sphere(1), Quadric.sphere(3)
+    assert helpers.contact_type(sphere, big) == "no contact"
+    assert helpers.show_segre(helpers.segre(sphere, big)) == "[(111)1]_2"
+    touching = Quadric.sphere(1, (2, 0, 0))
+    assert helpers.contact_type(touching, Quadric.sphere(1)) == "1 isolated tangent point"
+    assert (
+        helpers.contact_type(Quadric.sphere(1, (1, 0, 0)), Quadric.sphere(1))
+        == "curve with no tangent points"
+    )
+    for text in ("[1111]_4", "[(11)11]_3", "[2(11)]_2", "[(21)1]_2", "[(211)]_1", "[(11)(11)]_2"):
+        assert helpers.show_segre(helpers.parse_segre(text)) == text

@@ -50,7 +50,7 @@ from pathlib import Path
 from types import ModuleType
 from typing import Any
 
-from .errors import ProofsNotFoundError, QuadricContactError
+from .errors import MissingDependencyError, ProofsNotFoundError, QuadricContactError
 from .paper import ERRATA, NUMBERED_RESULTS, Erratum
 
 __all__ = [
@@ -223,7 +223,8 @@ class Proof:
             Key of the :class:`~quadric_contact.paper.Erratum` this check is
             expected to demonstrate.
         slow : bool
-            Takes more than a minute: run only with the slow profile / ``--all``.
+            Takes more than a minute: pytest runs it only with ``-m slow``, and
+            ``quadric-contact prove --fast`` skips it.
         size : str, optional
             The size of a search (``"400 hypothesis examples"``).
         """
@@ -461,6 +462,9 @@ def load_proofs(directory: str | Path | None = None) -> list[Proof]:
     ------
     ProofsNotFoundError
         If the directory is not found.
+    MissingDependencyError
+        If a proof module needs a package that is not installed (the proofs use the
+        test dependencies, hypothesis in particular).
     QuadricContactError
         If a module does not define ``proof``, or two modules claim one result.
     """
@@ -468,7 +472,14 @@ def load_proofs(directory: str | Path | None = None) -> list[Proof]:
     _import_package(path)
     proofs: list[Proof] = []
     for file in _module_files(path):
-        module = importlib.import_module(f"{PACKAGE_NAME}.{file.stem}")
+        try:
+            module = importlib.import_module(f"{PACKAGE_NAME}.{file.stem}")
+        except ModuleNotFoundError as exc:
+            raise MissingDependencyError(
+                f"{file.name} needs {exc.name!r}: the proofs use the test dependencies "
+                "(pip install 'quadric-contact[test]')",
+                exc.name,
+            ) from exc
         proof = getattr(module, "proof", None)
         if not isinstance(proof, Proof):
             raise QuadricContactError(f"{file} defines no `proof = Proof(...)`", str(file))
