@@ -35,7 +35,9 @@ from fractions import Fraction
 import sympy as sp
 
 from quadric_contact import Quadric, RigidMotion, characteristic_polynomial, paper
+from quadric_contact.contact_kind import ContactKind, contact_kind
 from quadric_contact.proving import Finding, Method, Proof, agrees, differs, ensure
+from quadric_contact.segre import segre_symbol
 from quadric_contact.smallness import smallness
 
 from ._intersection import contact_type, parse_segre, segre, show_segre, tangent_points
@@ -106,6 +108,15 @@ CONSTRUCTIONS: dict[str, tuple[Quadric, Quadric, str]] = {
 }
 
 
+KINDS = {
+    "no contact": ContactKind.NONE,
+    "1 isolated tangent point": ContactKind.TANGENT_POINT,
+    "2 isolated tangent points": ContactKind.TWO_TANGENT_POINTS,
+    "curve with no tangent points": ContactKind.TRANSVERSAL,
+    "curve of tangency": ContactKind.TANGENT_CURVE,
+}
+
+
 def table_3() -> dict[str, tuple[list[str], str, str]]:
     rows = {}
     for line in paper.PRINTED["Table 3"].splitlines():
@@ -132,8 +143,12 @@ def examine(contact: str, printed_type: str) -> tuple[str, str]:
     _, roots, deltas = table_3()[contact]
     ensure(smallness(E, Q).small, f"{what}: E is small with respect to Q")
     computed = segre(E, Q)
+    package_segre = str(segre_symbol(E, Q))
+    ensure(parse_segre(package_segre) == computed, f"{what}: segre_symbol gives {package_segre}")
     kind = contact_type(E, Q)
     ensure(kind == contact, f"{what}: {kind}, not {contact}")
+    package_kind = contact_kind(E, Q, small=True)
+    ensure(package_kind is KINDS[contact], f"{what}: contact_kind gives {package_kind}")
     P = characteristic_polynomial(E, Q)
     ensure(P.structure.all_real == (roots == "R"), f"{what}: roots {P.structure.describe()}")
     _, d3, d4 = P.deltas()
@@ -184,13 +199,9 @@ def row_tangency() -> Finding:
     return check_row("curve of tangency", skip=("[(11)11]_3",))
 
 
-@proof.check(
-    "[(11)(11)]_2 under 'no contact' and [2(11)]_2 under '2 isolated tangent points'",
-    method=Method.CASES,
-    erratum="table-3-two-tangent-points",
-)
-def two_tangent_points() -> Finding:
-    # (a) Normal form of a real [(11)(11)] pencil: E = diag(e1..e4), Q = diag(-l1 e1, -l1 e2, -l2 e3, -l2 e4),
+@proof.check("[(11)(11)]_2 under 'no contact'", method=Method.CASES, erratum="table-3-two-double-roots")
+def two_double_roots() -> Finding:
+    # Normal form of a real [(11)(11)] pencil: E = diag(e1..e4), Q = diag(-l1 e1, -l1 e2, -l2 e3, -l2 e4),
     # l1 != l2, E of inertia (3, 1). Real common points: e1 x1^2 + e2 x2^2 = 0 and e3 x3^2 + e4 x4^2 = 0.
     for negative in range(4):
         e = [sp.Symbol(f"e{i}", positive=True) * (-1 if i == negative else 1) for i in range(4)]
@@ -200,16 +211,25 @@ def two_tangent_points() -> Finding:
         ensure(len(definite) == 1 and len(mixed) == 1, "one pair definite, the other of signature (1, 1)")
         i, j = mixed[0]
         # e_i x_i^2 + e_j x_j^2 = 0 with opposite signs: x_j = +-sqrt(-e_i/e_j) x_i, two real lines.
-        ratio = -e[i] / e[j]
-        ensure(ratio.is_positive, "two real null lines in the indefinite plane")
-    # (b) constructions.
+        ensure((-e[i] / e[j]).is_positive, "two real null lines in the indefinite plane")
     E, Q, what = CONSTRUCTIONS["2 isolated tangent points [(11)(11)]_2"]
-    ensure(smallness(E, Q).small, "the unit sphere is small w.r.t. x^2 - y^2/4 - z^2/4 = 1")
-    ensure(show_segre(segre(E, Q)) == "[(11)(11)]_2", "Segre [(11)(11)]_2")
-    ensure(contact_type(E, Q) == "2 isolated tangent points", "two tangent points")
-    E2, Q2, _ = CONSTRUCTIONS["1 isolated tangent point [2(11)]_2"]
-    ensure(contact_type(E2, Q2) == "1 isolated tangent point", "[2(11)]_2 with one tangent point")
-    # (c) the eigenvector of a size-2 Jordan block is E-isotropic: with A = -E^-1 Q E-self-adjoint,
+    computed, _ = examine("2 isolated tangent points", "[(11)(11)]_2")
+    ensure(computed == "[(11)(11)]_2", f"Segre {computed}")
+    return differs(
+        "[(11)(11)]_2: no contact",
+        "a real [(11)(11)] pencil of an ellipsoid always meets in exactly 2 tangent points (in the normal "
+        "form, whichever coordinate carries the negative eigenvalue of E, E is definite on one eigenplane "
+        f"and has two real null lines on the other); e.g. the {what} (small)",
+    )
+
+
+@proof.check(
+    "[2(11)]_2 under '2 isolated tangent points'", method=Method.CASES, erratum="table-3-2-11-two-points"
+)
+def two_points_2_11() -> Finding:
+    computed, what = examine("1 isolated tangent point", "[2(11)]_2")
+    ensure(computed == "[2(11)]_2", f"Segre {computed}")
+    # The eigenvector of a size-2 Jordan block is E-isotropic: with A = -E^-1 Q E-self-adjoint,
     # v^T E v = v^T E (A - l) u = ((A - l) v)^T E u = 0 when (A - l) u = v and (A - l) v = 0.
     n = 4
     Es = sp.Matrix(n, n, lambda i, j: sp.Symbol(f"e{min(i, j)}{max(i, j)}"))
@@ -218,17 +238,15 @@ def two_tangent_points() -> Finding:
     M = -(Qs + lam * Es)  # = E (A - l)
     ensure(sp.expand(M - M.T) == sp.zeros(n, n), "E (A - l) is symmetric: A is E-self-adjoint")
     return differs(
-        "[(11)(11)]_2: no contact; [2(11)]_2: 2 isolated tangent points",
-        "a real [(11)(11)] pencil of an ellipsoid always meets in exactly 2 tangent points (E is definite "
-        "on one eigenplane and has two real null lines on the other; e.g. the unit sphere between the "
-        "sheets of x^2 - y^2/4 - z^2/4 = 1, small); [2(11)] gives 1 isolated tangent point (its Jordan "
-        "eigenvector is an E-isotropic real tangent point p; a complex plane pair would meet E only on its "
-        "line, which misses p; with a real pair, isolated points mean planes tangent to E and a second "
-        "point would not be a tangent point), never 2",
+        "[2(11)]_2: 2 isolated tangent points",
+        "[2(11)] gives 1 isolated tangent point, never 2: its Jordan eigenvector is an E-isotropic real "
+        "tangent point p; a conjugate plane pair (the rank-2 member) would meet E only on its real line, "
+        "which misses p; with real planes, isolated points mean both planes tangent to E and a second point "
+        f"would lie in no kernel, hence not be a tangent point; e.g. the {what}",
     )
 
 
-@proof.check("[(21)1]_3: the subscript", method=Method.CONSTRUCTION, erratum="table-3-21-1-subscript")
+@proof.check("[(21)1]_3: the subscript", method=Method.CONSTRUCTION, erratum="table-3-subscript")
 def subscript_21_1() -> Finding:
     computed, what = examine("1 isolated tangent point", "[(21)1]_3")
     groups, real = parse_segre(computed)
@@ -243,7 +261,7 @@ def subscript_21_1() -> Finding:
 
 
 @proof.check(
-    "curve of tangency with Segre type [(11)11]_3", method=Method.CASES, erratum="table-3-curve-of-tangency"
+    "curve of tangency with Segre type [(11)11]_3", method=Method.CASES, erratum="table-3-tangent-curve-segre"
 )
 def curve_of_tangency() -> Finding:
     # A curve of tangency needs a member of rank <= 1; check that the curves of tangency have one and that

@@ -118,6 +118,13 @@ PRINTED: dict[str, str] = {
     "Example 6 gamma": "0.6750083318272421",
     "Example 6 delta": "1.181065224418655",
     "Example 6 E curvature": "0.41635209331503953",
+    # Table 3: Segre types listed for each kind of contact (text of the proof of Theorem 2 agrees,
+    # except that the text gives only [(111)1]_2 for a curve of tangency).
+    "Table 3 none": "[1111]_4 [(111)1]_2 [(11)11]_3 [(11)(11)]_2",
+    "Table 3 tangent_point": "[211]_3 [2(11)]_2 [(21)1]_3 [(211)]_1",
+    "Table 3 two_tangent_points": "[(11)11]_3 [2(11)]_2",
+    "Table 3 transversal": "[1111]_2 [(11)11]_1",
+    "Table 3 tangent_curve": "[(111)1]_2 [(11)11]_3",
     # Corollary 15 (1).
     "Corollary 15 (1)": "c3**2 < 4*c1*c2",
     # Remark 16.
@@ -349,49 +356,20 @@ ERRATA: tuple[Erratum, ...] = (
         consequence="the printed row cannot be evaluated (d' would be imaginary)",
     ),
     Erratum(
-        key="table-3-two-tangent-points",
-        location="Table 3, rows 'No contact' and '2 isolated tangent points'; proof of Theorem 2, items (1) "
-        "and (2b)",
-        printed="no contact: [1111]_4, [(11)11]_3, [(111)1]_2, [(11)(11)]_2; 2 isolated tangent points: "
-        "[(11)11]_3, [2(11)]_2",
-        corrected="no contact: [1111]_4, [(11)11]_3, [(111)1]_2; 2 isolated tangent points: [(11)11]_3, "
-        "[(11)(11)]_2 ([2(11)]_2 gives one isolated tangent point, never two)",
-        evidence="[(11)(11)] with real roots splits R^4 into two E-orthogonal planes U, V on which Q = -l1 "
-        "E, -l2 E; E has inertia (3, 1), so one of E|U, E|V is definite and the other has two real null "
-        "lines: E and Q always meet in exactly two points, both tangent (exhaustive over the placements of "
-        "the negative eigenvalue); exact construction: the unit sphere between the sheets of x^2 - y^2/4 - "
-        "z^2/4 = 1 (small, Table 1) is [(11)(11)]_2 with two isolated tangent points. For [2(11)]: the "
-        "eigenvector of the size-2 Jordan block is E-isotropic, hence a real tangent point p; if the rank-2 "
-        "member is a complex plane pair, E and Q meet only on its real line, which misses p; so it is a "
-        "real plane pair and E, Q meet in (E cap Pi1) cup (E cap Pi2): with only isolated points the planes "
-        "are tangent to E, their line misses E, and a second point would not be a tangent point "
-        "(proofs/theorem_02_table_3.py)",
-        consequence="none for Theorem 2 (all roots are real in both rows); a contact classifier built from "
-        "Table 3 would report 'no contact' for two tangent points",
-    ),
-    Erratum(
-        key="table-3-21-1-subscript",
-        location="Table 3, row '1 isolated tangent point'; proof of Theorem 2, item (2a)",
-        printed="[(21)1]_3",
-        corrected="[(21)1]_2 (the subscript counts distinct real eigenvalues, as in every other entry; "
-        "(21)1 has two)",
-        evidence="the sphere of radius 1/2 centred at (3/2, 0, 0) inside the elliptic cylinder x^2/4 + y^2 "
-        "= 1 (small, at the boundary of Table 1) has Segre characteristic [(21)1] with two distinct real "
-        "eigenvalues and one isolated tangent point (proofs/theorem_02_table_3.py)",
-        consequence="none",
-    ),
-    Erratum(
-        key="table-3-curve-of-tangency",
-        location="Table 3, row 'Curve of tangency'",
-        printed="[(111)1]_2, [(11)11]_3",
-        corrected="[(111)1]_2 only (as the proof of Theorem 2, item (3b), says)",
-        evidence="if E and Q are tangent along a curve C, each point of C lies in the kernel of l E + Q for "
-        "a root l, so one kernel contains infinitely many points of C and is a plane: some member has rank "
-        "1 (a double plane), i.e. an eigenvalue of geometric multiplicity 3; in [(11)11] every eigenvalue "
-        "has geometric multiplicity <= 2. Exact constructions: the curves of tangency (sphere in a "
-        "cylinder, in a one-sheet hyperboloid, in a spheroid) all have a rank-1 member "
-        "(proofs/theorem_02_table_3.py, proofs/lemma_08_tangent_circle.py)",
-        consequence="none",
+        key="table-3-2-11-two-points",
+        location="Table 3, row '2 isolated tangent points'; proof of Theorem 2, item (2b)",
+        printed="2 isolated tangent points: [(11)11]_3, [2(11)]_2",
+        corrected="[2(11)]_2 never gives exactly two isolated tangent points (it gives one, as in row '1 "
+        "isolated tangent point'); the row is [(11)11]_3 and [(11)(11)]_2 (see table-3-two-double-roots)",
+        evidence="the eigenvector p of the size-2 Jordan block is E-isotropic (A = -E^-1 Q is "
+        "E-self-adjoint), so p is a real tangent point on E and Q. If the rank-2 member is a pair of "
+        "conjugate planes, E and Q meet only on its real line, which misses p (kernels of distinct "
+        "eigenvalues): impossible. So it is a pair of real planes and E, Q meet in (E cap Pi1) cup (E cap "
+        "Pi2); with only isolated points both planes are tangent to E, their common line misses E, and a "
+        "second point would lie in no kernel, so it would not be a tangent point. Construction: a sphere "
+        "touching a spheroid's vertex from outside (small) is [2(11)]_2 with one tangent point "
+        "(proofs/theorem_02_table_3.py::two_points_2_11)",
+        consequence="none for Theorem 2 (real roots either way)",
     ),
     Erratum(
         key="example-17-s2-label",
@@ -403,5 +381,38 @@ ERRATA: tuple[Erratum, ...] = (
         "states), so d2 c2 = 2 and the printed value 1 is b2 d2 "
         "(proofs/example_17_bee_and_tree.py::smallness_s2)",
         consequence="none: the condition holds either way",
+    ),
+    Erratum(
+        key="table-3-two-double-roots",
+        location="Table 3 and proof of Theorem 2, item (1): Segre type [(11)(11)]_2 under 'no contact'",
+        printed="[(11)(11)]_2: no contact",
+        corrected="[(11)(11)]_2: two isolated tangent points, always. With two real double roots of rank 2, "
+        "E = S1 - S2 for the two singular members (pairs of planes); E has signature (3,1), so one "
+        "member is a pair of conjugate planes with a real line L, and E restricted to L is indefinite: "
+        "L meets E in two real points, singular points of a member lying on E, i.e. tangent points",
+        evidence="a sphere between two parallel planes touching both (the pair is small: a = alpha) has "
+        "Segre [(11)(11)]_2 and touches at 2 points; every pair built as above does. "
+        "tests/test_contact_kind.py::test_two_double_roots_always_touch_twice",
+        consequence="none for Theorem 2 or Corollary 10 (both kinds are 'no transversal contact')",
+    ),
+    Erratum(
+        key="table-3-subscript",
+        location="Table 3 and proof of Theorem 2, item (2)(a): Segre type [(21)1]_3",
+        printed="[(21)1]_3",
+        corrected="[(21)1]_2: the symbol has two groups, a triple root and a simple one, so at most two "
+        "distinct real roots",
+        evidence="a sphere osculating the throat of a one-sheet hyperboloid from inside has Segre [(21)1]_2 "
+        "and one tangent point. tests/test_contact_kind.py::test_the_subscript_of_21_1",
+        consequence="none",
+    ),
+    Erratum(
+        key="table-3-tangent-curve-segre",
+        location="Table 3, row 'Curve of tangency'",
+        printed="[(111)1]_2 and [(11)11]_3",
+        corrected="[(111)1]_2 only (as the text of the proof of Theorem 2, item (3)(b), says). A rank-2 "
+        "member (Segre group (11)) has a line of singular points, which meets E in at most two points; "
+        "a curve of tangency needs a member of rank 1 (a double plane), i.e. a group of three blocks",
+        evidence="tests/test_contact_kind.py::test_tangent_curves_need_a_rank_one_member",
+        consequence="none for the contact tests (both are 'no transversal contact')",
     ),
 )
