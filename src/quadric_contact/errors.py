@@ -89,3 +89,8 @@ class SceneError(QuadricContactError, ValueError):
 class MissingDependencyError(QuadricContactError, ImportError):
     """An optional dependency needed for the requested feature is not installed
     (for instance matplotlib for plots: ``pip install 'quadric-contact[plot]'``)."""
+
+
+class ProofsNotFoundError(QuadricContactError, FileNotFoundError):
+    """The ``proofs/`` directory of a checkout could not be found (``quadric-contact
+    prove`` runs from a checkout, or with ``--proofs DIR``)."""

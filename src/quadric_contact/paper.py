@@ -16,7 +16,31 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["ERRATA", "PRINTED", "Erratum"]
+__all__ = ["ERRATA", "NUMBERED_RESULTS", "PRINTED", "Erratum"]
+
+NUMBERED_RESULTS: tuple[str, ...] = (
+    "eq. (1)",
+    "Theorem 2",
+    "Lemma 3",
+    "Lemma 4",
+    "Theorem 5",
+    "Example 6",
+    "Lemma 7",
+    "Lemma 8",
+    "Remark 9",
+    "Section 3.2",
+    "Corollary 10",
+    "Example 11",
+    "Lemma 12",
+    "Theorem 13",
+    "Theorem 14",
+    "Corollary 15",
+    "Remark 16",
+    "Example 17",
+)
+"""The paper's numbered results in the paper's order (Definition 1 is a
+definition; the formulas of Section 3.2 are unnumbered but proved too).
+Tables 1-4 and the numbered equations belong to the results that state them."""
 
 PRINTED: dict[str, str] = {
     # Section 3.2, the two members of the discrimination system used by Corollary 10.
@@ -45,6 +69,28 @@ PRINTED: dict[str, str] = {
     "Example 17 P0 Delta3": "0.121875",
     "Example 17 P2": "-0.3*lambda**4 + 45.7375*lambda**3 + 34.125*lambda**2 - 11.6625*lambda + 0.25",
     "Example 17 P2 Delta4": "6.90965e8",
+    # Table 4, read row by row (the extraction shifts the quadric names; the rows are grouped as the
+    # mathematics forces: see proofs/theorem_13_table_4.py).  One entry per row:
+    # "group | region | root signs | coefficients".
+    "Table 4 rows": (
+        "ellipsoid, hyperboloid of two sheets, elliptic paraboloid | R- | ---- | c4, c0 < 0; No sign changes;"
+        " c_i <= 0 for i = 1, 2, 3\n"
+        "ellipsoid, hyperboloid of two sheets, elliptic paraboloid | R+ | --++ | c4, c0 < 0; 2 sign changes;"
+        " c_i > 0 for some i = 1, 2, 3\n"
+        "hyperboloid of one sheet, hyperbolic paraboloid | R- | ---+ | c4 < 0, c0 > 0; No sign changes;"
+        " c_i > 0 => c_j >= 0 for all j > i\n"
+        "hyperboloid of one sheet, hyperbolic paraboloid | R+ | -+++ | c4 < 0, c0 > 0; 3 sign changes;"
+        " c_i <= 0, c_j > 0 for some i < j\n"
+        "elliptic cylinder, parabolic cylinder | R- | ---0 | c4 < 0, c0 = 0; No sign changes;"
+        " c_i <= 0 for all i = 1, 2, 3\n"
+        "elliptic cylinder, parabolic cylinder | R+ | -0++ | c4 < 0, c0 = 0; 1 sign change;"
+        " c_i > 0 for some i = 1, 2, 3\n"
+        "hyperbolic cylinder | R- | --0+ | c4 < 0, c0 = 0; 1 sign change; c_i < 0 => c_j <= 0 for all j > i\n"
+        "hyperbolic cylinder | R+ | 0+++ | c4 < 0, c0 = 0; No sign changes;"
+        " (-1)^i c_i <= 0 for all i = 1, 2, 3\n"
+        "parallel planes | R- | --00 | c_i < 0 for i = 2, 3, 4; c0 = c1 = 0\n"
+        "parallel planes | R+ | 00++ | (-1)^i c_i <= 0 for i = 2, 3, 4; c0 = c1 = 0"
+    ),
     # Example 17, the smallness checks (Table 2), in the order printed:
     # d1 c1, delta alpha, a1/(d1 c1^2), gamma/(delta alpha^2) for S1, then the same for S2.
     "Example 17 smallness S1": "2.58199 0.316228 0.67082 1.82574",
@@ -83,6 +129,85 @@ PRINTED: dict[str, str] = {
     "Corollary 15 (1)": "c3**2 < 4*c1*c2",
     # Remark 16.
     "Remark 16 c3": "(a*x_c + b*y_c + c*z_c - d)/(alpha**2*beta**2*gamma**2)",
+    # Lemma 3 (proof): the conic computations.
+    "eq. (3) E": "(x - a + beta)**2/beta**2 + y**2/alpha**2 - 1",
+    "eq. (3) C1": "x**2/a**2 + y**2/b**2 - 1",
+    "Lemma 3 second x": "a*(a**2*alpha**2 - 2*a*alpha**2*beta + b**2*beta**2)/(a**2*alpha**2 - b**2*beta**2)",
+    "eq. (4)": (
+        "-4*a*alpha**2*b**2*beta*(a - beta)*(b**2*beta - a*alpha**2)"
+        "/((b*beta - a*alpha)**2*(a*alpha + b*beta)**2)"
+    ),
+    "Lemma 3 sign step": (
+        "if y^2 < 0, since beta < a, all factors in (4) have to be positive, so we conclude that "
+        "b^2 beta - a alpha^2 < 0"
+    ),
+    "Lemma 3 relation": "b**2*beta - a*alpha**2 >= 0",
+    "Lemma 3 ellipse curvature": "a*b/sqrt(a**2*sin(t)**2 + b**2*cos(t)**2)",
+    "Lemma 3 ellipse-ellipse": "a/b**2 <= beta/alpha**2",
+    "eq. (5) E": "(x - a - beta)**2/beta**2 + y**2/alpha**2 - 1",
+    "eq. (5) C2": "x**2/a**2 - y**2/b**2 - 1",
+    "Lemma 3 ellipse-hyperbola": "a/b**2 <= beta/alpha**2",
+    "Lemma 3 parabola E": "x**2/alpha**2 + (y - beta)**2/beta**2 - 1",
+    "Lemma 3 parabola C3": "x**2/a**2 - y",
+    "Lemma 3 ellipse-parabola": "2/a**2 <= beta/alpha**2",
+    # Table 1 (Lemma 4): "type | standard equation | order of the parameters | conditions".
+    "Table 1": (
+        "ellipsoid | x**2/a**2 + y**2/b**2 + z**2/c**2 - 1 | a >= b >= c | c >= alpha; a/c**2 <= "
+        "gamma/alpha**2\n"
+        "hyperboloid of one sheet | x**2/a**2 + y**2/b**2 - z**2/c**2 - 1 | a >= b | b >= alpha;"
+        " a/c**2 <= gamma/alpha**2\n"
+        "hyperboloid of two sheets | x**2/a**2 + y**2/b**2 - z**2/c**2 + 1 | a >= b | c >= alpha;"
+        " c/b**2 <= gamma/alpha**2\n"
+        "elliptic paraboloid | x**2/a**2 + y**2/b**2 - z | a >= b | 2/b**2 <= gamma/alpha**2\n"
+        "hyperbolic paraboloid | x**2/a**2 - y**2/b**2 - z | a >= b | 2/b**2 <= gamma/alpha**2\n"
+        "elliptic cylinder | x**2/a**2 + y**2/b**2 - 1 | a >= b | b >= alpha; a/b**2 <= gamma/alpha**2\n"
+        "hyperbolic cylinder | x**2/a**2 - y**2/b**2 - 1 |  | a >= alpha; a/b**2 <= gamma/alpha**2\n"
+        "parabolic cylinder | x**2/a**2 - z |  | 2/a**2 <= gamma/alpha**2\n"
+        "parallel planes | x**2/a**2 - 1 |  | a >= alpha"
+    ),
+    # Table 2 (Theorem 5): "type | invariant formula | reduced equation | conditions", primed names
+    # written a_, b_, ...; detQ, J, K, Jp are det(Q), J, K, J' of Section 2.4.
+    "Table 2 E": "al_**-2, be_**-2, ga_**-2 | de_**2 = -al_**2*be_**2*ga_**2*detE"
+    " | x**2/al_**2 + y**2/be_**2 + z**2/ga_**2 - de_**2",
+    "Table 2": (
+        "ellipsoid | d_**2 = -a_**2*b_**2*c_**2*detQ | x**2/a_**2 + y**2/b_**2 + z**2/c_**2 - d_**2"
+        " | d_*c_ >= de_*al_; a_/(d_*c_**2) <= ga_/(de_*al_**2)\n"
+        "hyperboloid of one sheet | d_**2 = a_**2*b_**2*c_**2*detQ"
+        " | x**2/a_**2 + y**2/b_**2 - z**2/c_**2 - d_**2"
+        " | b_*d_ >= de_*al_; a_/(d_*c_**2) <= ga_/(de_*al_**2)\n"
+        "hyperboloid of two sheets | d_**2 = -a_**2*b_**2*c_**2*detQ"
+        " | x**2/a_**2 + y**2/b_**2 - z**2/c_**2 + d_**2"
+        " | c_*d_ >= de_*al_; c_/(d_*b_**2) <= ga_/(de_*al_**2)\n"
+        "elliptic paraboloid | L**2 = -4*detQ/J | x**2/a_**2 + y**2/b_**2 - L*z"
+        " | 2/(L*b_**2) <= ga_/(de_*al_**2)\n"
+        "hyperbolic paraboloid | L**2 = -4*detQ/J | x**2/a_**2 - y**2/b_**2 - L*z"
+        " | 2/(L*b_**2) <= ga_/(de_*al_**2)\n"
+        "elliptic cylinder | M**2 = -K/J | x**2/a_**2 + y**2/b_**2 - M**2"
+        " | M*b_ >= de_*al_; a_/(M*b_**2) <= ga_/(de_*al_**2)\n"
+        "hyperbolic cylinder | M**2 = -K/J | x**2/a_**2 - y**2/b_**2 - M**2"
+        " | M*b_ >= de_*al_; a_/(M*b_**2) <= ga_/(de_*al_**2)\n"
+        "parabolic cylinder | d_**2 = 4*K*a_**2 | x**2/a_**2 - d_*z | 2/(d_*a_**2) <= ga_/(de_*al_**2)\n"
+        "parallel planes | d_**2 = -a_**2*Jp | x**2/a_**2 - d_**2 | a_*d_ >= al_*de_"
+    ),
+    # Table 3 (Theorem 2): "type of contact | Segre types | roots | Delta conditions" (the proof of
+    # Theorem 2 lists the same Segre types, except that it gives only [(111)1]_2 for the curve of tangency).
+    "Table 3": (
+        "no contact | [1111]_4, [(111)1]_2, [(11)11]_3, [(11)(11)]_2 | R | D4 > 0 or D4 = 0 and D3 >= 0\n"
+        "1 isolated tangent point | [211]_3, [2(11)]_2, [(21)1]_3, [(211)]_1 | R | D4 = 0 and D3 >= 0\n"
+        "2 isolated tangent points | [(11)11]_3, [2(11)]_2 | R | D4 = 0 and D3 >= 0\n"
+        "curve with no tangent points | [1111]_2, [(11)11]_1 | C | D4 < 0 or D4 = 0 and D3 < 0\n"
+        "curve of tangency | [(111)1]_2, [(11)11]_3 | R | D4 = 0 and D3 >= 0"
+    ),
+    # Lemma 12: the two-sheet hyperboloid H = diag(1/a^2, 1/b^2, -1/c^2, 1) and the unit sphere (10)
+    # centred at (x_c, y_c, z_c).
+    "eq. (11)": (
+        "-lambda**4 + ((x_c**2 - 1)/a**2 + (y_c**2 - 1)/b**2 + (1 - z_c**2)/c**2 + 1)*lambda**3"
+        " + ((c**2*(a**2 + b**2 - 1) + a**2 + b**2 - a**2*b**2 - (a**2 + b**2)*z_c**2 + (c**2 - a**2)*y_c**2"
+        " + (c**2 - b**2)*x_c**2)/(a**2*b**2*c**2))*lambda**2"
+        " - (a**2 + b**2 - c**2 + x_c**2 + y_c**2 + z_c**2 - 1)/(a**2*b**2*c**2)*lambda - 1/(a**2*b**2*c**2)"
+    ),
+    "Lemma 12 at (0, 0, 0)": "-(lambda - 1)*(a**2*lambda + 1)*(b**2*lambda + 1)*(c**2*lambda - 1)",
+    "Lemma 12 at (0, 0, c + 1)": "-(a**2*lambda + 1)*(b**2*lambda + 1)*(c*lambda + 1)**2",
     # Theorem 14, eq. (12).
     "eq. (12)": "-lambda**2*(r**2 + 4*lambda*(lambda - z_c))/(4*r**6)",
 }
@@ -128,6 +253,56 @@ ERRATA: tuple[Erratum, ...] = (
         evidence="for a plane c1 = c0 = 0 (eq. (12)), so the printed condition never holds; "
         "Delta_3 with c0 = c1 = 0 is c2^2 (c3^2 - 4 c4 c2). tests/test_plane.py::test_corollary_15_misprint",
         consequence="the printed test would never detect contact with a plane",
+    ),
+    Erratum(
+        key="table-4-one-sheet-r-minus",
+        location="Table 4, row 'hyperboloid of one sheet / hyperbolic paraboloid, X^T Q X <= 0' "
+        "(root signs ---+)",
+        printed="c4 < 0, c0 > 0; No sign changes; c_i > 0 => c_j >= 0 for all j > i",
+        corrected="c4 < 0, c0 > 0; 1 sign change; c_i < 0 => c_j <= 0 for all j > i "
+        "(equivalently c_i > 0 => c_j >= 0 for all j < i)",
+        evidence="with c4 < 0 < c0 there is at least one sign change, and the printed rule applied to i = 0 "
+        "forces c4 >= 0, so it never holds; exhaustive case analysis over the 49 realisable sign vectors of "
+        "real-rooted quartics: every vector of root pattern ---+ has exactly 1 sign change and the corrected "
+        "rule holds exactly for them among the patterns ---+ and -+++ "
+        "(proofs/theorem_13_table_4.py::row_03). The extraction garbles Table 4, so this may be a layout "
+        "artefact; the cell as it reads is wrong",
+        consequence="a classifier coded from the printed row never reports R- for one-sheet hyperboloids "
+        "and hyperbolic paraboloids",
+    ),
+    Erratum(
+        key="table-4-sign-change-counts",
+        location="Table 4, rows 'elliptic / parabolic cylinder, X^T Q X >= 0' (-0++) and "
+        "'hyperbolic cylinder, X^T Q X >= 0' (0+++)",
+        printed="-0++: '1 sign change'; 0+++: 'No sign changes'",
+        corrected="-0++: 2 sign changes; 0+++: 3 sign changes (Descartes: one per positive root)",
+        evidence="exhaustive case analysis over the realisable sign vectors of real-rooted quartics: every "
+        "vector of pattern -0++ has 2 sign changes and every vector of pattern 0+++ has 3; the rules printed "
+        "beside them (c_i > 0 for some i; (-1)^i c_i <= 0) are right "
+        "(proofs/theorem_13_table_4.py::row_06, row_08)",
+        consequence="none if the rules are used; the counts as printed contradict the root signs in "
+        "the same row",
+    ),
+    Erratum(
+        key="lemma-3-sign-step",
+        location="Lemma 3, proof, ellipse-ellipse case, after eq. (4)",
+        printed="if y^2 < 0, since beta < a, all factors in (4) have to be positive, so we conclude that "
+        "b^2 beta - a alpha^2 < 0",
+        corrected="y^2 < 0 iff b^2 beta - a alpha^2 > 0: (4) is -K (b^2 beta - a alpha^2) with K > 0",
+        evidence="symbolic identity (4) = -K (b^2 beta - a alpha^2), K = 4 a alpha^2 b^2 beta (a - beta) / "
+        "((b beta - a alpha)^2 (a alpha + b beta)^2); a = 3, b = 2, alpha = beta = 1 gives y^2 < 0 with "
+        "b^2 beta - a alpha^2 = 1 > 0 (proofs/lemma_03_curvature.py::sign_step)",
+        consequence="none: the lemma's conclusion b^2 beta - a alpha^2 >= 0 is right",
+    ),
+    Erratum(
+        key="lemma-3-curvature-exponent",
+        location="Lemma 3, proof, curvature of the ellipse (a cos t, b sin t)",
+        printed="kappa_1(t) = a b / sqrt(a^2 sin^2 t + b^2 cos^2 t)",
+        corrected="kappa_1(t) = a b / (a^2 sin^2 t + b^2 cos^2 t)^(3/2)",
+        evidence="the curvature |x'y'' - y'x''| / (x'^2 + y'^2)^(3/2) of (a cos t, b sin t), by sympy; "
+        "the printed formula gives kappa_1(0) = a, not the maximum a/b^2 the proof uses next "
+        "(proofs/lemma_03_curvature.py::ellipse_curvature_formula). Possibly an exponent lost in typesetting",
+        consequence="none: the extreme values a/b^2 and beta/alpha^2 the proof uses are right",
     ),
     Erratum(
         key="table-1-h1-curvature",
@@ -179,6 +354,33 @@ ERRATA: tuple[Erratum, ...] = (
         "tests/test_smallness.py::test_parabolic_cylinder_printed_d_is_imaginary; "
         "tests/test_table_2_symbolic.py::test_table_2_reduces_to_table_1",
         consequence="the printed row cannot be evaluated (d' would be imaginary)",
+    ),
+    Erratum(
+        key="table-3-2-11-two-points",
+        location="Table 3, row '2 isolated tangent points'; proof of Theorem 2, item (2b)",
+        printed="2 isolated tangent points: [(11)11]_3, [2(11)]_2",
+        corrected="[2(11)]_2 never gives exactly two isolated tangent points (it gives one, as in row '1 "
+        "isolated tangent point'); the row is [(11)11]_3 and [(11)(11)]_2 (see table-3-two-double-roots)",
+        evidence="the eigenvector p of the size-2 Jordan block is E-isotropic (A = -E^-1 Q is "
+        "E-self-adjoint), so p is a real tangent point on E and Q. If the rank-2 member is a pair of "
+        "conjugate planes, E and Q meet only on its real line, which misses p (kernels of distinct "
+        "eigenvalues): impossible. So it is a pair of real planes and E, Q meet in (E cap Pi1) cup (E cap "
+        "Pi2); with only isolated points both planes are tangent to E, their common line misses E, and a "
+        "second point would lie in no kernel, so it would not be a tangent point. Construction: a sphere "
+        "touching a spheroid's vertex from outside (small) is [2(11)]_2 with one tangent point "
+        "(proofs/theorem_02_table_3.py::two_points_2_11)",
+        consequence="none for Theorem 2 (real roots either way)",
+    ),
+    Erratum(
+        key="example-17-s2-label",
+        location="Example 17, smallness of E with respect to S2",
+        printed="E - S2: d2 c2 = 1 >= 0.316228 = delta alpha",
+        corrected="b2 d2 = 1 >= 0.316228 = delta alpha (Table 2, one sheet: b'd' >= delta' alpha'); d2 c2 = "
+        "2",
+        evidence="for S2: x^2 + y^2 - (z - 3)^2/4 = 1, a2 = b2 = 1, c2 = 2, d2 = 1 (as the example itself "
+        "states), so d2 c2 = 2 and the printed value 1 is b2 d2 "
+        "(proofs/example_17_bee_and_tree.py::smallness_s2)",
+        consequence="none: the condition holds either way",
     ),
     Erratum(
         key="table-3-two-double-roots",

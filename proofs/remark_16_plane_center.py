@@ -1,0 +1,120 @@
+"""Remark 16: the sign of c3 is the side of the ellipsoid's centre.
+
+Claim (printed).  For the plane ``a x + b y + c z - d = 0`` and an ellipsoid
+with centre ``(x_c, y_c, z_c)`` and semi-axes ``alpha, beta, gamma`` as in
+eq. (2), not in transversal contact, the sign of ``a x_c + b y_c + c z_c - d``
+tells ``R+`` from ``R-``, equivalently the sign of ``c3`` (Corollary 15),
+since ``c3 = (a x_c + b y_c + c z_c - d) / (alpha^2 beta^2 gamma^2)``.
+
+What is checked and how.  Symbolic identity: ``c3`` of the pencil of the
+translated ellipsoid ``(x-x_c)^2/alpha^2 + (y-y_c)^2/beta^2 + (z-z_c)^2/gamma^2 = 1``
+and the plane equals the printed expression.  It holds for a rotated
+ellipsoid too: for ``(x - m)^T A (x - m) = 1`` with a generic symmetric ``A``,
+``c3 = det(A) (n . m - d)`` and ``det A = 1/(alpha^2 beta^2 gamma^2)`` is
+invariant under rotations (identity).  Evidence: 200 hypothesis examples
+(random rational ellipsoids and planes) where the package's
+:func:`~quadric_contact.plane_side` and the sign of the plane's equation at
+the centre agree whenever there is no transversal contact.
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+from hypothesis import HealthCheck, given, settings
+
+from quadric_contact import Region, paper, plane_side
+from quadric_contact.proving import Finding, Method, Proof, agrees, ensure
+from quadric_contact.strategies import ellipsoids, planes
+
+proof = Proof("Remark 16", "c3 = (a x_c + b y_c + c z_c - d) / (alpha^2 beta^2 gamma^2)")
+
+LAM = sp.Symbol("lambda")
+EXAMPLES = 200
+
+
+def pencil_c3(A: sp.Matrix, m: sp.Matrix, n: sp.Matrix, d: sp.Expr) -> sp.Expr:
+    E = sp.zeros(4, 4)
+    E[:3, :3] = A
+    E[:3, 3] = -A * m
+    E[3, :3] = (-A * m).T
+    E[3, 3] = (m.T * A * m)[0, 0] - 1
+    P0 = sp.zeros(4, 4)
+    P0[:3, 3] = n / 2
+    P0[3, :3] = n.T / 2
+    P0[3, 3] = -d
+    return sp.Poly(sp.expand((LAM * E + P0).det(method="berkowitz")), LAM).coeff_monomial(LAM**3)
+
+
+@proof.check(
+    "c3 of the translated ellipsoid (2) and the plane equals the printed expression", method=Method.IDENTITY
+)
+def c3_axis_aligned() -> Finding:
+    al, be, ga = sp.symbols("alpha beta gamma", positive=True)
+    a, b, c, d, xc, yc, zc = sp.symbols("a b c d x_c y_c z_c", real=True)
+    A = sp.diag(1 / al**2, 1 / be**2, 1 / ga**2)
+    c3 = pencil_c3(A, sp.Matrix([xc, yc, zc]), sp.Matrix([a, b, c]), d)
+    names = {
+        "a": a,
+        "b": b,
+        "c": c,
+        "d": d,
+        "x_c": xc,
+        "y_c": yc,
+        "z_c": zc,
+        "alpha": al,
+        "beta": be,
+        "gamma": ga,
+    }
+    printed = sp.sympify(paper.PRINTED["Remark 16 c3"], locals=names)
+    ensure(sp.simplify(c3 - printed) == 0, f"c3 = {sp.factor(c3)}")
+    return agrees("c3 = (a x_c + b y_c + c z_c - d) / (alpha^2 beta^2 gamma^2) identically")
+
+
+@proof.check(
+    "for a rotated ellipsoid c3 = det(A) (n.m - d), det A = 1/(alpha beta gamma)^2", method=Method.IDENTITY
+)
+def c3_rotated() -> Finding:
+    s = sp.symbols("a00 a01 a02 a11 a12 a22", real=True)
+    A = sp.Matrix([[s[0], s[1], s[2]], [s[1], s[3], s[4]], [s[2], s[4], s[5]]])
+    m = sp.Matrix(sp.symbols("m1:4", real=True))
+    n = sp.Matrix(sp.symbols("n1:4", real=True))
+    d = sp.Symbol("d", real=True)
+    c3 = pencil_c3(A, m, n, d)
+    ensure(sp.expand(c3 - A.det() * ((n.T * m)[0, 0] - d)) == 0, "c3 = det(A)(n.m - d)")
+    # det(R^T D R) = det D for a rotation R: det A = 1/(alpha^2 beta^2 gamma^2) for any orientation.
+    return agrees(
+        "c3 = det(A) (n.m - d) for every orientation; det A = det(R^T diag(...) R) = 1/(alpha beta gamma)^2"
+    )
+
+
+@proof.check(
+    "the centre's side and c3 agree whenever there is no transversal contact",
+    method=Method.EVIDENCE,
+    size=f"{EXAMPLES} hypothesis examples",
+)
+def centre_side_evidence() -> Finding:
+    seen = {"crossing": 0, "clear": 0}
+
+    @settings(
+        max_examples=EXAMPLES,
+        derandomize=True,
+        database=None,
+        deadline=None,
+        suppress_health_check=list(HealthCheck),
+    )
+    @given(e=ellipsoids(), p=planes())
+    def search(e: object, p: object) -> None:
+        side = plane_side(e, p)
+        if side.zone is Region.CONTACT:
+            seen["crossing"] += 1
+            return
+        seen["clear"] += 1
+        ensure(side.center_value != 0, "the centre is not on the plane")
+        ensure((side.center_value > 0) == (side.c3 > 0) == (side.zone is Region.R_PLUS), str(side))
+
+    search()
+    ensure(seen["clear"] > 0 and seen["crossing"] > 0, f"both cases were met: {seen}")
+    return agrees(
+        f"{seen['clear']} pairs clear of each other: sign(c3) = sign of the plane at the centre = side; "
+        f"{seen['crossing']} crossing pairs"
+    )
