@@ -173,3 +173,23 @@ def test_plot_quadric_draws_one_colour_and_one_label():
     colours = {tuple(np.round(a.get_facecolor()[0][:3], 6)) for a in artists}
     assert len(colours) == 1
     plt.close(fig)
+
+
+def test_plot_result_keeps_the_backend_of_a_session_that_uses_pyplot():
+    """A notebook's inline backend must survive drawing a scene (the command line,
+    which has not imported pyplot, draws off-screen)."""
+    matplotlib = pytest.importorskip("matplotlib")
+    import matplotlib.pyplot as plt
+
+    from quadric_contact.plotting import plot_result
+    from quadric_contact.scene import builtin_scene
+    from quadric_contact.simulate import simulate
+
+    before = matplotlib.get_backend()
+    plt.switch_backend("svg")
+    try:
+        fig = plot_result(simulate(builtin_scene(), effects=["zone"]), samples=20)
+        assert matplotlib.get_backend() == "svg"
+        plt.close(fig)
+    finally:
+        plt.switch_backend(before)

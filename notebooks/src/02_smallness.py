@@ -272,6 +272,13 @@ print("printed: maximal curvature", PRINTED["Example 6 paraboloid curvature"], "
 print("exact verdict:", smallness(E6, Q6).small)
 
 # %% [markdown]
+# The quadric's numbers agree with the printed ones to about nine digits (the tiny
+# eigenvalue limits the rest).  The ellipsoid's do not beyond the fourth digit: the
+# printed $E$ has six significant digits, which fix $\delta$ to only two or three, and
+# the paper computed from its unrounded matrix.  The conclusion holds for every matrix
+# that rounds to the printed one (`tests/test_example_6.py` checks it with ball
+# arithmetic over the whole rounding box).
+#
 # Fig. 3(ii) shows the pair "after an appropriate rigid motion".  Here is one, found by
 # looking at the geometry: the ellipsoid's axes are aligned with the principal
 # directions of $Q$, and its *longest* axis lies along the direction in which the

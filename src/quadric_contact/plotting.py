@@ -10,6 +10,7 @@ the picture is an illustration, the timeline it shows is the exact one.
 from __future__ import annotations
 
 import io
+import sys
 from collections.abc import Sequence
 from fractions import Fraction
 from typing import Any
@@ -40,7 +41,10 @@ def _matplotlib() -> Any:
     try:
         import matplotlib
 
-        matplotlib.use("Agg")
+        if "matplotlib.pyplot" not in sys.modules:
+            # nobody has chosen a backend yet (the command line): draw off-screen.  A
+            # session that already uses pyplot (a notebook) keeps its own backend.
+            matplotlib.use("Agg")
         import matplotlib.pyplot as plt
     except ImportError as exc:  # pragma: no cover - depends on the environment
         raise MissingDependencyError(
