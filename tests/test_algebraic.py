@@ -23,7 +23,7 @@ from quadric_contact.algebraic import (
     sign_at,
 )
 
-MODULES = ["algebraic", "invariants", "smallness"]
+MODULES = ["algebraic", "invariants", "smallness", "geometric", "segre", "contact_kind"]
 
 
 @pytest.mark.parametrize("name", MODULES)

@@ -4,7 +4,7 @@ from fractions import Fraction
 
 import numpy as np
 import sympy as sp
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from quadric_contact import Quadric, characteristic_polynomial
@@ -17,6 +17,7 @@ def _sympy_charpoly(E, Q):
     return tuple(Fraction(int(c.p), int(c.q)) for c in (p.coeff_monomial(lam**k) for k in range(5)))
 
 
+@settings(max_examples=25)  # a symbolic determinant per example
 @given(e=ellipsoids(), q=quadrics())
 def test_coefficients_equal_sympy_determinant(e, q):
     P = characteristic_polynomial(e, q, normalize=False)
@@ -38,6 +39,7 @@ def test_c4_is_det_e_and_c0_is_det_q(e, q):
     assert P[0] == Fraction(str(sp.Matrix(q.matrix).det()))
 
 
+@settings(max_examples=25)
 @given(
     st.lists(st.floats(-1e3, 1e3, allow_nan=False, allow_infinity=False), min_size=10, max_size=10),
     st.lists(st.floats(-1e3, 1e3, allow_nan=False, allow_infinity=False), min_size=10, max_size=10),

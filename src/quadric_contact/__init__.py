@@ -6,8 +6,10 @@ and another quadric*, Computer Aided Geometric Design 98 (2022).
 
 from __future__ import annotations
 
+from .algebraic import RealAlgebraic
 from .classification import QuadricKind
 from .contact import transversal_contact
+from .contact_kind import ContactAnalysis, ContactKind, analyze_contact, contact_kind
 from .descartes import RootSigns, root_signs
 from .discriminants import RootStructure, discrimination_sequence, paper_deltas, root_structure
 from .errors import (
@@ -24,22 +26,29 @@ from .errors import (
     ShapeError,
     UndecidedError,
 )
+from .geometric import GeometricDecision, decide_geometrically
+from .invariants import QuadricInvariants, invariants
 from .motions import RigidMotion, rotation_from_quaternion
 from .pencil import CharacteristicPolynomial, characteristic_polynomial
 from .plane import plane_side
 from .quadric import Quadric
 from .regions import ROOT_SIGN_TABLE, relative_position
 from .results import ContactResult, PlaneSideResult, Region, RegionResult
+from .segre import SegreSymbol, segre_symbol
+from .smallness import SmallnessReport, printed_table_2, smallness, table_1
 
 __version__ = "0.1.0"
 
 __all__ = [
     "ROOT_SIGN_TABLE",
     "CharacteristicPolynomial",
+    "ContactAnalysis",
+    "ContactKind",
     "ContactResult",
     "DegeneratePencilError",
     "EquationError",
     "ExcludedQuadricError",
+    "GeometricDecision",
     "NonFiniteError",
     "NotANumberError",
     "NotAPlaneError",
@@ -49,22 +58,34 @@ __all__ = [
     "PlaneSideResult",
     "Quadric",
     "QuadricContactError",
+    "QuadricInvariants",
     "QuadricKind",
+    "RealAlgebraic",
     "Region",
     "RegionResult",
     "RigidMotion",
     "RootSigns",
     "RootStructure",
+    "SegreSymbol",
     "ShapeError",
+    "SmallnessReport",
     "UndecidedError",
     "__version__",
+    "analyze_contact",
     "characteristic_polynomial",
+    "contact_kind",
+    "decide_geometrically",
     "discrimination_sequence",
+    "invariants",
     "paper_deltas",
     "plane_side",
+    "printed_table_2",
     "relative_position",
     "root_signs",
     "root_structure",
     "rotation_from_quaternion",
+    "segre_symbol",
+    "smallness",
+    "table_1",
     "transversal_contact",
 ]

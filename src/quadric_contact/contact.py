@@ -55,10 +55,9 @@ def _known_smallness(E: Any, Q: Any) -> tuple[bool | None, Any]:
 
 
 def _geometric(E: Any, Q: Any) -> Any:
-    try:
-        from .geometric import decide_geometrically
-    except ImportError:  # pragma: no cover - lands with the geometric decision
-        return None
+    """The exact geometric decision (:mod:`quadric_contact.geometric`)."""
+    from .geometric import decide_geometrically
+
     return decide_geometrically(E, Q)
 
 
@@ -119,15 +118,14 @@ def decide_transversal(
     )
     if method == "auto":
         geo = _geometric(P.E, P.Q)
-        if geo is not None:
-            return ContactResult(
-                geo.transversal,
-                "geometric decision",
-                f"{why}; decided by the exact extremes of X^T Q X on E",
-                P,
-                report,
-                geo,
-            )
+        return ContactResult(
+            geo.transversal,
+            "geometric decision",
+            f"{why}; decided by the exact extremes of X^T Q X on E ({geo})",
+            P,
+            report,
+            geo,
+        )
     if not kind.in_table_1:
         raise ExcludedQuadricError(f"Q is {kind.value}: {kind.excluded_reason}", P.Q, kind=kind)
     return ContactResult(None, None, why, P, report)

@@ -72,6 +72,13 @@ PRINTED: dict[str, str] = {
     "Example 6 gamma": "0.6750083318272421",
     "Example 6 delta": "1.181065224418655",
     "Example 6 E curvature": "0.41635209331503953",
+    # Table 3: Segre types listed for each kind of contact (text of the proof of Theorem 2 agrees,
+    # except that the text gives only [(111)1]_2 for a curve of tangency).
+    "Table 3 none": "[1111]_4 [(111)1]_2 [(11)11]_3 [(11)(11)]_2",
+    "Table 3 tangent_point": "[211]_3 [2(11)]_2 [(21)1]_3 [(211)]_1",
+    "Table 3 two_tangent_points": "[(11)11]_3 [2(11)]_2",
+    "Table 3 transversal": "[1111]_2 [(11)11]_1",
+    "Table 3 tangent_curve": "[(111)1]_2 [(11)11]_3",
     # Corollary 15 (1).
     "Corollary 15 (1)": "c3**2 < 4*c1*c2",
     # Remark 16.
@@ -172,5 +179,38 @@ ERRATA: tuple[Erratum, ...] = (
         "tests/test_smallness.py::test_parabolic_cylinder_printed_d_is_imaginary; "
         "tests/test_table_2_symbolic.py::test_table_2_reduces_to_table_1",
         consequence="the printed row cannot be evaluated (d' would be imaginary)",
+    ),
+    Erratum(
+        key="table-3-two-double-roots",
+        location="Table 3 and proof of Theorem 2, item (1): Segre type [(11)(11)]_2 under 'no contact'",
+        printed="[(11)(11)]_2: no contact",
+        corrected="[(11)(11)]_2: two isolated tangent points, always. With two real double roots of rank 2, "
+        "E = S1 - S2 for the two singular members (pairs of planes); E has signature (3,1), so one "
+        "member is a pair of conjugate planes with a real line L, and E restricted to L is indefinite: "
+        "L meets E in two real points, singular points of a member lying on E, i.e. tangent points",
+        evidence="a sphere between two parallel planes touching both (the pair is small: a = alpha) has "
+        "Segre [(11)(11)]_2 and touches at 2 points; every pair built as above does. "
+        "tests/test_contact_kind.py::test_two_double_roots_always_touch_twice",
+        consequence="none for Theorem 2 or Corollary 10 (both kinds are 'no transversal contact')",
+    ),
+    Erratum(
+        key="table-3-subscript",
+        location="Table 3 and proof of Theorem 2, item (2)(a): Segre type [(21)1]_3",
+        printed="[(21)1]_3",
+        corrected="[(21)1]_2: the symbol has two groups, a triple root and a simple one, so at most two "
+        "distinct real roots",
+        evidence="a sphere osculating the throat of a one-sheet hyperboloid from inside has Segre [(21)1]_2 "
+        "and one tangent point. tests/test_contact_kind.py::test_the_subscript_of_21_1",
+        consequence="none",
+    ),
+    Erratum(
+        key="table-3-tangent-curve-segre",
+        location="Table 3, row 'Curve of tangency'",
+        printed="[(111)1]_2 and [(11)11]_3",
+        corrected="[(111)1]_2 only (as the text of the proof of Theorem 2, item (3)(b), says). A rank-2 "
+        "member (Segre group (11)) has a line of singular points, which meets E in at most two points; "
+        "a curve of tangency needs a member of rank 1 (a double plane), i.e. a group of three blocks",
+        evidence="tests/test_contact_kind.py::test_tangent_curves_need_a_rank_one_member",
+        consequence="none for the contact tests (both are 'no transversal contact')",
     ),
 )

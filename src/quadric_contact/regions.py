@@ -149,9 +149,9 @@ def decide_region(
             f"{contact.reason}; but E can enclose Q (it is small only because Q is small with respect "
             "to E), where Theorem 13 / Table 4 do not apply"
         )
-        geo = _geometric(P.E, P.Q) if method == "auto" else None
-        if geo is not None:
-            return RegionResult(geo.region, "geometric decision", why, P, contact, expected)
+        if method == "auto":
+            geo = _geometric(P.E, P.Q)
+            return RegionResult(geo.region, "geometric decision", f"{why}; {geo}", P, contact, expected)
         return RegionResult(None, None, why, P, contact, expected)
     pattern = P.signs.pattern
     for region_value, p in expected.items():
