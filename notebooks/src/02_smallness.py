@@ -28,6 +28,7 @@ import numpy as np
 import sympy as sp
 
 import quadric_contact as qc
+from quadric_contact.geometric import decide_geometrically
 from quadric_contact.paper import ERRATA, PRINTED
 from quadric_contact.plotting import plot_quadric, quadric_mesh
 from quadric_contact.smallness import printed_table_2, smallness, table_1
@@ -69,21 +70,6 @@ def show_pair(E, Q, box, title, n=90, method="parametric", view=(20, -60)):
     return fig
 
 
-def crossing_witnesses(E, Q, n=60):
-    """Exact evidence that E crosses Q: two rational points of the solid ellipsoid
-    (X^T E X < 0, E with inside negative) where X^T Q X has opposite signs."""
-    E = E.as_ellipsoid()
-    c = np.array([float(t) for t in E.center()])
-    X, Y, Z, v = values_on(E, Q, n)
-    found = {}
-    for sign in (-1, 1):
-        k = np.argmax(sign * v)  # the most clearly negative / positive vertex
-        p = c + 0.999 * (np.array([X.flat[k], Y.flat[k], Z.flat[k]]) - c)  # just inside
-        point = [F(float(t)) for t in p]  # floats are exact dyadic rationals
-        assert E.value_at(point) < 0, "the witness is inside the solid ellipsoid"
-        found[sign] = (point, Q.value_at(point))
-    return found
-
 # %% [markdown]
 # ## Table 1: standard forms
 #
@@ -117,6 +103,7 @@ row = table_1("hyperboloid of one sheet", a=1, b=1, c=2, **bee_axes)
 slab = qc.Quadric.parallel_planes(1)
 long_one = qc.Quadric.ellipsoid(F(3, 2), F(1, 2), F(1, 2))
 print(smallness(long_one, slab))
+print(decide_geometrically(long_one, slab))
 P = qc.characteristic_polynomial(long_one, slab)
 print("P =", sp.factor(P.as_sympy()), "| roots:", P.structure.describe(), "| signs:", P.signs.pattern)
 print(qc.transversal_contact(long_one, slab, method="theory"))
@@ -143,15 +130,16 @@ print(report)
 # %%
 P = qc.characteristic_polynomial(groove, waist)
 print("roots:", P.structure.describe(), "| signs:", P.signs.pattern, "| (Delta2, Delta3, Delta4) signs:", P.delta_signs())
-w = crossing_witnesses(groove, waist)
-print("X^T Q X at two points inside the ellipsoid:", float(w[-1][1]), "and", float(w[1][1]))
+print(decide_geometrically(groove, waist))
 fig = show_pair(groove, waist, [(0, 2.2), (-1.1, 1.1), (-1.3, 1.3)], "Fig. 1: two curves, four real roots", view=(15, 200))
 
 # %% [markdown]
 # All four roots are real ($\Delta_4>0$), yet the two red patches are two intersection
-# curves.  The exact witnesses above prove the crossing: the solid ellipsoid contains
-# points of both $R_-$ and $R_+$, and the hyperboloid, being unbounded, cannot stay
-# inside it.
+# curves.  The last line is an independent, exact check that does not use the pencil:
+# `decide_geometrically` finds the extremes of $X^TQX$ on the surface of $E$ from the
+# Lagrange conditions (exact algebraic numbers) and counts the intersection curves by
+# Morse theory.  It is what `transversal_contact` falls back on (`method="auto"`, the
+# default) when the paper's results do not decide.
 #
 # ## Where the conditions bite: a map
 #
@@ -198,8 +186,7 @@ r = smallness(disc, throat)
 print(r, "\n")
 P = qc.characteristic_polynomial(disc, throat)
 print("roots:", P.structure.describe(), "| signs:", P.signs.pattern)
-w = crossing_witnesses(disc, throat)
-print("opposite signs inside the disc:", float(w[-1][1]), float(w[1][1]))
+print(decide_geometrically(disc, throat))
 fig = show_pair(disc, throat, [(-0.3, 1.3), (-1.2, 1.2), (-1.2, 1.2)], "the printed Table 1 calls this small", view=(20, 20))
 
 # %% [markdown]
@@ -220,6 +207,7 @@ print("table_4_applies:", r.table_4_applies)
 P = qc.characteristic_polynomial(big, unit)
 print("P =", sp.factor(P.as_sympy()), "| signs:", P.signs.pattern, "| Table 4 for R-:", qc.ROOT_SIGN_TABLE[qc.QuadricKind.ELLIPSOID][qc.Region.R_MINUS])
 print(qc.relative_position(big, unit, method="theory"))
+print(qc.relative_position(big, unit))  # method="auto": the geometric decision settles it
 
 # %% [markdown]
 # ## Table 2: any position
@@ -302,8 +290,8 @@ c6 = [float(t) for t in E6.center()]
 box6 = [(c6[0] - 2, c6[0] + 2), (c6[1] - 2, c6[1] + 2), (c6[2] - 2, c6[2] + 2)]
 show_pair(E6, Q6, box6, "Fig. 3(i): as printed (no contact)", method="graph")
 show_pair(E6_turned, Q6, box6, "Fig. 3(ii): a quarter turn: two curves", method="graph")
-w = crossing_witnesses(E6_turned, Q6)
-print("opposite signs inside the turned ellipsoid:", float(w[-1][1]), float(w[1][1]))
+print("before:", decide_geometrically(E6, Q6))
+print("after: ", decide_geometrically(E6_turned, Q6))
 
 # %% [markdown]
 # The quadric is drawn with `method="graph"` (solved along its nearly null direction):
@@ -328,6 +316,7 @@ ball = qc.Quadric.sphere(F(3, 2))
 printed = printed_table_2(ball, hc)
 print("printed row:", [(c.name, c.holds) for c in printed.conditions], "-> small:", printed.small)
 print(smallness(ball, hc))
+print(decide_geometrically(ball, hc))
 fig = show_pair(ball, hc, [(-2, 2), (-2, 2), (-2, 2)], "printed Table 2: 'small'")
 
 # %% [markdown]

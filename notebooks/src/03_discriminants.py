@@ -9,8 +9,9 @@
 # $$\text{transversal contact} \iff \Delta_4<0 \ \text{ or }\ (\Delta_4=0 \text{ and } \Delta_3<0).$$
 #
 # This notebook builds the discrimination system, checks the paper's $\Delta_3$ and
-# $\Delta_4$ against it (and finds a misprint), draws where $\Delta_4$ changes sign, and
-# replays Example 11, the case $\Delta_4=0$.
+# $\Delta_4$ against it (and finds a misprint), draws where $\Delta_4$ changes sign,
+# replays Example 11, the case $\Delta_4=0$, and ends with the finer invariant behind
+# Table 3: the Segre characteristic of the pencil.
 
 # %%
 from fractions import Fraction as F
@@ -21,9 +22,12 @@ import numpy as np
 import sympy as sp
 
 import quadric_contact as qc
+from quadric_contact.contact_kind import analyze_contact
 from quadric_contact.discriminants import revised_sign_list
 from quadric_contact.paper import ERRATA, PRINTED
 from quadric_contact.plotting import plot_quadric
+from quadric_contact.segre import segre_symbol
+from quadric_contact.smallness import smallness
 
 lam = sp.Symbol("lambda")
 
@@ -210,11 +214,95 @@ ax.set_box_aspect((1.2, 1.2, 0.8))
 ax.set_title("Fig. 6: the ellipsoid crosses the paraboloid", fontsize=9)
 
 # %% [markdown]
-# The complete discrimination system also covers what Corollary 10 leaves implicit: the
+# Corollary 10 uses only two members of the system.  That is enough because the pencil
+# contains an ellipsoid: $-E^{-1}Q$ is self-adjoint for the form $E$, which has one
+# negative square, so at most one pair of roots is non-real (a quartic with two
+# non-real pairs would have $\Delta_4>0$ and slip through the two clauses).  The
 # package's `transversal_contact` classifies the roots with the whole sequence
-# (`P.structure`), and a test checks that Corollary 10's two-clause reading agrees with
-# it for every small pair.
+# (`P.structure`) anyway, which also gives the multiplicities.
+
+# %% [markdown]
+# ## Segre types and Table 3
 #
+# The proof of Theorem 2 goes through the classification of pencils of quadrics by their
+# **Segre characteristic**: for each root $\lambda_0$ of $\mathfrak P$, the sizes of the
+# Jordan blocks of $-E^{-1}Q$ there.  `[(11)11]_3` reads: a double root carrying two
+# blocks of size 1 (the member $\lambda_0E+Q$ has rank 2), two simple roots, and 3
+# distinct real roots in all.  `segre_symbol` computes it exactly, from the gcds of the
+# minors of $\lambda E+Q$ (the invariant factors):
+
+# %%
+print(segre_symbol(E11, Q11), "| Example 11: P =", sp.factor(P11.as_sympy()))
+
+# %% [markdown]
+# Table 3 relates the Segre types to the kind of contact.  The Segre symbol alone does not
+# fix the kind; the singular members do: at a multiple root $\lambda_0$, the real singular
+# points of $\lambda_0E+Q$ that lie on $E$ are exactly the points of tangency.
+# `analyze_contact` reads them off exactly.  A gallery:
+
+# %%
+S, Ell = qc.Quadric.sphere, qc.Quadric.ellipsoid
+gallery = [
+    ("bee and trunk (Example 17)", bee, trunk),
+    ("sphere on the axis of a cylinder", S(F(1, 2)), qc.Quadric.elliptic_cylinder(1, 1)),
+    ("concentric spheres", S(F(1, 2)), S(1)),
+    ("ellipsoid on a paraboloid's vertex", Ell(F(1, 2), F(1, 3), F(1, 4), center=(0, 0, F(1, 4))), qc.Quadric.elliptic_paraboloid(2, 3)),
+    ("sphere touching one of two planes", S(F(1, 2)), qc.Quadric.two_parallel_planes((1, 0, 0), -F(1, 2), F(3, 2))),
+    ("sphere in an elliptic cylinder", S(F(1, 2), center=(F(3, 2), 0, 0)), qc.Quadric.from_equation("x**2/4 + y**2 - 1")),
+    ("sphere between two sheets", S(1), qc.Quadric.hyperboloid_two_sheets(1, 1, 1)),
+    ("sphere in an elliptic throat", S(1), qc.Quadric.from_equation("x**2/4 + y**2 - z**2 - 1")),
+    ("sphere crossing the trunk", S(F(1, 3), center=(1, 0, 3)), trunk),
+    ("Example 11", E11, Q11),
+    ("sphere in a circular throat", S(1), qc.Quadric.from_equation("x**2 + y**2 - z**2/4 - 1")),
+]
+sym = {-1: "<0", 0: "=0", 1: ">0"}
+print(f"{'configuration':36s} {'Segre':13s} {'kind':19s} {'Delta3':6s} {'Delta4':6s} small")
+for name, e, q in gallery:
+    a_ = analyze_contact(e, q)
+    _, s3, s4 = a_.polynomial.delta_signs()
+    print(f"{name:36s} {a_.segre!s:13s} {a_.kind.value:19s} {sym[s3]:6s} {sym[s4]:6s} {smallness(e, q).small}")
+
+# %% [markdown]
+# Read it against Table 3:
+#
+# * transversal contact is exactly the last clause of the table, $\Delta_4<0$ or
+#   ($\Delta_4=0$ and $\Delta_3<0$): the Segre types `[1111]_2` and `[(11)11]_1`;
+# * every tangency has $\Delta_4=0$ (a multiple root) and $\Delta_3\ge0$, but so do some
+#   configurations with no contact at all (the concentric spheres, the sphere on
+#   the cylinder's axis): the discriminants detect *crossing*, not touching;
+# * `[(11)11]_3` appears with no contact and with two tangent points: the Segre symbol
+#   does not decide the kind, the kernels of the singular members do;
+# * the computed symbols differ from the printed Table 3 in places: two tangent points
+#   come with `[(11)(11)]_2` (printed under "no contact"), and the sphere in the
+#   elliptic cylinder has `[(21)1]` with 2 distinct real roots (printed with subscript 3).
+#
+# The singular members carry the points of tangency, exactly (in $\mathbb Q(\sqrt d)$):
+
+# %%
+for name, e, q in [gallery[3], gallery[6], gallery[7]]:
+    a_ = analyze_contact(e, q)
+    pts = [[str(c.to_sympy()) for c in p] for m in a_.members for p in m.points]
+    print(f"{name}: lambda0 = {[str(m.root.to_sympy()) for m in a_.members]}, rank {[m.rank for m in a_.members]}, tangent at {pts}")
+
+# %%
+fig = plt.figure(figsize=(13, 4.2))
+panels = [
+    (gallery[3], [(-1.5, 1.5), (-1.5, 1.5), (-0.2, 1.2)], "one tangent point [211]_3"),
+    (gallery[6], [(-2.5, 2.5), (-2.5, 2.5), (-2.5, 2.5)], "two tangent points [(11)(11)]_2"),
+    (gallery[10], [(-2, 2), (-2, 2), (-2, 2)], "a curve of tangency [(111)1]_2"),
+]
+for k, ((_, e, q), box, title) in enumerate(panels):
+    ax = fig.add_subplot(1, 3, k + 1, projection="3d")
+    plot_quadric(ax, q, box, color="tab:green", alpha=0.25)
+    plot_quadric(ax, e, color="tab:orange", alpha=0.9)
+    for m in analyze_contact(e, q).members:
+        for p in m.points:
+            ax.scatter(*[float(c.to_sympy()) for c in p], color="k", s=30, depthshade=False)
+    ax.set(xlim=box[0], ylim=box[1], zlim=box[2])
+    ax.set_box_aspect([hi - lo for lo, hi in box])
+    ax.set_title(title, fontsize=9)
+
+# %% [markdown]
 # ## Exercise
 #
 # Count the distinct real roots of $\lambda^4-5\lambda^2+4+\tfrac{1}{10}\lambda^3$ with
