@@ -236,6 +236,19 @@ def plot_result(result: Any, *, max_pairs: int = 6, samples: int = 240) -> Any:
     One column per (ellipsoid, object) pair, up to ``max_pairs``: a 3D view
     above a timeline strip.
 
+    Parameters
+    ----------
+    result : SimulationResult
+    max_pairs : int
+        At most this many pairs are drawn (complete timelines first).
+    samples : int
+        Sample times along each path, for the coloured path only (the states
+        come from the exact timeline).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
     Raises
     ------
     MissingDependencyError
@@ -256,7 +269,18 @@ def plot_result(result: Any, *, max_pairs: int = 6, samples: int = 240) -> Any:
 
 def render_png(result: Any, **kwargs: Any) -> bytes:
     """The figure of :func:`plot_result` as PNG bytes (so that a caller can
-    write the file only once everything has succeeded)."""
+    write the file only once everything has succeeded).
+
+    Parameters
+    ----------
+    result : SimulationResult
+    **kwargs
+        As for :func:`plot_result`.
+
+    Returns
+    -------
+    bytes
+    """
     plt = _matplotlib()
     fig = plot_result(result, **kwargs)
     buf = io.BytesIO()
