@@ -53,3 +53,15 @@ def test_notebook_runs_top_to_bottom(source, tmp_path, monkeypatch):
         if out.get("output_type") == "error"
     ]
     assert not errors, errors
+
+
+@pytest.mark.parametrize("source", SOURCES, ids=lambda p: p.stem)
+def test_notebook_uses_only_the_public_api(source):
+    """Teaching code imports public names only (no private modules or helpers)."""
+    import re
+
+    text = source.read_text()
+    private_module = r"quadric_contact(?:\.\w+)*\._\w+"
+    private_name = r"from quadric_contact[\w.]* import [^\n]*\b_\w+"
+    private = re.findall(f"{private_module}|{private_name}", text)
+    assert not private, private

@@ -97,18 +97,20 @@ plt.tight_layout()
 # %% [markdown]
 # ## A picture of the pair
 #
-# A small helper draws a quadric as a parametric surface.
+# `plot_quadric` draws any quadric: the type is decided exactly, the principal axes
+# are computed in floating point (a picture), and unbounded surfaces are clipped to a
+# box.
 
 # %%
-u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 40), np.linspace(-2.5, 2.5, 25))
+from quadric_contact.plotting import plot_quadric
+
 fig = plt.figure(figsize=(5, 5))
 ax = fig.add_subplot(projection="3d")
-# trunk: x^2 + y^2 - (z-3)^2/4 = 1  ->  x = cosh(v) cos u, y = cosh(v) sin u, z = 3 + 2 sinh(v)
-ax.plot_surface(np.cosh(v / 2) * np.cos(u), np.cosh(v / 2) * np.sin(u), 3 + 2 * np.sinh(v / 2), alpha=0.3)
-t, p = np.meshgrid(np.linspace(0, 2 * np.pi, 30), np.linspace(0, np.pi, 20))
-r = np.sqrt(0.1)
-ax.plot_surface(3 + r * np.cos(t) * np.sin(p), 3 + r * np.sin(t) * np.sin(p), 5.5 + r / np.sqrt(3) * np.cos(p), color="orange")
-ax.set_box_aspect((1, 1, 1.2))
+box = [(-2.5, 4), (-2.5, 4), (0, 7)]
+plot_quadric(ax, trunk, box, alpha=0.3)
+plot_quadric(ax, bee, color="orange", alpha=1)
+ax.set(xlim=box[0], ylim=box[1], zlim=box[2])
+ax.set_box_aspect((6.5, 6.5, 7))
 ax.set_title("the bee and the trunk (Example 17)")
 
 # %% [markdown]

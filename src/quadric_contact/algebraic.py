@@ -473,6 +473,23 @@ def sign_at(poly: Any, alpha: RealAlgebraic) -> int:
 
     Zero exactly when the minimal polynomial divides ``poly``; otherwise the
     isolating interval is refined until a ball evaluation excludes 0.
+
+    Parameters
+    ----------
+    poly : fmpq_poly or sequence of rationals ``c0, c1, ...``
+    alpha : RealAlgebraic
+
+    Returns
+    -------
+    int
+        -1, 0 or 1.
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> r = algebraic_sqrt(Fraction(1, 10))
+    >>> sign_at([Fraction(-1, 10), 0, 1], r), sign_at([Fraction(-1, 3), 1], r)
+    (0, -1)
     """
     p = poly if isinstance(poly, flint.fmpq_poly) else _poly(poly)
     if p.is_zero():
@@ -785,6 +802,22 @@ def algebraic_sqrt(x: Any) -> RealAlgebraic:
 
     It is a root of ``m(t^2)`` (``m`` the minimal polynomial of ``x``); the
     irreducible factor and the root are picked by certified evaluation.
+
+    Parameters
+    ----------
+    x : RealAlgebraic or rational
+
+    Returns
+    -------
+    RealAlgebraic
+
+    Examples
+    --------
+    The bee's longest semi-axis in Example 17, ``sqrt(1/10)``:
+
+    >>> from fractions import Fraction
+    >>> algebraic_sqrt(Fraction(1, 10)).approx(6)
+    '0.316228'
     """
     v = x if isinstance(x, RealAlgebraic) else RealAlgebraic(x)
     s = v.sign()

@@ -49,7 +49,19 @@ __all__ = [
 
 
 class QuadricKind(StrEnum):
-    """Affine type of a real quadric ``X^T Q X = 0``."""
+    """Affine type of a real quadric ``X^T Q X = 0``.
+
+    The nine types of Table 1 are the ``Q`` the theory covers
+    (:attr:`in_table_1`); a plane is treated by Theorem 14; the others are
+    excluded (:attr:`excluded_reason`) or have no real surface.
+
+    Examples
+    --------
+    >>> QuadricKind("hyperboloid of one sheet").in_table_1
+    True
+    >>> QuadricKind.CONE.excluded_reason
+    'a cone: no ellipsoid is small with respect to it (Section 2)'
+    """
 
     ELLIPSOID = "ellipsoid"
     HYPERBOLOID_ONE_SHEET = "hyperboloid of one sheet"
@@ -160,14 +172,35 @@ class Inertia:
 
     @property
     def rank(self) -> int:
+        """Number of non-zero eigenvalues."""
         return self.positive + self.negative
 
     def flipped(self) -> Inertia:
+        """The inertia of the negated matrix."""
         return Inertia(self.negative, self.positive, self.zero)
 
 
 def sign_variations(values: Sequence[Any]) -> int:
-    """Number of sign changes in a sequence, zeros ignored (Descartes)."""
+    """Number of sign changes in a sequence, zeros ignored (Descartes' rule of signs).
+
+    Parameters
+    ----------
+    values : sequence of real numbers
+
+    Returns
+    -------
+    int
+        For the coefficients ``c0, c1, ...`` of a real-rooted polynomial: its
+        number of positive roots (Theorem 13, Table 4).
+
+    Examples
+    --------
+    Example 17: ``P2`` has coefficients ``0.25, -11.6625, 34.125, 45.7375, -0.3``:
+    three positive roots, the bee is outside the trunk.
+
+    >>> sign_variations([0.25, -11.6625, 34.125, 45.7375, -0.3])
+    3
+    """
     count = 0
     last = 0
     for v in values:
@@ -180,9 +213,24 @@ def sign_variations(values: Sequence[Any]) -> int:
 
 
 def principal_minor_sums_3(a: Sequence[Any]) -> tuple[Any, Any, Any]:
-    """``(tr A, J, det A)`` for the symmetric 3x3 ``A`` with upper entries
-    ``a = (a00, a01, a02, a11, a12, a22)``.  ``J`` is the paper's invariant
-    (sum of the principal 2x2 minors)."""
+    """``(tr A, J, det A)`` for the symmetric 3x3 ``A``.
+
+    Parameters
+    ----------
+    a : sequence of 6 numbers
+        The upper entries ``(a00, a01, a02, a11, a12, a22)``.
+
+    Returns
+    -------
+    tuple
+        The trace, ``J`` (the paper's invariant: the sum of the principal 2x2
+        minors, Section 2.4) and the determinant.
+
+    Examples
+    --------
+    >>> principal_minor_sums_3((1, 0, 0, 1, 0, 3))   # the bee's x^2 + y^2 + 3 z^2
+    (5, 7, 3)
+    """
     a00, a01, a02, a11, a12, a22 = a
     tr = a00 + a11 + a22
     J = (a00 * a11 - a01 * a01) + (a00 * a22 - a02 * a02) + (a11 * a22 - a12 * a12)
@@ -196,6 +244,16 @@ def principal_minor_sums_4(m: Sequence[Any]) -> tuple[Any, Any, Any, Any]:
 
     They are the coefficients of ``det(t*I + M) = t^4 + E1 t^3 + E2 t^2 + E3 t + E4``,
     computed with the generated pencil formula at ``E = I``.
+
+    Parameters
+    ----------
+    m : sequence of 10 numbers
+        The upper entries ``(q00, q01, q02, q03, q11, q12, q13, q22, q23, q33)``.
+
+    Returns
+    -------
+    tuple
+        ``(E1, E2, E3, E4)``; ``E4 = det M``.
     """
     from ._generated.formulas import pencil_coefficients
 
@@ -211,6 +269,24 @@ def inertia_from_minor_sums(sums: Sequence[Any]) -> Inertia:
     ``det(t I - M) = t^n - E1 t^(n-1) + E2 t^(n-2) - ...`` has only real
     roots, so Descartes' rule counts the positive eigenvalues exactly; the
     zero eigenvalues are the trailing zero coefficients.
+
+    Parameters
+    ----------
+    sums : sequence
+        ``(E1, .., En)``, the sums of the principal minors of each order.
+
+    Returns
+    -------
+    Inertia
+
+    Examples
+    --------
+    The hyperboloid ``x^2 + y^2 - z^2/4 - 1`` has a matrix of inertia (2, 2):
+
+    >>> from quadric_contact import Quadric
+    >>> upper = Quadric.from_equation("x**2 + y**2 - z**2/4 - 1").upper
+    >>> inertia_from_minor_sums(principal_minor_sums_4(upper))
+    Inertia(positive=2, negative=2, zero=0)
     """
     n = len(sums)
     rank = 0
@@ -230,6 +306,27 @@ def classify(m: Sequence[Any]) -> tuple[QuadricKind, int]:
     sign of the paper's standard form (Table 1: ellipsoid ``x^2/a^2 + ... - 1``,
     inside negative); for the types whose standard form is congruent to its own
     negative (hyperbolic paraboloid, plane) it is ``+1``.
+
+    Parameters
+    ----------
+    m : sequence of 10 exact numbers
+        The upper entries of the matrix.
+
+    Returns
+    -------
+    (QuadricKind, int)
+
+    References
+    ----------
+    Table 1 (the types and their standard forms).
+
+    Examples
+    --------
+    The unit sphere written with its inside positive:
+
+    >>> from quadric_contact import Quadric
+    >>> classify(Quadric.from_equation("1 - x**2 - y**2 - z**2").upper)
+    (<QuadricKind.ELLIPSOID: 'ellipsoid'>, -1)
     """
     a = (m[0], m[1], m[2], m[4], m[5], m[7])
     raw_a = inertia_from_minor_sums(principal_minor_sums_3(a))

@@ -71,6 +71,7 @@ class Piece:
 
     @property
     def is_plane(self) -> bool:
+        """The piece is a plane (decided by Corollary 15, no smallness needed)."""
         return self.quadric.kind is QuadricKind.PLANE
 
     def __str__(self) -> str:
@@ -99,6 +100,7 @@ class Split:
 
     @property
     def label(self) -> str:
+        """``"plane <name>"`` (the ledger's target for this plane)."""
         return f"plane {self.name}"
 
 
@@ -185,6 +187,7 @@ class Composite:
         return self.extra_pieces
 
     def describe(self) -> str:
+        """One line: the pieces, their types and the separating planes."""
         planes = self.splits()
         kinds = ", ".join(f"{p.name}: {p.quadric.kind.value}" for p in self.pieces)
         sep = f", {len(planes)} separating plane(s): " + ", ".join(s.name for s in planes) if planes else ""
@@ -297,6 +300,7 @@ class CompositeContact:
 
     @property
     def contact(self) -> bool | None:
+        """Transversal contact with some piece of the zone (None: undecided for some, none found)."""
         values = [c.transversal for c in self.contacts.values()]
         if any(v is True for v in values):
             return True
@@ -306,6 +310,7 @@ class CompositeContact:
 
     @property
     def touching(self) -> list[str]:
+        """Names of the pieces in transversal contact."""
         return [k for k, c in self.contacts.items() if c.transversal]
 
 

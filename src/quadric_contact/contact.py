@@ -66,7 +66,43 @@ def decide_transversal(
 ) -> ContactResult:
     """Decide transversal contact from an already computed characteristic polynomial.
 
-    See :func:`transversal_contact` for the parameters.
+    Parameters
+    ----------
+    P : CharacteristicPolynomial
+        ``det(lambda E + Q)`` with ``E`` normalised (``det E < 0``).
+    small, method
+        As for :func:`transversal_contact`.
+
+    Returns
+    -------
+    ContactResult
+
+    Raises
+    ------
+    ExcludedQuadricError
+        ``Q`` is of a type the theory excludes (a cone, intersecting planes,
+        ...), all roots are real, and ``method="theory"`` or the geometric
+        decision is not available.
+
+    References
+    ----------
+    Remark 9, Theorem 2, Corollary 10, Theorem 14.
+
+    Examples
+    --------
+    Example 17, the bee and the trunk: all roots real, ``Delta_4 > 0``.
+
+    >>> from quadric_contact import characteristic_polynomial
+    >>> bee = "(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1"
+    >>> P = characteristic_polynomial(bee, "x**2 + y**2 - 0.25*(z-3)**2 - 1")
+    >>> r = decide_transversal(P, small=True)
+    >>> r.transversal, r.decided_by
+    (False, 'Corollary 10')
+
+    Without smallness the paper's results do not conclude (Remark 9):
+
+    >>> decide_transversal(P, small=False, method="theory").transversal is None
+    True
     """
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
@@ -181,6 +217,23 @@ def transversal_contact(
     >>> r = transversal_contact("2*x**2 + 2*y**2 + 3*z**2 - 1", "x**2 + y**2 + 8*z")
     >>> bool(r), r.decided_by
     (True, 'Remark 9')
+
+    Example 17, the bee and the trunk (small, all roots real):
+
+    >>> r = transversal_contact("(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1", "x**2 + y**2 - 0.25*(z-3)**2 - 1")
+    >>> bool(r), r.decided_by
+    (False, 'Corollary 10')
+
+    A flat ellipsoid pressed into the throat of a hyperboloid is not small:
+    all roots are real, yet the surfaces cross (Remark 9); the geometric
+    decision settles it.
+
+    >>> disc, throat = "100*(x - 17/20)**2 + y**2 + z**2 - 1", "x**2 + y**2 - z**2/100 - 1"
+    >>> transversal_contact(disc, throat, method="theory").decided
+    False
+    >>> r = transversal_contact(disc, throat)
+    >>> bool(r), r.decided_by
+    (True, 'geometric decision')
     """
     from .batch import is_stack
 

@@ -382,6 +382,19 @@ def contact_kind(E: Any, Q: Any, *, small: bool | None = None) -> ContactKind:
 
     See :func:`analyze_contact` for the evidence behind the answer.
 
+    Parameters
+    ----------
+    E, Q, small
+        As for :func:`analyze_contact`.
+
+    Returns
+    -------
+    ContactKind
+
+    References
+    ----------
+    Table 3, proof of Theorem 2.
+
     Examples
     --------
     A unit sphere inside a circular one-sheet hyperboloid, touching its throat:

@@ -25,8 +25,24 @@ __all__ = ["RootSigns", "root_signs", "sign_variations"]
 class RootSigns:
     """How many roots are negative, zero, positive and non-real (with multiplicity).
 
-    ``method`` is ``"descartes"`` (exact sign variations; the polynomial is
-    real-rooted) or ``"isolation"`` (certified root isolation).
+    Attributes
+    ----------
+    negative, zero, positive, nonreal : int
+        Root counts with multiplicity.
+    method : str
+        ``"descartes"`` (exact sign variations; the polynomial is
+        real-rooted) or ``"isolation"`` (certified root isolation).
+
+    Examples
+    --------
+    Theorem 14, eq. (12): the unit sphere centred at ``(0, 0, 2)`` and the
+    plane ``z = 0`` give ``P = -lambda^2 (1 + 4 lambda (lambda - 2)) / 4``,
+    with roots ``0, 0, 1 +- sqrt(3)/2``: the sphere is in ``R+``.
+
+    >>> from fractions import Fraction
+    >>> s = root_signs([0, 0, Fraction(-1, 4), 2, -1])
+    >>> s.pattern, s.method, s.negated().pattern
+    ('00++', 'descartes', '--00')
     """
 
     negative: int
@@ -54,8 +70,23 @@ def root_signs(coeffs: Sequence[Any], structure: RootStructure | None = None) ->
 
     Parameters
     ----------
-    coeffs : exact numbers ``c0, c1, ...``
-    structure : the :func:`~quadric_contact.discriminants.root_structure`, if already known
+    coeffs : sequence of exact numbers
+        ``c0, c1, ...`` (lowest degree first).
+    structure : RootStructure, optional
+        The :func:`~quadric_contact.discriminants.root_structure` of the
+        polynomial, if already known.
+
+    Returns
+    -------
+    RootSigns
+        Exact counts; ``.pattern`` is the row notation of Table 4
+        (``'--++'``).  Where all roots are real the counts are Descartes'
+        sign variations, which are then exact (Curtiss 1918); otherwise the
+        real roots are isolated with certified balls.
+
+    References
+    ----------
+    Theorem 13 and Table 4 (root signs and coefficient signs); Lemma 12.
 
     Examples
     --------

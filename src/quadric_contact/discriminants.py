@@ -49,7 +49,25 @@ _SEQUENCES: dict[int, Any] = {
 
 
 def strip(coeffs: Sequence[Any]) -> list[Any]:
-    """Drop zero leading (highest-degree) coefficients; ``coeffs`` is ``c0, c1, ...``."""
+    """Drop zero leading (highest-degree) coefficients.
+
+    Parameters
+    ----------
+    coeffs : sequence of numbers
+        ``c0, c1, ...`` (lowest degree first).
+
+    Returns
+    -------
+    list
+        The same coefficients without the trailing zeros of the list, so that
+        the last one is the true leading coefficient (empty for the zero
+        polynomial).
+
+    Examples
+    --------
+    >>> strip([0, 0, -1, -3, 0])
+    [0, 0, -1, -3]
+    """
     out = list(coeffs)
     while out and out[-1] == 0:
         out.pop()
@@ -57,7 +75,30 @@ def strip(coeffs: Sequence[Any]) -> list[Any]:
 
 
 def discrimination_sequence(coeffs: Sequence[Any]) -> tuple[Any, ...]:
-    """``(D_1, .., D_n)`` for ``f = sum coeffs[k] x^k`` of exact degree ``n <= 4``.
+    """Yang's discrimination sequence ``(D_1, .., D_n)`` of ``f = sum coeffs[k] x^k``.
+
+    Parameters
+    ----------
+    coeffs : sequence
+        ``c0, c1, ...`` of a polynomial of degree ``n <= 4`` (zero leading
+        coefficients are dropped first).  Any number type with ``+ - *``:
+        ints, Fractions, floats, numpy arrays, sympy symbols, flint balls.
+
+    Returns
+    -------
+    tuple
+        ``(D_1, .., D_n)``, the even-order principal minors of the
+        discrimination matrix of ``f`` and ``f'``; empty for a constant.
+
+    Raises
+    ------
+    ValueError
+        If the degree is above 4.
+
+    References
+    ----------
+    Yang (1999), the complete discrimination system; Section 3.2 of the paper
+    (``D_3 = 2 c4^2 Delta_3``, ``D_4 = c4^2 Delta_4``).
 
     Examples
     --------
@@ -79,8 +120,35 @@ def discrimination_sequence(coeffs: Sequence[Any]) -> tuple[Any, ...]:
 def paper_deltas(coeffs: Sequence[Any]) -> tuple[Any, Any, Any]:
     """``(Delta_2, Delta_3, Delta_4)`` of a quartic, with the paper's normalisation.
 
+    Parameters
+    ----------
+    coeffs : sequence
+        ``c0 .. c4`` (missing high coefficients are taken as 0); any number
+        type with ``+ - *``.
+
+    Returns
+    -------
+    tuple
+        ``(Delta_2, Delta_3, Delta_4)``: ``D_2 / c4^2``, ``D_3 / (2 c4^2)`` and
+        ``D_4 / c4^2`` (Yang's sequence divided by positive factors, so the
+        signs agree when ``c4 != 0``).  ``Delta_4`` is the corrected formula
+        (erratum ``delta4-term``: the printed fifth term is wrong).
+
+    References
+    ----------
+    Section 3.2 (the formulas), Corollary 10 (their use), Algorithm 1.
+
     Examples
     --------
+    Example 17, the bee and the plane ``z = 6``: the paper prints
+    ``P0 = lambda^2 (-0.3 lambda^2 - 1.5 lambda - 0.25)`` and
+    ``Delta_3 = 0.121875``:
+
+    >>> from fractions import Fraction as F
+    >>> d2, d3, d4 = paper_deltas([0, 0, F(-1, 4), F(-3, 2), F(-3, 10)])
+    >>> d3, float(d3), d4
+    (Fraction(39, 320), 0.121875, Fraction(0, 1))
+
     Example 11.  The paper prints ``Delta_4 = 0`` and ``Delta_3 = -400``; the
     printed formula gives ``Delta_3 = -13790208`` (same sign; see
     :data:`quadric_contact.paper.ERRATA`):
@@ -97,10 +165,35 @@ def _sign(x: Any) -> int:
 
 
 def revised_sign_list(signs: Sequence[int]) -> list[int]:
-    """Yang's revised sign list: each run of ``k`` zeros that follows a non-zero
-    sign ``s`` and precedes another non-zero sign becomes
-    ``[-s, -s, s, s, -s, -s, ...]`` (the ``r``-th zero gets
-    ``(-1)^(r(r+1)/2) s``).  Trailing zeros are kept."""
+    """Yang's revised sign list of a sign list.
+
+    Each run of ``k`` zeros that follows a non-zero sign ``s`` and precedes
+    another non-zero sign becomes ``[-s, -s, s, s, -s, -s, ...]`` (the
+    ``r``-th zero gets ``(-1)^(r(r+1)/2) s``).  Trailing zeros are kept.
+
+    Parameters
+    ----------
+    signs : sequence of int
+        Signs (-1, 0, 1) of ``D_1, .., D_n``.
+
+    Returns
+    -------
+    list of int
+        The revised list: its number ``v`` of sign changes is the number of
+        distinct pairs of non-real roots, and ``l - 2v`` (``l`` the number of
+        non-zero entries) the number of distinct real roots.
+
+    References
+    ----------
+    Yang (1999), Theorem 1.
+
+    Examples
+    --------
+    >>> revised_sign_list([1, 0, 0, 1])
+    [1, -1, -1, 1]
+    >>> revised_sign_list([1, -1, 0, 0])   # trailing zeros: a multiple root
+    [1, -1, 0, 0]
+    """
     out = list(signs)
     last_nonzero = max((i for i, s in enumerate(out) if s), default=-1)
     i = 0
@@ -121,9 +214,25 @@ def revised_sign_list(signs: Sequence[int]) -> list[int]:
 class RootStructure:
     """Exact numbers and multiplicities of the real and non-real roots.
 
-    ``real`` lists the multiplicities of the distinct real roots and
-    ``nonreal`` those of the distinct conjugate pairs (each pair listed once),
-    both in decreasing order.
+    Attributes
+    ----------
+    degree : int
+    real : tuple of int
+        Multiplicities of the distinct real roots, decreasing.
+    nonreal : tuple of int
+        Multiplicities of the distinct non-real conjugate pairs (each pair
+        listed once), decreasing.
+    sequence_signs : tuple of int
+        Signs of Yang's ``D_1 .. D_n`` (for a quartic: ``D_1`` and the signs
+        of the paper's ``Delta_2 .. Delta_4``).
+
+    Examples
+    --------
+    ``(x^2 - 1)^2``: two double real roots.
+
+    >>> s = root_structure([1, 0, -2, 0, 1])
+    >>> s.real, s.nonreal, s.real_count, s.has_multiple_root
+    ((2, 2), (), 4, True)
     """
 
     degree: int
@@ -133,6 +242,7 @@ class RootStructure:
 
     @property
     def distinct_real(self) -> int:
+        """Number of distinct real roots."""
         return len(self.real)
 
     @property
@@ -147,13 +257,16 @@ class RootStructure:
 
     @property
     def all_real(self) -> bool:
+        """No non-real root (Theorem 2: no transversal contact for a small ellipsoid)."""
         return not self.nonreal
 
     @property
     def has_multiple_root(self) -> bool:
+        """Some root (real or not) is multiple: ``Delta_4 = 0``."""
         return any(m > 1 for m in self.real + self.nonreal)
 
     def describe(self) -> str:
+        """In words, e.g. ``'2 real (1 distinct, multiplicities [2]), 2 non-real (1 distinct pair(s))'``."""
         parts = []
         if self.real:
             parts.append(
@@ -191,7 +304,23 @@ def _counts(c: Sequence[Any]) -> tuple[int, int, int, tuple[int, ...]]:
 
 
 def root_structure(coeffs: Sequence[Any]) -> RootStructure:
-    """Classify the roots of ``sum coeffs[k] x^k`` (exact coefficients, degree <= 4).
+    """Classify the roots of ``sum coeffs[k] x^k`` exactly (degree <= 4).
+
+    Parameters
+    ----------
+    coeffs : sequence of exact numbers
+        ``c0, c1, ...`` (ints or Fractions; zero leading coefficients are dropped).
+
+    Returns
+    -------
+    RootStructure
+        Numbers and multiplicities of the real roots and of the non-real
+        pairs, from the signs of the discrimination sequence (and, for the
+        multiplicities, of that of ``gcd(f, f')``).
+
+    References
+    ----------
+    Yang (1999), Theorem 1; Section 3.2 and Corollary 10 of the paper.
 
     Raises
     ------

@@ -384,6 +384,18 @@ def real_roots(
         Include roots equal to ``a`` or ``b``.
     ledger, target
         Where to count the isolations (one per irreducible factor).
+
+    Returns
+    -------
+    list of RealRoot
+        Each held by an irreducible integer polynomial and an isolating
+        interval with rational ends; a rational root exactly.
+
+    Examples
+    --------
+    >>> import flint
+    >>> [r.decimal(6) for r in real_roots(flint.fmpq_poly([-2, 0, 1]), Fraction(-10), Fraction(10))]
+    ['-1.414214', '1.414214']
     """
     roots: list[RealRoot] = []
     for f in irreducible_factors(p):
@@ -558,9 +570,31 @@ class PieceValue:
 
 
 def table_4_patterns(Q: Quadric) -> dict[Region, str]:
-    """Root-sign pattern of each region for ``Q`` *as given* (Table 4, with
-    ``R-``/``R+`` swapped and roots negated when ``Q`` has the opposite sign
-    of its standard form)."""
+    """Root-sign pattern of each region for ``Q`` *as given*.
+
+    Parameters
+    ----------
+    Q : Quadric
+
+    Returns
+    -------
+    dict
+        ``Region -> pattern``: Table 4, with ``R-``/``R+`` swapped and the
+        roots negated when ``Q`` has the opposite sign of its standard form
+        (:attr:`~quadric_contact.quadric.Quadric.canonical_sign`).
+
+    References
+    ----------
+    Theorem 13, Table 4.
+
+    Examples
+    --------
+    The unit sphere, and the same sphere written with its inside positive:
+
+    >>> q = Quadric.sphere(1)
+    >>> table_4_patterns(q)[Region.R_MINUS], table_4_patterns(-q)[Region.R_PLUS]
+    ('----', '++++')
+    """
     kind = Q.kind
     table = ROOT_SIGN_TABLE.get(kind, {})
     if Q.canonical_sign > 0:

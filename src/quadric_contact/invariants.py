@@ -67,6 +67,7 @@ class QuadricInvariants:
         return (-self.det00, self.J, -self.trace, Fraction(1))
 
     def nonzero_eigenvalues(self) -> list[RealAlgebraic]:
+        """The eigenvalues of ``Q00`` that are not zero (exactly)."""
         return [m for m in self.eigenvalues if m.sign() != 0]
 
     def to_dict(self) -> dict[str, Any]:

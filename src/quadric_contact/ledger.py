@@ -79,6 +79,13 @@ class Ledger:
     by_target : dict
         Target label -> Counter of the work done for it, so that a test can
         assert that a piece the ellipsoid never approached cost nothing.
+
+    Examples
+    --------
+    >>> led = Ledger()
+    >>> led.add("characteristic_polynomials", target="tree/trunk")
+    >>> led.cost("tree/trunk"), led.cost("tree/crown")
+    (1, 0)
     """
 
     done: Counter[str] = field(default_factory=Counter)
@@ -106,12 +113,14 @@ class Ledger:
         return sum(self.by_target.get(target, Counter()).values())
 
     def merge(self, other: Ledger) -> None:
+        """Add the counts of ``other`` to these."""
         self.done.update(other.done)
         self.full.update(other.full)
         for k, v in other.by_target.items():
             self.by_target.setdefault(k, Counter()).update(v)
 
     def to_dict(self) -> dict[str, Any]:
+        """The counts as JSON-ready data."""
         return {
             "done": {k: self.done.get(k, 0) for k in ITEMS},
             "full_evaluation": {k: self.full.get(k, 0) for k in FULL_ITEMS},

@@ -48,6 +48,16 @@ def _vec3(v: Any, what: str) -> Vec3:
 def rotation_from_quaternion(w: Any, x: Any, y: Any, z: Any) -> Mat3:
     """Exact rotation matrix of the (not necessarily unit) rational quaternion ``w + xi + yj + zk``.
 
+    Parameters
+    ----------
+    w, x, y, z : rational numbers
+        Not all zero; only the direction of the quaternion matters.
+
+    Returns
+    -------
+    tuple of 3 tuples of Fraction
+        ``R``, exactly orthogonal with determinant 1.
+
     Raises
     ------
     NotANumberError
@@ -106,6 +116,7 @@ class RigidMotion:
 
     @classmethod
     def identity(cls) -> RigidMotion:
+        """The identity motion."""
         return cls()
 
     @classmethod
@@ -117,6 +128,13 @@ class RigidMotion:
 
     @classmethod
     def from_translation(cls, v: Sequence[Any]) -> RigidMotion:
+        """The translation ``x -> x + v``.
+
+        Examples
+        --------
+        >>> RigidMotion.from_translation((1, 2, 3)).apply((0, 0, 0))
+        (Fraction(1, 1), Fraction(2, 1), Fraction(3, 1))
+        """
         return cls(_IDENTITY, _vec3(v, "translation"))
 
     @classmethod
@@ -138,11 +156,13 @@ class RigidMotion:
         )
 
     def inverse(self) -> RigidMotion:
+        """The inverse motion ``x -> R^T (x - t)``."""
         rt = _transpose3(self.rotation)
         t = _matvec3(rt, self.translation)
         return RigidMotion(rt, (-t[0], -t[1], -t[2]))
 
     def apply(self, point: Sequence[Any]) -> Vec3:
+        """The image ``R p + t`` of a point, exactly."""
         p = _vec3(point, "point")
         r = _matvec3(self.rotation, p)
         return (r[0] + self.translation[0], r[1] + self.translation[1], r[2] + self.translation[2])
@@ -154,4 +174,5 @@ class RigidMotion:
         return tuple(rows)
 
     def inverse_homogeneous(self) -> tuple[tuple[Fraction, ...], ...]:
+        """``H^-1``: a quadric ``Q`` moves to ``H^-T Q H^-1``."""
         return self.inverse().homogeneous()

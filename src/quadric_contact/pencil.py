@@ -34,7 +34,29 @@ __all__ = ["CharacteristicPolynomial", "as_quadric", "characteristic_polynomial"
 
 
 def as_quadric(value: Any, name: str = "argument") -> Quadric:
-    """Accept a :class:`Quadric`, a 4x4 matrix-like or an equation string."""
+    """The argument as a :class:`Quadric`: what every public function accepts.
+
+    Parameters
+    ----------
+    value : Quadric, 4x4 matrix-like, equation string or sympy expression
+    name : str
+        The argument's name (for messages).
+
+    Returns
+    -------
+    Quadric
+
+    Raises
+    ------
+    EquationError, ShapeError, NotSymmetricError, NotANumberError, NonFiniteError, NotRationalError
+        As :meth:`Quadric.from_equation` and :meth:`Quadric.from_matrix`.
+
+    Examples
+    --------
+    >>> unit = [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, -1]]
+    >>> as_quadric("x**2 + y**2 + z**2 - 1") == as_quadric(unit)
+    True
+    """
     if isinstance(value, Quadric):
         return value
     if isinstance(value, str):
@@ -59,8 +81,23 @@ class CharacteristicPolynomial:
         True if the caller's ellipsoid matrix had ``det > 0`` (inside
         positive) and was replaced by its negative.
 
+    References
+    ----------
+    Eq. (1), eq. (7); Section 3.2 (``deltas``); Theorem 13 (``signs``).
+
     Examples
     --------
+    Example 17, the bee and the trunk ``S2``; the paper prints
+    ``P2 = -0.3 l^4 + 45.7375 l^3 + 34.125 l^2 - 11.6625 l + 0.25`` and
+    ``Delta_4 = 6.90965e8``:
+
+    >>> bee = "(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1"
+    >>> P2 = characteristic_polynomial(bee, "x**2 + y**2 - 0.25*(z-3)**2 - 1")
+    >>> [float(c) for c in reversed(P2.coefficients)]
+    [-0.3, 45.7375, 34.125, -11.6625, 0.25]
+    >>> f"{float(P2.deltas()[2]):.6g}", P2.structure.describe(), P2.signs.pattern
+    ('6.90965e+08', '4 real (4 distinct)', '-+++')
+
     Example 11:
 
     >>> P = characteristic_polynomial("2*x**2 + 2*y**2 + 3*z**2 - 1", "x**2 + y**2 + 8*z")
@@ -103,12 +140,14 @@ class CharacteristicPolynomial:
 
     @property
     def degree(self) -> int:
+        """Degree of ``P`` (4: ``c4 = det E != 0`` for an ellipsoid)."""
         for k in range(4, -1, -1):
             if self._ints[k]:
                 return k
         return -1
 
     def __call__(self, lam: Any) -> Any:
+        """``P(lam)`` by Horner's rule on the exact coefficients (any number type)."""
         acc: Any = 0
         for c in reversed(self.coefficients):
             acc = acc * lam + c
@@ -127,7 +166,11 @@ class CharacteristicPolynomial:
         return root_signs(self._ints, self.structure)
 
     def deltas(self) -> tuple[Fraction, Fraction, Fraction]:
-        """The paper's ``(Delta_2, Delta_3, Delta_4)`` (Section 3.2) of the rational coefficients."""
+        """The paper's ``(Delta_2, Delta_3, Delta_4)`` (Section 3.2) of the rational coefficients.
+
+        ``Delta_4`` with the corrected fifth term (erratum ``delta4-term``);
+        see :func:`~quadric_contact.discriminants.paper_deltas`.
+        """
         d2, d3, d4 = paper_deltas(self.coefficients)
         return Fraction(d2), Fraction(d3), Fraction(d4)
 
@@ -153,6 +196,7 @@ class CharacteristicPolynomial:
     # -- presentation ------------------------------------------------------------
 
     def as_sympy(self, symbol: str = "lambda") -> Any:
+        """``P`` as a sympy expression in ``symbol`` (exact rational coefficients)."""
         import sympy
 
         lam = sympy.Symbol(symbol)

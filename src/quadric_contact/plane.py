@@ -61,6 +61,22 @@ def plane_side(E: Any, P: Any) -> PlaneSideResult:
     >>> r = plane_side("(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1", "z - 6")
     >>> r.zone, r.algorithm_1_zone, r.c3
     (<Region.R_MINUS: 'R-'>, 2, Fraction(-3, 2))
+
+    Theorem 14, eq. (12): the unit sphere centred at ``(0, 0, 2)`` and the
+    plane ``z = 0``, ``P = -lambda^2 (1 + 4 lambda (lambda - 2)) / 4``:
+
+    >>> from quadric_contact import Quadric
+    >>> r = plane_side(Quadric.sphere(1, center=(0, 0, 2)), "z")
+    >>> r.polynomial.coefficients[2:], r.zone
+    ((Fraction(-1, 4), Fraction(2, 1), Fraction(-1, 1)), <Region.R_PLUS: 'R+'>)
+
+    Remark 16: for ``E`` with semi-axes ``alpha, beta, gamma`` (eq. (2)
+    normalisation) ``c3`` is the plane's equation at the centre divided by
+    ``alpha^2 beta^2 gamma^2``:
+
+    >>> r = plane_side(Quadric.ellipsoid(2, 1, 1, center=(1, 2, 3)), "x + 2*y + 2*z - 4")
+    >>> r.center_value, r.c3, r.c3 == r.center_value / (2**2 * 1**2 * 1**2)
+    (Fraction(7, 1), Fraction(7, 4), True)
     """
     plane = as_quadric(P, "P")
     if plane.kind is not QuadricKind.PLANE:

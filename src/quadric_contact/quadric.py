@@ -119,9 +119,28 @@ class Quadric:
             Replace the matrix by ``(M + M^T) / 2`` (exactly) instead of
             rejecting a non-symmetric one.  The quadratic form is the same.
 
+        Returns
+        -------
+        Quadric
+
         Raises
         ------
         ShapeError, NotSymmetricError, NotANumberError, NonFiniteError, NotRationalError
+
+        References
+        ----------
+        Eq. (6) and the matrix below it (Section 2.4).
+
+        Examples
+        --------
+        A float is the dyadic rational it stores:
+
+        >>> import numpy as np
+        >>> Quadric.from_matrix(np.diag([1.0, 1.0, 1.0, -0.1]))[3, 3]
+        Fraction(-3602879701896397, 36028797018963968)
+        >>> M = [[1, 2, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, -1]]
+        >>> Quadric.from_matrix(M, symmetrize=True).equation()
+        'x**2 + 2*x*y + y**2 + z**2 - 1'
         """
         if isinstance(matrix, Quadric):
             return matrix
@@ -153,6 +172,10 @@ class Quadric:
         and implicit products such as ``"3(z-5.5)^2"`` are accepted, as is
         ``"lhs = rhs"``) or a sympy expression / equality.  Decimal literals
         are read as exact decimals.
+
+        Returns
+        -------
+        Quadric
 
         Raises
         ------
@@ -209,6 +232,23 @@ class Quadric:
         a : 3x3 symmetric matrix-like
         b : sequence of 3 numbers (note the factor 2 in eq. (6))
         c : number
+
+        Returns
+        -------
+        Quadric
+
+        Raises
+        ------
+        NotSymmetricError, ShapeError
+            ``a`` is not symmetric, ``b`` does not have 3 entries.
+
+        Examples
+        --------
+        The bee of Example 17 (``"108.65"`` as a string is the decimal; the
+        float ``108.65`` would be the nearest binary fraction):
+
+        >>> Quadric.from_coefficients([[1, 0, 0], [0, 1, 0], [0, 0, 3]], [-3, -3, -16.5], "108.65").equation()
+        'x**2 - 6*x + y**2 - 6*y + 3*z**2 - 33*z + 2173/20'
         """
         A = as_square_matrix(a, 3)
         for i in range(3):
@@ -223,6 +263,13 @@ class Quadric:
 
     @classmethod
     def diagonal(cls, d0: Any, d1: Any, d2: Any, d3: Any) -> Quadric:
+        """The diagonal matrix ``diag(d0, d1, d2, d3)``: ``d0 x^2 + d1 y^2 + d2 z^2 + d3``.
+
+        Examples
+        --------
+        >>> Quadric.diagonal(1, 1, -1, 1).kind   # H in the proof of Lemma 12
+        <QuadricKind.HYPERBOLOID_TWO_SHEETS: 'hyperboloid of two sheets'>
+        """
         z = Fraction(0)
         d = [to_fraction(t) for t in (d0, d1, d2, d3)]
         return cls._from_upper((d[0], z, z, z, d[1], z, z, d[2], z, d[3]))
@@ -238,10 +285,38 @@ class Quadric:
         center: Sequence[Any] = (0, 0, 0),
         rotation: Any = None,
     ) -> Quadric:
-        """``x^2/a^2 + y^2/b^2 + z^2/c^2 = 1`` rotated by ``rotation`` (a 3x3
-        rational rotation matrix or a quaternion ``(w, x, y, z)``), then
-        centred at ``center``.  Semi-axes may be sympy expressions with
-        rational squares (``sympy.sqrt(3)``)."""
+        """``x^2/a^2 + y^2/b^2 + z^2/c^2 = 1`` rotated by ``rotation``, then centred at ``center``.
+
+        Parameters
+        ----------
+        a, b, c : positive numbers
+            Semi-axes; sympy expressions with rational squares
+            (``sympy.sqrt(3)``) are accepted.
+        center : sequence of 3 numbers
+        rotation : 3x3 rational rotation matrix or quaternion ``(w, x, y, z)``, optional
+
+        Returns
+        -------
+        Quadric
+            With the paper's sign (inside negative, ``det < 0``).
+
+        Raises
+        ------
+        NotANumberError
+            A semi-axis is not positive.
+
+        References
+        ----------
+        Eq. (2), Table 1.
+
+        Examples
+        --------
+        >>> import sympy
+        >>> Quadric.ellipsoid(sympy.sqrt(3), 1, 1).equation()
+        'x**2/3 + y**2 + z**2 - 1'
+        >>> Quadric.ellipsoid(3, 2, 1, rotation=(1, 0, 0, 1)).equation()   # a quarter turn about z
+        'x**2/4 + y**2/9 + z**2 - 1'
+        """
         q = cls.diagonal(_inverse_square(a, "a"), _inverse_square(b, "b"), _inverse_square(c, "c"), -1)
         return q._placed(center, rotation)
 
@@ -372,6 +447,13 @@ class Quadric:
         return Quadric._from_upper(upper)
 
     def translated(self, vector: Sequence[Any]) -> Quadric:
+        """The quadric moved by the translation ``x -> x + vector``.
+
+        Examples
+        --------
+        >>> Quadric.sphere(1).translated((1, 2, 3)).equation()
+        'x**2 - 2*x + y**2 - 4*y + z**2 - 6*z + 13'
+        """
         return self.moved(RigidMotion.from_translation(vector))
 
     def rotated(self, rotation: Any, about: Sequence[Any] = (0, 0, 0)) -> Quadric:
@@ -398,6 +480,7 @@ class Quadric:
 
     @property
     def matrix(self) -> tuple[tuple[Fraction, ...], ...]:
+        """The symmetric 4x4 matrix, as a tuple of rows of Fractions."""
         u = self._u
         return tuple(tuple(u[_index(i, j)] for j in range(4)) for i in range(4))
 
@@ -419,9 +502,11 @@ class Quadric:
 
     @property
     def constant(self) -> Fraction:
+        """``c`` of eq. (6): the entry ``Q[3, 3]``."""
         return self._u[9]
 
     def to_sympy(self) -> Any:
+        """The matrix as a ``sympy.Matrix`` of exact rationals."""
         import sympy
 
         return sympy.Matrix(4, 4, lambda i, j: sympy.Rational(self[i, j].numerator, self[i, j].denominator))
@@ -433,7 +518,15 @@ class Quadric:
         return np.array([[self[i, j] for j in range(4)] for i in range(4)], dtype=dtype)
 
     def value_at(self, point: Sequence[Any]) -> Fraction:
-        """``X^T Q X`` at ``X = (point, 1)``, exactly."""
+        """``X^T Q X`` at ``X = (point, 1)``, exactly: its sign says ``R-`` or ``R+`` (eq. (8)).
+
+        Examples
+        --------
+        The centre of the bee of Example 17 is inside it:
+
+        >>> Quadric.from_equation("(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1").value_at((3, 3, 5.5))
+        Fraction(-1, 10)
+        """
         p = [to_fraction(t) for t in point]
         if len(p) != 3:
             raise ShapeError("a point has 3 coordinates", point)
@@ -469,6 +562,13 @@ class Quadric:
         """The centre ``-Q00^-1 b`` when the quadratic part is invertible, else None.
 
         Exact (Cramer's rule with the adjugate of the symmetric 3x3 block).
+
+        Examples
+        --------
+        >>> Quadric.from_equation("(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1").center()
+        (Fraction(3, 1), Fraction(3, 1), Fraction(11, 2))
+        >>> Quadric.elliptic_paraboloid(1, 2).center() is None
+        True
         """
         a00, a01, a02, b0, a11, a12, b1, a22, b2, _ = self._u
         det = principal_minor_sums_3((a00, a01, a02, a11, a12, a22))[2]
@@ -498,6 +598,12 @@ class Quadric:
         NotAnEllipsoidError
             If it is not a real, non-degenerate ellipsoid (``.details['kind']``
             says what it is).
+
+        Examples
+        --------
+        >>> bee = Quadric.from_equation("(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1")
+        >>> (-bee).as_ellipsoid() == bee
+        True
         """
         sign = self._ellipsoid_sign()
         if sign == 0:
@@ -531,7 +637,15 @@ class Quadric:
     # -- exact integer form -------------------------------------------------------
 
     def integer_form(self) -> tuple[tuple[int, ...], int]:
-        """``(ints, d)`` with ``upper == ints / d`` (``d > 0`` the least common denominator)."""
+        """``(ints, d)`` with ``upper == ints / d`` (``d > 0`` the least common denominator).
+
+        Every sign decision of the package is taken on these integers.
+
+        Examples
+        --------
+        >>> Quadric.from_equation("(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1").integer_form()
+        ((20, 0, 0, -60, 20, 0, -60, 60, -330, 2173), 20)
+        """
         if self._ints is None:
             self._ints = common_denominator(self._u)
         return self._ints
@@ -557,7 +671,13 @@ class Quadric:
         return self._hash
 
     def is_proportional_to(self, other: Quadric) -> bool:
-        """``self == k * other`` for some rational ``k != 0``."""
+        """``self == k * other`` for some rational ``k != 0`` (the same surface).
+
+        Examples
+        --------
+        >>> Quadric.sphere(1).scaled(-3).is_proportional_to(Quadric.sphere(1))
+        True
+        """
         k = None
         for a, b in zip(self._u, other._u, strict=True):
             if (a == 0) != (b == 0):

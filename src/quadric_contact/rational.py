@@ -229,6 +229,12 @@ def as_square_matrix(matrix: Any, n: int = 4) -> tuple[tuple[Fraction, ...], ...
 
 def common_denominator(values: Sequence[Fraction]) -> tuple[tuple[int, ...], int]:
     """Return ``(numerators, d)`` with ``values[k] == numerators[k] / d`` and ``d > 0``
-    the least common denominator."""
+    the least common denominator.
+
+    Examples
+    --------
+    >>> common_denominator([Fraction(1, 2), Fraction(1, 3), Fraction(5)])
+    ((3, 2, 30), 6)
+    """
     d = math.lcm(*(v.denominator for v in values)) if values else 1
     return tuple(v.numerator * (d // v.denominator) for v in values), d

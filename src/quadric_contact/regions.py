@@ -78,6 +78,26 @@ def derive_root_sign_table(
     standard form; the root signs are read off exactly, after checking that
     the probe is inside the region (sign of ``Q`` at the centre) and not in
     transversal contact (all roots real).
+
+    Parameters
+    ----------
+    probe : Quadric, optional
+        Another probe ellipsoid (centred at the origin), translated to the
+        probe points instead of the default one.
+
+    Returns
+    -------
+    dict
+        ``QuadricKind -> {Region.R_MINUS: pattern, Region.R_PLUS: pattern}``.
+
+    References
+    ----------
+    Lemma 12 (the argument), Theorem 13 and Table 4, Theorem 14 (planes).
+
+    Examples
+    --------
+    >>> derive_root_sign_table() == ROOT_SIGN_TABLE
+    True
     """
     table: dict[QuadricKind, dict[Region, str]] = {}
     for kind in TABLE_1_KINDS:
@@ -110,7 +130,14 @@ def derive_root_sign_table(
 def decide_region(
     P: CharacteristicPolynomial, *, small: bool | None = None, method: str = "auto"
 ) -> RegionResult:
-    """Decide the region from an already computed characteristic polynomial."""
+    """Decide the region from an already computed characteristic polynomial.
+
+    See :func:`relative_position` (which calls it) for ``small`` and ``method``.
+
+    Returns
+    -------
+    RegionResult
+    """
     Q = P.Q
     kind = Q.kind
     if kind in NO_REAL_POINTS or (
@@ -213,6 +240,18 @@ def relative_position(
 
     Examples
     --------
+    Lemma 12: a unit sphere and the hyperboloid of two sheets with
+    ``a, b, c = 2, 3, 1``, centred between the sheets (``R+``, roots
+    ``--++``) and touching the vertex from inside a sheet (``R-``, ``----``):
+
+    >>> from quadric_contact import Quadric
+    >>> H = Quadric.hyperboloid_two_sheets(2, 3, 1)
+    >>> for centre in [(0, 0, 0), (0, 0, 2)]:
+    ...     r = relative_position(Quadric.sphere(1, center=centre), H)
+    ...     print(centre, r.region, r.polynomial.signs.pattern)
+    (0, 0, 0) R+ --++
+    (0, 0, 2) R- ----
+
     Example 17: the bee is outside the hyperboloid S2 (``R+``):
 
     >>> bee = "(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1"

@@ -28,6 +28,11 @@ class Region(StrEnum):
     ``R-`` is ``{X^T Q X <= 0}``, ``R+`` is ``{X^T Q X >= 0}`` for the matrix
     *as given*; tangent contact still counts as ``R-`` or ``R+``; ``contact``
     means transversal contact.
+
+    Examples
+    --------
+    >>> Region("R-").swapped(), Region.R_PLUS == "R+"
+    (<Region.R_PLUS: 'R+'>, True)
     """
 
     R_MINUS = "R-"
@@ -79,6 +84,21 @@ class ContactResult:
     polynomial : CharacteristicPolynomial
     smallness : object
         The smallness report used (or ``"asserted by caller"``, or None).
+    geometric : GeometricDecision or None
+        The exact geometric decision, when it decided.
+
+    Examples
+    --------
+    Example 17, the bee and the trunk:
+
+    >>> from quadric_contact import transversal_contact
+    >>> r = transversal_contact("(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1", "x**2 + y**2 - 0.25*(z-3)**2 - 1")
+    >>> r.transversal, r.decided_by
+    (False, 'Corollary 10')
+    >>> r.reason
+    'all roots of P are real (Delta4 > 0) and E is small with respect to Q (Theorem 2)'
+    >>> f"{float(r.delta4):.6g}", r.root_signs.pattern
+    ('6.90965e+08', '-+++')
     """
 
     transversal: bool | None
@@ -90,6 +110,7 @@ class ContactResult:
 
     @property
     def decided(self) -> bool:
+        """The theory (or the geometric decision) gave an answer."""
         return self.transversal is not None
 
     def __bool__(self) -> bool:
@@ -99,21 +120,26 @@ class ContactResult:
 
     @property
     def delta3(self) -> Fraction:
+        """The paper's ``Delta_3`` of ``P`` (Section 3.2)."""
         return self.polynomial.deltas()[1]
 
     @property
     def delta4(self) -> Fraction:
+        """The paper's ``Delta_4`` of ``P`` (Section 3.2, corrected)."""
         return self.polynomial.deltas()[2]
 
     @property
     def root_structure(self) -> RootStructure:
+        """Exact numbers and multiplicities of the real and non-real roots of ``P``."""
         return self.polynomial.structure
 
     @property
     def root_signs(self) -> RootSigns:
+        """Exact root-sign pattern of ``P`` (Table 4 notation)."""
         return self.polynomial.signs
 
     def to_dict(self) -> dict[str, Any]:
+        """Everything as JSON-ready data (exact numbers as strings)."""
         return {
             "transversal_contact": self.transversal,
             "decided": self.decided,
@@ -143,6 +169,27 @@ class RegionResult:
     """Answer of :func:`~quadric_contact.relative_position`.
 
     Compares equal to its :class:`Region` (``result == "R-"`` works).
+
+    Attributes
+    ----------
+    region : Region or None
+        ``R-``, ``R+``, ``contact``, or None when undecided.
+    decided_by : str or None
+        ``"Theorem 13 / Table 4"``, ``"Theorem 14"``, ``"Remark 9"``,
+        ``"geometric decision"``, ...
+    reason : str
+    polynomial : CharacteristicPolynomial
+    contact : ContactResult
+        The transversal-contact decision it relied on.
+    expected : dict
+        The Table 4 root-sign pattern of each region for ``Q`` as given.
+
+    Examples
+    --------
+    >>> from quadric_contact import relative_position
+    >>> r = relative_position("(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1", "x**2 + y**2 - 0.25*(z-3)**2 - 1")
+    >>> r == "R+", r.expected
+    (True, {'R-': '---+', 'R+': '-+++'})
     """
 
     region: Region | None
@@ -154,6 +201,7 @@ class RegionResult:
 
     @property
     def decided(self) -> bool:
+        """A region (or contact) was decided."""
         return self.region is not None
 
     def require(self) -> Region:
@@ -176,6 +224,7 @@ class RegionResult:
         return hash(self.region)
 
     def to_dict(self) -> dict[str, Any]:
+        """Everything as JSON-ready data (exact numbers as strings)."""
         return {
             "region": self.region.value if self.region else None,
             "decided": self.decided,
@@ -196,7 +245,21 @@ class PlaneSideResult:
 
     ``zone`` is ``R-`` (Algorithm 1's Zone 2), ``R+`` (Zone 1) or ``contact``
     (Zone 0, transversal contact); ``tangent`` is True when the plane touches
-    the ellipsoid (a double non-zero root).
+    the ellipsoid (a double non-zero root).  ``c2, c3, c4`` are the
+    coefficients of ``P(lambda) = lambda^2 (c4 lambda^2 + c3 lambda + c2)``
+    (eq. (12)) and ``center_value`` the plane's equation at the ellipsoid's
+    centre (Remark 16).
+
+    Examples
+    --------
+    Example 17, Algorithm 1 for the bee and the plane ``z = 6``:
+
+    >>> from quadric_contact import plane_side
+    >>> r = plane_side("(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1", "z - 6")
+    >>> print(r)
+    R- (Corollary 15: c3^2 > 4 c4 c2 and c3 < 0)
+    >>> r.discriminant, r.tangent
+    (Fraction(39, 20), False)
     """
 
     zone: Region
@@ -230,6 +293,7 @@ class PlaneSideResult:
         return {Region.R_PLUS: 1, Region.R_MINUS: 2, Region.CONTACT: 0}[self.zone]
 
     def to_dict(self) -> dict[str, Any]:
+        """Everything as JSON-ready data (exact numbers as strings)."""
         return {
             "zone": self.zone.value,
             "algorithm_1_zone": self.algorithm_1_zone,

@@ -172,6 +172,7 @@ class SmallnessCheck:
 
     @property
     def table_4_applies(self) -> bool:
+        """Small, and not only in the enclosing sense (erratum ``table-1-ellipsoid-enclosing``)."""
         return self.small and bool(getattr(self.report, "table_4_applies", True))
 
     def __str__(self) -> str:
@@ -221,6 +222,7 @@ class Scene:
             )
 
     def needs_smallness(self, effects: Sequence[str] | None = None) -> bool:
+        """Some effect (the scene's, or ``effects``) relies on Theorem 2, hence on smallness."""
         return bool(THEOREM_2_EFFECTS & set(self.effects if effects is None else effects))
 
     def check_smallness(self, *, on_not_small: str | None = None) -> None:
@@ -276,6 +278,7 @@ class Scene:
         return check is not None and check.table_4_applies
 
     def describe(self) -> str:
+        """A few lines: the objects, the ellipsoids and their motions, the effects."""
         lines = [f"scene: {self.name}  ({self.source})"]
         if self.description:
             lines.append(f"  {self.description}")
@@ -619,10 +622,46 @@ def parse_scene(
 ) -> Scene:
     """Build a :class:`Scene` from TOML text (see the module documentation for the format).
 
+    Parameters
+    ----------
+    text : str
+        The TOML text.
+    source : str
+        Where it came from (for messages).
+    check_smallness : bool, default True
+        Check smallness now if the scene's effects rely on Theorem 2.
+    on_not_small : {"refuse", "warn"}, optional
+        Override the scene's policy.
+
+    Returns
+    -------
+    Scene
+
     Raises
     ------
     SceneError
         For any problem, naming ``source``, the key and what was expected.
+
+    Examples
+    --------
+    >>> scene = parse_scene('''
+    ... [scene]
+    ... name = "a sphere rolls over a saddle"
+    ... time = [0, 4]
+    ... [[object]]
+    ... name = "saddle"
+    ... [[object.piece]]
+    ... name = "s"
+    ... equation = "z = x^2/4 - y^2/4"
+    ... [[ellipsoid]]
+    ... name = "ball"
+    ... standard = "sphere"
+    ... radius = 0.25
+    ... center = [-2, 0, 2]
+    ... motion = { type = "linear", velocity = [1, 0, -0.5] }
+    ... ''')
+    >>> scene.span, scene.ellipsoids[0].quadric.center()
+    ((Fraction(0, 1), Fraction(4, 1)), (Fraction(-2, 1), Fraction(0, 1), Fraction(2, 1)))
     """
     r = _Reader(source)
     try:
@@ -681,13 +720,39 @@ def parse_scene(
 
 
 def builtin_scene_names() -> list[str]:
-    """Names of the scenes shipped with the package (``quadric_contact/scenes/*.toml``)."""
+    """Names of the scenes shipped with the package (``quadric_contact/scenes/*.toml``).
+
+    Examples
+    --------
+    >>> "bee_and_tree" in builtin_scene_names()
+    True
+    """
     folder = resources.files("quadric_contact").joinpath("scenes")
     return sorted(p.name[: -len(".toml")] for p in folder.iterdir() if p.name.endswith(".toml"))
 
 
 def builtin_scene(name: str = "bee_and_tree", **kwargs: Any) -> Scene:
     """Load a built-in scene by name (default: the bee and the tree of Example 17).
+
+    Parameters
+    ----------
+    name : str
+        One of :func:`builtin_scene_names`.
+    **kwargs
+        ``check_smallness``, ``on_not_small``: as for :func:`parse_scene`.
+
+    Returns
+    -------
+    Scene
+
+    Raises
+    ------
+    SceneError
+        No built-in scene has this name.
+
+    References
+    ----------
+    Example 17, Fig. 8 (the default scene).
 
     Examples
     --------
@@ -715,9 +780,15 @@ def load_scene(path: str | Path, **kwargs: Any) -> Scene:
     on_not_small : {"refuse", "warn"}, optional
         Override the scene's policy.
 
+    Returns
+    -------
+    Scene
+
     Raises
     ------
     SceneError
+        The file cannot be read or is not a valid scene (the message names
+        the file, the key and what was expected).
     """
     p = Path(path)
     if not p.exists():

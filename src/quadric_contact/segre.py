@@ -54,10 +54,12 @@ class SegreGroup:
 
     @property
     def multiplicity(self) -> int:
+        """Multiplicity of the eigenvalue as a root of ``det(lambda*E + Q)``."""
         return sum(self.blocks)
 
     @property
     def is_real(self) -> bool:
+        """The eigenvalue is real."""
         return self.eigenvalue is not None
 
     @property
@@ -83,6 +85,7 @@ class SegreSymbol:
 
     @property
     def symbol(self) -> str:
+        """The bracket without the subscript, e.g. ``"[(11)11]"``."""
         return "[" + "".join(str(g) for g in self.groups) + "]"
 
     @property

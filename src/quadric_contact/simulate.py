@@ -95,6 +95,18 @@ class Plan:
 
     @classmethod
     def from_effects(cls, effects: Iterable[str], *, full: bool = False) -> Plan:
+        """The plan for a set of effects (:data:`~quadric_contact.scene.EFFECTS`).
+
+        Raises
+        ------
+        SceneError
+            An unknown effect, or none at all.
+
+        Examples
+        --------
+        >>> Plan.from_effects(["zone"]).pieces, Plan.from_effects(["first_contact"]).stop_at_first_contact
+        (False, True)
+        """
         eff = tuple(dict.fromkeys(effects))
         bad = [e for e in eff if e not in EFFECTS]
         if bad:
@@ -115,6 +127,7 @@ class Plan:
         )
 
     def describe(self) -> str:
+        """The plan in one sentence (printed with the timeline)."""
         steps = ["Algorithm 1 (zones) on every separating plane the descent reaches"]
         if self.pieces:
             what = "Algorithm 2 (Corollary 10) on the pieces of the zone only"
@@ -144,6 +157,7 @@ class ObjectState:
 
     @property
     def contact(self) -> bool | None:
+        """Transversal contact with some piece (None: undecided for some, none found)."""
         vals = [v.contact for _, v in self.pieces if v is not None]
         if any(v is True for v in vals):
             return True
@@ -153,9 +167,12 @@ class ObjectState:
 
     @property
     def touching(self) -> list[str]:
+        """Names of the pieces in transversal contact."""
         return [n for n, v in self.pieces if v is not None and v.contact]
 
     def summary(self, obj: Composite | None = None, *, with_zones: bool = True) -> str:
+        """One line: the zones visited and each evaluated piece's state (``obj``
+        glosses ``R-``/``R+`` as inside/outside)."""
         parts = []
         if with_zones and self.zones:
             parts.append("zone " + ", ".join(f"[{n}] {z}" for n, z in self.zones))
@@ -284,10 +301,26 @@ class PairResult:
 
     @property
     def initial(self) -> ObjectState:
+        """The state at the start of the time span."""
         return self.episodes[0].state
 
     def state_at(self, t: Any) -> ObjectState:
-        """The state at a rational time ``t`` of the span (from the exact timeline)."""
+        """The state at a rational time ``t`` of the span (from the exact timeline).
+
+        Raises
+        ------
+        ValueError
+            ``t`` is outside the computed part of the span.
+
+        Examples
+        --------
+        Example 17's bee, inside the crown at ``t = 6``:
+
+        >>> from quadric_contact.scene import builtin_scene
+        >>> pair = simulate(builtin_scene()).pair("bee", "tree")
+        >>> pair.state_at(6).summary(pair.object)
+        'zone [z - 6] R+ | crown: no contact, R- (inside)'
+        """
         t = Fraction(t)
         for ep in self.episodes:
             lo = _as_root(ep.start).compare(t)  # start vs t
@@ -360,12 +393,15 @@ class SimulationResult:
     warnings: list[str] = field(default_factory=list)
 
     def pair(self, ellipsoid: str, obj: str) -> PairResult:
+        """The timeline of one ellipsoid against one object (``KeyError`` if there is none)."""
         for p in self.pairs:
             if p.ellipsoid == ellipsoid and p.object.name == obj:
                 return p
         raise KeyError((ellipsoid, obj))
 
     def to_dict(self, places: int | None = None) -> dict[str, Any]:
+        """Everything as JSON-ready data (``quadric-contact simulate --json``); event
+        times with ``places`` decimals, their polynomials and isolating intervals."""
         places = self.scene.places if places is None else places
         out: dict[str, Any] = {
             "scene": self.scene.name,
@@ -393,6 +429,7 @@ class SimulationResult:
         return out
 
     def format_text(self, places: int | None = None) -> str:
+        """The timeline as printed by ``quadric-contact simulate`` (event times to ``places`` decimals)."""
         places = self.scene.places if places is None else places
         lines = [self.scene.describe(), f"plan: {self.plan.describe()}"]
         if "smallness" in self.plan.effects or any(c.small is False for c in self.scene.smallness.values()):
@@ -727,6 +764,11 @@ def simulate(
     ------
     SceneError
         Unknown effects, or a pair that is not small under the ``"refuse"`` policy.
+
+    References
+    ----------
+    Section 5.2, Algorithms 1 and 2, Corollaries 10 and 15, Theorem 13,
+    Example 17.
 
     Examples
     --------

@@ -244,6 +244,7 @@ class Condition:
 
     @property
     def rhs(self) -> Any:
+        """The right side as an exact sympy expression."""
         import sympy
 
         return sympy.sqrt(self.rhs_squared.sympy())
@@ -257,11 +258,13 @@ class Condition:
 
     @property
     def rhs_exact(self) -> RealAlgebraic:
+        """The right side as an exact real algebraic number."""
         from .algebraic import algebraic_sqrt
 
         return algebraic_sqrt(self.rhs_squared.exact())
 
     def decimal(self, side: str, digits: int = 15) -> str:
+        """``side`` (``"lhs"`` or ``"rhs"``) to ``digits`` significant digits (certified ball arithmetic)."""
         q = self.lhs_squared if side == "lhs" else self.rhs_squared
         bits = int(digits * 3.33) + 32
         with workprec(bits):
@@ -270,10 +273,12 @@ class Condition:
 
     @property
     def lhs_decimal(self) -> str:
+        """The left side to 15 significant digits."""
         return self.decimal("lhs")
 
     @property
     def rhs_decimal(self) -> str:
+        """The right side to 15 significant digits."""
         return self.decimal("rhs")
 
     def to_dict(self) -> dict[str, Any]:
@@ -322,6 +327,16 @@ class SmallnessReport:
     parameters : dict
         The semi-axes ``alpha, beta, gamma`` of ``E`` and the parameters
         ``a, b, c`` of ``Q`` in its Table 1 standard form, squared, exact.
+
+    Examples
+    --------
+    Example 17, the bee and the trunk: the paper's ``alpha = beta = 1``,
+    ``gamma = 1/sqrt(3)``, ``delta = 1/sqrt(10)`` are the Table 2 reduction; the
+    Table 1 semi-axes are ``delta alpha = 0.316228`` and so on.
+
+    >>> r = smallness("(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1", "x**2 + y**2 - 0.25*(z-3)**2 - 1")
+    >>> bool(r), r.failed, [r.parameter(p, 6) for p in ("alpha", "gamma", "a", "b", "c")]
+    (True, (), ['0.316228', '0.182574', '1.00000', '1.00000', '2.00000'])
     """
 
     small: bool
@@ -337,6 +352,7 @@ class SmallnessReport:
 
     @property
     def failed(self) -> tuple[Condition, ...]:
+        """The conditions (of the corrected row) that do not hold."""
         return tuple(c for c in self.conditions if not c.holds)
 
     def parameter(self, name: str, digits: int = 15) -> str:
@@ -789,9 +805,33 @@ def printed_table_2(E: Any, Q: Any, *, reading: QuadricKind | str | None = None)
     -------
     PrintedTable2
 
+    Raises
+    ------
+    ExcludedQuadricError
+        ``reading`` (or the type of ``Q``) has no row in Table 2.
+
     References
     ----------
     Table 2, Example 6.
+
+    Examples
+    --------
+    Example 6 read as a hyperbolic paraboloid: the paper prints
+    ``L = 2.00000169069926``, ``b = 0.9999998094301916`` and the maximal
+    curvature ``2/(L b^2) = 0.9999995357904882``, above the ellipsoid's
+    smallest curvature (about 0.416): not small.
+
+    >>> from fractions import Fraction
+    >>> from quadric_contact.paper import PRINTED
+    >>> E, Q = (
+    ...     [[Fraction(v) for v in row.split()] for row in PRINTED[f"Example 6 {name}"].split(";")]
+    ...     for name in "EQ"
+    ... )
+    >>> t = printed_table_2(E, Q, reading="hyperbolic paraboloid")
+    >>> t.value("L", 10), t.value("b'", 10)
+    ('2.000001691', '0.9999998094')
+    >>> [(c.decimal("lhs", 8), c.decimal("rhs", 8), c.holds) for c in t.conditions], t.small
+    ([('0.99999954', '0.41631601', False)], False)
     """
     e = as_quadric(E, "E").as_ellipsoid()
     q = as_quadric(Q, "Q")
