@@ -1,0 +1,874 @@
+"""The binary64 stages: plain ``float`` and the certified ``filter``.
+
+Both evaluate the generated closed forms (:mod:`quadric_contact._generated`):
+numba compiles the very functions of ``formulas.py`` and ``kernels.py`` into
+loop kernels (``backend="numba"``), and numpy evaluates the same functions on
+whole columns (``backend="numpy"``, the lambdify-style variant, also the
+fallback when numba is missing).  The two are checked against each other.
+
+The filter computes, next to every value, its magnitude (the generated
+magnitude companion) and turns it into a rigorous bound with the constants of
+:mod:`quadric_contact.modes.errorbounds`; a sign is reported only when the value
+is farther from zero than its bound, or when the bound is exactly zero (then
+the value is exactly zero: structural zeros such as ``c0 = c1 = 0`` for a plane
+are recognised exactly, never left to rounding).  Anything else is
+``UNCERTAIN`` and goes to the next stage.
+
+Kernel layout: pairs are processed in blocks of :data:`BLOCK`; a block is
+gathered from the ``(n, 4, 4)`` stacks into column buffers (so the straight-line
+arithmetic vectorises), computed branch-free, then decided.  Threads split the
+pair range (:func:`run_parallel`); the kernels release the GIL.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import threading
+from collections.abc import Callable, Iterator
+from concurrent.futures import ThreadPoolExecutor
+from typing import Any
+
+import numpy as np
+
+from .._generated import formulas, kernels
+from . import errorbounds as eb
+from ._jit import HAVE_NUMBA
+from ._jit import njit as _njit
+from .base import INVALID, MatrixStack, NumberMode, Pairs, StageCounts
+from .decisions import (
+    CONTACT_TABLE,
+    ELLIPSOID_NOT,
+    ELLIPSOID_UNCERTAIN,
+    ELLIPSOID_YES,
+    ROWS,
+    ellipsoid_from_signs,
+    ellipsoid_status,
+    region_code,
+    rows_from_invariant_signs,
+)
+from .validation import exact_matrix, raise_not_ellipsoid, validate_rows
+
+__all__ = [
+    "BACKENDS",
+    "BLOCK",
+    "HAVE_NUMBA",
+    "FilterMode",
+    "FloatMode",
+    "check_stack",
+    "float_invariant_signs",
+    "float_pairs",
+    "region_codes_from_signs",
+    "run_parallel",
+]
+
+BACKENDS = ("numba", "numpy") if HAVE_NUMBA else ("numpy",)
+BLOCK = 256
+"""Pairs per block of the numba kernels."""
+
+_UNC = 2
+
+
+# The generated functions, compiled as they are (one source for numpy and numba).
+_pencil = _njit(formulas.pencil_coefficients, inline=True)
+_pencil_mag = _njit(kernels.pencil_coefficients_magnitude, inline=True)
+_deltas = _njit(formulas.paper_deltas, inline=True)
+_deltas_mag = _njit(kernels.paper_deltas_magnitude, inline=True)
+_minors = _njit(kernels.leading_minors_3, inline=True)
+_minors_mag = _njit(kernels.leading_minors_3_magnitude, inline=True)
+_invariants = _njit(kernels.quadric_invariants, inline=True)
+_invariants_mag = _njit(kernels.quadric_invariants_magnitude, inline=True)
+_ellipsoid_status = _njit(ellipsoid_status, inline=True)
+_region_code = _njit(region_code, inline=True)
+
+_INPUT_MIN = eb.INPUT_MIN
+_INPUT_MAX = eb.INPUT_MAX
+_COEF_MIN = eb.COEFFICIENT_MIN
+_RHO_MAX = eb.RHO_MAX
+_ROUND_UP = eb.ROUND_UP
+_FLOAT_MAX = float(np.finfo(np.float64).max)
+
+
+@_njit(inline=True)
+def _sgn(v: float, err: float) -> int:
+    """Three-valued sign of a value known to within ``err``."""
+    if v > err:
+        return 1
+    if v < -err:
+        return -1
+    if err == 0.0:
+        return 0
+    return _UNC
+
+
+@_njit(inline=True)
+def _psgn(v: float) -> int:
+    """Plain sign of a float."""
+    if v > 0.0:
+        return 1
+    if v < 0.0:
+        return -1
+    return 0
+
+
+@_njit(inline=True)
+def _scaled_guard(c: float, r: float, a: float, y: float) -> float:
+    """Non-zero unless the scaled coefficient ``a = |c s|`` and bound ``y = r s`` are safe for
+    the Delta stage: a non-zero ``c`` must stay at least COEFFICIENT_MIN (so an underflow to
+    zero cannot pose as a structural zero), so must ``a + y`` when ``r != 0``, and a non-zero
+    bound must stay normal (then the scaling was exact)."""
+    g = ((c != 0.0) & (a < _COEF_MIN)) + ((r != 0.0) & (a + y < _COEF_MIN))
+    return g + ((r != 0.0) & (y < 2.0**-1022))
+
+
+@_njit(inline=True)
+def _sidx(s: int) -> int:
+    return 3 if s == _UNC else s + 1
+
+
+@_njit(inline=True)
+def _gather(
+    E: Any, Q: Any, eidx: Any, qidx: Any, es: int, qs: int, blo: int, m: int, eb_: Any, qb_: Any, qi: Any
+) -> None:
+    """Copy a block of pairs into column buffers: rows 0-9 the upper entries (codegen
+    order), rows 10-15 the strictly lower ones (for the symmetry check)."""
+    for t in range(m):
+        p = blo + t
+        ie = eidx[p] if eidx.shape[0] > 0 else p * es
+        iq = qidx[p] if qidx.shape[0] > 0 else p * qs
+        qi[t] = iq
+        eb_[0, t] = E[ie, 0, 0]
+        eb_[1, t] = E[ie, 0, 1]
+        eb_[2, t] = E[ie, 0, 2]
+        eb_[3, t] = E[ie, 0, 3]
+        eb_[4, t] = E[ie, 1, 1]
+        eb_[5, t] = E[ie, 1, 2]
+        eb_[6, t] = E[ie, 1, 3]
+        eb_[7, t] = E[ie, 2, 2]
+        eb_[8, t] = E[ie, 2, 3]
+        eb_[9, t] = E[ie, 3, 3]
+        eb_[10, t] = E[ie, 1, 0]
+        eb_[11, t] = E[ie, 2, 0]
+        eb_[12, t] = E[ie, 3, 0]
+        eb_[13, t] = E[ie, 2, 1]
+        eb_[14, t] = E[ie, 3, 1]
+        eb_[15, t] = E[ie, 3, 2]
+        qb_[0, t] = Q[iq, 0, 0]
+        qb_[1, t] = Q[iq, 0, 1]
+        qb_[2, t] = Q[iq, 0, 2]
+        qb_[3, t] = Q[iq, 0, 3]
+        qb_[4, t] = Q[iq, 1, 1]
+        qb_[5, t] = Q[iq, 1, 2]
+        qb_[6, t] = Q[iq, 1, 3]
+        qb_[7, t] = Q[iq, 2, 2]
+        qb_[8, t] = Q[iq, 2, 3]
+        qb_[9, t] = Q[iq, 3, 3]
+        qb_[10, t] = Q[iq, 1, 0]
+        qb_[11, t] = Q[iq, 2, 0]
+        qb_[12, t] = Q[iq, 3, 0]
+        qb_[13, t] = Q[iq, 2, 1]
+        qb_[14, t] = Q[iq, 3, 1]
+        qb_[15, t] = Q[iq, 3, 2]
+
+
+@_njit(inline=True)
+def _bad_entries(b: Any, i: int) -> float:
+    """Non-zero if an entry is not finite or the matrix is not symmetric (column ``i`` of a buffer)."""
+    z = 0.0
+    for k in range(10):
+        z += b[k, i] * 0.0  # NaN for inf and NaN
+    z += abs(b[1, i] - b[10, i]) + abs(b[2, i] - b[11, i]) + abs(b[3, i] - b[12, i])
+    z += abs(b[5, i] - b[13, i]) + abs(b[6, i] - b[14, i]) + abs(b[8, i] - b[15, i])
+    return 0.0 if z == 0.0 else 1.0
+
+
+@_njit(inline=True)
+def _outside(b: Any, i: int) -> float:
+    """Non-zero if a non-zero entry is outside ``[INPUT_MIN, INPUT_MAX]`` (or NaN)."""
+    g = 0.0
+    for k in range(10):
+        a = abs(b[k, i])
+        g += (not (a <= _INPUT_MAX)) + ((a < _INPUT_MIN) & (a != 0.0))
+    return g
+
+
+def _filter_pairs_impl(
+    E: Any,
+    Q: Any,
+    eidx: Any,
+    qidx: Any,
+    es: int,
+    qs: int,
+    lo: int,
+    hi: int,
+    KP: Any,
+    KL: Any,
+    DR: Any,
+    DA: Any,
+    qrows: Any,
+    want_region: bool,
+    out: Any,
+) -> None:
+    B = 256
+    eb_ = np.empty((16, B))
+    qb_ = np.empty((16, B))
+    qi = np.empty(B, np.intp)
+    cv = np.empty((5, B))  # scaled coefficients (paper's sign of E)
+    ce = np.empty((5, B))  # their error bounds
+    dv = np.empty((3, B))  # Delta values
+    de = np.empty((3, B))  # Delta bounds (relative form; -1 when it does not apply)
+    st = np.empty((4, B))  # bad input, outside the guard, ellipsoid status, rho too large
+    top_ = np.empty(B)
+    topi = top_.view(np.int64)
+    for blo in range(lo, hi, B):
+        m = min(B, hi - blo)
+        _gather(E, Q, eidx, qidx, es, qs, blo, m, eb_, qb_, qi)
+        for i in range(m):
+            e00 = eb_[0, i]
+            e01 = eb_[1, i]
+            e02 = eb_[2, i]
+            e03 = eb_[3, i]
+            e11 = eb_[4, i]
+            e12 = eb_[5, i]
+            e13 = eb_[6, i]
+            e22 = eb_[7, i]
+            e23 = eb_[8, i]
+            e33 = eb_[9, i]
+            q00 = qb_[0, i]
+            q01 = qb_[1, i]
+            q02 = qb_[2, i]
+            q03 = qb_[3, i]
+            q11 = qb_[4, i]
+            q12 = qb_[5, i]
+            q13 = qb_[6, i]
+            q22 = qb_[7, i]
+            q23 = qb_[8, i]
+            q33 = qb_[9, i]
+            st[0, i] = _bad_entries(eb_, i) + _bad_entries(qb_, i)
+            st[1, i] = _outside(eb_, i) + _outside(qb_, i)
+            c0, c1, c2, c3, c4 = _pencil(
+                e00, e01, e02, e03, e11, e12, e13, e22, e23, e33,
+                q00, q01, q02, q03, q11, q12, q13, q22, q23, q33,
+            )  # fmt: skip
+            m0, m1, m2, m3, m4 = _pencil_mag(
+                abs(e00), abs(e01), abs(e02), abs(e03), abs(e11), abs(e12), abs(e13), abs(e22), abs(e23),
+                abs(e33), abs(q00), abs(q01), abs(q02), abs(q03), abs(q11), abs(q12), abs(q13), abs(q22),
+                abs(q23), abs(q33),
+            )  # fmt: skip
+            r0 = KP[0] * m0
+            r1 = KP[1] * m1
+            r2 = KP[2] * m2
+            r3 = KP[3] * m3
+            r4 = KP[4] * m4
+            s2, s3 = _minors(e00, e01, e02, e11, e12, e22)
+            t2, t3 = _minors_mag(abs(e00), abs(e01), abs(e02), abs(e11), abs(e12), abs(e22))
+            sa = 1 if e00 > 0.0 else (-1 if e00 < 0.0 else 0)
+            st[2, i] = _ellipsoid_status(sa, _sgn(s2, KL[0] * t2), _sgn(s3, KL[1] * t3), _sgn(c4, r4))
+            # The paper's sign of E: for -E the odd coefficients change sign (exact).
+            o = -1.0 if e00 < 0.0 else 1.0
+            c1 = o * c1
+            c3 = o * c3
+            # Scale by the power of two s with top * s in [1, 2) (exact): read the exponent bits.
+            top_[i] = max(abs(c0) + r0, abs(c1) + r1, abs(c2) + r2, abs(c3) + r3, abs(c4) + r4)
+            topi[i] = (2046 - ((topi[i] >> 52) & 2047)) << 52
+            s = top_[i]
+            x0 = c0 * s
+            x1 = c1 * s
+            x2 = c2 * s
+            x3 = c3 * s
+            x4 = c4 * s
+            y0 = r0 * s
+            y1 = r1 * s
+            y2 = r2 * s
+            y3 = r3 * s
+            y4 = r4 * s
+            cv[0, i] = x0
+            cv[1, i] = x1
+            cv[2, i] = x2
+            cv[3, i] = x3
+            cv[4, i] = x4
+            ce[0, i] = y0
+            ce[1, i] = y1
+            ce[2, i] = y2
+            ce[3, i] = y3
+            ce[4, i] = y4
+            a0 = abs(x0)
+            a1 = abs(x1)
+            a2 = abs(x2)
+            a3 = abs(x3)
+            a4 = abs(x4)
+            st[1, i] += (
+                _scaled_guard(c0, r0, a0, y0)
+                + _scaled_guard(c1, r1, a1, y1)
+                + _scaled_guard(c2, r2, a2, y2)
+                + _scaled_guard(c3, r3, a3, y3)
+                + _scaled_guard(c4, r4, a4, y4)
+            )
+            rho = max(
+                y0 / max(a0, _COEF_MIN),
+                y1 / max(a1, _COEF_MIN),
+                y2 / max(a2, _COEF_MIN),
+                y3 / max(a3, _COEF_MIN),
+                y4 / max(a4, _COEF_MIN),
+            )
+            st[3, i] = 0.0 if rho <= _RHO_MAX else 1.0
+            d2, d3, d4 = _deltas(x0, x1, x2, x3, x4)
+            A2, A3, A4 = _deltas_mag(a0, a1, a2, a3, a4)
+            dv[0, i] = d2
+            dv[1, i] = d3
+            dv[2, i] = d4
+            de[0, i] = (DR[0, 0] * rho + DR[0, 1]) * A2
+            de[1, i] = (DR[1, 0] * rho + DR[1, 1]) * A3
+            de[2, i] = (DR[2, 0] * rho + DR[2, 1]) * A4
+        for i in range(m):
+            p = blo + i
+            if st[0, i] != 0.0:
+                out[p] = INVALID
+                continue
+            ell = st[2, i]
+            if ell == ELLIPSOID_NOT:
+                out[p] = INVALID
+                continue
+            if st[1, i] != 0.0 or ell == ELLIPSOID_UNCERTAIN:
+                out[p] = _UNC
+                continue
+            if st[3, i] == 0.0:
+                g2 = _sgn(dv[0, i], de[0, i])
+                g3 = _sgn(dv[1, i], de[1, i])
+                g4 = _sgn(dv[2, i], de[2, i])
+                contact = CONTACT_TABLE[_sidx(g2) + 4 * _sidx(g3) + 16 * _sidx(g4)]
+            else:
+                contact = _UNC
+            if contact == _UNC:
+                # The absolute form: magnitudes at a and at b >= a + e (two programs).
+                a0 = abs(cv[0, i])
+                a1 = abs(cv[1, i])
+                a2 = abs(cv[2, i])
+                a3 = abs(cv[3, i])
+                a4 = abs(cv[4, i])
+                b0 = (a0 + ce[0, i]) * _ROUND_UP
+                b1 = (a1 + ce[1, i]) * _ROUND_UP
+                b2 = (a2 + ce[2, i]) * _ROUND_UP
+                b3 = (a3 + ce[3, i]) * _ROUND_UP
+                b4 = (a4 + ce[4, i]) * _ROUND_UP
+                A2, A3, A4 = _deltas_mag(a0, a1, a2, a3, a4)
+                B2, B3, B4 = _deltas_mag(b0, b1, b2, b3, b4)
+                g2 = _sgn(dv[0, i], DA[0, 0] * (B2 - A2) + DA[0, 1] * A2)
+                g3 = _sgn(dv[1, i], DA[1, 0] * (B3 - A3) + DA[1, 1] * A3)
+                g4 = _sgn(dv[2, i], DA[2, 0] * (B4 - A4) + DA[2, 1] * A4)
+                contact = CONTACT_TABLE[_sidx(g2) + 4 * _sidx(g3) + 16 * _sidx(g4)]
+            if not want_region:
+                out[p] = contact
+                continue
+            row = qrows[qi[i]]
+            out[p] = _region_code(
+                contact,
+                _sgn(cv[0, i], ce[0, i]),
+                _sgn(cv[1, i], ce[1, i]),
+                _sgn(cv[2, i], ce[2, i]),
+                _sgn(cv[3, i], ce[3, i]),
+                _sgn(cv[4, i], ce[4, i]),
+                ROWS[row, 0],
+                ROWS[row, 1],
+                ROWS[row, 2],
+                ROWS[row, 3],
+                ROWS[row, 4],
+            )
+
+
+def _float_pairs_impl(
+    E: Any,
+    Q: Any,
+    eidx: Any,
+    qidx: Any,
+    es: int,
+    qs: int,
+    lo: int,
+    hi: int,
+    qrows: Any,
+    want_region: bool,
+    out: Any,
+) -> None:
+    B = 256
+    eb_ = np.empty((16, B))
+    qb_ = np.empty((16, B))
+    qi = np.empty(B, np.intp)
+    cv = np.empty((5, B))
+    dv = np.empty((3, B))
+    st = np.empty((2, B))
+    for blo in range(lo, hi, B):
+        m = min(B, hi - blo)
+        _gather(E, Q, eidx, qidx, es, qs, blo, m, eb_, qb_, qi)
+        for i in range(m):
+            e00 = eb_[0, i]
+            e01 = eb_[1, i]
+            e02 = eb_[2, i]
+            e11 = eb_[4, i]
+            e12 = eb_[5, i]
+            e22 = eb_[7, i]
+            st[0, i] = _bad_entries(eb_, i) + _bad_entries(qb_, i)
+            c0, c1, c2, c3, c4 = _pencil(
+                e00, e01, e02, eb_[3, i], e11, e12, eb_[6, i], e22, eb_[8, i], eb_[9, i],
+                qb_[0, i], qb_[1, i], qb_[2, i], qb_[3, i], qb_[4, i], qb_[5, i], qb_[6, i], qb_[7, i],
+                qb_[8, i], qb_[9, i],
+            )  # fmt: skip
+            s2, s3 = _minors(e00, e01, e02, e11, e12, e22)
+            sa = 1 if e00 > 0.0 else (-1 if e00 < 0.0 else 0)
+            st[1, i] = _ellipsoid_status(sa, _psgn(s2), _psgn(s3), _psgn(c4))
+            o = -1.0 if e00 < 0.0 else 1.0
+            c1 = o * c1
+            c3 = o * c3
+            cv[0, i] = c0
+            cv[1, i] = c1
+            cv[2, i] = c2
+            cv[3, i] = c3
+            cv[4, i] = c4
+            d2, d3, d4 = _deltas(c0, c1, c2, c3, c4)
+            dv[0, i] = d2
+            dv[1, i] = d3
+            dv[2, i] = d4
+        for i in range(m):
+            p = blo + i
+            if st[0, i] != 0.0 or st[1, i] != ELLIPSOID_YES:
+                out[p] = INVALID
+                continue
+            contact = CONTACT_TABLE[
+                _sidx(_psgn(dv[0, i])) + 4 * _sidx(_psgn(dv[1, i])) + 16 * _sidx(_psgn(dv[2, i]))
+            ]
+            if not want_region:
+                out[p] = contact
+                continue
+            row = qrows[qi[i]]
+            out[p] = _region_code(
+                contact,
+                _psgn(cv[0, i]),
+                _psgn(cv[1, i]),
+                _psgn(cv[2, i]),
+                _psgn(cv[3, i]),
+                _psgn(cv[4, i]),
+                ROWS[row, 0],
+                ROWS[row, 1],
+                ROWS[row, 2],
+                ROWS[row, 3],
+                ROWS[row, 4],
+            )
+
+
+def _invariant_signs_impl(Q: Any, lo: int, hi: int, K: Any, filtered: bool, out: Any) -> None:
+    """Signs of ``(trA, J, detA, E1, E2, E3, E4, q33)`` for ``Q[lo:hi]``; with
+    ``filtered`` the bounded ones, and all ``UNCERTAIN`` outside the guard."""
+    for p in range(lo, hi):
+        q00 = Q[p, 0, 0]
+        q01 = Q[p, 0, 1]
+        q02 = Q[p, 0, 2]
+        q03 = Q[p, 0, 3]
+        q11 = Q[p, 1, 1]
+        q12 = Q[p, 1, 2]
+        q13 = Q[p, 1, 3]
+        q22 = Q[p, 2, 2]
+        q23 = Q[p, 2, 3]
+        q33 = Q[p, 3, 3]
+        v = _invariants(q00, q01, q02, q03, q11, q12, q13, q22, q23, q33)
+        out[p, 7] = _psgn(q33)
+        if not filtered:
+            for k in range(7):
+                out[p, k] = _psgn(v[k])
+            continue
+        g = 0.0
+        for x in (q00, q01, q02, q03, q11, q12, q13, q22, q23, q33):
+            a = abs(x)
+            g += (not (a <= _INPUT_MAX)) + ((a < _INPUT_MIN) & (a != 0.0))
+        mags = _invariants_mag(
+            abs(q00), abs(q01), abs(q02), abs(q03), abs(q11), abs(q12), abs(q13), abs(q22), abs(q23), abs(q33)
+        )
+        for k in range(7):
+            out[p, k] = _UNC if g != 0.0 else _sgn(v[k], K[k] * mags[k])
+
+
+def _check_stack_impl(M: Any, lo: int, hi: int, out: Any) -> None:
+    """1 where a matrix has a non-finite entry, 2 where it is not symmetric, else 0."""
+    for p in range(lo, hi):
+        flag = 0
+        for i in range(4):
+            for j in range(4):
+                x = M[p, i, j]
+                if not (abs(x) <= _FLOAT_MAX):
+                    flag = 1
+        if flag == 0:
+            for i in range(4):
+                for j in range(i + 1, 4):
+                    if M[p, i, j] != M[p, j, i]:
+                        flag = 2
+        out[p] = flag
+
+
+def _region_codes_impl(contact: Any, csigns: Any, rows: Any, out: Any) -> None:
+    for p in range(contact.shape[0]):
+        row = rows[p]
+        out[p] = _region_code(
+            contact[p],
+            csigns[p, 0],
+            csigns[p, 1],
+            csigns[p, 2],
+            csigns[p, 3],
+            csigns[p, 4],
+            ROWS[row, 0],
+            ROWS[row, 1],
+            ROWS[row, 2],
+            ROWS[row, 3],
+            ROWS[row, 4],
+        )
+
+
+_filter_pairs = _njit(_filter_pairs_impl)
+_float_pairs = _njit(_float_pairs_impl)
+_invariant_signs = _njit(_invariant_signs_impl)
+_check_stack = _njit(_check_stack_impl)
+_region_codes = _njit(_region_codes_impl)
+
+
+# -- threads -----------------------------------------------------------------------------
+
+_THREADS = max(1, min(os.cpu_count() or 1, int(os.environ.get("QUADRIC_CONTACT_THREADS", "0") or 0) or 64))
+_MIN_PER_THREAD = 16384
+
+
+_local = threading.local()
+
+
+@contextlib.contextmanager
+def single_threaded() -> Iterator[None]:
+    """Run the kernels of this thread on this thread only (dask provides the parallelism)."""
+    old = getattr(_local, "threads", None)
+    _local.threads = 1
+    try:
+        yield
+    finally:
+        _local.threads = old
+
+
+def run_parallel(kernel: Callable[..., None], n: int, threads: int | None = None) -> None:
+    """Call ``kernel(lo, hi)`` on slices of ``range(n)``, on several threads when it pays
+    (the numba kernels release the GIL).  One thread inside :func:`single_threaded`."""
+    t = _THREADS if threads is None else max(1, threads)
+    t = min(t, getattr(_local, "threads", None) or t)
+    t = min(t, max(1, n // _MIN_PER_THREAD))
+    if t <= 1 or not HAVE_NUMBA:
+        kernel(0, n)
+        return
+    bounds = [n * k // t for k in range(t + 1)]
+    with ThreadPoolExecutor(max_workers=t) as pool:
+        list(pool.map(lambda k: kernel(bounds[k], bounds[k + 1]), range(t)))
+
+
+# -- public entry points --------------------------------------------------------------------
+
+
+def _constants(rounded: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    KP = np.array(eb.PENCIL_ERRBOUND[rounded])
+    KL = np.array(eb.MINORS_ERRBOUND[rounded])
+    DR = np.array(eb.DELTA_RELATIVE)
+    DA = np.array(eb.DELTA_ABSOLUTE)
+    return KP, KL, DR, DA
+
+
+def float_pairs(
+    E: np.ndarray,
+    Q: np.ndarray,
+    indices: tuple[np.ndarray, np.ndarray, int, int],
+    n: int,
+    *,
+    filtered: bool,
+    rounded: bool = False,
+    qrows: np.ndarray | None = None,
+    backend: str = "numba",
+    threads: int | None = None,
+) -> np.ndarray:
+    """Codes for ``n`` pairs of the float64 stacks ``E``, ``Q`` (``(m, 4, 4)``).
+
+    Returns :class:`ContactCode` values (or :class:`RegionCode` values when
+    ``qrows``, the row of every quadric, is given), ``UNCERTAIN`` where the
+    filter cannot decide and :data:`~quadric_contact.modes.base.INVALID` where an
+    input fails validation.
+    """
+    eidx, qidx, es, qs = indices
+    want_region = qrows is not None
+    rows = np.zeros(1, dtype=np.int16) if qrows is None else np.ascontiguousarray(qrows, dtype=np.int16)
+    out = np.empty(n, dtype=np.int8)
+    if n == 0:
+        return out
+    if backend == "numpy" or not HAVE_NUMBA:
+        return _numpy_pairs(E, Q, eidx, qidx, es, qs, n, filtered, rounded, rows, want_region)
+    if backend != "numba":
+        raise ValueError(f"backend must be one of {BACKENDS}, got {backend!r}")
+    if filtered:
+        KP, KL, DR, DA = _constants(rounded)
+        run_parallel(
+            lambda lo, hi: _filter_pairs(
+                E, Q, eidx, qidx, es, qs, lo, hi, KP, KL, DR, DA, rows, want_region, out
+            ),
+            n,
+            threads,
+        )
+    else:
+        run_parallel(
+            lambda lo, hi: _float_pairs(E, Q, eidx, qidx, es, qs, lo, hi, rows, want_region, out), n, threads
+        )
+    return out
+
+
+def float_invariant_signs(
+    Q: np.ndarray, *, filtered: bool, rounded: bool = False, backend: str = "numba"
+) -> np.ndarray:
+    """``(m, 8)`` int8 signs of ``(trA, J, detA, E1, E2, E3, E4, q33)`` for every quadric."""
+    out = np.empty((Q.shape[0], 8), dtype=np.int8)
+    K = np.array(eb.INVARIANTS_ERRBOUND[rounded])
+    if backend == "numpy" or not HAVE_NUMBA:
+        return _numpy_invariant_signs(Q, filtered, K)
+    _invariant_signs(Q, 0, Q.shape[0], K, filtered, out)
+    return out
+
+
+def check_stack(M: np.ndarray) -> np.ndarray:
+    """Per matrix: 0 fine, 1 a non-finite entry, 2 not symmetric."""
+    out = np.empty(M.shape[0], dtype=np.int8)
+    if HAVE_NUMBA:
+        run_parallel(lambda lo, hi: _check_stack(M, lo, hi, out), M.shape[0])
+        return out
+    finite = np.isfinite(M).all(axis=(1, 2))
+    sym = (np.swapaxes(M, 1, 2) == M).all(axis=(1, 2))
+    out[:] = np.where(~finite, 1, np.where(~sym, 2, 0))
+    return out
+
+
+def region_codes_from_signs(contact: np.ndarray, csigns: np.ndarray, rows: np.ndarray) -> np.ndarray:
+    out = np.empty(contact.shape[0], dtype=np.int8)
+    _region_codes(contact, csigns, rows, out)
+    return out
+
+
+# -- the numpy variant: the same generated functions on whole columns ------------------------
+
+_NUMPY_CHUNK = 1 << 16
+
+
+def _numpy_sign(v: np.ndarray, err: np.ndarray | None) -> np.ndarray:
+    if err is None:
+        return np.sign(v).astype(np.int8)
+    s = np.where(v > err, 1, np.where(v < -err, -1, np.where(err == 0.0, 0, _UNC)))
+    return s.astype(np.int8)
+
+
+def _table_index(signs: list[np.ndarray]) -> np.ndarray:
+    return sum(m * np.where(x == _UNC, 3, x + 1) for m, x in zip((1, 4, 16), signs, strict=True))  # type: ignore[return-value]
+
+
+def _numpy_pairs(
+    E: np.ndarray,
+    Q: np.ndarray,
+    eidx: np.ndarray,
+    qidx: np.ndarray,
+    es: int,
+    qs: int,
+    n: int,
+    filtered: bool,
+    rounded: bool,
+    rows: np.ndarray,
+    want_region: bool,
+) -> np.ndarray:
+    from ..codegen import ENTRY_INDICES
+
+    out = np.empty(n, dtype=np.int8)
+    KP, KL, DR, DA = _constants(rounded)
+    for lo in range(0, n, _NUMPY_CHUNK):
+        hi = min(n, lo + _NUMPY_CHUNK)
+        p = np.arange(lo, hi)
+        ie = eidx[lo:hi] if eidx.shape[0] else p * es
+        iq = qidx[lo:hi] if qidx.shape[0] else p * qs
+        Em, Qm = E[ie], Q[iq]
+        bad = ~(np.isfinite(Em).all(axis=(1, 2)) & np.isfinite(Qm).all(axis=(1, 2)))
+        bad |= ~(
+            (Em == np.swapaxes(Em, 1, 2)).all(axis=(1, 2)) & (Qm == np.swapaxes(Qm, 1, 2)).all(axis=(1, 2))
+        )
+        e = [Em[:, i, j] for i, j in ENTRY_INDICES]
+        q = [Qm[:, i, j] for i, j in ENTRY_INDICES]
+        with np.errstate(all="ignore"):
+            c = list(formulas.pencil_coefficients(*e, *q))
+            mi = kernels.leading_minors_3(e[0], e[1], e[2], e[4], e[5], e[7])
+            if filtered:
+                mc = kernels.pencil_coefficients_magnitude(*(np.abs(x) for x in e + q))
+                mm = kernels.leading_minors_3_magnitude(*(np.abs(e[k]) for k in (0, 1, 2, 4, 5, 7)))
+                r = [KP[k] * mc[k] for k in range(5)]
+                sm = [_numpy_sign(mi[k], KL[k] * mm[k]) for k in range(2)]
+                absx = np.abs(np.stack(e + q))
+                outside = (
+                    (absx > eb.INPUT_MAX) | ~np.isfinite(absx) | ((absx < eb.INPUT_MIN) & (absx != 0))
+                ).any(axis=0)
+            else:
+                r = [None] * 5
+                sm = [_numpy_sign(mi[k], None) for k in range(2)]
+                outside = np.zeros(hi - lo, dtype=bool)
+            sa = np.sign(e[0]).astype(np.int8)
+            s4 = _numpy_sign(c[4], r[4])
+            ell = ellipsoid_from_signs(sa, sm[0], sm[1], s4)
+            o = np.where(e[0] < 0, -1.0, 1.0)
+            c[1] = o * c[1]
+            c[3] = o * c[3]
+            if filtered:
+                top = np.maximum.reduce([np.abs(c[k]) + r[k] for k in range(5)])
+                _, ex = np.frexp(np.where(top > 0, top, 1.0))
+                s = np.ldexp(1.0, 1 - ex)  # top * s in [1, 2), as the kernels scale
+                x = [c[k] * s for k in range(5)]
+                y = [r[k] * s for k in range(5)]
+                a = [np.abs(v) for v in x]
+                for k in range(5):
+                    outside |= ((c[k] != 0) & (a[k] < eb.COEFFICIENT_MIN)) | (
+                        (r[k] != 0) & (a[k] + y[k] < eb.COEFFICIENT_MIN)
+                    )
+                    outside |= (r[k] != 0) & (y[k] < 2.0**-1022)
+                rho = np.maximum.reduce([y[k] / np.maximum(a[k], eb.COEFFICIENT_MIN) for k in range(5)])
+                d = formulas.paper_deltas(*x)
+                A = kernels.paper_deltas_magnitude(*a)
+                b = [(a[k] + y[k]) * eb.ROUND_UP for k in range(5)]
+                Bm = kernels.paper_deltas_magnitude(*b)
+                rel = [_numpy_sign(d[j], (DR[j, 0] * rho + DR[j, 1]) * A[j]) for j in range(3)]
+                absolute = [_numpy_sign(d[j], DA[j, 0] * (Bm[j] - A[j]) + DA[j, 1] * A[j]) for j in range(3)]
+                tier_a = CONTACT_TABLE[_table_index(rel)]
+                use_b = (rho > eb.RHO_MAX) | (tier_a == _UNC)
+                ds = [np.where(use_b, absolute[j], rel[j]) for j in range(3)]
+                cs = [_numpy_sign(x[k], y[k]) for k in range(5)]
+            else:
+                d = formulas.paper_deltas(*c)
+                ds = [_numpy_sign(d[j], None) for j in range(3)]
+                cs = [_numpy_sign(c[k], None) for k in range(5)]
+        contact = CONTACT_TABLE[_table_index(ds)]
+        if want_region:
+            code = _region_python(contact, np.stack(cs, axis=1), rows[iq])
+        else:
+            code = contact.astype(np.int8)
+        if filtered:
+            code = np.where(outside | (ell == ELLIPSOID_UNCERTAIN), _UNC, code)
+            invalid = bad | (ell == ELLIPSOID_NOT)
+        else:
+            invalid = bad | (ell != ELLIPSOID_YES)
+        out[lo:hi] = np.where(invalid, INVALID, code)
+    return out
+
+
+def _region_python(contact: np.ndarray, cs: np.ndarray, rows: np.ndarray) -> np.ndarray:
+    if HAVE_NUMBA:
+        return region_codes_from_signs(
+            contact.astype(np.int8), np.ascontiguousarray(cs, dtype=np.int8), rows.astype(np.int16)
+        )
+    out = np.empty(contact.shape[0], dtype=np.int8)
+    for p in range(contact.shape[0]):
+        out[p] = region_code(int(contact[p]), *(int(s) for s in cs[p]), *(int(v) for v in ROWS[rows[p]]))
+    return out
+
+
+def _numpy_invariant_signs(Q: np.ndarray, filtered: bool, K: np.ndarray) -> np.ndarray:
+    from ..codegen import ENTRY_INDICES
+
+    q = [Q[:, i, j] for i, j in ENTRY_INDICES]
+    out = np.empty((Q.shape[0], 8), dtype=np.int8)
+    with np.errstate(all="ignore"):
+        v = kernels.quadric_invariants(*q)
+        if filtered:
+            mags = kernels.quadric_invariants_magnitude(*(np.abs(x) for x in q))
+            absx = np.abs(np.stack(q))
+            outside = (
+                (absx > eb.INPUT_MAX) | ~np.isfinite(absx) | ((absx < eb.INPUT_MIN) & (absx != 0))
+            ).any(axis=0)
+        for k in range(7):
+            if filtered:
+                out[:, k] = np.where(outside, _UNC, _numpy_sign(v[k], K[k] * mags[k]))
+            else:
+                out[:, k] = _numpy_sign(v[k], None)
+    out[:, 7] = np.sign(q[9]).astype(np.int8)
+    return out
+
+
+# -- the modes -------------------------------------------------------------------------------
+
+
+class FloatMode(NumberMode):
+    """Plain binary64 (``mode="float"``): the fastest, and wrong near tangency or
+    wherever a structural zero is left to rounding (it never says ``UNCERTAIN``,
+    except for an ellipsoid it cannot even see as one).
+
+    Parameters
+    ----------
+    backend : {"numba", "numpy"}, optional
+        Compiled kernels (default when numba is installed) or numpy on columns.
+    threads : int, optional
+        Threads for the compiled kernels (default: all cores; 1 under dask).
+    """
+
+    name = "float"
+    stage = "float"
+    certified = False
+    filtered = False
+
+    def __init__(self, backend: str | None = None, threads: int | None = None) -> None:
+        super().__init__()
+        self.backend = backend or BACKENDS[0]
+        if self.backend not in BACKENDS:
+            raise ValueError(f"backend must be one of {BACKENDS}, got {backend!r}")
+        self.threads = threads
+
+    def _codes(self, pairs: Pairs, qrows: np.ndarray | None) -> np.ndarray:
+        codes = float_pairs(
+            pairs.E.floats,
+            pairs.Q.floats,
+            pairs.kernel_indices(),
+            pairs.n,
+            filtered=self.filtered,
+            rounded=pairs.E.rounded or pairs.Q.rounded,
+            qrows=qrows,
+            backend=self.backend,
+            threads=self.threads,
+        )
+        invalid = codes == INVALID
+        if invalid.any():
+            codes[invalid] = _diagnose(pairs, np.flatnonzero(invalid))
+        decided = int(np.count_nonzero(codes != _UNC))
+        self._record(StageCounts({self.stage: decided}, pairs.n - decided))
+        return codes
+
+    def contact(self, pairs: Pairs) -> np.ndarray:
+        return self._codes(pairs, None)
+
+    def region(self, pairs: Pairs, rows: np.ndarray) -> np.ndarray:
+        return self._codes(pairs, rows)
+
+    def classify(self, Q: MatrixStack, rows: np.ndarray | None = None) -> np.ndarray:
+        sub = Q.floats if rows is None else np.ascontiguousarray(Q.floats[rows])
+        validate_rows(Q, np.arange(len(Q)) if rows is None else rows)
+        signs = float_invariant_signs(sub, filtered=self.filtered, rounded=Q.rounded, backend=self.backend)
+        return rows_from_invariant_signs(signs)
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}(backend={self.backend!r})"
+
+
+class FilterMode(FloatMode):
+    """binary64 with a rigorous error bound (``mode="filter"``, the first stage of
+    ``certified``): a sign only where it is certain, ``UNCERTAIN`` elsewhere.
+    The bounds are derived in :mod:`quadric_contact.modes.errorbounds`."""
+
+    name = "filter"
+    stage = "filter"
+    certified = True
+    filtered = True
+
+
+def _diagnose(pairs: Pairs, which: np.ndarray) -> np.ndarray:
+    """Raise for the first really invalid pair among ``which``; return ``UNCERTAIN`` for
+    pairs flagged only because a plain float test could not see ``E`` as an ellipsoid."""
+    e_rows, q_rows = pairs.e_rows()[which], pairs.q_rows()[which]
+    validate_rows(pairs.E, np.unique(e_rows))
+    validate_rows(pairs.Q, np.unique(q_rows))
+    for row in np.unique(e_rows):
+        if exact_matrix(pairs.E, int(row))._ellipsoid_sign() == 0:  # type: ignore[attr-defined]
+            raise_not_ellipsoid(pairs.E, int(row))
+    return np.full(which.size, _UNC, dtype=np.int8)
