@@ -299,8 +299,7 @@ def _run(what: str, E: Any, Q: Any, mode: Any, client: Any, compute: bool) -> An
     if what == "contact":
         codes = m.contact(pairs)
         return ContactCode(int(codes[0])) if shape == () else codes.reshape(shape)
-    rows = m.classify(pairs.Q)
-    codes = m.region(pairs, rows)
+    codes = m.region(pairs)
     return RegionCode(int(codes[0])) if shape == () else codes.reshape(shape)
 
 

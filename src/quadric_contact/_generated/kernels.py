@@ -20,6 +20,20 @@ def leading_minors_3(a00, a01, a02, a11, a12, a22):
     return (m2, m3)
 
 
+def paper_deltas_compact(c0, c1, c2, c3, c4):
+    """Delta_2, Delta_3 and 27 Delta_4 (same signs as paper_deltas) in about 60 operations,
+    for exact arithmetic; 27 Delta_4 = 4 I^3 - J^2 with the invariants I, J of the quartic."""
+    I = 12*c0*c4 - 3*c1*c3 + c2*c2
+    J = 72*c0*c2*c4 - 27*c0*c3*c3 - 27*c1*c1*c4 + 9*c1*c2*c3 - 2*c2*c2*c2
+    u = -3*c1*c3 + c2*c2
+    v = 8*c0*c2 - 9*c1*c1
+    w = -3*c0*c3 + 7*c1*c2
+    Delta2 = -8*c2*c4 + 3*c3*c3
+    Delta3 = -4*c2*c2*c2*c4 + c3*c3*u + 2*c3*c4*w + 2*c4*c4*v
+    Delta4_27 = 4*I*I*I - J*J
+    return (Delta2, Delta3, Delta4_27)
+
+
 def quadric_invariants(q00, q01, q02, q03, q11, q12, q13, q22, q23, q33):
     """(trA, JA, detA, E1, E2, E3, E4) of the symmetric Q with upper entries qij: trace, sum of
     principal 2x2 minors and determinant of the quadratic part, and the sums of the principal

@@ -304,12 +304,12 @@ class NumberMode(ABC):
 
     @abstractmethod
     def classify(self, Q: MatrixStack, rows: np.ndarray | None = None) -> np.ndarray:
-        """Region-table row (see :mod:`~quadric_contact.modes.decisions`) of the quadrics
-        ``rows`` (all by default), ``UNCERTAIN_ROW`` where the type is uncertain."""
+        """Candidate Table 4 rows (int64 bit masks, see :mod:`~quadric_contact.modes.decisions`)
+        of the quadrics ``rows`` (all by default): one bit where the type is certain."""
 
     @abstractmethod
-    def region(self, pairs: Pairs, rows: np.ndarray) -> np.ndarray:
-        """:class:`RegionCode` of every pair, given the rows of the quadrics."""
+    def region(self, pairs: Pairs) -> np.ndarray:
+        """:class:`RegionCode` of every pair (int8, shape ``(pairs.n,)``)."""
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}()"

@@ -16,7 +16,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from .base import MatrixStack, NumberMode, Pairs, StageCounts
-from .decisions import UNCERTAIN_ROW
+from .decisions import UNCERTAIN_ROW, rows_from_masks
 from .float64 import FilterMode
 from .objects import BallMode, ExactMode
 
@@ -42,8 +42,6 @@ class CertifiedMode(NumberMode):
     ----------
     last, counts : StageCounts
         Entries decided by each stage in the last call and in all calls so far.
-    type_counts : StageCounts
-        The same for the classification of the quadrics (relative position only).
     """
 
     name = "certified"
@@ -64,7 +62,6 @@ class CertifiedMode(NumberMode):
         if not stages or not all(s.certified for s in stages):
             raise ValueError("every stage of a certified cascade must be certified")
         self.stages = stages
-        self.type_counts = StageCounts()
 
     def _cascade(self, pairs: Pairs, run: Callable[[NumberMode, Pairs], np.ndarray]) -> np.ndarray:
         counts = StageCounts()
@@ -88,26 +85,18 @@ class CertifiedMode(NumberMode):
     def contact(self, pairs: Pairs) -> np.ndarray:
         return self._cascade(pairs, lambda stage, p: stage.contact(p))
 
-    def region(self, pairs: Pairs, rows: np.ndarray) -> np.ndarray:
-        return self._cascade(pairs, lambda stage, p: stage.region(p, rows))
+    def region(self, pairs: Pairs) -> np.ndarray:
+        # Each stage classifies the quadrics of the pairs it receives, with its own numbers.
+        return self._cascade(pairs, lambda stage, p: stage.region(p))
 
     def classify(self, Q: MatrixStack, rows: np.ndarray | None = None) -> np.ndarray:
-        counts = StageCounts()
         index = np.arange(len(Q)) if rows is None else np.asarray(rows)
         out = self.stages[0].classify(Q, index)
-        todo = np.flatnonzero(out == UNCERTAIN_ROW)
-        counts.add(_stage(self.stages[0]), index.size - todo.size)
         for stage in self.stages[1:]:
+            todo = np.flatnonzero(rows_from_masks(out) == UNCERTAIN_ROW)
             if todo.size == 0:
                 break
-            sub = stage.classify(Q, index[todo])
-            out[todo] = sub
-            done = sub != UNCERTAIN_ROW
-            counts.add(_stage(stage), int(np.count_nonzero(done)))
-            todo = todo[~done]
-        counts.undecided = int(todo.size)
-        with self._lock:
-            self.type_counts.merge(counts)
+            out[todo] = stage.classify(Q, index[todo])
         return out
 
     def __repr__(self) -> str:

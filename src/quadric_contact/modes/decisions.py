@@ -46,10 +46,13 @@ __all__ = [
     "ellipsoid_from_signs",
     "ellipsoid_status",
     "kind_from_invariant_signs",
+    "masks_from_invariant_signs",
     "region_code",
+    "region_code_masked",
     "region_from_signs",
     "row_of",
     "rows_from_invariant_signs",
+    "rows_from_masks",
     "sign_index",
 ]
 
@@ -222,27 +225,37 @@ def kind_from_invariant_signs(signs: tuple[int, ...]) -> tuple[QuadricKind, int]
     return kind, sign
 
 
-def rows_from_invariant_signs(signs: np.ndarray) -> np.ndarray:
-    """Rows for an ``(n, 8)`` int8 array of invariant signs (:data:`UNCERTAIN_ROW`
-    where a sign the type depends on is uncertain)."""
+def masks_from_invariant_signs(signs: np.ndarray) -> np.ndarray:
+    """Candidate rows for an ``(n, 8)`` int8 array of invariant signs, as int64 bit masks
+    (bit ``r`` for row ``r``): one bit where the signs are certain, the rows of every type
+    the uncertain signs allow otherwise (:func:`region_code_masked` resolves them)."""
     signs = np.asarray(signs, dtype=np.int8)
-    n = signs.shape[0]
-    out = np.full(n, UNCERTAIN_ROW, dtype=np.int16)
-    if n == 0:
+    out = np.zeros(signs.shape[0], dtype=np.int64)
+    if signs.shape[0] == 0:
         return out
     combos, inverse = np.unique(signs, axis=0, return_inverse=True)
-    rows = np.empty(len(combos), dtype=np.int16)
+    masks = np.empty(len(combos), dtype=np.int64)
     for k, combo in enumerate(combos):
-        t = tuple(int(s) for s in combo)
-        kinds = {kind_from_invariant_signs(c) for c in _completions(t)} if UNCERTAIN in t else None
-        if kinds is None:
-            rows[k] = row_of(*kind_from_invariant_signs(t))
-        elif len(kinds) == 1:
-            rows[k] = row_of(*kinds.pop())
-        else:
-            rows[k] = UNCERTAIN_ROW
-    out[:] = rows[np.asarray(inverse).reshape(-1)]
+        rows = {row_of(*kind_from_invariant_signs(c)) for c in _completions(tuple(int(v) for v in combo))}
+        masks[k] = sum(1 << r for r in rows)
+    out[:] = masks[np.asarray(inverse).reshape(-1)]
     return out
+
+
+def rows_from_masks(masks: np.ndarray) -> np.ndarray:
+    """The row of each single-bit mask, :data:`UNCERTAIN_ROW` for the others."""
+    masks = np.asarray(masks, dtype=np.int64)
+    single = (masks != 0) & ((masks & (masks - 1)) == 0)
+    rows = np.full(masks.shape, UNCERTAIN_ROW, dtype=np.int16)
+    if single.any():
+        rows[single] = np.log2(masks[single].astype(np.float64)).round().astype(np.int16)
+    return rows
+
+
+def rows_from_invariant_signs(signs: np.ndarray) -> np.ndarray:
+    """Rows for an ``(n, 8)`` int8 array of invariant signs (:data:`UNCERTAIN_ROW`
+    where the type is uncertain)."""
+    return rows_from_masks(masks_from_invariant_signs(signs))
 
 
 # -- relative position (Theorem 13, Table 4) ----------------------------------------------
@@ -268,6 +281,7 @@ def _variations(a: int, b: int, c: int, d: int, e: int) -> int:
     return count
 
 
+@njit(inline=True)
 def region_code(
     contact: int,
     s0: int,
@@ -316,15 +330,41 @@ def region_code(
     return 3  # NO_ROW
 
 
-def region_from_signs(contact: np.ndarray, csigns: np.ndarray, rows: np.ndarray) -> np.ndarray:
-    """Vectorised :func:`region_code`: ``contact`` (n,), ``csigns`` (n, 5) for
-    ``c0 .. c4``, ``rows`` (n,) the row of each pair's quadric."""
+@njit(inline=True)
+def region_code_masked(
+    contact: int, s0: int, s1: int, s2: int, s3: int, s4: int, row: int, mask: int, rows: Any
+) -> int:
+    """:func:`region_code` for a quadric known by its row, or, when ``row`` is
+    :data:`UNCERTAIN_ROW`, by the bit mask of its candidate rows: the answer is given
+    when every candidate gives the same one (``rows`` is :data:`ROWS`)."""
+    if row != UNCERTAIN_ROW:
+        return region_code(
+            contact, s0, s1, s2, s3, s4, rows[row, 0], rows[row, 1], rows[row, 2], rows[row, 3], rows[row, 4]
+        )
+    answer = -99
+    for r in range(UNCERTAIN_ROW):
+        if (mask >> r) & 1:
+            code = region_code(
+                contact, s0, s1, s2, s3, s4, rows[r, 0], rows[r, 1], rows[r, 2], rows[r, 3], rows[r, 4]
+            )
+            if answer == -99:
+                answer = code
+            elif code != answer:
+                return 2
+    return 2 if answer == -99 else answer
+
+
+def region_from_signs(contact: np.ndarray, csigns: np.ndarray, masks: np.ndarray) -> np.ndarray:
+    """Vectorised :func:`region_code_masked`: ``contact`` (n,), ``csigns`` (n, 5) for
+    ``c0 .. c4``, ``masks`` (n,) the candidate rows of each pair's quadric."""
     from . import float64
 
+    masks = np.ascontiguousarray(masks, dtype=np.int64)
     return float64.region_codes_from_signs(
         np.ascontiguousarray(contact, dtype=np.int8),
         np.ascontiguousarray(csigns, dtype=np.int8),
-        np.ascontiguousarray(rows, dtype=np.int16),
+        rows_from_masks(masks),
+        masks,
     )
 
 

@@ -44,8 +44,9 @@ from .decisions import (
     ROWS,
     ellipsoid_from_signs,
     ellipsoid_status,
-    region_code,
-    rows_from_invariant_signs,
+    masks_from_invariant_signs,
+    region_code_masked,
+    rows_from_masks,
 )
 from .validation import exact_matrix, raise_not_ellipsoid, validate_rows
 
@@ -56,6 +57,7 @@ __all__ = [
     "FilterMode",
     "FloatMode",
     "check_stack",
+    "filter_quantities",
     "float_invariant_signs",
     "float_pairs",
     "region_codes_from_signs",
@@ -79,7 +81,7 @@ _minors_mag = _njit(kernels.leading_minors_3_magnitude, inline=True)
 _invariants = _njit(kernels.quadric_invariants, inline=True)
 _invariants_mag = _njit(kernels.quadric_invariants_magnitude, inline=True)
 _ellipsoid_status = _njit(ellipsoid_status, inline=True)
-_region_code = _njit(region_code, inline=True)
+_region_code_masked = region_code_masked
 
 _INPUT_MIN = eb.INPUT_MIN
 _INPUT_MAX = eb.INPUT_MAX
@@ -205,7 +207,10 @@ def _filter_pairs_impl(
     KL: Any,
     DR: Any,
     DA: Any,
+    qflags: Any,
+    same_ok: bool,
     qrows: Any,
+    qmasks: Any,
     want_region: bool,
     out: Any,
 ) -> None:
@@ -216,8 +221,9 @@ def _filter_pairs_impl(
     cv = np.empty((5, B))  # scaled coefficients (paper's sign of E)
     ce = np.empty((5, B))  # their error bounds
     dv = np.empty((3, B))  # Delta values
-    de = np.empty((3, B))  # Delta bounds (relative form; -1 when it does not apply)
-    st = np.empty((4, B))  # bad input, outside the guard, ellipsoid status, rho too large
+    de = np.empty((3, B))  # Delta bounds (relative form)
+    # bad input, outside the guards, ellipsoid status, rho too large, same quadratic part
+    st = np.empty((5, B))
     top_ = np.empty(B)
     topi = top_.view(np.int64)
     for blo in range(lo, hi, B):
@@ -260,6 +266,22 @@ def _filter_pairs_impl(
             r2 = KP[2] * m2
             r3 = KP[3] * m3
             r4 = KP[4] * m4
+            # Structural zeros known exactly from the rank of Q (computed once per quadric):
+            # det Q = 0 gives c0 = 0, rank <= 2 (adj Q = 0) gives c1 = 0 as well.
+            z = qflags[qi[i]]
+            if z & 1:
+                c0 = 0.0
+                r0 = 0.0
+            if z & 2:
+                c1 = 0.0
+                r1 = 0.0
+            # Quadratic parts equal up to sign (compared exactly): lambda = -+1 is a double
+            # root, so Delta_4 = 0 identically.
+            same = abs(e00 - q00) + abs(e01 - q01) + abs(e02 - q02) + abs(e11 - q11) + abs(e12 - q12)
+            opposite = abs(e00 + q00) + abs(e01 + q01) + abs(e02 + q02) + abs(e11 + q11) + abs(e12 + q12)
+            st[4, i] = (
+                1.0 if same_ok and (same + abs(e22 - q22) == 0.0 or opposite + abs(e22 + q22) == 0.0) else 0.0
+            )
             s2, s3 = _minors(e00, e01, e02, e11, e12, e22)
             t2, t3 = _minors_mag(abs(e00), abs(e01), abs(e02), abs(e11), abs(e12), abs(e22))
             sa = 1 if e00 > 0.0 else (-1 if e00 < 0.0 else 0)
@@ -314,6 +336,9 @@ def _filter_pairs_impl(
             st[3, i] = 0.0 if rho <= _RHO_MAX else 1.0
             d2, d3, d4 = _deltas(x0, x1, x2, x3, x4)
             A2, A3, A4 = _deltas_mag(a0, a1, a2, a3, a4)
+            if st[4, i] != 0.0:
+                d4 = 0.0
+                A4 = 0.0
             dv[0, i] = d2
             dv[1, i] = d3
             dv[2, i] = d4
@@ -355,24 +380,22 @@ def _filter_pairs_impl(
                 B2, B3, B4 = _deltas_mag(b0, b1, b2, b3, b4)
                 g2 = _sgn(dv[0, i], DA[0, 0] * (B2 - A2) + DA[0, 1] * A2)
                 g3 = _sgn(dv[1, i], DA[1, 0] * (B3 - A3) + DA[1, 1] * A3)
-                g4 = _sgn(dv[2, i], DA[2, 0] * (B4 - A4) + DA[2, 1] * A4)
+                g4 = 0 if st[4, i] != 0.0 else _sgn(dv[2, i], DA[2, 0] * (B4 - A4) + DA[2, 1] * A4)
                 contact = CONTACT_TABLE[_sidx(g2) + 4 * _sidx(g3) + 16 * _sidx(g4)]
             if not want_region:
                 out[p] = contact
                 continue
-            row = qrows[qi[i]]
-            out[p] = _region_code(
+            iq = qi[i]
+            out[p] = _region_code_masked(
                 contact,
                 _sgn(cv[0, i], ce[0, i]),
                 _sgn(cv[1, i], ce[1, i]),
                 _sgn(cv[2, i], ce[2, i]),
                 _sgn(cv[3, i], ce[3, i]),
                 _sgn(cv[4, i], ce[4, i]),
-                ROWS[row, 0],
-                ROWS[row, 1],
-                ROWS[row, 2],
-                ROWS[row, 3],
-                ROWS[row, 4],
+                qrows[iq],
+                qmasks[iq],
+                ROWS,
             )
 
 
@@ -386,6 +409,7 @@ def _float_pairs_impl(
     lo: int,
     hi: int,
     qrows: Any,
+    qmasks: Any,
     want_region: bool,
     out: Any,
 ) -> None:
@@ -438,19 +462,17 @@ def _float_pairs_impl(
             if not want_region:
                 out[p] = contact
                 continue
-            row = qrows[qi[i]]
-            out[p] = _region_code(
+            iq = qi[i]
+            out[p] = _region_code_masked(
                 contact,
                 _psgn(cv[0, i]),
                 _psgn(cv[1, i]),
                 _psgn(cv[2, i]),
                 _psgn(cv[3, i]),
                 _psgn(cv[4, i]),
-                ROWS[row, 0],
-                ROWS[row, 1],
-                ROWS[row, 2],
-                ROWS[row, 3],
-                ROWS[row, 4],
+                qrows[iq],
+                qmasks[iq],
+                ROWS,
             )
 
 
@@ -502,21 +524,18 @@ def _check_stack_impl(M: Any, lo: int, hi: int, out: Any) -> None:
         out[p] = flag
 
 
-def _region_codes_impl(contact: Any, csigns: Any, rows: Any, out: Any) -> None:
+def _region_codes_impl(contact: Any, csigns: Any, rows: Any, masks: Any, out: Any) -> None:
     for p in range(contact.shape[0]):
-        row = rows[p]
-        out[p] = _region_code(
+        out[p] = _region_code_masked(
             contact[p],
             csigns[p, 0],
             csigns[p, 1],
             csigns[p, 2],
             csigns[p, 3],
             csigns[p, 4],
-            ROWS[row, 0],
-            ROWS[row, 1],
-            ROWS[row, 2],
-            ROWS[row, 3],
-            ROWS[row, 4],
+            rows[p],
+            masks[p],
+            ROWS,
         )
 
 
@@ -581,6 +600,9 @@ def float_pairs(
     filtered: bool,
     rounded: bool = False,
     qrows: np.ndarray | None = None,
+    qmasks: np.ndarray | None = None,
+    qflags: np.ndarray | None = None,
+    same_ok: bool = False,
     backend: str = "numba",
     threads: int | None = None,
 ) -> np.ndarray:
@@ -593,26 +615,51 @@ def float_pairs(
     """
     eidx, qidx, es, qs = indices
     want_region = qrows is not None
+    flags = (
+        np.zeros(Q.shape[0], dtype=np.int8) if qflags is None else np.ascontiguousarray(qflags, dtype=np.int8)
+    )
     rows = np.zeros(1, dtype=np.int16) if qrows is None else np.ascontiguousarray(qrows, dtype=np.int16)
+    masks = np.zeros(1, dtype=np.int64) if qmasks is None else np.ascontiguousarray(qmasks, dtype=np.int64)
     out = np.empty(n, dtype=np.int8)
     if n == 0:
         return out
     if backend == "numpy" or not HAVE_NUMBA:
-        return _numpy_pairs(E, Q, eidx, qidx, es, qs, n, filtered, rounded, rows, want_region)
+        return _numpy_pairs(
+            E, Q, eidx, qidx, es, qs, n, filtered, rounded, rows, masks, want_region, flags, same_ok
+        )
     if backend != "numba":
         raise ValueError(f"backend must be one of {BACKENDS}, got {backend!r}")
     if filtered:
         KP, KL, DR, DA = _constants(rounded)
         run_parallel(
             lambda lo, hi: _filter_pairs(
-                E, Q, eidx, qidx, es, qs, lo, hi, KP, KL, DR, DA, rows, want_region, out
+                E,
+                Q,
+                eidx,
+                qidx,
+                es,
+                qs,
+                lo,
+                hi,
+                KP,
+                KL,
+                DR,
+                DA,
+                flags,
+                same_ok,
+                rows,
+                masks,
+                want_region,
+                out,
             ),
             n,
             threads,
         )
     else:
         run_parallel(
-            lambda lo, hi: _float_pairs(E, Q, eidx, qidx, es, qs, lo, hi, rows, want_region, out), n, threads
+            lambda lo, hi: _float_pairs(E, Q, eidx, qidx, es, qs, lo, hi, rows, masks, want_region, out),
+            n,
+            threads,
         )
     return out
 
@@ -641,9 +688,18 @@ def check_stack(M: np.ndarray) -> np.ndarray:
     return out
 
 
-def region_codes_from_signs(contact: np.ndarray, csigns: np.ndarray, rows: np.ndarray) -> np.ndarray:
+def region_codes_from_signs(
+    contact: np.ndarray, csigns: np.ndarray, rows: np.ndarray, masks: np.ndarray
+) -> np.ndarray:
+    """Region codes from contact codes, c-signs and the rows/masks of the quadrics (per pair)."""
     out = np.empty(contact.shape[0], dtype=np.int8)
-    _region_codes(contact, csigns, rows, out)
+    if HAVE_NUMBA:
+        _region_codes(contact, csigns, rows.astype(np.int16), masks.astype(np.int64), out)
+        return out
+    for p in range(contact.shape[0]):
+        out[p] = region_code_masked(
+            int(contact[p]), *(int(v) for v in csigns[p]), int(rows[p]), int(masks[p]), ROWS
+        )
     return out
 
 
@@ -663,6 +719,97 @@ def _table_index(signs: list[np.ndarray]) -> np.ndarray:
     return sum(m * np.where(x == _UNC, 3, x + 1) for m, x in zip((1, 4, 16), signs, strict=True))  # type: ignore[return-value]
 
 
+def filter_quantities(
+    Em: np.ndarray,
+    Qm: np.ndarray,
+    *,
+    rounded: bool = False,
+    zflags: np.ndarray | None = None,
+    same_ok: bool = True,
+) -> dict[str, Any]:
+    """Everything the filter computes for the pairs ``(Em[k], Qm[k])`` (numpy variant; the
+    compiled kernels compute the same numbers in the same order).
+
+    Keys: ``c``, ``r`` (coefficients for the paper's sign of E and their bounds),
+    ``s`` (the power-of-two scale), ``x``, ``y`` (scaled), ``rho``, ``d`` (Delta_2..4 of
+    ``x``), ``bound_relative``, ``bound_absolute`` (their two bounds), ``same``
+    (equal quadratic parts), ``outside`` (a guard failed), ``ell`` (ellipsoid status),
+    ``signs`` (the signs the filter reports for c0..c4 and Delta_2..4).
+    """
+    from ..codegen import ENTRY_INDICES
+
+    KP, KL, DR, DA = _constants(rounded)
+    k = Em.shape[0]
+    z = np.zeros(k, dtype=np.int8) if zflags is None else zflags
+    e = [Em[:, i, j] for i, j in ENTRY_INDICES]
+    q = [Qm[:, i, j] for i, j in ENTRY_INDICES]
+    with np.errstate(all="ignore"):
+        c = list(formulas.pencil_coefficients(*e, *q))
+        mi = kernels.leading_minors_3(e[0], e[1], e[2], e[4], e[5], e[7])
+        c[0] = np.where(z & 1, 0.0, c[0])
+        c[1] = np.where(z & 2, 0.0, c[1])
+        A_e = np.stack([e[t] for t in (0, 1, 2, 4, 5, 7)])
+        A_q = np.stack([q[t] for t in (0, 1, 2, 4, 5, 7)])
+        same = same_ok & ((A_e == A_q).all(axis=0) | (A_e == -A_q).all(axis=0))
+        mc = kernels.pencil_coefficients_magnitude(*(np.abs(v) for v in e + q))
+        mm = kernels.leading_minors_3_magnitude(*(np.abs(e[t]) for t in (0, 1, 2, 4, 5, 7)))
+        r = [KP[t] * mc[t] for t in range(5)]
+        r[0] = np.where(z & 1, 0.0, r[0])
+        r[1] = np.where(z & 2, 0.0, r[1])
+        sm = [_numpy_sign(mi[t], KL[t] * mm[t]) for t in range(2)]
+        absx = np.abs(np.stack(e + q))
+        outside = ((absx > eb.INPUT_MAX) | ~np.isfinite(absx) | ((absx < eb.INPUT_MIN) & (absx != 0))).any(
+            axis=0
+        )
+        sa = np.sign(e[0]).astype(np.int8)
+        ell = ellipsoid_from_signs(sa, sm[0], sm[1], _numpy_sign(c[4], r[4]))
+        o = np.where(e[0] < 0, -1.0, 1.0)
+        c[1] = o * c[1]
+        c[3] = o * c[3]
+        top = np.maximum.reduce([np.abs(c[t]) + r[t] for t in range(5)])
+        _, ex = np.frexp(np.where(top > 0, top, 1.0))
+        s = np.ldexp(1.0, 1 - ex)  # top * s in [1, 2), as the kernels scale
+        x = [c[t] * s for t in range(5)]
+        y = [r[t] * s for t in range(5)]
+        a = [np.abs(v) for v in x]
+        for t in range(5):
+            outside |= ((c[t] != 0) & (a[t] < eb.COEFFICIENT_MIN)) | (
+                (r[t] != 0) & (a[t] + y[t] < eb.COEFFICIENT_MIN)
+            )
+            outside |= (r[t] != 0) & (y[t] < 2.0**-1022)
+        rho = np.maximum.reduce([y[t] / np.maximum(a[t], eb.COEFFICIENT_MIN) for t in range(5)])
+        d = list(formulas.paper_deltas(*x))
+        A = list(kernels.paper_deltas_magnitude(*a))
+        d[2] = np.where(same, 0.0, d[2])
+        A[2] = np.where(same, 0.0, A[2])
+        b = [(a[t] + y[t]) * eb.ROUND_UP for t in range(5)]
+        Bm = kernels.paper_deltas_magnitude(*b)
+        bound_rel = [(DR[j, 0] * rho + DR[j, 1]) * A[j] for j in range(3)]
+        bound_abs = [DA[j, 0] * (Bm[j] - A[j]) + DA[j, 1] * A[j] for j in range(3)]
+        bound_abs[2] = np.where(same, 0.0, bound_abs[2])
+        rel = [_numpy_sign(d[j], bound_rel[j]) for j in range(3)]
+        absolute = [_numpy_sign(d[j], bound_abs[j]) for j in range(3)]
+        tier_a = CONTACT_TABLE[_table_index(rel)]
+        use_b = (rho > eb.RHO_MAX) | (tier_a == _UNC)
+        ds = [np.where(use_b, absolute[j], rel[j]).astype(np.int8) for j in range(3)]
+        cs = [_numpy_sign(x[t], y[t]) for t in range(5)]
+    return {
+        "c": c,
+        "r": r,
+        "s": s,
+        "x": x,
+        "y": y,
+        "rho": rho,
+        "d": d,
+        "bound_relative": bound_rel,
+        "bound_absolute": bound_abs,
+        "same": same,
+        "outside": outside,
+        "ell": ell,
+        "signs": cs + ds,
+    }
+
+
 def _numpy_pairs(
     E: np.ndarray,
     Q: np.ndarray,
@@ -674,12 +821,14 @@ def _numpy_pairs(
     filtered: bool,
     rounded: bool,
     rows: np.ndarray,
+    masks: np.ndarray,
     want_region: bool,
+    qflags: np.ndarray,
+    same_ok: bool,
 ) -> np.ndarray:
     from ..codegen import ENTRY_INDICES
 
     out = np.empty(n, dtype=np.int8)
-    KP, KL, DR, DA = _constants(rounded)
     for lo in range(0, n, _NUMPY_CHUNK):
         hi = min(n, lo + _NUMPY_CHUNK)
         p = np.arange(lo, hi)
@@ -690,79 +839,39 @@ def _numpy_pairs(
         bad |= ~(
             (Em == np.swapaxes(Em, 1, 2)).all(axis=(1, 2)) & (Qm == np.swapaxes(Qm, 1, 2)).all(axis=(1, 2))
         )
-        e = [Em[:, i, j] for i, j in ENTRY_INDICES]
-        q = [Qm[:, i, j] for i, j in ENTRY_INDICES]
-        with np.errstate(all="ignore"):
-            c = list(formulas.pencil_coefficients(*e, *q))
-            mi = kernels.leading_minors_3(e[0], e[1], e[2], e[4], e[5], e[7])
-            if filtered:
-                mc = kernels.pencil_coefficients_magnitude(*(np.abs(x) for x in e + q))
-                mm = kernels.leading_minors_3_magnitude(*(np.abs(e[k]) for k in (0, 1, 2, 4, 5, 7)))
-                r = [KP[k] * mc[k] for k in range(5)]
-                sm = [_numpy_sign(mi[k], KL[k] * mm[k]) for k in range(2)]
-                absx = np.abs(np.stack(e + q))
-                outside = (
-                    (absx > eb.INPUT_MAX) | ~np.isfinite(absx) | ((absx < eb.INPUT_MIN) & (absx != 0))
-                ).any(axis=0)
-            else:
-                r = [None] * 5
-                sm = [_numpy_sign(mi[k], None) for k in range(2)]
-                outside = np.zeros(hi - lo, dtype=bool)
-            sa = np.sign(e[0]).astype(np.int8)
-            s4 = _numpy_sign(c[4], r[4])
-            ell = ellipsoid_from_signs(sa, sm[0], sm[1], s4)
-            o = np.where(e[0] < 0, -1.0, 1.0)
-            c[1] = o * c[1]
-            c[3] = o * c[3]
-            if filtered:
-                top = np.maximum.reduce([np.abs(c[k]) + r[k] for k in range(5)])
-                _, ex = np.frexp(np.where(top > 0, top, 1.0))
-                s = np.ldexp(1.0, 1 - ex)  # top * s in [1, 2), as the kernels scale
-                x = [c[k] * s for k in range(5)]
-                y = [r[k] * s for k in range(5)]
-                a = [np.abs(v) for v in x]
-                for k in range(5):
-                    outside |= ((c[k] != 0) & (a[k] < eb.COEFFICIENT_MIN)) | (
-                        (r[k] != 0) & (a[k] + y[k] < eb.COEFFICIENT_MIN)
-                    )
-                    outside |= (r[k] != 0) & (y[k] < 2.0**-1022)
-                rho = np.maximum.reduce([y[k] / np.maximum(a[k], eb.COEFFICIENT_MIN) for k in range(5)])
-                d = formulas.paper_deltas(*x)
-                A = kernels.paper_deltas_magnitude(*a)
-                b = [(a[k] + y[k]) * eb.ROUND_UP for k in range(5)]
-                Bm = kernels.paper_deltas_magnitude(*b)
-                rel = [_numpy_sign(d[j], (DR[j, 0] * rho + DR[j, 1]) * A[j]) for j in range(3)]
-                absolute = [_numpy_sign(d[j], DA[j, 0] * (Bm[j] - A[j]) + DA[j, 1] * A[j]) for j in range(3)]
-                tier_a = CONTACT_TABLE[_table_index(rel)]
-                use_b = (rho > eb.RHO_MAX) | (tier_a == _UNC)
-                ds = [np.where(use_b, absolute[j], rel[j]) for j in range(3)]
-                cs = [_numpy_sign(x[k], y[k]) for k in range(5)]
-            else:
+        if filtered:
+            fq = filter_quantities(Em, Qm, rounded=rounded, zflags=qflags[iq], same_ok=same_ok)
+            signs, ell = fq["signs"], fq["ell"]
+        else:
+            e = [Em[:, i, j] for i, j in ENTRY_INDICES]
+            q = [Qm[:, i, j] for i, j in ENTRY_INDICES]
+            with np.errstate(all="ignore"):
+                c = list(formulas.pencil_coefficients(*e, *q))
+                mi = kernels.leading_minors_3(e[0], e[1], e[2], e[4], e[5], e[7])
+                ell = ellipsoid_from_signs(
+                    np.sign(e[0]).astype(np.int8),
+                    _numpy_sign(mi[0], None),
+                    _numpy_sign(mi[1], None),
+                    _numpy_sign(c[4], None),
+                )
+                o = np.where(e[0] < 0, -1.0, 1.0)
+                c[1] = o * c[1]
+                c[3] = o * c[3]
                 d = formulas.paper_deltas(*c)
-                ds = [_numpy_sign(d[j], None) for j in range(3)]
-                cs = [_numpy_sign(c[k], None) for k in range(5)]
-        contact = CONTACT_TABLE[_table_index(ds)]
+                signs = [_numpy_sign(v, None) for v in c] + [_numpy_sign(v, None) for v in d]
+        contact = CONTACT_TABLE[_table_index(signs[5:])]
         if want_region:
-            code = _region_python(contact, np.stack(cs, axis=1), rows[iq])
+            code = region_codes_from_signs(
+                contact.astype(np.int8), np.stack(signs[:5], axis=1), rows[iq], masks[iq]
+            )
         else:
             code = contact.astype(np.int8)
         if filtered:
-            code = np.where(outside | (ell == ELLIPSOID_UNCERTAIN), _UNC, code)
+            code = np.where(fq["outside"] | (ell == ELLIPSOID_UNCERTAIN), _UNC, code)
             invalid = bad | (ell == ELLIPSOID_NOT)
         else:
             invalid = bad | (ell != ELLIPSOID_YES)
         out[lo:hi] = np.where(invalid, INVALID, code)
-    return out
-
-
-def _region_python(contact: np.ndarray, cs: np.ndarray, rows: np.ndarray) -> np.ndarray:
-    if HAVE_NUMBA:
-        return region_codes_from_signs(
-            contact.astype(np.int8), np.ascontiguousarray(cs, dtype=np.int8), rows.astype(np.int16)
-        )
-    out = np.empty(contact.shape[0], dtype=np.int8)
-    for p in range(contact.shape[0]):
-        out[p] = region_code(int(contact[p]), *(int(s) for s in cs[p]), *(int(v) for v in ROWS[rows[p]]))
     return out
 
 
@@ -816,8 +925,9 @@ class FloatMode(NumberMode):
             raise ValueError(f"backend must be one of {BACKENDS}, got {backend!r}")
         self.threads = threads
 
-    def _codes(self, pairs: Pairs, qrows: np.ndarray | None) -> np.ndarray:
-        codes = float_pairs(
+    def _kernel(self, pairs: Pairs, qtypes: Any, qflags: np.ndarray | None) -> np.ndarray:
+        qrows, qmasks = qtypes if qtypes is not None else (None, None)
+        return float_pairs(
             pairs.E.floats,
             pairs.Q.floats,
             pairs.kernel_indices(),
@@ -825,12 +935,35 @@ class FloatMode(NumberMode):
             filtered=self.filtered,
             rounded=pairs.E.rounded or pairs.Q.rounded,
             qrows=qrows,
+            qmasks=qmasks,
+            qflags=qflags,
+            same_ok=not (pairs.E.rounded or pairs.Q.rounded),
             backend=self.backend,
             threads=self.threads,
         )
+
+    def _codes(self, pairs: Pairs, qtypes: Any) -> np.ndarray:
+        codes = self._kernel(pairs, qtypes, None)
         invalid = codes == INVALID
         if invalid.any():
             codes[invalid] = _diagnose(pairs, np.flatnonzero(invalid))
+        if self.filtered:
+            todo = np.flatnonzero(codes == _UNC)
+            if todo.size:
+                # Second pass with exact facts about the quadrics involved (once per quadric):
+                # structural zeros of c0, c1 and, for regions, the exact type.
+                used = np.unique(pairs.q_rows()[todo])
+                facts, exact_masks = exact_facts(pairs.Q, used)
+                flags = np.zeros(len(pairs.Q), dtype=np.int8)
+                flags[used] = facts
+                types = None
+                if qtypes is not None:
+                    masks = qtypes[1].copy()
+                    masks[used] = exact_masks
+                    types = (rows_from_masks(masks), masks)
+                if flags.any() or types is not None:
+                    again = self._kernel(pairs.take(todo), types, flags)
+                    codes[todo] = np.where(again == INVALID, _UNC, again)
         decided = int(np.count_nonzero(codes != _UNC))
         self._record(StageCounts({self.stage: decided}, pairs.n - decided))
         return codes
@@ -838,14 +971,18 @@ class FloatMode(NumberMode):
     def contact(self, pairs: Pairs) -> np.ndarray:
         return self._codes(pairs, None)
 
-    def region(self, pairs: Pairs, rows: np.ndarray) -> np.ndarray:
-        return self._codes(pairs, rows)
+    def region(self, pairs: Pairs) -> np.ndarray:
+        used = np.unique(pairs.q_rows())
+        masks = np.zeros(len(pairs.Q), dtype=np.int64)
+        masks[used] = self.classify(pairs.Q, used)
+        return self._codes(pairs, (rows_from_masks(masks), masks))
 
     def classify(self, Q: MatrixStack, rows: np.ndarray | None = None) -> np.ndarray:
-        sub = Q.floats if rows is None else np.ascontiguousarray(Q.floats[rows])
-        validate_rows(Q, np.arange(len(Q)) if rows is None else rows)
+        index = np.arange(len(Q)) if rows is None else np.asarray(rows, dtype=np.intp)
+        validate_rows(Q, index)
+        sub = np.ascontiguousarray(Q.floats[index])
         signs = float_invariant_signs(sub, filtered=self.filtered, rounded=Q.rounded, backend=self.backend)
-        return rows_from_invariant_signs(signs)
+        return masks_from_invariant_signs(signs)
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}(backend={self.backend!r})"
@@ -854,12 +991,34 @@ class FloatMode(NumberMode):
 class FilterMode(FloatMode):
     """binary64 with a rigorous error bound (``mode="filter"``, the first stage of
     ``certified``): a sign only where it is certain, ``UNCERTAIN`` elsewhere.
-    The bounds are derived in :mod:`quadric_contact.modes.errorbounds`."""
+    The bounds are derived in :mod:`quadric_contact.modes.errorbounds`.
+
+    Structural zeros are recognised, not left to rounding: an exact zero entry gives
+    an exact zero bound (a plane's ``c0 = c1 = 0``); equal quadratic parts (compared
+    exactly) give ``Delta_4 = 0``; and the pairs still undecided after the first pass
+    are run again with exact facts about their quadrics, computed once per quadric in
+    integer arithmetic (:func:`exact_facts`: ``det Q = 0``, ``rank Q <= 2``, the type)."""
 
     name = "filter"
     stage = "filter"
     certified = True
     filtered = True
+
+
+def exact_facts(Q: MatrixStack, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Exact facts about the quadrics ``rows``, from their exact invariant signs (integer
+    arithmetic, once per quadric): ``(flags, masks)`` with bit 0 of ``flags`` set when
+    ``det Q = 0`` (then ``c0 = 0`` for every ``E``) and bit 1 when ``rank Q <= 2`` (then
+    ``c1 = 0`` too; for a symmetric matrix the rank is 4 minus the number of trailing zeros
+    of ``E1 .. E4``), and ``masks`` their Table 4 rows."""
+    from .objects import ExactMode
+
+    signs = ExactMode().invariant_signs(Q, np.asarray(rows, dtype=np.intp))
+    det_zero = signs[:, 6] == 0
+    flags = (det_zero.astype(np.int8) | ((det_zero & (signs[:, 5] == 0)).astype(np.int8) << 1)).astype(
+        np.int8
+    )
+    return flags, masks_from_invariant_signs(signs)
 
 
 def _diagnose(pairs: Pairs, which: np.ndarray) -> np.ndarray:

@@ -28,8 +28,8 @@ from .decisions import (
     ELLIPSOID_UNCERTAIN,
     contact_from_signs,
     ellipsoid_from_signs,
+    masks_from_invariant_signs,
     region_from_signs,
-    rows_from_invariant_signs,
 )
 from .validation import raise_not_ellipsoid, validate_rows
 
@@ -59,6 +59,10 @@ class ObjectMode(NumberMode):
         """Scope precision changes to one evaluation."""
         yield
 
+    def deltas(self, c: list[np.ndarray]) -> tuple[np.ndarray, ...]:
+        """``(Delta_2, Delta_3, Delta_4)`` or positive multiples of them."""
+        return tuple(formulas.paper_deltas(*c))
+
     # -- shared -------------------------------------------------------------------------
 
     def _pair_signs(self, pairs: Pairs) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -81,8 +85,7 @@ class ObjectMode(NumberMode):
             flip = sa < 0
             sc[flip, 1] = _neg(sc[flip, 1])
             sc[flip, 3] = _neg(sc[flip, 3])
-            d = formulas.paper_deltas(*c)
-            sd = np.stack([self.signs(x) for x in d], axis=1)
+            sd = np.stack([self.signs(x) for x in self.deltas(c)], axis=1)
         return ell, sc, sd, e_rows
 
     def _finish(self, pairs: Pairs, ell: np.ndarray, codes: np.ndarray, e_rows: np.ndarray) -> np.ndarray:
@@ -101,12 +104,14 @@ class ObjectMode(NumberMode):
         codes = contact_from_signs(sd[:, 0], sd[:, 1], sd[:, 2])
         return self._finish(pairs, ell, codes, e_rows)
 
-    def region(self, pairs: Pairs, rows: np.ndarray) -> np.ndarray:
+    def region(self, pairs: Pairs) -> np.ndarray:
         if pairs.n == 0:
             return np.empty(0, dtype=np.int8)
         ell, sc, sd, e_rows = self._pair_signs(pairs)
         contact = contact_from_signs(sd[:, 0], sd[:, 1], sd[:, 2])
-        codes = region_from_signs(contact, sc, np.asarray(rows)[pairs.q_rows()])
+        used, where = np.unique(pairs.q_rows(), return_inverse=True)
+        masks = self.classify(pairs.Q, used)[np.asarray(where).reshape(-1)]
+        codes = region_from_signs(contact, sc, masks)
         return self._finish(pairs, ell, codes, e_rows)
 
     def invariant_signs(self, Q: MatrixStack, rows: np.ndarray) -> np.ndarray:
@@ -120,7 +125,7 @@ class ObjectMode(NumberMode):
 
     def classify(self, Q: MatrixStack, rows: np.ndarray | None = None) -> np.ndarray:
         index = np.arange(len(Q)) if rows is None else np.asarray(rows)
-        return rows_from_invariant_signs(self.invariant_signs(Q, index))
+        return masks_from_invariant_signs(self.invariant_signs(Q, index))
 
 
 def _neg(s: np.ndarray) -> np.ndarray:
@@ -207,6 +212,10 @@ class ExactMode(ObjectMode):
 
     def signs(self, values: np.ndarray) -> np.ndarray:
         return _exact_sign(values)
+
+    def deltas(self, c: list[np.ndarray]) -> tuple[np.ndarray, ...]:
+        # Exact arithmetic may use the short form (27 Delta_4 = 4 I^3 - J^2): same signs.
+        return tuple(kernels.paper_deltas_compact(*c))
 
     def __repr__(self) -> str:
         return f"ExactMode(backend={self.backend!r})"
