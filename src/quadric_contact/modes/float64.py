@@ -113,6 +113,42 @@ def _psgn(v: float) -> int:
     return 0
 
 
+_NO_EXPONENT = -100000
+
+
+@_njit(inline=True)
+def _exponent_bits(t: float, bits: int) -> int:
+    """Binary exponent of ``t >= 0`` read from its bit pattern ``bits`` (a huge negative
+    number for zero)."""
+    if t == 0.0:
+        return _NO_EXPONENT
+    return ((bits >> 52) & 2047) - 1023
+
+
+@_njit(inline=True)
+def _balance(e0: int, e1: int, e2: int, e4: int) -> int:
+    """``m`` with ``2^m`` about the geometric mean of the ratio of the lowest non-zero
+    coefficient to ``c4`` (clamped): scaling the roots by it balances the coefficients."""
+    if e0 != _NO_EXPONENT:
+        m = (e0 - e4) // 4
+    elif e1 != _NO_EXPONENT:
+        m = (e1 - e4) // 3
+    elif e2 != _NO_EXPONENT:
+        m = (e2 - e4) // 2
+    else:
+        m = 0
+    return max(-400, min(400, m))
+
+
+@_njit(inline=True)
+def _pow2_bits(e: int, t: float) -> int:
+    """Bit pattern of ``2^e`` (``e`` clamped into the normal range; for ``t = 0`` the factor
+    multiplies an exact zero, for ``e < -1022`` the product fails the guard anyway)."""
+    if t == 0.0:
+        return 1023 << 52
+    return (max(1, min(2046, e + 1023))) << 52
+
+
 @_njit(inline=True)
 def _scaled_guard(c: float, r: float, a: float, y: float) -> float:
     """Non-zero unless the scaled coefficient ``a = |c s|`` and bound ``y = r s`` are safe for
@@ -224,8 +260,8 @@ def _filter_pairs_impl(
     de = np.empty((3, B))  # Delta bounds (relative form)
     # bad input, outside the guards, ellipsoid status, rho too large, same quadratic part
     st = np.empty((5, B))
-    top_ = np.empty(B)
-    topi = top_.view(np.int64)
+    tb = np.empty((5, B))  # |c_k| + r_k, then the powers of two that scale c_k
+    tbi = tb.view(np.int64)
     for blo in range(lo, hi, B):
         m = min(B, hi - blo)
         _gather(E, Q, eidx, qidx, es, qs, blo, m, eb_, qb_, qi)
@@ -290,20 +326,35 @@ def _filter_pairs_impl(
             o = -1.0 if e00 < 0.0 else 1.0
             c1 = o * c1
             c3 = o * c3
-            # Scale by the power of two s with top * s in [1, 2) (exact): read the exponent bits.
-            top_[i] = max(abs(c0) + r0, abs(c1) + r1, abs(c2) + r2, abs(c3) + r3, abs(c4) + r4)
-            topi[i] = (2046 - ((topi[i] >> 52) & 2047)) << 52
-            s = top_[i]
-            x0 = c0 * s
-            x1 = c1 * s
-            x2 = c2 * s
-            x3 = c3 * s
-            x4 = c4 * s
-            y0 = r0 * s
-            y1 = r1 * s
-            y2 = r2 * s
-            y3 = r3 * s
-            y4 = r4 * s
+            # Scale c_k by 2^(g + m k) (exact: P becomes 2^g P(2^m lambda), every sign read below
+            # is unchanged): m balances the outer coefficients, g puts the largest in [1, 2).
+            tb[0, i] = abs(c0) + r0
+            tb[1, i] = abs(c1) + r1
+            tb[2, i] = abs(c2) + r2
+            tb[3, i] = abs(c3) + r3
+            tb[4, i] = abs(c4) + r4
+            e0 = _exponent_bits(tb[0, i], tbi[0, i])
+            e1 = _exponent_bits(tb[1, i], tbi[1, i])
+            e2 = _exponent_bits(tb[2, i], tbi[2, i])
+            e3 = _exponent_bits(tb[3, i], tbi[3, i])
+            e4 = _exponent_bits(tb[4, i], tbi[4, i])
+            mm = _balance(e0, e1, e2, e4)
+            g = -max(e0, e1 + mm, e2 + 2 * mm, e3 + 3 * mm, e4 + 4 * mm)
+            tbi[0, i] = _pow2_bits(g, tb[0, i])
+            tbi[1, i] = _pow2_bits(g + mm, tb[1, i])
+            tbi[2, i] = _pow2_bits(g + 2 * mm, tb[2, i])
+            tbi[3, i] = _pow2_bits(g + 3 * mm, tb[3, i])
+            tbi[4, i] = _pow2_bits(g + 4 * mm, tb[4, i])
+            x0 = c0 * tb[0, i]
+            x1 = c1 * tb[1, i]
+            x2 = c2 * tb[2, i]
+            x3 = c3 * tb[3, i]
+            x4 = c4 * tb[4, i]
+            y0 = r0 * tb[0, i]
+            y1 = r1 * tb[1, i]
+            y2 = r2 * tb[2, i]
+            y3 = r3 * tb[3, i]
+            y4 = r4 * tb[4, i]
             cv[0, i] = x0
             cv[1, i] = x1
             cv[2, i] = x2
@@ -731,7 +782,7 @@ def filter_quantities(
     compiled kernels compute the same numbers in the same order).
 
     Keys: ``c``, ``r`` (coefficients for the paper's sign of E and their bounds),
-    ``s`` (the power-of-two scale), ``x``, ``y`` (scaled), ``rho``, ``d`` (Delta_2..4 of
+    ``s`` (the power of two that scales each), ``x``, ``y`` (scaled), ``rho``, ``d`` (Delta_2..4 of
     ``x``), ``bound_relative``, ``bound_absolute`` (their two bounds), ``same``
     (equal quadratic parts), ``outside`` (a guard failed), ``ell`` (ellipsoid status),
     ``signs`` (the signs the filter reports for c0..c4 and Delta_2..4).
@@ -766,11 +817,23 @@ def filter_quantities(
         o = np.where(e[0] < 0, -1.0, 1.0)
         c[1] = o * c[1]
         c[3] = o * c[3]
-        top = np.maximum.reduce([np.abs(c[t]) + r[t] for t in range(5)])
-        _, ex = np.frexp(np.where(top > 0, top, 1.0))
-        s = np.ldexp(1.0, 1 - ex)  # top * s in [1, 2), as the kernels scale
-        x = [c[t] * s for t in range(5)]
-        y = [r[t] * s for t in range(5)]
+        # c_k times 2^(g + m k), as the kernels scale (see there)
+        tk = [np.abs(c[t]) + r[t] for t in range(5)]
+        ek = [np.where(v == 0, _NO_EXPONENT, np.frexp(v)[1] - 1) for v in tk]
+        m = np.where(
+            ek[0] != _NO_EXPONENT,
+            (ek[0] - ek[4]) // 4,
+            np.where(
+                ek[1] != _NO_EXPONENT,
+                (ek[1] - ek[4]) // 3,
+                np.where(ek[2] != _NO_EXPONENT, (ek[2] - ek[4]) // 2, 0),
+            ),
+        )
+        m = np.clip(m, -400, 400)
+        g = -np.maximum.reduce([ek[t] + t * m for t in range(5)])
+        s = [np.where(tk[t] == 0, 1.0, np.ldexp(1.0, np.clip(g + t * m, -1022, 1023))) for t in range(5)]
+        x = [c[t] * s[t] for t in range(5)]
+        y = [r[t] * s[t] for t in range(5)]
         a = [np.abs(v) for v in x]
         for t in range(5):
             outside |= ((c[t] != 0) & (a[t] < eb.COEFFICIENT_MIN)) | (
