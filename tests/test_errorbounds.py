@@ -94,7 +94,9 @@ def test_bounds_hold_on_random_pairs_of_every_type():
     assert _check_pairs(E, Q) >= 390  # rounded parallel planes may fail the coefficient guard
 
 
-@pytest.mark.parametrize("scale_e, scale_q", [(2.0**150, 2.0**150), (2.0**-150, 2.0**-150), (2.0**20, 2.0**-20)])
+@pytest.mark.parametrize(
+    "scale_e, scale_q", [(2.0**150, 2.0**150), (2.0**-150, 2.0**-150), (2.0**20, 2.0**-20)]
+)
 def test_bounds_hold_with_huge_and_tiny_scales(scale_e, scale_q):
     E, Q, _ = random_pairs(100, np.random.default_rng(8))
     assert _check_pairs(E * scale_e, Q * scale_q) >= 95

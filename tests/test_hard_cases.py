@@ -158,5 +158,14 @@ def test_float_is_right_far_from_tangency(cases, expected):
 def test_mpmath_at_fifty_digits_still_misses_exact_zeros(cases, expected):
     wrong = _failures(cases, expected, get_mode("mpmath", dps=50))
     assert sum(wrong.values()) > 0
-    assert set(wrong) <= {"ladder", "ladder-exact", "dyadic-tangent", "example-11", "delta4-zero", "thin",
-                          "nearly-spherical", "huge-offset", "near-degenerate"}
+    assert set(wrong) <= {
+        "ladder",
+        "ladder-exact",
+        "dyadic-tangent",
+        "example-11",
+        "delta4-zero",
+        "thin",
+        "nearly-spherical",
+        "huge-offset",
+        "near-degenerate",
+    }

@@ -97,7 +97,13 @@ def test_single_pair_gives_one_code(predicate, sample):
 @pytest.mark.parametrize("predicate", PREDICATES)
 @pytest.mark.parametrize(
     "e_shape, q_shape",
-    [((3, 4, 4), (2, 4, 4)), ((4, 3), (4, 4)), ((2, 4, 5), (4, 4)), ((4,), (4, 4)), ((2, 3, 4, 4), (2, 4, 4))],
+    [
+        ((3, 4, 4), (2, 4, 4)),
+        ((4, 3), (4, 4)),
+        ((2, 4, 5), (4, 4)),
+        ((4,), (4, 4)),
+        ((2, 3, 4, 4), (2, 4, 4)),
+    ],
 )
 def test_bad_shapes_raise_shape_error(predicate, e_shape, q_shape):
     with pytest.raises(ShapeError):
@@ -222,7 +228,9 @@ def test_numba_and_numpy_backends_give_identical_codes(predicate):
 
 def test_exact_backends_agree(sample, exact_answers):
     E, Q = sample
-    assert (transversal_contact_batch(E, Q, mode=ExactMode("fmpz")) == exact_answers[transversal_contact_batch]).all()
+    assert (
+        transversal_contact_batch(E, Q, mode=ExactMode("fmpz")) == exact_answers[transversal_contact_batch]
+    ).all()
 
 
 # -- modes as objects -------------------------------------------------------------------------
@@ -275,7 +283,9 @@ def test_the_scalar_predicates_dispatch_stacks_and_modes(sample, exact_answers):
     E, Q = sample
     assert (transversal_contact(E, Q) == exact_answers[transversal_contact_batch]).all()
     assert (relative_position(E, Q, mode="float") == relative_position_batch(E, Q, mode="float")).all()
-    assert transversal_contact(E[0], Q[0], mode="float") == transversal_contact_batch(E[0], Q[0], mode="float")
+    assert transversal_contact(E[0], Q[0], mode="float") == transversal_contact_batch(
+        E[0], Q[0], mode="float"
+    )
 
 
 # -- the decision tables, against independent computations ----------------------------------------
@@ -296,7 +306,7 @@ def test_contact_table_agrees_with_root_structure_of_random_quartics():
                 p *= np.poly1d([1.0, -r])
             while p.order < 4:
                 p *= np.poly1d([1.0, 0.0, int(rng.integers(1, 4))])
-            c = [int(round(v)) for v in p.coeffs[::-1]]
+            c = [round(v) for v in p.coeffs[::-1]]
         if c[4] == 0:
             continue
         d2, d3, d4 = paper_deltas(c)
@@ -339,11 +349,11 @@ def test_kind_from_invariant_signs_is_classify():
     for kind in QuadricKind:
         try:
             qs.append(Quadric.standard(kind, a=3, b=2, c=1))
-        except Exception:  # noqa: S112 - types without a standard form
+        except Exception:
             continue
     for q in qs:
         inv = kernels.quadric_invariants(*q.upper)
-        signs = tuple(int(np.sign(v)) for v in inv) + (int(np.sign(q.upper[9])),)
+        signs = (*tuple(int(np.sign(v)) for v in inv), int(np.sign(q.upper[9])))
         assert kind_from_invariant_signs(signs) == classify(q.upper), q
         mask = masks_from_invariant_signs(np.array([signs]))
         assert KINDS[int(rows_from_masks(mask)[0]) // 2] is q.kind

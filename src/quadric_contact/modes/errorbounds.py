@@ -215,3 +215,80 @@ DELTA_RELATIVE = tuple(_delta_relative(j) for j in range(3))
 
 DELTA_ABSOLUTE = tuple(_delta_absolute(j) for j in range(3))
 """``(K1_j, K3_j)`` for ``Delta_2, Delta_3, Delta_4``: bound ``fl(fl(K1 fl(B - A)) + fl(K3 A))``."""
+
+
+# -- the screen: a first stage with static bounds ---------------------------------------------
+#
+# Shewchuk-style stage A: the pencil's magnitude programs (the bulk of the filter's work)
+# replaced by static bounds.  Every product of c_k's program has k factors from E and 4 - k
+# from Q (c_k is homogeneous of those degrees), so its magnitude program is at most
+#     n_k * max|E|^k * max|Q|^(4-k),      n_k = the magnitude program at all ones
+# (exact integers), a product that takes at most five roundings to compute.  When the
+# quadratic part of Q is zero (a plane), c0 = c1 = 0 exactly: every product of their
+# programs has a factor from that block (the Laplace expansion takes rows 0, 1 of Q in
+# c0 and, with one row of E, in the first half of c1; the second half takes rows 2, 3 of Q
+# in columns other than 3), so their computed values and errors are exactly zero.
+#
+# If every coefficient then satisfies r_k <= EPS |c^_k| (exact zeros with a zero bound
+# pass), every one is known to relative error EPS.  The screen rescales with two positive
+# floats, beta ~ (|c0| / |c4|)^(1/4) (balancing the roots) and s = 1 / max |c_k beta^k|:
+# x_k = fl(fl(c^_k fl(beta^k)) s) is within relative error rho = (1 + EPS)(1 + u)^12 - 1 of
+# c_k beta^k s (at most 11 roundings: the powers of beta, the two products), and any
+# positive factors keep every sign the decisions read.  The relative form of the Delta
+# bound then reads bound_j = fl(SCREEN_DELTA[j] * A_j) with A_j the magnitude program at |x|.
+
+SCREEN_EPS = 2.0**-20
+"""The screen passes a pair only when every coefficient is known to this relative error."""
+
+
+def _screen_paths() -> tuple[int, ...]:
+    from .._generated import kernels
+
+    return tuple(int(v) for v in kernels.pencil_coefficients_magnitude(*([1] * 20)))
+
+
+SCREEN_PATHS = _screen_paths()
+"""``n_k``: the pencil's magnitude programs at all ones."""
+
+SCREEN_PENCIL = {
+    rounded: tuple(
+        round_up(Fraction(K) * n / (1 - _U) ** 5)
+        for K, n in zip(PENCIL_ERRBOUND[rounded], SCREEN_PATHS, strict=True)
+    )
+    for rounded in (False, True)
+}
+"""``r_k = fl(SCREEN_PENCIL[k] * fl(max|E|^k * max|Q|^(4-k)))`` bounds ``|c^_k - c_k|``
+(``PENCIL_ERRBOUND`` for the program, ``n_k`` for the static magnitude, ``(1-u)^-5`` for the
+products that compute it)."""
+
+
+def _screen_minors() -> dict[bool, tuple[float, ...]]:
+    from .._generated import kernels
+
+    paths = kernels.leading_minors_3_magnitude(*([1] * 6))
+    return {
+        rounded: tuple(
+            round_up(Fraction(K) * int(n) / (1 - _U) ** 4)
+            for K, n in zip(MINORS_ERRBOUND[rounded], paths, strict=True)
+        )
+        for rounded in (False, True)
+    }
+
+
+SCREEN_MINORS = _screen_minors()
+"""Bounds of the leading minors of ``E``: ``SCREEN_MINORS[j] * max|A|^(j + 2)``."""
+
+
+def _screen_delta() -> tuple[float, ...]:
+    rho = (1 + Fraction(SCREEN_EPS)) * (1 + _U) ** 12 - 1
+    rc = _counts("paper_deltas")
+    out = []
+    for j in range(3):
+        d, n, nm = rc["degree"][j], rc["value"][j], rc["magnitude"][j]
+        factor = (d * (1 + rho) ** (d - 1) * rho + gamma(n)) / (1 - _U) ** (nm + 1)
+        out.append(round_up(factor))
+    return tuple(out)
+
+
+SCREEN_DELTA = _screen_delta()
+"""``bound_j = fl(SCREEN_DELTA[j] * A_j)`` on the screen (``A_j``: magnitude program at ``|x|``)."""

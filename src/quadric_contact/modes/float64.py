@@ -4,20 +4,29 @@ Both evaluate the generated closed forms (:mod:`quadric_contact._generated`):
 numba compiles the very functions of ``formulas.py`` and ``kernels.py`` into
 loop kernels (``backend="numba"``), and numpy evaluates the same functions on
 whole columns (``backend="numpy"``, the lambdify-style variant, also the
-fallback when numba is missing).  The two are checked against each other.
+fallback when numba is missing).  The two give identical codes (tested).
 
-The filter computes, next to every value, its magnitude (the generated
-magnitude companion) and turns it into a rigorous bound with the constants of
-:mod:`quadric_contact.modes.errorbounds`; a sign is reported only when the value
-is farther from zero than its bound, or when the bound is exactly zero (then
-the value is exactly zero: structural zeros such as ``c0 = c1 = 0`` for a plane
-are recognised exactly, never left to rounding).  Anything else is
-``UNCERTAIN`` and goes to the next stage.
+The filter works in two stages, each reporting a sign only when it is certain
+(the bounds are derived in :mod:`quadric_contact.modes.errorbounds`):
 
-Kernel layout: pairs are processed in blocks of :data:`BLOCK`; a block is
-gathered from the ``(n, 4, 4)`` stacks into column buffers (so the straight-line
-arithmetic vectorises), computed branch-free, then decided.  Threads split the
-pair range (:func:`run_parallel`); the kernels release the GIL.
+* the *screen* (Shewchuk's stage A): the pencil with static bounds (path counts
+  times powers of the largest entries), the roots balanced and the coefficients
+  normalised, the Deltas with their magnitude programs; it settles nearly every
+  generic pair for little more than the price of plain float;
+* the *filter proper*, for what the screen leaves: the magnitude companion of every
+  value (so an exact zero gives an exact zero bound: structural zeros such as
+  ``c0 = c1 = 0`` for a plane are recognised, never left to rounding), an exact
+  power-of-two rescaling of the roots and coefficients, the relative and then the
+  absolute form of the Delta bounds, equal quadratic parts (``Delta_4 = 0``) compared
+  exactly, and a second pass with exact facts about the quadrics involved.
+
+Anything still uncertain is ``UNCERTAIN`` and goes to the next stage of the mode.
+
+Kernel layout: pairs are processed in blocks of :data:`_NB`; a block is gathered
+from the ``(n, 4, 4)`` stacks into 1-D column buffers, computed in straight-line
+loops that vectorise (each reads buffers it does not write; division is IEEE, see
+:mod:`._jit`), then decided in a scalar loop.  Threads split the pair range
+(:func:`run_parallel`); the kernels release the GIL.
 """
 
 from __future__ import annotations
@@ -33,7 +42,7 @@ import numpy as np
 
 from .._generated import formulas, kernels
 from . import errorbounds as eb
-from ._jit import HAVE_NUMBA
+from ._jit import HAVE_NUMBA, numba
 from ._jit import njit as _njit
 from .base import INVALID, MatrixStack, NumberMode, Pairs, StageCounts
 from .decisions import (
@@ -87,6 +96,7 @@ _INPUT_MIN = eb.INPUT_MIN
 _INPUT_MAX = eb.INPUT_MAX
 _COEF_MIN = eb.COEFFICIENT_MIN
 _RHO_MAX = eb.RHO_MAX
+_SCREEN_EPS = eb.SCREEN_EPS
 _ROUND_UP = eb.ROUND_UP
 _FLOAT_MAX = float(np.finfo(np.float64).max)
 
@@ -113,55 +123,15 @@ def _psgn(v: float) -> int:
     return 0
 
 
-_NO_EXPONENT = -100000
-
-
-@_njit(inline=True)
-def _exponent_bits(t: float, bits: int) -> int:
-    """Binary exponent of ``t >= 0`` read from its bit pattern ``bits`` (a huge negative
-    number for zero)."""
-    if t == 0.0:
-        return _NO_EXPONENT
-    return ((bits >> 52) & 2047) - 1023
-
-
-@_njit(inline=True)
-def _balance(e0: int, e1: int, e2: int, e4: int) -> int:
-    """``m`` with ``2^m`` about the geometric mean of the ratio of the lowest non-zero
-    coefficient to ``c4`` (clamped): scaling the roots by it balances the coefficients."""
-    if e0 != _NO_EXPONENT:
-        m = (e0 - e4) // 4
-    elif e1 != _NO_EXPONENT:
-        m = (e1 - e4) // 3
-    elif e2 != _NO_EXPONENT:
-        m = (e2 - e4) // 2
-    else:
-        m = 0
-    return max(-400, min(400, m))
-
-
-@_njit(inline=True)
-def _pow2_bits(e: int, t: float) -> int:
-    """Bit pattern of ``2^e`` (``e`` clamped into the normal range; for ``t = 0`` the factor
-    multiplies an exact zero, for ``e < -1022`` the product fails the guard anyway)."""
-    if t == 0.0:
-        return 1023 << 52
-    return (max(1, min(2046, e + 1023))) << 52
-
-
-@_njit(inline=True)
-def _scaled_guard(c: float, r: float, a: float, y: float) -> float:
-    """Non-zero unless the scaled coefficient ``a = |c s|`` and bound ``y = r s`` are safe for
-    the Delta stage: a non-zero ``c`` must stay at least COEFFICIENT_MIN (so an underflow to
-    zero cannot pose as a structural zero), so must ``a + y`` when ``r != 0``, and a non-zero
-    bound must stay normal (then the scaling was exact)."""
-    g = ((c != 0.0) & (a < _COEF_MIN)) + ((r != 0.0) & (a + y < _COEF_MIN))
-    return g + ((r != 0.0) & (y < 2.0**-1022))
-
-
 @_njit(inline=True)
 def _sidx(s: int) -> int:
     return 3 if s == _UNC else s + 1
+
+
+_NO_EXPONENT = -100000
+_NB = 256
+"""Pairs per block; the block buffers are 1-D, row ``k`` at ``k * _NB`` (constant offsets from
+one base pointer: the compiled loops then need no run-time overlap checks and vectorise)."""
 
 
 @_njit(inline=True)
@@ -175,59 +145,115 @@ def _gather(
         ie = eidx[p] if eidx.shape[0] > 0 else p * es
         iq = qidx[p] if qidx.shape[0] > 0 else p * qs
         qi[t] = iq
-        eb_[0, t] = E[ie, 0, 0]
-        eb_[1, t] = E[ie, 0, 1]
-        eb_[2, t] = E[ie, 0, 2]
-        eb_[3, t] = E[ie, 0, 3]
-        eb_[4, t] = E[ie, 1, 1]
-        eb_[5, t] = E[ie, 1, 2]
-        eb_[6, t] = E[ie, 1, 3]
-        eb_[7, t] = E[ie, 2, 2]
-        eb_[8, t] = E[ie, 2, 3]
-        eb_[9, t] = E[ie, 3, 3]
-        eb_[10, t] = E[ie, 1, 0]
-        eb_[11, t] = E[ie, 2, 0]
-        eb_[12, t] = E[ie, 3, 0]
-        eb_[13, t] = E[ie, 2, 1]
-        eb_[14, t] = E[ie, 3, 1]
-        eb_[15, t] = E[ie, 3, 2]
-        qb_[0, t] = Q[iq, 0, 0]
-        qb_[1, t] = Q[iq, 0, 1]
-        qb_[2, t] = Q[iq, 0, 2]
-        qb_[3, t] = Q[iq, 0, 3]
-        qb_[4, t] = Q[iq, 1, 1]
-        qb_[5, t] = Q[iq, 1, 2]
-        qb_[6, t] = Q[iq, 1, 3]
-        qb_[7, t] = Q[iq, 2, 2]
-        qb_[8, t] = Q[iq, 2, 3]
-        qb_[9, t] = Q[iq, 3, 3]
-        qb_[10, t] = Q[iq, 1, 0]
-        qb_[11, t] = Q[iq, 2, 0]
-        qb_[12, t] = Q[iq, 3, 0]
-        qb_[13, t] = Q[iq, 2, 1]
-        qb_[14, t] = Q[iq, 3, 1]
-        qb_[15, t] = Q[iq, 3, 2]
+        eb_[0 * _NB + t] = E[ie, 0, 0]
+        eb_[1 * _NB + t] = E[ie, 0, 1]
+        eb_[2 * _NB + t] = E[ie, 0, 2]
+        eb_[3 * _NB + t] = E[ie, 0, 3]
+        eb_[4 * _NB + t] = E[ie, 1, 1]
+        eb_[5 * _NB + t] = E[ie, 1, 2]
+        eb_[6 * _NB + t] = E[ie, 1, 3]
+        eb_[7 * _NB + t] = E[ie, 2, 2]
+        eb_[8 * _NB + t] = E[ie, 2, 3]
+        eb_[9 * _NB + t] = E[ie, 3, 3]
+        eb_[10 * _NB + t] = E[ie, 1, 0]
+        eb_[11 * _NB + t] = E[ie, 2, 0]
+        eb_[12 * _NB + t] = E[ie, 3, 0]
+        eb_[13 * _NB + t] = E[ie, 2, 1]
+        eb_[14 * _NB + t] = E[ie, 3, 1]
+        eb_[15 * _NB + t] = E[ie, 3, 2]
+        qb_[0 * _NB + t] = Q[iq, 0, 0]
+        qb_[1 * _NB + t] = Q[iq, 0, 1]
+        qb_[2 * _NB + t] = Q[iq, 0, 2]
+        qb_[3 * _NB + t] = Q[iq, 0, 3]
+        qb_[4 * _NB + t] = Q[iq, 1, 1]
+        qb_[5 * _NB + t] = Q[iq, 1, 2]
+        qb_[6 * _NB + t] = Q[iq, 1, 3]
+        qb_[7 * _NB + t] = Q[iq, 2, 2]
+        qb_[8 * _NB + t] = Q[iq, 2, 3]
+        qb_[9 * _NB + t] = Q[iq, 3, 3]
+        qb_[10 * _NB + t] = Q[iq, 1, 0]
+        qb_[11 * _NB + t] = Q[iq, 2, 0]
+        qb_[12 * _NB + t] = Q[iq, 3, 0]
+        qb_[13 * _NB + t] = Q[iq, 2, 1]
+        qb_[14 * _NB + t] = Q[iq, 3, 1]
+        qb_[15 * _NB + t] = Q[iq, 3, 2]
 
 
 @_njit(inline=True)
-def _bad_entries(b: Any, i: int) -> float:
-    """Non-zero if an entry is not finite or the matrix is not symmetric (column ``i`` of a buffer)."""
-    z = 0.0
-    for k in range(10):
-        z += b[k, i] * 0.0  # NaN for inf and NaN
-    z += abs(b[1, i] - b[10, i]) + abs(b[2, i] - b[11, i]) + abs(b[3, i] - b[12, i])
-    z += abs(b[5, i] - b[13, i]) + abs(b[6, i] - b[14, i]) + abs(b[8, i] - b[15, i])
+def _bad(b: Any, i: int) -> float:
+    """Non-zero if an entry is not finite (``x * 0`` is NaN for inf and NaN) or the
+    matrix is not symmetric (column ``i`` of a gathered buffer).  Branch-free."""
+    z = (
+        b[0 * _NB + i] * 0.0
+        + b[1 * _NB + i] * 0.0
+        + b[2 * _NB + i] * 0.0
+        + b[3 * _NB + i] * 0.0
+        + b[4 * _NB + i] * 0.0
+        + b[5 * _NB + i] * 0.0
+        + b[6 * _NB + i] * 0.0
+        + b[7 * _NB + i] * 0.0
+        + b[8 * _NB + i] * 0.0
+        + b[9 * _NB + i] * 0.0
+    )
+    z += (
+        abs(b[1 * _NB + i] - b[10 * _NB + i])
+        + abs(b[2 * _NB + i] - b[11 * _NB + i])
+        + abs(b[3 * _NB + i] - b[12 * _NB + i])
+    )
+    z += (
+        abs(b[5 * _NB + i] - b[13 * _NB + i])
+        + abs(b[6 * _NB + i] - b[14 * _NB + i])
+        + abs(b[8 * _NB + i] - b[15 * _NB + i])
+    )
     return 0.0 if z == 0.0 else 1.0
 
 
 @_njit(inline=True)
+def _out1(x: float) -> float:
+    a = abs(x)
+    return 1.0 if (a > _INPUT_MAX) | ((a < _INPUT_MIN) & (a != 0.0)) else 0.0
+
+
+@_njit(inline=True)
 def _outside(b: Any, i: int) -> float:
-    """Non-zero if a non-zero entry is outside ``[INPUT_MIN, INPUT_MAX]`` (or NaN)."""
-    g = 0.0
-    for k in range(10):
-        a = abs(b[k, i])
-        g += (not (a <= _INPUT_MAX)) + ((a < _INPUT_MIN) & (a != 0.0))
-    return g
+    """Non-zero if a non-zero entry is outside ``[INPUT_MIN, INPUT_MAX]``.  Branch-free."""
+    return (
+        _out1(b[0 * _NB + i])
+        + _out1(b[1 * _NB + i])
+        + _out1(b[2 * _NB + i])
+        + _out1(b[3 * _NB + i])
+        + _out1(b[4 * _NB + i])
+        + _out1(b[5 * _NB + i])
+        + _out1(b[6 * _NB + i])
+        + _out1(b[7 * _NB + i])
+        + _out1(b[8 * _NB + i])
+        + _out1(b[9 * _NB + i])
+    )
+
+
+@_njit(inline=True)
+def _scaled_guard(c: float, r: float, a: float, y: float) -> float:
+    """Non-zero unless the scaled coefficient ``a = |c s|`` and bound ``y = r s`` are safe for
+    the Delta stage: a non-zero ``c`` must stay at least COEFFICIENT_MIN (so an underflow to
+    zero cannot pose as a structural zero), so must ``a + y`` when ``r != 0``, and a non-zero
+    bound must stay normal (then the scaling was exact)."""
+    g = ((c != 0.0) & (a < _COEF_MIN)) | ((r != 0.0) & (a + y < _COEF_MIN)) | ((r != 0.0) & (y < 2.0**-1022))
+    return 1.0 if g else 0.0
+
+
+@_njit(inline=True)
+def _denominator(a: float, y: float) -> float:
+    return a if a != 0.0 else (1e300 if y == 0.0 else _COEF_MIN)
+
+
+# Rows of the filter's block buffers.  Every compiled loop reads buffers it does not
+# write (so that the run-time overlap checks of the vectoriser pass): ``ra`` is written
+# by the pencil loop, ``sb`` by the scale loop, ``rc`` by the Delta loop.
+_C, _R, _T = 0, 5, 10  # 5 rows each in ra
+_M2, _M2E, _M3, _M3E, _E00, _BAD, _OUT, _SAME = 15, 16, 17, 18, 19, 20, 21, 22
+_ROWS_A = 23
+_X, _Y, _D, _DE, _OUT2 = 0, 5, 10, 13, 16  # in rc (_DE: the magnitudes of Delta)
+_ROWS_C = 17
 
 
 def _filter_pairs_impl(
@@ -250,44 +276,52 @@ def _filter_pairs_impl(
     want_region: bool,
     out: Any,
 ) -> None:
-    B = 256
-    eb_ = np.empty((16, B))
-    qb_ = np.empty((16, B))
+    """The filter on the pairs ``lo .. hi``.  Per block: gather (scalar), the pencil with its
+    bounds (straight-line, vectorised), the scales (scalar bit work), the Delta stage
+    (straight-line, vectorised), and the decisions (scalar)."""
+    B = _NB
+    eb_ = np.empty(16 * _NB)
+    qb_ = np.empty(16 * _NB)
     qi = np.empty(B, np.intp)
-    cv = np.empty((5, B))  # scaled coefficients (paper's sign of E)
-    ce = np.empty((5, B))  # their error bounds
-    dv = np.empty((3, B))  # Delta values
-    de = np.empty((3, B))  # Delta bounds (relative form)
-    # bad input, outside the guards, ellipsoid status, rho too large, same quadratic part
-    st = np.empty((5, B))
-    tb = np.empty((5, B))  # |c_k| + r_k, then the powers of two that scale c_k
-    tbi = tb.view(np.int64)
+    zb = np.empty(2 * _NB)
+    ra = np.empty(_ROWS_A * _NB)
+    sb = np.empty(5 * _NB)
+    rc = np.empty(_ROWS_C * _NB)
+    rai = ra.view(np.int64)
+    sbi = sb.view(np.int64)
+    K0, K1, K2, K3, K4 = KP[0], KP[1], KP[2], KP[3], KP[4]
+    L2, L3 = KL[0], KL[1]
+    same_flag = 1.0 if same_ok else 0.0
     for blo in range(lo, hi, B):
         m = min(B, hi - blo)
         _gather(E, Q, eidx, qidx, es, qs, blo, m, eb_, qb_, qi)
+        for t in range(m):
+            z = qflags[qi[t]]
+            zb[0 * _NB + t] = 1.0 if z & 1 else 0.0
+            zb[1 * _NB + t] = 1.0 if z & 2 else 0.0
         for i in range(m):
-            e00 = eb_[0, i]
-            e01 = eb_[1, i]
-            e02 = eb_[2, i]
-            e03 = eb_[3, i]
-            e11 = eb_[4, i]
-            e12 = eb_[5, i]
-            e13 = eb_[6, i]
-            e22 = eb_[7, i]
-            e23 = eb_[8, i]
-            e33 = eb_[9, i]
-            q00 = qb_[0, i]
-            q01 = qb_[1, i]
-            q02 = qb_[2, i]
-            q03 = qb_[3, i]
-            q11 = qb_[4, i]
-            q12 = qb_[5, i]
-            q13 = qb_[6, i]
-            q22 = qb_[7, i]
-            q23 = qb_[8, i]
-            q33 = qb_[9, i]
-            st[0, i] = _bad_entries(eb_, i) + _bad_entries(qb_, i)
-            st[1, i] = _outside(eb_, i) + _outside(qb_, i)
+            e00 = eb_[0 * _NB + i]
+            e01 = eb_[1 * _NB + i]
+            e02 = eb_[2 * _NB + i]
+            e03 = eb_[3 * _NB + i]
+            e11 = eb_[4 * _NB + i]
+            e12 = eb_[5 * _NB + i]
+            e13 = eb_[6 * _NB + i]
+            e22 = eb_[7 * _NB + i]
+            e23 = eb_[8 * _NB + i]
+            e33 = eb_[9 * _NB + i]
+            q00 = qb_[0 * _NB + i]
+            q01 = qb_[1 * _NB + i]
+            q02 = qb_[2 * _NB + i]
+            q03 = qb_[3 * _NB + i]
+            q11 = qb_[4 * _NB + i]
+            q12 = qb_[5 * _NB + i]
+            q13 = qb_[6 * _NB + i]
+            q22 = qb_[7 * _NB + i]
+            q23 = qb_[8 * _NB + i]
+            q33 = qb_[9 * _NB + i]
+            ra[_BAD * _NB + i] = _bad(eb_, i) + _bad(qb_, i)
+            ra[_OUT * _NB + i] = _outside(eb_, i) + _outside(qb_, i)
             c0, c1, c2, c3, c4 = _pencil(
                 e00, e01, e02, e03, e11, e12, e13, e22, e23, e33,
                 q00, q01, q02, q03, q11, q12, q13, q22, q23, q33,
@@ -297,157 +331,418 @@ def _filter_pairs_impl(
                 abs(e33), abs(q00), abs(q01), abs(q02), abs(q03), abs(q11), abs(q12), abs(q13), abs(q22),
                 abs(q23), abs(q33),
             )  # fmt: skip
-            r0 = KP[0] * m0
-            r1 = KP[1] * m1
-            r2 = KP[2] * m2
-            r3 = KP[3] * m3
-            r4 = KP[4] * m4
-            # Structural zeros known exactly from the rank of Q (computed once per quadric):
-            # det Q = 0 gives c0 = 0, rank <= 2 (adj Q = 0) gives c1 = 0 as well.
-            z = qflags[qi[i]]
-            if z & 1:
-                c0 = 0.0
-                r0 = 0.0
-            if z & 2:
-                c1 = 0.0
-                r1 = 0.0
+            r0 = K0 * m0
+            r1 = K1 * m1
+            r2 = K2 * m2
+            r3 = K3 * m3
+            r4 = K4 * m4
+            # Structural zeros known exactly (rank of Q): det Q = 0 gives c0 = 0, rank <= 2 c1 = 0.
+            c0 = 0.0 if zb[0 * _NB + i] != 0.0 else c0
+            r0 = 0.0 if zb[0 * _NB + i] != 0.0 else r0
+            c1 = 0.0 if zb[1 * _NB + i] != 0.0 else c1
+            r1 = 0.0 if zb[1 * _NB + i] != 0.0 else r1
             # Quadratic parts equal up to sign (compared exactly): lambda = -+1 is a double
             # root, so Delta_4 = 0 identically.
             same = abs(e00 - q00) + abs(e01 - q01) + abs(e02 - q02) + abs(e11 - q11) + abs(e12 - q12)
+            same += abs(e22 - q22)
             opposite = abs(e00 + q00) + abs(e01 + q01) + abs(e02 + q02) + abs(e11 + q11) + abs(e12 + q12)
-            st[4, i] = (
-                1.0 if same_ok and (same + abs(e22 - q22) == 0.0 or opposite + abs(e22 + q22) == 0.0) else 0.0
-            )
+            opposite += abs(e22 + q22)
+            ra[_SAME * _NB + i] = same_flag if (same == 0.0) | (opposite == 0.0) else 0.0
             s2, s3 = _minors(e00, e01, e02, e11, e12, e22)
             t2, t3 = _minors_mag(abs(e00), abs(e01), abs(e02), abs(e11), abs(e12), abs(e22))
-            sa = 1 if e00 > 0.0 else (-1 if e00 < 0.0 else 0)
-            st[2, i] = _ellipsoid_status(sa, _sgn(s2, KL[0] * t2), _sgn(s3, KL[1] * t3), _sgn(c4, r4))
+            ra[_M2 * _NB + i] = s2
+            ra[_M2E * _NB + i] = L2 * t2
+            ra[_M3 * _NB + i] = s3
+            ra[_M3E * _NB + i] = L3 * t3
+            ra[_E00 * _NB + i] = e00
             # The paper's sign of E: for -E the odd coefficients change sign (exact).
             o = -1.0 if e00 < 0.0 else 1.0
             c1 = o * c1
             c3 = o * c3
-            # Scale c_k by 2^(g + m k) (exact: P becomes 2^g P(2^m lambda), every sign read below
-            # is unchanged): m balances the outer coefficients, g puts the largest in [1, 2).
-            tb[0, i] = abs(c0) + r0
-            tb[1, i] = abs(c1) + r1
-            tb[2, i] = abs(c2) + r2
-            tb[3, i] = abs(c3) + r3
-            tb[4, i] = abs(c4) + r4
-            e0 = _exponent_bits(tb[0, i], tbi[0, i])
-            e1 = _exponent_bits(tb[1, i], tbi[1, i])
-            e2 = _exponent_bits(tb[2, i], tbi[2, i])
-            e3 = _exponent_bits(tb[3, i], tbi[3, i])
-            e4 = _exponent_bits(tb[4, i], tbi[4, i])
-            mm = _balance(e0, e1, e2, e4)
-            g = -max(e0, e1 + mm, e2 + 2 * mm, e3 + 3 * mm, e4 + 4 * mm)
-            tbi[0, i] = _pow2_bits(g, tb[0, i])
-            tbi[1, i] = _pow2_bits(g + mm, tb[1, i])
-            tbi[2, i] = _pow2_bits(g + 2 * mm, tb[2, i])
-            tbi[3, i] = _pow2_bits(g + 3 * mm, tb[3, i])
-            tbi[4, i] = _pow2_bits(g + 4 * mm, tb[4, i])
-            x0 = c0 * tb[0, i]
-            x1 = c1 * tb[1, i]
-            x2 = c2 * tb[2, i]
-            x3 = c3 * tb[3, i]
-            x4 = c4 * tb[4, i]
-            y0 = r0 * tb[0, i]
-            y1 = r1 * tb[1, i]
-            y2 = r2 * tb[2, i]
-            y3 = r3 * tb[3, i]
-            y4 = r4 * tb[4, i]
-            cv[0, i] = x0
-            cv[1, i] = x1
-            cv[2, i] = x2
-            cv[3, i] = x3
-            cv[4, i] = x4
-            ce[0, i] = y0
-            ce[1, i] = y1
-            ce[2, i] = y2
-            ce[3, i] = y3
-            ce[4, i] = y4
+            ra[_C * _NB + i] = c0
+            ra[(_C + 1) * _NB + i] = c1
+            ra[(_C + 2) * _NB + i] = c2
+            ra[(_C + 3) * _NB + i] = c3
+            ra[(_C + 4) * _NB + i] = c4
+            ra[_R * _NB + i] = r0
+            ra[(_R + 1) * _NB + i] = r1
+            ra[(_R + 2) * _NB + i] = r2
+            ra[(_R + 3) * _NB + i] = r3
+            ra[(_R + 4) * _NB + i] = r4
+            ra[_T * _NB + i] = abs(c0) + r0
+            ra[(_T + 1) * _NB + i] = abs(c1) + r1
+            ra[(_T + 2) * _NB + i] = abs(c2) + r2
+            ra[(_T + 3) * _NB + i] = abs(c3) + r3
+            ra[(_T + 4) * _NB + i] = abs(c4) + r4
+        for i in range(m):
+            _scales(ra, rai, sbi, i)
+        for i in range(m):
+            c0 = ra[_C * _NB + i]
+            c1 = ra[(_C + 1) * _NB + i]
+            c2 = ra[(_C + 2) * _NB + i]
+            c3 = ra[(_C + 3) * _NB + i]
+            c4 = ra[(_C + 4) * _NB + i]
+            r0 = ra[_R * _NB + i]
+            r1 = ra[(_R + 1) * _NB + i]
+            r2 = ra[(_R + 2) * _NB + i]
+            r3 = ra[(_R + 3) * _NB + i]
+            r4 = ra[(_R + 4) * _NB + i]
+            x0 = c0 * sb[0 * _NB + i]
+            x1 = c1 * sb[1 * _NB + i]
+            x2 = c2 * sb[2 * _NB + i]
+            x3 = c3 * sb[3 * _NB + i]
+            x4 = c4 * sb[4 * _NB + i]
+            y0 = r0 * sb[0 * _NB + i]
+            y1 = r1 * sb[1 * _NB + i]
+            y2 = r2 * sb[2 * _NB + i]
+            y3 = r3 * sb[3 * _NB + i]
+            y4 = r4 * sb[4 * _NB + i]
             a0 = abs(x0)
             a1 = abs(x1)
             a2 = abs(x2)
             a3 = abs(x3)
             a4 = abs(x4)
-            st[1, i] += (
+            rc[_OUT2 * _NB + i] = (
                 _scaled_guard(c0, r0, a0, y0)
                 + _scaled_guard(c1, r1, a1, y1)
                 + _scaled_guard(c2, r2, a2, y2)
                 + _scaled_guard(c3, r3, a3, y3)
                 + _scaled_guard(c4, r4, a4, y4)
             )
-            rho = max(
-                y0 / max(a0, _COEF_MIN),
-                y1 / max(a1, _COEF_MIN),
-                y2 / max(a2, _COEF_MIN),
-                y3 / max(a3, _COEF_MIN),
-                y4 / max(a4, _COEF_MIN),
-            )
-            st[3, i] = 0.0 if rho <= _RHO_MAX else 1.0
             d2, d3, d4 = _deltas(x0, x1, x2, x3, x4)
             A2, A3, A4 = _deltas_mag(a0, a1, a2, a3, a4)
-            if st[4, i] != 0.0:
-                d4 = 0.0
-                A4 = 0.0
-            dv[0, i] = d2
-            dv[1, i] = d3
-            dv[2, i] = d4
-            de[0, i] = (DR[0, 0] * rho + DR[0, 1]) * A2
-            de[1, i] = (DR[1, 0] * rho + DR[1, 1]) * A3
-            de[2, i] = (DR[2, 0] * rho + DR[2, 1]) * A4
+            d4 = 0.0 if ra[_SAME * _NB + i] != 0.0 else d4
+            A4 = 0.0 if ra[_SAME * _NB + i] != 0.0 else A4
+            rc[_D * _NB + i] = d2
+            rc[(_D + 1) * _NB + i] = d3
+            rc[(_D + 2) * _NB + i] = d4
+            rc[_DE * _NB + i] = A2
+            rc[(_DE + 1) * _NB + i] = A3
+            rc[(_DE + 2) * _NB + i] = A4
+            rc[_X * _NB + i] = x0
+            rc[(_X + 1) * _NB + i] = x1
+            rc[(_X + 2) * _NB + i] = x2
+            rc[(_X + 3) * _NB + i] = x3
+            rc[(_X + 4) * _NB + i] = x4
+            rc[_Y * _NB + i] = y0
+            rc[(_Y + 1) * _NB + i] = y1
+            rc[(_Y + 2) * _NB + i] = y2
+            rc[(_Y + 3) * _NB + i] = y3
+            rc[(_Y + 4) * _NB + i] = y4
         for i in range(m):
-            p = blo + i
-            if st[0, i] != 0.0:
-                out[p] = INVALID
-                continue
-            ell = st[2, i]
-            if ell == ELLIPSOID_NOT:
-                out[p] = INVALID
-                continue
-            if st[1, i] != 0.0 or ell == ELLIPSOID_UNCERTAIN:
-                out[p] = _UNC
-                continue
-            if st[3, i] == 0.0:
-                g2 = _sgn(dv[0, i], de[0, i])
-                g3 = _sgn(dv[1, i], de[1, i])
-                g4 = _sgn(dv[2, i], de[2, i])
-                contact = CONTACT_TABLE[_sidx(g2) + 4 * _sidx(g3) + 16 * _sidx(g4)]
-            else:
-                contact = _UNC
-            if contact == _UNC:
-                # The absolute form: magnitudes at a and at b >= a + e (two programs).
-                a0 = abs(cv[0, i])
-                a1 = abs(cv[1, i])
-                a2 = abs(cv[2, i])
-                a3 = abs(cv[3, i])
-                a4 = abs(cv[4, i])
-                b0 = (a0 + ce[0, i]) * _ROUND_UP
-                b1 = (a1 + ce[1, i]) * _ROUND_UP
-                b2 = (a2 + ce[2, i]) * _ROUND_UP
-                b3 = (a3 + ce[3, i]) * _ROUND_UP
-                b4 = (a4 + ce[4, i]) * _ROUND_UP
-                A2, A3, A4 = _deltas_mag(a0, a1, a2, a3, a4)
-                B2, B3, B4 = _deltas_mag(b0, b1, b2, b3, b4)
-                g2 = _sgn(dv[0, i], DA[0, 0] * (B2 - A2) + DA[0, 1] * A2)
-                g3 = _sgn(dv[1, i], DA[1, 0] * (B3 - A3) + DA[1, 1] * A3)
-                g4 = 0 if st[4, i] != 0.0 else _sgn(dv[2, i], DA[2, 0] * (B4 - A4) + DA[2, 1] * A4)
-                contact = CONTACT_TABLE[_sidx(g2) + 4 * _sidx(g3) + 16 * _sidx(g4)]
-            if not want_region:
-                out[p] = contact
-                continue
-            iq = qi[i]
-            out[p] = _region_code_masked(
-                contact,
-                _sgn(cv[0, i], ce[0, i]),
-                _sgn(cv[1, i], ce[1, i]),
-                _sgn(cv[2, i], ce[2, i]),
-                _sgn(cv[3, i], ce[3, i]),
-                _sgn(cv[4, i], ce[4, i]),
-                qrows[iq],
-                qmasks[iq],
-                ROWS,
+            out[blo + i] = _filter_decide(ra, rc, i, DR, DA, want_region, qrows[qi[i]], qmasks[qi[i]])
+
+
+@_njit(inline=True)
+def _exponent_bits(t: float, bits: int) -> int:
+    """Binary exponent of ``t >= 0`` from its bit pattern (a huge negative number for 0)."""
+    return ((bits >> 52) & 2047) - 1023 if t != 0.0 else _NO_EXPONENT
+
+
+@_njit(inline=True)
+def _pow2_bits(e: int, t: float) -> int:
+    """Bit pattern of ``2^e``, ``e`` clamped into the normal range (for ``t = 0`` the factor
+    multiplies an exact zero; for ``e < -1022`` the product fails the guard anyway)."""
+    return (max(1, min(2046, e + 1023)) << 52) if t != 0.0 else (1023 << 52)
+
+
+@_njit(inline=True)
+def _scales(ra: Any, rai: Any, sbi: Any, i: int) -> None:
+    """``sb[(:) * _NB + i]`` (written through its int64 view ``sbi``): the powers of two
+    ``2^(g + m k)`` that scale ``c_k``, exactly: ``P`` becomes ``2^g P(2^m lambda)`` and every
+    sign read later is unchanged; ``m`` (any value is sound: the guards catch an underflow)
+    roughly balances the lowest non-zero coefficient against ``c4``, ``g`` puts the largest
+    in ``[1, 2)``.  Bit work only, branch-free, so that the loop vectorises."""
+    t0 = ra[_T * _NB + i]
+    t1 = ra[(_T + 1) * _NB + i]
+    t2 = ra[(_T + 2) * _NB + i]
+    t3 = ra[(_T + 3) * _NB + i]
+    t4 = ra[(_T + 4) * _NB + i]
+    f0 = _exponent_bits(t0, rai[_T * _NB + i])
+    f1 = _exponent_bits(t1, rai[(_T + 1) * _NB + i])
+    f2 = _exponent_bits(t2, rai[(_T + 2) * _NB + i])
+    f3 = _exponent_bits(t3, rai[(_T + 3) * _NB + i])
+    f4 = _exponent_bits(t4, rai[(_T + 4) * _NB + i])
+    low = f0 if f0 != _NO_EXPONENT else (f1 if f1 != _NO_EXPONENT else f2)
+    mm = max(-400, min(400, (low - f4) >> 2)) if low != _NO_EXPONENT else 0
+    g = -max(f0, f1 + mm, f2 + 2 * mm, f3 + 3 * mm, f4 + 4 * mm)
+    sbi[0 * _NB + i] = _pow2_bits(g, t0)
+    sbi[1 * _NB + i] = _pow2_bits(g + mm, t1)
+    sbi[2 * _NB + i] = _pow2_bits(g + 2 * mm, t2)
+    sbi[3 * _NB + i] = _pow2_bits(g + 3 * mm, t3)
+    sbi[4 * _NB + i] = _pow2_bits(g + 4 * mm, t4)
+
+
+@_njit(inline=True)
+def _filter_decide(ra: Any, rc: Any, i: int, DR: Any, DA: Any, want_region: bool, row: int, mask: int) -> int:
+    """The code of one pair from the filter's values and bounds."""
+    if ra[_BAD * _NB + i] != 0.0:
+        return INVALID
+    e00 = ra[_E00 * _NB + i]
+    sa = 1 if e00 > 0.0 else (-1 if e00 < 0.0 else 0)
+    ell = _ellipsoid_status(
+        sa,
+        _sgn(ra[_M2 * _NB + i], ra[_M2E * _NB + i]),
+        _sgn(ra[_M3 * _NB + i], ra[_M3E * _NB + i]),
+        _sgn(ra[(_C + 4) * _NB + i], ra[(_R + 4) * _NB + i]),
+    )
+    if ell == ELLIPSOID_NOT:
+        return INVALID
+    if ra[_OUT * _NB + i] + rc[_OUT2 * _NB + i] != 0.0 or ell == ELLIPSOID_UNCERTAIN:
+        return _UNC
+    contact = _UNC
+    y0 = rc[_Y * _NB + i]
+    y1 = rc[(_Y + 1) * _NB + i]
+    y2 = rc[(_Y + 2) * _NB + i]
+    y3 = rc[(_Y + 3) * _NB + i]
+    y4 = rc[(_Y + 4) * _NB + i]
+    # rho >= every y_k / a_k with one division: an exact zero (a = y = 0) drops out, a zero
+    # with a non-zero bound makes rho huge (then the relative form does not apply).
+    rho = max(y0, y1, y2, y3, y4) / min(
+        _denominator(abs(rc[_X * _NB + i]), y0),
+        _denominator(abs(rc[(_X + 1) * _NB + i]), y1),
+        _denominator(abs(rc[(_X + 2) * _NB + i]), y2),
+        _denominator(abs(rc[(_X + 3) * _NB + i]), y3),
+        _denominator(abs(rc[(_X + 4) * _NB + i]), y4),
+    )
+    if rho <= _RHO_MAX:
+        g2 = _sgn(rc[_D * _NB + i], (DR[0, 0] * rho + DR[0, 1]) * rc[_DE * _NB + i])
+        g3 = _sgn(rc[(_D + 1) * _NB + i], (DR[1, 0] * rho + DR[1, 1]) * rc[(_DE + 1) * _NB + i])
+        g4 = _sgn(rc[(_D + 2) * _NB + i], (DR[2, 0] * rho + DR[2, 1]) * rc[(_DE + 2) * _NB + i])
+        contact = CONTACT_TABLE[_sidx(g2) + 4 * _sidx(g3) + 16 * _sidx(g4)]
+    if contact == _UNC:
+        # The absolute form: magnitudes at a and at b >= a + e (two programs).
+        a0 = abs(rc[_X * _NB + i])
+        a1 = abs(rc[(_X + 1) * _NB + i])
+        a2 = abs(rc[(_X + 2) * _NB + i])
+        a3 = abs(rc[(_X + 3) * _NB + i])
+        a4 = abs(rc[(_X + 4) * _NB + i])
+        b0 = (a0 + rc[_Y * _NB + i]) * _ROUND_UP
+        b1 = (a1 + rc[(_Y + 1) * _NB + i]) * _ROUND_UP
+        b2 = (a2 + rc[(_Y + 2) * _NB + i]) * _ROUND_UP
+        b3 = (a3 + rc[(_Y + 3) * _NB + i]) * _ROUND_UP
+        b4 = (a4 + rc[(_Y + 4) * _NB + i]) * _ROUND_UP
+        A2, A3, A4 = _deltas_mag(a0, a1, a2, a3, a4)
+        B2, B3, B4 = _deltas_mag(b0, b1, b2, b3, b4)
+        g2 = _sgn(rc[_D * _NB + i], DA[0, 0] * (B2 - A2) + DA[0, 1] * A2)
+        g3 = _sgn(rc[(_D + 1) * _NB + i], DA[1, 0] * (B3 - A3) + DA[1, 1] * A3)
+        g4 = (
+            0
+            if ra[_SAME * _NB + i] != 0.0
+            else _sgn(rc[(_D + 2) * _NB + i], DA[2, 0] * (B4 - A4) + DA[2, 1] * A4)
+        )
+        contact = CONTACT_TABLE[_sidx(g2) + 4 * _sidx(g3) + 16 * _sidx(g4)]
+    if not want_region:
+        return contact
+    return _region_code_masked(
+        contact,
+        _sgn(rc[_X * _NB + i], rc[_Y * _NB + i]),
+        _sgn(rc[(_X + 1) * _NB + i], rc[(_Y + 1) * _NB + i]),
+        _sgn(rc[(_X + 2) * _NB + i], rc[(_Y + 2) * _NB + i]),
+        _sgn(rc[(_X + 3) * _NB + i], rc[(_Y + 3) * _NB + i]),
+        _sgn(rc[(_X + 4) * _NB + i], rc[(_Y + 4) * _NB + i]),
+        row,
+        mask,
+        ROWS,
+    )
+
+
+# Rows of the screen's block buffer.
+_SC_X, _SC_D, _SC_DE = 0, 5, 8  # 5, 3, 3 rows
+_SC_M2, _SC_M2E, _SC_M3, _SC_M3E, _SC_C4, _SC_R4, _SC_E00, _SC_BAD, _SC_FAIL = (
+    11,
+    12,
+    13,
+    14,
+    15,
+    16,
+    17,
+    18,
+    19,
+)
+_SC_ROWS = 20
+
+
+def _screen_pairs_impl(
+    E: Any,
+    Q: Any,
+    eidx: Any,
+    qidx: Any,
+    es: int,
+    qs: int,
+    lo: int,
+    hi: int,
+    SP: Any,
+    SM: Any,
+    SD: Any,
+    qrows: Any,
+    qmasks: Any,
+    want_region: bool,
+    out: Any,
+) -> None:
+    """The screen (static bounds, see :mod:`~quadric_contact.modes.errorbounds`) on the pairs
+    ``lo .. hi``: codes where it is sure, ``UNCERTAIN`` where the filter must look."""
+    B = _NB
+    eb_ = np.empty(16 * _NB)
+    qb_ = np.empty(16 * _NB)
+    qi = np.empty(B, np.intp)
+    rb = np.empty(_SC_ROWS * _NB)
+    S0, S1, S2, S3, S4 = SP[0], SP[1], SP[2], SP[3], SP[4]
+    M2, M3 = SM[0], SM[1]
+    D2, D3, D4 = SD[0], SD[1], SD[2]
+    eps = _SCREEN_EPS
+    for blo in range(lo, hi, B):
+        m = min(B, hi - blo)
+        _gather(E, Q, eidx, qidx, es, qs, blo, m, eb_, qb_, qi)
+        for i in range(m):
+            e00 = eb_[0 * _NB + i]
+            e01 = eb_[1 * _NB + i]
+            e02 = eb_[2 * _NB + i]
+            e03 = eb_[3 * _NB + i]
+            e11 = eb_[4 * _NB + i]
+            e12 = eb_[5 * _NB + i]
+            e13 = eb_[6 * _NB + i]
+            e22 = eb_[7 * _NB + i]
+            e23 = eb_[8 * _NB + i]
+            e33 = eb_[9 * _NB + i]
+            q00 = qb_[0 * _NB + i]
+            q01 = qb_[1 * _NB + i]
+            q02 = qb_[2 * _NB + i]
+            q03 = qb_[3 * _NB + i]
+            q11 = qb_[4 * _NB + i]
+            q12 = qb_[5 * _NB + i]
+            q13 = qb_[6 * _NB + i]
+            q22 = qb_[7 * _NB + i]
+            q23 = qb_[8 * _NB + i]
+            q33 = qb_[9 * _NB + i]
+            rb[_SC_BAD * _NB + i] = _bad(eb_, i) + _bad(qb_, i)
+            fail = _outside(eb_, i) + _outside(qb_, i)
+            c0, c1, c2, c3, c4 = _pencil(
+                e00, e01, e02, e03, e11, e12, e13, e22, e23, e33,
+                q00, q01, q02, q03, q11, q12, q13, q22, q23, q33,
+            )  # fmt: skip
+            ma = max(abs(e00), abs(e01), abs(e02), abs(e11), abs(e12), abs(e22))
+            me = max(ma, abs(e03), abs(e13), abs(e23), abs(e33))
+            plane = max(abs(q00), abs(q01), abs(q02), abs(q11), abs(q12), abs(q22)) == 0.0
+            mq = max(
+                abs(q00),
+                abs(q01),
+                abs(q02),
+                abs(q03),
+                abs(q11),
+                abs(q12),
+                abs(q13),
+                abs(q22),
+                abs(q23),
+                abs(q33),
             )
+            me2 = me * me
+            mq2 = mq * mq
+            r0 = S0 * (mq2 * mq2)
+            r1 = S1 * ((me * mq) * mq2)
+            r2 = S2 * (me2 * mq2)
+            r3 = S3 * ((me * mq) * me2)
+            r4 = S4 * (me2 * me2)
+            # A zero quadratic part of Q: c0 = c1 = 0 exactly (see errorbounds).
+            r0 = 0.0 if plane else r0
+            r1 = 0.0 if plane else r1
+            # Every coefficient known to relative error eps (an exact zero needs a zero bound).
+            fail += (
+                (r0 > eps * abs(c0))
+                + (r1 > eps * abs(c1))
+                + (r2 > eps * abs(c2))
+                + (r3 > eps * abs(c3))
+                + (r4 > eps * abs(c4))
+            )
+            s2, s3 = _minors(e00, e01, e02, e11, e12, e22)
+            rb[_SC_M2 * _NB + i] = s2
+            rb[_SC_M2E * _NB + i] = M2 * (ma * ma)
+            rb[_SC_M3 * _NB + i] = s3
+            rb[_SC_M3E * _NB + i] = M3 * ((ma * ma) * ma)
+            rb[_SC_C4 * _NB + i] = c4
+            rb[_SC_R4 * _NB + i] = r4
+            rb[_SC_E00 * _NB + i] = e00
+            o = -1.0 if e00 < 0.0 else 1.0
+            c1 = o * c1
+            c3 = o * c3
+            # Balance the roots and normalise, with two positive factors (see errorbounds).
+            beta = np.sqrt(np.sqrt(abs(c0) / abs(c4)))
+            beta = beta if (beta > 0.0) & (beta < _FLOAT_MAX) else 1.0
+            b2 = beta * beta
+            t0 = c0
+            t1 = c1 * beta
+            t2 = c2 * b2
+            t3 = c3 * (b2 * beta)
+            t4 = c4 * (b2 * b2)
+            top = max(abs(t0), abs(t1), abs(t2), abs(t3), abs(t4))
+            fail += (not (top <= _FLOAT_MAX)) + (
+                min(abs(t0), abs(t1), abs(t2), abs(t3), abs(t4)) < 2.0**-1022
+            )
+            sc = 1.0 / top
+            x0 = t0 * sc
+            x1 = t1 * sc
+            x2 = t2 * sc
+            x3 = t3 * sc
+            x4 = t4 * sc
+            fail += (
+                ((x0 != 0.0) & (abs(x0) < _COEF_MIN))
+                + ((x1 != 0.0) & (abs(x1) < _COEF_MIN))
+                + ((x2 != 0.0) & (abs(x2) < _COEF_MIN))
+                + ((x3 != 0.0) & (abs(x3) < _COEF_MIN))
+                + ((x4 != 0.0) & (abs(x4) < _COEF_MIN))
+            )
+            d2, d3, d4 = _deltas(x0, x1, x2, x3, x4)
+            A2, A3, A4 = _deltas_mag(abs(x0), abs(x1), abs(x2), abs(x3), abs(x4))
+            rb[_SC_DE * _NB + i] = D2 * A2
+            rb[(_SC_DE + 1) * _NB + i] = D3 * A3
+            rb[(_SC_DE + 2) * _NB + i] = D4 * A4
+            rb[_SC_X * _NB + i] = x0
+            rb[(_SC_X + 1) * _NB + i] = x1
+            rb[(_SC_X + 2) * _NB + i] = x2
+            rb[(_SC_X + 3) * _NB + i] = x3
+            rb[(_SC_X + 4) * _NB + i] = x4
+            rb[_SC_D * _NB + i] = d2
+            rb[(_SC_D + 1) * _NB + i] = d3
+            rb[(_SC_D + 2) * _NB + i] = d4
+            rb[_SC_FAIL * _NB + i] = fail
+        for i in range(m):
+            out[blo + i] = _screen_decide(rb, i, SD, want_region, qrows[qi[i]], qmasks[qi[i]])
+
+
+@_njit(inline=True)
+def _screen_decide(rb: Any, i: int, SD: Any, want_region: bool, row: int, mask: int) -> int:
+    if rb[_SC_BAD * _NB + i] != 0.0:
+        return INVALID
+    e00 = rb[_SC_E00 * _NB + i]
+    sa = 1 if e00 > 0.0 else (-1 if e00 < 0.0 else 0)
+    ell = _ellipsoid_status(
+        sa,
+        _sgn(rb[_SC_M2 * _NB + i], rb[_SC_M2E * _NB + i]),
+        _sgn(rb[_SC_M3 * _NB + i], rb[_SC_M3E * _NB + i]),
+        _sgn(rb[_SC_C4 * _NB + i], rb[_SC_R4 * _NB + i]),
+    )
+    if ell == ELLIPSOID_NOT:
+        return INVALID
+    if rb[_SC_FAIL * _NB + i] != 0.0 or ell == ELLIPSOID_UNCERTAIN:
+        return _UNC
+    g2 = _sgn(rb[_SC_D * _NB + i], rb[_SC_DE * _NB + i])
+    g3 = _sgn(rb[(_SC_D + 1) * _NB + i], rb[(_SC_DE + 1) * _NB + i])
+    g4 = _sgn(rb[(_SC_D + 2) * _NB + i], rb[(_SC_DE + 2) * _NB + i])
+    contact = CONTACT_TABLE[_sidx(g2) + 4 * _sidx(g3) + 16 * _sidx(g4)]
+    if not want_region:
+        return contact
+    # Every coefficient passed r_k <= eps |c_k|: its sign is certain (exact zeros have r_k = 0).
+    return _region_code_masked(
+        contact,
+        _psgn(rb[_SC_X * _NB + i]),
+        _psgn(rb[(_SC_X + 1) * _NB + i]),
+        _psgn(rb[(_SC_X + 2) * _NB + i]),
+        _psgn(rb[(_SC_X + 3) * _NB + i]),
+        _psgn(rb[(_SC_X + 4) * _NB + i]),
+        row,
+        mask,
+        ROWS,
+    )
 
 
 def _float_pairs_impl(
@@ -464,51 +759,62 @@ def _float_pairs_impl(
     want_region: bool,
     out: Any,
 ) -> None:
-    B = 256
-    eb_ = np.empty((16, B))
-    qb_ = np.empty((16, B))
+    """Plain binary64 on the pairs ``lo .. hi`` (gather, straight-line arithmetic, decisions)."""
+    B = _NB
+    eb_ = np.empty(16 * _NB)
+    qb_ = np.empty(16 * _NB)
     qi = np.empty(B, np.intp)
-    cv = np.empty((5, B))
-    dv = np.empty((3, B))
-    st = np.empty((2, B))
+    cv = np.empty(5 * _NB)
+    dv = np.empty(3 * _NB)
+    mv = np.empty(2 * _NB)
+    st = np.empty(2 * _NB)
     for blo in range(lo, hi, B):
         m = min(B, hi - blo)
         _gather(E, Q, eidx, qidx, es, qs, blo, m, eb_, qb_, qi)
         for i in range(m):
-            e00 = eb_[0, i]
-            e01 = eb_[1, i]
-            e02 = eb_[2, i]
-            e11 = eb_[4, i]
-            e12 = eb_[5, i]
-            e22 = eb_[7, i]
-            st[0, i] = _bad_entries(eb_, i) + _bad_entries(qb_, i)
+            e00 = eb_[0 * _NB + i]
+            e01 = eb_[1 * _NB + i]
+            e02 = eb_[2 * _NB + i]
+            e11 = eb_[4 * _NB + i]
+            e12 = eb_[5 * _NB + i]
+            e22 = eb_[7 * _NB + i]
+            st[0 * _NB + i] = _bad(eb_, i) + _bad(qb_, i)
+            st[1 * _NB + i] = e00
             c0, c1, c2, c3, c4 = _pencil(
-                e00, e01, e02, eb_[3, i], e11, e12, eb_[6, i], e22, eb_[8, i], eb_[9, i],
-                qb_[0, i], qb_[1, i], qb_[2, i], qb_[3, i], qb_[4, i], qb_[5, i], qb_[6, i], qb_[7, i],
-                qb_[8, i], qb_[9, i],
+                e00, e01, e02, eb_[3 * _NB + i], e11, e12, eb_[6 * _NB + i], e22, eb_[8 * _NB + i],
+                eb_[9 * _NB + i], qb_[0 * _NB + i], qb_[1 * _NB + i], qb_[2 * _NB + i], qb_[3 * _NB + i],
+                qb_[4 * _NB + i], qb_[5 * _NB + i], qb_[6 * _NB + i], qb_[7 * _NB + i], qb_[8 * _NB + i],
+                qb_[9 * _NB + i],
             )  # fmt: skip
             s2, s3 = _minors(e00, e01, e02, e11, e12, e22)
-            sa = 1 if e00 > 0.0 else (-1 if e00 < 0.0 else 0)
-            st[1, i] = _ellipsoid_status(sa, _psgn(s2), _psgn(s3), _psgn(c4))
+            mv[0 * _NB + i] = s2
+            mv[1 * _NB + i] = s3
             o = -1.0 if e00 < 0.0 else 1.0
             c1 = o * c1
             c3 = o * c3
-            cv[0, i] = c0
-            cv[1, i] = c1
-            cv[2, i] = c2
-            cv[3, i] = c3
-            cv[4, i] = c4
+            cv[0 * _NB + i] = c0
+            cv[1 * _NB + i] = c1
+            cv[2 * _NB + i] = c2
+            cv[3 * _NB + i] = c3
+            cv[4 * _NB + i] = c4
             d2, d3, d4 = _deltas(c0, c1, c2, c3, c4)
-            dv[0, i] = d2
-            dv[1, i] = d3
-            dv[2, i] = d4
+            dv[0 * _NB + i] = d2
+            dv[1 * _NB + i] = d3
+            dv[2 * _NB + i] = d4
         for i in range(m):
             p = blo + i
-            if st[0, i] != 0.0 or st[1, i] != ELLIPSOID_YES:
+            e00 = st[1 * _NB + i]
+            sa = 1 if e00 > 0.0 else (-1 if e00 < 0.0 else 0)
+            ell = _ellipsoid_status(
+                sa, _psgn(mv[0 * _NB + i]), _psgn(mv[1 * _NB + i]), _psgn(cv[4 * _NB + i])
+            )
+            if st[0 * _NB + i] != 0.0 or ell != ELLIPSOID_YES:
                 out[p] = INVALID
                 continue
             contact = CONTACT_TABLE[
-                _sidx(_psgn(dv[0, i])) + 4 * _sidx(_psgn(dv[1, i])) + 16 * _sidx(_psgn(dv[2, i]))
+                _sidx(_psgn(dv[0 * _NB + i]))
+                + 4 * _sidx(_psgn(dv[1 * _NB + i]))
+                + 16 * _sidx(_psgn(dv[2 * _NB + i]))
             ]
             if not want_region:
                 out[p] = contact
@@ -516,11 +822,11 @@ def _float_pairs_impl(
             iq = qi[i]
             out[p] = _region_code_masked(
                 contact,
-                _psgn(cv[0, i]),
-                _psgn(cv[1, i]),
-                _psgn(cv[2, i]),
-                _psgn(cv[3, i]),
-                _psgn(cv[4, i]),
+                _psgn(cv[0 * _NB + i]),
+                _psgn(cv[1 * _NB + i]),
+                _psgn(cv[2 * _NB + i]),
+                _psgn(cv[3 * _NB + i]),
+                _psgn(cv[4 * _NB + i]),
                 qrows[iq],
                 qmasks[iq],
                 ROWS,
@@ -590,11 +896,34 @@ def _region_codes_impl(contact: Any, csigns: Any, rows: Any, masks: Any, out: An
         )
 
 
+def _read_all_impl(E: Any, Q: Any, lo: int, hi: int) -> float:
+    s = 0.0
+    for p in range(lo, hi):
+        for i in range(4):
+            for j in range(4):
+                s += E[p, i, j] + Q[p, i, j]
+    return s
+
+
 _filter_pairs = _njit(_filter_pairs_impl)
+_screen_pairs = _njit(_screen_pairs_impl)
 _float_pairs = _njit(_float_pairs_impl)
 _invariant_signs = _njit(_invariant_signs_impl)
 _check_stack = _njit(_check_stack_impl)
 _region_codes = _njit(_region_codes_impl)
+
+
+_read_all = (
+    numba.njit(nogil=True, fastmath=True, cache=True)(_read_all_impl) if HAVE_NUMBA else _read_all_impl
+)
+
+
+def read_all(E: np.ndarray, Q: np.ndarray) -> float:
+    """Read every entry of two ``(n, 4, 4)`` stacks once (compiled, threaded, reassociated
+    sum): the memory-bandwidth floor of any kernel that reads them."""
+    parts: list[float] = []
+    run_parallel(lambda lo, hi: parts.append(_read_all(E, Q, lo, hi)), E.shape[0])
+    return float(sum(parts))
 
 
 # -- threads -----------------------------------------------------------------------------
@@ -682,6 +1011,50 @@ def float_pairs(
         raise ValueError(f"backend must be one of {BACKENDS}, got {backend!r}")
     if filtered:
         KP, KL, DR, DA = _constants(rounded)
+        SP = np.array(eb.SCREEN_PENCIL[rounded])
+        SM = np.array(eb.SCREEN_MINORS[rounded])
+        SD = np.array(eb.SCREEN_DELTA)
+        run_parallel(
+            lambda lo, hi: _screen_pairs(
+                E, Q, eidx, qidx, es, qs, lo, hi, SP, SM, SD, rows, masks, want_region, out
+            ),
+            n,
+            threads,
+        )
+        todo = np.flatnonzero(out == _UNC)
+        if todo.size == 0:
+            return out
+        # What the screen leaves goes to the filter proper (same kernels, on the subset).
+        sub_e = (eidx[todo] if eidx.shape[0] else todo * es).astype(np.intp)
+        sub_q = (qidx[todo] if qidx.shape[0] else todo * qs).astype(np.intp)
+        sub = np.empty(todo.size, dtype=np.int8)
+        run_parallel(
+            lambda lo, hi: _filter_pairs(
+                E,
+                Q,
+                sub_e,
+                sub_q,
+                0,
+                0,
+                lo,
+                hi,
+                KP,
+                KL,
+                DR,
+                DA,
+                flags,
+                same_ok,
+                rows,
+                masks,
+                want_region,
+                sub,
+            ),
+            todo.size,
+            threads,
+        )
+        out[todo] = sub
+        return out
+    if filtered:
         run_parallel(
             lambda lo, hi: _filter_pairs(
                 E,
@@ -820,16 +1193,8 @@ def filter_quantities(
         # c_k times 2^(g + m k), as the kernels scale (see there)
         tk = [np.abs(c[t]) + r[t] for t in range(5)]
         ek = [np.where(v == 0, _NO_EXPONENT, np.frexp(v)[1] - 1) for v in tk]
-        m = np.where(
-            ek[0] != _NO_EXPONENT,
-            (ek[0] - ek[4]) // 4,
-            np.where(
-                ek[1] != _NO_EXPONENT,
-                (ek[1] - ek[4]) // 3,
-                np.where(ek[2] != _NO_EXPONENT, (ek[2] - ek[4]) // 2, 0),
-            ),
-        )
-        m = np.clip(m, -400, 400)
+        low = np.where(ek[0] != _NO_EXPONENT, ek[0], np.where(ek[1] != _NO_EXPONENT, ek[1], ek[2]))
+        m = np.where(low != _NO_EXPONENT, np.clip((low - ek[4]) >> 2, -400, 400), 0)
         g = -np.maximum.reduce([ek[t] + t * m for t in range(5)])
         s = [np.where(tk[t] == 0, 1.0, np.ldexp(1.0, np.clip(g + t * m, -1022, 1023))) for t in range(5)]
         x = [c[t] * s[t] for t in range(5)]
@@ -840,7 +1205,8 @@ def filter_quantities(
                 (r[t] != 0) & (a[t] + y[t] < eb.COEFFICIENT_MIN)
             )
             outside |= (r[t] != 0) & (y[t] < 2.0**-1022)
-        rho = np.maximum.reduce([y[t] / np.maximum(a[t], eb.COEFFICIENT_MIN) for t in range(5)])
+        den = [np.where(a[t] != 0, a[t], np.where(y[t] == 0, 1e300, eb.COEFFICIENT_MIN)) for t in range(5)]
+        rho = np.maximum.reduce(y) / np.minimum.reduce(den)
         d = list(formulas.paper_deltas(*x))
         A = list(kernels.paper_deltas_magnitude(*a))
         d[2] = np.where(same, 0.0, d[2])
@@ -871,6 +1237,66 @@ def filter_quantities(
         "ell": ell,
         "signs": cs + ds,
     }
+
+
+def screen_quantities(Em: np.ndarray, Qm: np.ndarray, *, rounded: bool = False) -> dict[str, Any]:
+    """The screen's quantities for the pairs ``(Em[k], Qm[k])`` (numpy variant, the same
+    operations in the same order as the compiled screen): ``x`` (balanced, normalised
+    coefficients), ``d`` (their Deltas), ``fail``, ``ell`` and ``signs``."""
+    from ..codegen import ENTRY_INDICES
+
+    SP, SM, SD = eb.SCREEN_PENCIL[rounded], eb.SCREEN_MINORS[rounded], eb.SCREEN_DELTA
+    e = [Em[:, i, j] for i, j in ENTRY_INDICES]
+    q = [Qm[:, i, j] for i, j in ENTRY_INDICES]
+    with np.errstate(all="ignore"):
+        absx = np.abs(np.stack(e + q))
+        fail = ((absx > eb.INPUT_MAX) | ~np.isfinite(absx) | ((absx < eb.INPUT_MIN) & (absx != 0))).any(
+            axis=0
+        )
+        c = list(formulas.pencil_coefficients(*e, *q))
+        ma = np.maximum.reduce([np.abs(e[t]) for t in (0, 1, 2, 4, 5, 7)])
+        me = np.maximum.reduce([ma] + [np.abs(e[t]) for t in (3, 6, 8, 9)])
+        mq = np.maximum.reduce([np.abs(v) for v in q])
+        plane = np.maximum.reduce([np.abs(q[t]) for t in (0, 1, 2, 4, 5, 7)]) == 0
+        me2, mq2 = me * me, mq * mq
+        r = [
+            SP[0] * (mq2 * mq2),
+            SP[1] * ((me * mq) * mq2),
+            SP[2] * (me2 * mq2),
+            SP[3] * ((me * mq) * me2),
+            SP[4] * (me2 * me2),
+        ]
+        # A zero quadratic part of Q: c0 = c1 = 0 exactly (see errorbounds).
+        r[0] = np.where(plane, 0.0, r[0])
+        r[1] = np.where(plane, 0.0, r[1])
+        for t in range(5):
+            fail |= r[t] > eb.SCREEN_EPS * np.abs(c[t])
+        s2, s3 = kernels.leading_minors_3(e[0], e[1], e[2], e[4], e[5], e[7])
+        ell = ellipsoid_from_signs(
+            np.sign(e[0]).astype(np.int8),
+            _numpy_sign(s2, SM[0] * (ma * ma)),
+            _numpy_sign(s3, SM[1] * ((ma * ma) * ma)),
+            _numpy_sign(c[4], r[4]),
+        )
+        o = np.where(e[0] < 0, -1.0, 1.0)
+        c[1] = o * c[1]
+        c[3] = o * c[3]
+        beta = np.sqrt(np.sqrt(np.abs(c[0]) / np.abs(c[4])))
+        beta = np.where((beta > 0) & (beta < _FLOAT_MAX), beta, 1.0)
+        b2 = beta * beta
+        tk = [c[0], c[1] * beta, c[2] * b2, c[3] * (b2 * beta), c[4] * (b2 * b2)]
+        top = np.maximum.reduce([np.abs(v) for v in tk])
+        fail |= ~(top <= _FLOAT_MAX) | (top < 2.0**-1022)
+        for v in tk:
+            fail |= (v != 0) & (np.abs(v) < 2.0**-1022)
+        sc = 1.0 / top
+        x = [v * sc for v in tk]
+        for v in x:
+            fail |= (v != 0) & (np.abs(v) < eb.COEFFICIENT_MIN)
+        d = formulas.paper_deltas(*x)
+        A = kernels.paper_deltas_magnitude(*(np.abs(v) for v in x))
+    signs = [_numpy_sign(v, None) for v in x] + [_numpy_sign(d[j], SD[j] * A[j]) for j in range(3)]
+    return {"x": x, "d": d, "fail": fail, "ell": ell, "signs": signs}
 
 
 def _numpy_pairs(
@@ -905,6 +1331,7 @@ def _numpy_pairs(
         if filtered:
             fq = filter_quantities(Em, Qm, rounded=rounded, zflags=qflags[iq], same_ok=same_ok)
             signs, ell = fq["signs"], fq["ell"]
+            sq = screen_quantities(Em, Qm, rounded=rounded)
         else:
             e = [Em[:, i, j] for i, j in ENTRY_INDICES]
             q = [Qm[:, i, j] for i, j in ENTRY_INDICES]
@@ -932,6 +1359,16 @@ def _numpy_pairs(
         if filtered:
             code = np.where(fq["outside"] | (ell == ELLIPSOID_UNCERTAIN), _UNC, code)
             invalid = bad | (ell == ELLIPSOID_NOT)
+            # the screen first: where it is sure, its answer (the filter agrees where both are)
+            s_contact = CONTACT_TABLE[_table_index(sq["signs"][5:])]
+            if want_region:
+                s_code = region_codes_from_signs(
+                    s_contact.astype(np.int8), np.stack(sq["signs"][:5], axis=1), rows[iq], masks[iq]
+                )
+            else:
+                s_code = s_contact.astype(np.int8)
+            screened = ~sq["fail"] & (sq["ell"] != ELLIPSOID_UNCERTAIN) & (s_code != _UNC)
+            code = np.where(screened, s_code, code)
         else:
             invalid = bad | (ell != ELLIPSOID_YES)
         out[lo:hi] = np.where(invalid, INVALID, code)
