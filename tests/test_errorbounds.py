@@ -137,3 +137,40 @@ def test_invariant_and_minor_bounds_hold(rounded):
         exact = kernels.leading_minors_3(*(Fraction(x[k]) for x in a))
         for t in range(2):
             assert abs(Fraction(m[t][k]) - exact[t]) <= Fraction(eb.MINORS_ERRBOUND[rounded][t] * mm[t][k])
+
+
+def _screen_check(E, Q):
+    """Every sign the screen reports as certain is the exact one."""
+    from quadric_contact.modes.float64 import screen_quantities
+
+    sq = screen_quantities(E, Q)
+    decided = 0
+    for k in range(E.shape[0]):
+        if sq["fail"][k]:
+            continue
+        c = _exact_coefficients(E[k], Q[k])
+        exact = [int(np.sign(v)) for v in c] + [int(np.sign(v)) for v in formulas.paper_deltas(*c)]
+        for t, s in enumerate(sq["signs"]):
+            if s[k] != 2:
+                assert s[k] == exact[t], (k, t)
+        decided += 1
+    return decided
+
+
+def test_screen_signs_are_exact_where_certain():
+    cases = [c for c in hard_cases() if not c.exact_input]
+    E = np.stack([c.matrices()[0] for c in cases])
+    Q = np.stack([c.matrices()[1] for c in cases])
+    assert _screen_check(E, Q) > 0.5 * len(cases)
+    E, Q, _ = random_pairs(400, np.random.default_rng(17))
+    assert _screen_check(E, Q) > 0.5 * 400  # rounded cylinders and parallel planes fail the screen
+    assert _screen_check(E * 2.0**100, Q * 2.0**-60) > 0.4 * 400
+
+
+def test_screen_constants_follow_from_the_rounding_counts():
+    # det has 24 permutation products, and c_k (k E-rows among 4) C(4, k) times as many
+    assert eb.SCREEN_PATHS == (24, 96, 144, 96, 24)
+    for k in range(5):
+        assert Fraction(eb.SCREEN_PENCIL[False][k]) >= Fraction(eb.PENCIL_ERRBOUND[False][k]) * eb.SCREEN_PATHS[k]
+    for j, degree in enumerate((2, 4, 6)):
+        assert eb.SCREEN_DELTA[j] >= degree * eb.SCREEN_EPS

@@ -226,6 +226,22 @@ def test_numba_and_numpy_backends_give_identical_codes(predicate):
         assert (a == b).all(), cls
 
 
+@pytest.mark.parametrize("stage", ["screen", "filter"])
+def test_each_float_stage_is_the_same_in_both_backends(stage):
+    from quadric_contact.modes.float64 import stage_codes
+
+    E, Q, _ = random_pairs(3000, np.random.default_rng(21))
+    cases = [
+        c for c in hard_cases(["ladder", "dyadic-tangent", "delta4-zero", "huge-offset"]) if not c.exact_input
+    ]
+    E = np.concatenate([E, np.stack([c.matrices()[0] for c in cases])])
+    Q = np.concatenate([Q, np.stack([c.matrices()[1] for c in cases])])
+    a = stage_codes(E, Q, stage, backend="numba")
+    b = stage_codes(E, Q, stage, backend="numpy")
+    assert (a == b).all()
+    assert 0 < (a == 2).sum() < len(a)
+
+
 def test_exact_backends_agree(sample, exact_answers):
     E, Q = sample
     assert (

@@ -232,6 +232,28 @@ def _outside(b: Any, i: int) -> float:
 
 
 @_njit(inline=True)
+def _nz(x: float) -> float:
+    return abs(x) if x != 0.0 else _INPUT_MAX
+
+
+@_njit(inline=True)
+def _low(b: Any, i: int) -> float:
+    """The smallest non-zero ``|entry|`` (``INPUT_MAX`` if all are zero).  Branch-free."""
+    return min(
+        _nz(b[0 * _NB + i]),
+        _nz(b[1 * _NB + i]),
+        _nz(b[2 * _NB + i]),
+        _nz(b[3 * _NB + i]),
+        _nz(b[4 * _NB + i]),
+        _nz(b[5 * _NB + i]),
+        _nz(b[6 * _NB + i]),
+        _nz(b[7 * _NB + i]),
+        _nz(b[8 * _NB + i]),
+        _nz(b[9 * _NB + i]),
+    )
+
+
+@_njit(inline=True)
 def _scaled_guard(c: float, r: float, a: float, y: float) -> float:
     """Non-zero unless the scaled coefficient ``a = |c s|`` and bound ``y = r s`` are safe for
     the Delta stage: a non-zero ``c`` must stay at least COEFFICIENT_MIN (so an underflow to
@@ -430,7 +452,8 @@ def _filter_pairs_impl(
             rc[(_Y + 3) * _NB + i] = y3
             rc[(_Y + 4) * _NB + i] = y4
         for i in range(m):
-            out[blo + i] = _filter_decide(ra, rc, i, DR, DA, want_region, qrows[qi[i]], qmasks[qi[i]])
+            iq = qi[i] if want_region else 0
+            out[blo + i] = _filter_decide(ra, rc, i, DR, DA, want_region, qrows[iq], qmasks[iq])
 
 
 @_njit(inline=True)
@@ -616,7 +639,6 @@ def _screen_pairs_impl(
             q23 = qb_[8 * _NB + i]
             q33 = qb_[9 * _NB + i]
             rb[_SC_BAD * _NB + i] = _bad(eb_, i) + _bad(qb_, i)
-            fail = _outside(eb_, i) + _outside(qb_, i)
             c0, c1, c2, c3, c4 = _pencil(
                 e00, e01, e02, e03, e11, e12, e13, e22, e23, e33,
                 q00, q01, q02, q03, q11, q12, q13, q22, q23, q33,
@@ -636,6 +658,10 @@ def _screen_pairs_impl(
                 abs(q23),
                 abs(q33),
             )
+            # The input guard: every entry at most INPUT_MAX, every non-zero one at least
+            # INPUT_MIN (NaN and infinities are caught as bad input first).
+            low = min(_low(eb_, i), _low(qb_, i))
+            fail = 1.0 if (me > _INPUT_MAX) | (mq > _INPUT_MAX) | (low < _INPUT_MIN) else 0.0
             me2 = me * me
             mq2 = mq * mq
             r0 = S0 * (mq2 * mq2)
@@ -675,8 +701,14 @@ def _screen_pairs_impl(
             t3 = c3 * (b2 * beta)
             t4 = c4 * (b2 * b2)
             top = max(abs(t0), abs(t1), abs(t2), abs(t3), abs(t4))
-            fail += (not (top <= _FLOAT_MAX)) + (
-                min(abs(t0), abs(t1), abs(t2), abs(t3), abs(t4)) < 2.0**-1022
+            # the products above stayed normal (or are exact zeros)
+            fail += (not (top <= _FLOAT_MAX)) + (top < 2.0**-1022)
+            fail += (
+                ((t0 != 0.0) & (abs(t0) < 2.0**-1022))
+                + ((t1 != 0.0) & (abs(t1) < 2.0**-1022))
+                + ((t2 != 0.0) & (abs(t2) < 2.0**-1022))
+                + ((t3 != 0.0) & (abs(t3) < 2.0**-1022))
+                + ((t4 != 0.0) & (abs(t4) < 2.0**-1022))
             )
             sc = 1.0 / top
             x0 = t0 * sc
@@ -706,7 +738,8 @@ def _screen_pairs_impl(
             rb[(_SC_D + 2) * _NB + i] = d4
             rb[_SC_FAIL * _NB + i] = fail
         for i in range(m):
-            out[blo + i] = _screen_decide(rb, i, SD, want_region, qrows[qi[i]], qmasks[qi[i]])
+            iq = qi[i] if want_region else 0
+            out[blo + i] = _screen_decide(rb, i, SD, want_region, qrows[iq], qmasks[iq])
 
 
 @_njit(inline=True)
@@ -1086,6 +1119,37 @@ def float_pairs(
             threads,
         )
     return out
+
+
+def stage_codes(E: np.ndarray, Q: np.ndarray, stage: str, *, backend: str = "numba") -> np.ndarray:
+    """Contact codes of one stage alone (``"screen"`` or ``"filter"``) for the pairs
+    ``(E[k], Q[k])`` of two ``(n, 4, 4)`` binary64 stacks: for tests and measurements."""
+    n = E.shape[0]
+    out = np.empty(n, dtype=np.int8)
+    e0 = np.zeros(0, dtype=np.intp)
+    rows, masks = np.zeros(1, dtype=np.int16), np.zeros(1, dtype=np.int64)
+    if backend == "numba" and HAVE_NUMBA:
+        if stage == "screen":
+            SP, SM, SD = (
+                np.array(v) for v in (eb.SCREEN_PENCIL[False], eb.SCREEN_MINORS[False], eb.SCREEN_DELTA)
+            )
+            _screen_pairs(E, Q, e0, e0, 1, 1, 0, n, SP, SM, SD, rows, masks, False, out)
+        else:
+            KP, KL, DR, DA = _constants(False)
+            flags = np.zeros(Q.shape[0], dtype=np.int8)
+            _filter_pairs(E, Q, e0, e0, 1, 1, 0, n, KP, KL, DR, DA, flags, True, rows, masks, False, out)
+        return out
+    if stage == "screen":
+        q = screen_quantities(E, Q)
+        code = CONTACT_TABLE[_table_index(q["signs"][5:])]
+        code = np.where(q["fail"] | (q["ell"] == ELLIPSOID_UNCERTAIN), _UNC, code)
+    else:
+        q = filter_quantities(E, Q)
+        code = CONTACT_TABLE[_table_index(q["signs"][5:])]
+        code = np.where(q["outside"] | (q["ell"] == ELLIPSOID_UNCERTAIN), _UNC, code)
+    bad = ~(np.isfinite(E).all(axis=(1, 2)) & np.isfinite(Q).all(axis=(1, 2)))
+    bad |= ~((np.swapaxes(E, 1, 2) == E).all(axis=(1, 2)) & (np.swapaxes(Q, 1, 2) == Q).all(axis=(1, 2)))
+    return np.where(bad | (q["ell"] == ELLIPSOID_NOT), INVALID, code).astype(np.int8)
 
 
 def float_invariant_signs(
