@@ -171,6 +171,9 @@ def test_screen_constants_follow_from_the_rounding_counts():
     # det has 24 permutation products, and c_k (k E-rows among 4) C(4, k) times as many
     assert eb.SCREEN_PATHS == (24, 96, 144, 96, 24)
     for k in range(5):
-        assert Fraction(eb.SCREEN_PENCIL[False][k]) >= Fraction(eb.PENCIL_ERRBOUND[False][k]) * eb.SCREEN_PATHS[k]
+        assert (
+            Fraction(eb.SCREEN_PENCIL[False][k])
+            >= Fraction(eb.PENCIL_ERRBOUND[False][k]) * eb.SCREEN_PATHS[k]
+        )
     for j, degree in enumerate((2, 4, 6)):
         assert eb.SCREEN_DELTA[j] >= degree * eb.SCREEN_EPS

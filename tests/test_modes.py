@@ -384,3 +384,12 @@ def test_every_kind_is_handled_by_the_region_predicate():
             assert code is RegionCode.CONTACT
         else:
             assert code is RegionCode.EXCLUDED, q
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("predicate", PREDICATES)
+def test_certified_equals_exact_on_many_random_pairs(predicate):
+    E, Q, _ = random_pairs(200_000, np.random.default_rng(99))
+    mode = CertifiedMode()
+    assert (predicate(E, Q, mode=mode) == predicate(E, Q, mode="exact")).all()
+    assert mode.last.escalated > 0  # the rounded cylinders and parallel planes

@@ -65,6 +65,16 @@ GENERIC_KINDS = (
 )
 
 PROFILES: dict[str, dict[str, Any]] = {
+    "smoke": {  # seconds: what the test suite runs
+        "pairs": 2_000,
+        "slow_pairs": 100,
+        "sympy_pairs": 2,
+        "fcl_pairs": 200,
+        "sizes": (10**3, 10**4),
+        "escalation_pairs": 10**4,
+        "exact_timing_pairs": 200,
+        "hard_families": ("example-11", "delta4-zero", "dyadic-tangent", "ladder"),
+    },
     "quick": {
         "pairs": 20_000,  # fast modes on the random populations
         "slow_pairs": 1_000,  # ball, mpmath, exact, numpy roots
@@ -493,10 +503,10 @@ def _measure_fcl(rng: np.random.Generator, cfg: dict[str, Any], report: Report) 
 
 
 def _hard(report: Report, cfg: dict[str, Any]) -> None:
-    from .hardcases import hard_cases
+    from .hardcases import FAMILIES, hard_cases
     from .modes import ContactCode
 
-    cases = [c for c in hard_cases() if not c.exact_input]
+    cases = [c for c in hard_cases(cfg.get("hard_families", FAMILIES)) if not c.exact_input]
     E = np.stack([c.matrices()[0] for c in cases])
     Q = np.stack([c.matrices()[1] for c in cases])
     truth = transversal_contact_batch(E, Q, mode="exact")
@@ -504,7 +514,7 @@ def _hard(report: Report, cfg: dict[str, Any]) -> None:
     _measure_peers("hard", E, Q, truth, cfg, report)
     # the ladder, distance by distance
     ladder = [k for k, c in enumerate(cases) if c.family == "ladder" and c.direction != "tangent"]
-    distances = sorted({cases[k].distance for k in ladder}, key=lambda d: int(str(d).split("-")[-1]))
+    distances = sorted({str(cases[k].distance) for k in ladder}, key=lambda d: int(d.split("-")[-1]))
     methods: dict[str, np.ndarray] = {}
     El, Ql = E[ladder], Q[ladder]
     for name, mode in _modes():

@@ -26,9 +26,9 @@ def register(sub: Any) -> None:
     )
     p.add_argument(
         "--profile",
-        choices=("quick", "full"),
+        choices=("quick", "full", "smoke"),
         default="quick",
-        help="quick (default, about a minute) or full",
+        help="quick (default, about a minute), full (several minutes), smoke (seconds: a check that it runs)",
     )
     p.add_argument(
         "--out", type=Path, default=Path("benchmarks") / "results", help="directory for table, JSON and plot"
