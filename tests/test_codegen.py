@@ -1,5 +1,6 @@
 """The generated formulas are derived, verified and reproducible."""
 
+import pytest
 import sympy as sp
 
 from quadric_contact import codegen
@@ -56,3 +57,95 @@ def test_quartic_sign_forms_are_positive_multiples_of_the_deltas():
     d2, d3, d4 = formulas.paper_deltas(*c)
     s2, s3, s27 = formulas.quartic_sign_forms(*c)
     assert sp.expand(s2 - d2) == 0 and sp.expand(s3 - d3) == 0 and sp.expand(s27 - 27 * d4) == 0
+
+
+# -- the number-mode companions (_generated/kernels.py) ---------------------------------------
+
+from quadric_contact._generated import kernels  # noqa: E402
+
+
+def test_regenerating_reproduces_the_kernels_byte_for_byte():
+    assert codegen.KERNELS_PATH.read_text() == codegen.emit_kernels()
+
+
+def test_check_command_reports_both_files_current(capsys):
+    assert codegen.main(["--check"]) == 0
+    out = capsys.readouterr().out
+    assert "formulas.py: current" in out and "kernels.py: current" in out
+
+
+def test_invariants_are_the_characteristic_polynomial_coefficients():
+    codegen.verify_invariants()  # raises on any difference
+    Q, qs = codegen.symmetric_matrix("q")
+    t = sp.Symbol("t")
+    got = kernels.quadric_invariants(*qs)
+    ref = sp.Poly((t * sp.eye(4) + Q).det(), t).all_coeffs()[1:]
+    assert [sp.expand(g - r) for g, r in zip(got[3:], ref, strict=True)] == [0] * 4
+    A = Q[:3, :3]
+    ref_a = sp.Poly((t * sp.eye(3) + A).det(), t).all_coeffs()[1:]
+    assert [sp.expand(g - r) for g, r in zip(got[:3], ref_a, strict=True)] == [0] * 3
+    a = [sp.Symbol(f"a{i}{j}") for i, j in codegen.QUADRATIC_PART_INDICES]
+    M = sp.Matrix(3, 3, lambda i, j: a[codegen.QUADRATIC_PART_INDICES.index((min(i, j), max(i, j)))])
+    m2, m3 = kernels.leading_minors_3(*a)
+    assert sp.expand(m2 - M[:2, :2].det()) == 0 and sp.expand(m3 - M.det()) == 0
+
+
+def _value_and_magnitude(name):
+    module = formulas if kernels.ROUNDING_COUNTS[name]["module"] == ("formulas",) else kernels
+    return getattr(module, name), getattr(kernels, f"{name}_magnitude")
+
+
+@pytest.mark.parametrize("name", [f for _, f, _ in codegen.FILTERED_FUNCTIONS])
+def test_magnitude_companion_dominates_every_product(name):
+    """Expanded, the companion has non-negative coefficients, each at least the absolute
+    value of the value program's coefficient of the same monomial (it sums |products|)."""
+    value, magnitude = _value_and_magnitude(name)
+    nargs = value.__code__.co_argcount
+    xs = sp.symbols(f"x0:{nargs}")
+    for v, m in zip(value(*xs), magnitude(*xs), strict=True):
+        pv, pm = sp.Poly(sp.expand(v), *xs), sp.Poly(sp.expand(m), *xs)
+        cm = dict(pm.terms())
+        assert all(c > 0 for c in cm.values())
+        for mono, c in pv.terms():
+            assert cm.get(mono, 0) >= abs(c)
+
+
+class _Tracked:
+    """A number that counts the rounded operations on its worst path and its degree —
+    an independent re-derivation of ROUNDING_COUNTS by running the generated code."""
+
+    def __init__(self, n, degree):
+        self.n, self.degree = n, degree
+
+    @staticmethod
+    def _lift(x):
+        return x if isinstance(x, _Tracked) else _Tracked(0, 0)
+
+    def __add__(self, other):
+        o = self._lift(other)
+        return _Tracked(max(self.n, o.n) + 1, max(self.degree, o.degree))
+
+    __radd__ = __add__
+    __sub__ = __add__
+    __rsub__ = __add__
+
+    def __mul__(self, other):
+        o = self._lift(other)
+        return _Tracked(self.n + o.n + 1, self.degree + o.degree)
+
+    __rmul__ = __mul__
+
+    def __neg__(self):
+        return self
+
+
+@pytest.mark.parametrize("name", [f for _, f, _ in codegen.FILTERED_FUNCTIONS])
+def test_rounding_counts_agree_with_an_instrumented_run(name):
+    value, magnitude = _value_and_magnitude(name)
+    rc = kernels.ROUNDING_COUNTS[name]
+    nargs = value.__code__.co_argcount
+    runs = (("value", value, 0), ("value_rounded_inputs", value, 1), ("magnitude", magnitude, 0))
+    for key, fn, leaf in runs:
+        out = fn(*[_Tracked(leaf, 1) for _ in range(nargs)])
+        assert tuple(t.n for t in out) == rc[key], key
+        assert tuple(t.degree for t in out) == rc["degree"]

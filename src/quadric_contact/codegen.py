@@ -28,23 +28,49 @@ Derivations
     ``Delta_4 = D_4 / c4**2``; the divisions are exact polynomial divisions
     done by sympy, and the positive factors are what make the signs agree.
 
+Companions for the number modes (``_generated/kernels.py``)
+------------------------------------------------------------
+``leading_minors_3``, ``quadric_invariants``
+    The leading principal minors of a quadratic part (Sylvester's test that
+    ``E`` is an ellipsoid) and the invariants that fix the affine type of
+    ``Q`` (trace, ``J`` and determinant of the quadratic part; the sums of
+    the principal minors of each order of the whole matrix), expanded by
+    sympy and checked against its determinants.
+``*_magnitude``
+    For every straight-line function of either generated module, the same
+    program with every ``-`` turned into ``+`` and every input read as its
+    absolute value (an AST transformation of the emitted text, so the
+    operations, their order and their association are those of the value
+    program).  Its value bounds the sum of the absolute values of all the
+    products the value program adds up: the quantity a rounding-error bound
+    is proportional to.
+``ROUNDING_COUNTS``
+    For every output of every straight-line function, the largest number of
+    rounded operations on any path from the inputs (an AST walk of the
+    emitted text: a sum counts ``max + 1``, a product ``sum + 1``) and the
+    degree.  :mod:`quadric_contact.modes.errorbounds` turns them into the
+    error-bound constants.
+
 Regenerate with ``python -m quadric_contact.codegen`` (or
 ``quadric-contact codegen``); the test suite checks that regenerating
-reproduces the committed file byte for byte.
+reproduces both committed files byte for byte.
 """
 
 from __future__ import annotations
 
 import argparse
+import ast
 import sys
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 import sympy as sp
 
 from .entries import ENTRY_INDICES
 
 GENERATED_PATH = Path(__file__).with_name("_generated") / "formulas.py"
+KERNELS_PATH = Path(__file__).with_name("_generated") / "kernels.py"
 
 
 # -- symbolic building blocks ---------------------------------------------------
@@ -334,6 +360,370 @@ def emit_formulas() -> str:
     return "\n".join(out)
 
 
+# -- number-mode companions (``_generated/kernels.py``) -------------------------------
+
+QUADRATIC_PART_INDICES: tuple[tuple[int, int], ...] = ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))
+"""The six independent entries of a symmetric 3x3 quadratic part, in argument order."""
+
+
+def _principal_minor_sum(M: sp.Matrix, order: int) -> sp.Expr:
+    from itertools import combinations
+
+    n = M.shape[0]
+    return sp.expand(
+        sum(
+            (
+                M.extract(list(rows), list(rows)).det(method="berkowitz")
+                for rows in combinations(range(n), order)
+            ),
+            sp.Integer(0),
+        )
+    )
+
+
+def derive_leading_minors_3() -> tuple[list[sp.Symbol], list[tuple[str, sp.Expr]]]:
+    """Leading principal minors of orders 2 and 3 of a symmetric 3x3 matrix ``a``
+    (Sylvester's criterion; the order-1 minor is the entry ``a00`` itself)."""
+    syms = {ij: sp.Symbol(f"a{ij[0]}{ij[1]}") for ij in QUADRATIC_PART_INDICES}
+    A = sp.Matrix(3, 3, lambda i, j: syms[(min(i, j), max(i, j))])
+    args = [syms[ij] for ij in QUADRATIC_PART_INDICES]
+    return args, [
+        ("m2", sp.expand(A[:2, :2].det(method="berkowitz"))),
+        ("m3", sp.expand(A.det(method="berkowitz"))),
+    ]
+
+
+def derive_quadric_invariants() -> tuple[list[sp.Symbol], list[tuple[str, sp.Expr]]]:
+    """The invariants that fix the affine type of ``Q`` (see
+    :mod:`quadric_contact.classification`): trace, ``J`` and determinant of the
+    quadratic part, and the sums ``E1 .. E4`` of the principal minors of each
+    order of the whole matrix (``det(t I + Q) = t^4 + E1 t^3 + E2 t^2 + E3 t + E4``)."""
+    Q, qs = symmetric_matrix("q")
+    A = Q[:3, :3]
+    outputs = [
+        ("trA", _principal_minor_sum(A, 1)),
+        ("JA", _principal_minor_sum(A, 2)),
+        ("detA", _principal_minor_sum(A, 3)),
+    ]
+    outputs += [(f"E{k}", _principal_minor_sum(Q, k)) for k in range(1, 5)]
+    return qs, outputs
+
+
+def verify_invariants() -> None:
+    """Raise AssertionError unless the invariants are the coefficients sympy's
+    characteristic polynomials give (an independent computation)."""
+    t = sp.Symbol("t")
+    args, outputs = derive_quadric_invariants()
+    Q, _ = symmetric_matrix("q")
+    got = dict(outputs)
+    cq = sp.Poly((t * sp.eye(4) + Q).det(method="berkowitz"), t)
+    for k in range(1, 5):
+        if sp.expand(got[f"E{k}"] - cq.coeff_monomial(t ** (4 - k))) != 0:
+            raise AssertionError(f"E{k} differs from the characteristic polynomial of Q")
+    ca = sp.Poly((t * sp.eye(3) + Q[:3, :3]).det(method="berkowitz"), t)
+    for name, k in (("trA", 1), ("JA", 2), ("detA", 3)):
+        if sp.expand(got[name] - ca.coeff_monomial(t ** (3 - k))) != 0:
+            raise AssertionError(f"{name} differs from the characteristic polynomial of the quadratic part")
+    _, minors = derive_leading_minors_3()
+    A = sp.Matrix(3, 3, lambda i, j: sp.Symbol(f"a{min(i, j)}{max(i, j)}"))
+    if sp.expand(dict(minors)["m3"] - A.det()) != 0 or sp.expand(dict(minors)["m2"] - A[:2, :2].det()) != 0:
+        raise AssertionError("leading minors differ from sympy's determinants")
+
+
+def derive_compact_deltas() -> tuple[list[sp.Symbol], list[tuple[str, sp.Expr]]]:
+    """A short straight-line program with the signs of ``(Delta_2, Delta_3, Delta_4)``,
+    for exact arithmetic (about 60 operations instead of 160): ``Delta_3`` grouped by
+    ``c3`` and ``c4``, and ``27 Delta_4 = 4 I^3 - J^2`` with the invariants ``I, J`` of
+    the quartic (the discriminant identity).  Checked against :func:`derive_paper_deltas`
+    by :func:`verify_compact_deltas`.  Not for floating point: ``4 I^3 - J^2`` cancels far
+    more than the expanded form, so its rounding bound is much weaker."""
+    c0, c1, c2, c3, c4 = coefficient_symbols(4)
+    I, J, u, v, w = sp.symbols("I J u v w")  # noqa: E741 - the classical names
+    program = [
+        ("I", 12 * c0 * c4 - 3 * c1 * c3 + c2 * c2),
+        (
+            "J",
+            72 * c0 * c2 * c4 - 27 * c0 * c3 * c3 - 27 * c1 * c1 * c4 + 9 * c1 * c2 * c3 - 2 * c2 * c2 * c2,
+        ),
+        ("u", c2 * c2 - 3 * c1 * c3),
+        ("v", 8 * c0 * c2 - 9 * c1 * c1),
+        ("w", 7 * c1 * c2 - 3 * c0 * c3),
+        ("Delta2", 3 * c3 * c3 - 8 * c2 * c4),
+        ("Delta3", c3 * c3 * u + 2 * c4 * c4 * v + 2 * c3 * c4 * w - 4 * c2 * c2 * c2 * c4),
+        ("Delta4_27", 4 * I * I * I - J * J),
+    ]
+    return [c0, c1, c2, c3, c4], [(name, sp.expand(expr)) for name, expr in program]
+
+
+def verify_compact_deltas() -> None:
+    """Raise AssertionError unless the compact program gives ``Delta_2, Delta_3, 27 Delta_4``."""
+    _, program = derive_compact_deltas()
+    env: dict[sp.Symbol, sp.Expr] = {}
+    for name, expr in program:
+        env[sp.Symbol(name)] = sp.expand(expr.xreplace(env))
+    d2, d3, d4 = derive_paper_deltas()
+    for name, ref in (("Delta2", d2), ("Delta3", d3), ("Delta4_27", 27 * d4)):
+        if sp.expand(env[sp.Symbol(name)] - ref) != 0:
+            raise AssertionError(f"compact {name} differs from the derived one")
+
+
+def _emit_function(
+    name: str, args: Sequence[sp.Symbol], outputs: Sequence[tuple[str, sp.Expr]], doc: str
+) -> list[str]:
+    lines = [f"def {name}({', '.join(str(a) for a in args)}):", f'    """{doc}"""']
+    for out_name, expr in outputs:
+        lines.append(f"    {out_name} = {_emit_expression(expr)}")
+    lines.append(f"    return ({', '.join(n for n, _ in outputs)}{',' if len(outputs) == 1 else ''})")
+    return lines
+
+
+# The straight-line functions have a tiny grammar: assignments of expressions built
+# from names, integer constants, binary + - * and unary minus, and a tuple return.
+# The printer below covers exactly that grammar (ast.unparse would do, but its
+# spacing is not promised to stay the same across Python versions, and the
+# generated file must reproduce byte for byte).
+
+_PRECEDENCE = {ast.Add: 1, ast.Sub: 1, ast.Mult: 2}
+_SYMBOL = {ast.Add: "+", ast.Sub: "-", ast.Mult: "*"}
+
+
+def _print_expr(node: ast.expr, parent_prec: int = 0, right: bool = False) -> str:
+    if isinstance(node, ast.Name):
+        return node.id
+    if isinstance(node, ast.Constant) and isinstance(node.value, int) and not isinstance(node.value, bool):
+        return str(node.value)
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
+        text = "-" + _print_expr(node.operand, 3)
+        return f"({text})" if parent_prec >= 2 else text
+    if isinstance(node, ast.BinOp) and type(node.op) in _PRECEDENCE:
+        prec = _PRECEDENCE[type(node.op)]
+        left, right_text = _print_expr(node.left, prec), _print_expr(node.right, prec, True)
+        op = _SYMBOL[type(node.op)]
+        text = f"{left} {op} {right_text}" if prec == 1 else f"{left}{op}{right_text}"
+        needs = prec < parent_prec or (right and prec == parent_prec)
+        return f"({text})" if needs else text
+    raise AssertionError(f"unexpected syntax in a generated straight-line function: {ast.dump(node)}")
+
+
+class _MagnitudeTransformer(ast.NodeTransformer):
+    """``x - y`` becomes ``x + y`` and ``-x`` becomes ``x``; everything else stays."""
+
+    def visit_BinOp(self, node: ast.BinOp) -> ast.AST:
+        self.generic_visit(node)
+        if isinstance(node.op, ast.Sub):
+            node.op = ast.Add()
+        return node
+
+    def visit_UnaryOp(self, node: ast.UnaryOp) -> ast.AST:
+        self.generic_visit(node)
+        if isinstance(node.op, ast.USub):
+            return node.operand
+        return node
+
+    def visit_Constant(self, node: ast.Constant) -> ast.AST:
+        if isinstance(node.value, int) and not isinstance(node.value, bool):
+            return ast.Constant(abs(node.value))
+        return node
+
+
+def _functions(text: str) -> dict[str, ast.FunctionDef]:
+    return {n.name: n for n in ast.parse(text).body if isinstance(n, ast.FunctionDef)}
+
+
+def _straight_line(fdef: ast.FunctionDef) -> tuple[list[str], list[tuple[str, ast.expr]], list[str]]:
+    """(arguments, assignments, returned names) of a generated straight-line function."""
+    args = [a.arg for a in fdef.args.args]
+    assignments: list[tuple[str, ast.expr]] = []
+    returned: list[str] = []
+    for stmt in fdef.body:
+        if isinstance(stmt, ast.Expr) and isinstance(stmt.value, ast.Constant):
+            continue  # docstring
+        if isinstance(stmt, ast.Assign) and len(stmt.targets) == 1 and isinstance(stmt.targets[0], ast.Name):
+            assignments.append((stmt.targets[0].id, stmt.value))
+        elif isinstance(stmt, ast.Return) and stmt.value is not None:
+            value = stmt.value
+            if isinstance(value, ast.Tuple) and all(isinstance(e, ast.Name) for e in value.elts):
+                returned = [e.id for e in value.elts]  # type: ignore[attr-defined]
+            else:
+                assignments.append(("__result__", value))
+                returned = ["__result__"]
+        else:
+            raise AssertionError(f"unexpected statement in {fdef.name}: {ast.dump(stmt)}")
+    return args, assignments, returned
+
+
+def emit_magnitude_function(fdef: ast.FunctionDef) -> list[str]:
+    """The magnitude companion of a generated straight-line function (see the module docstring)."""
+    import copy
+
+    args, assignments, returned = _straight_line(fdef)
+    out = [
+        f"def {fdef.name}_magnitude({', '.join(args)}):",
+        f'    """Magnitude companion of ``{fdef.name}``: call it with the absolute values of the',
+        '    arguments; same operations in the same order, with every minus turned into a plus."""',
+    ]
+    for target, expr in assignments:
+        mag = _MagnitudeTransformer().visit(copy.deepcopy(expr))
+        name = "result" if target == "__result__" else target
+        out.append(f"    {name} = {_print_expr(mag)}")
+    names = ["result" if r == "__result__" else r for r in returned]
+    if len(names) == 1 and returned == ["__result__"]:
+        out.append("    return result")
+    else:
+        out.append(f"    return ({', '.join(names)}{',' if len(names) == 1 else ''})")
+    return out
+
+
+def rounding_counts(fdef: ast.FunctionDef, input_roundings: int = 0) -> list[tuple[int, int]]:
+    """``(N, degree)`` for every output of a generated straight-line function.
+
+    ``N`` is the largest number of rounded operations met on a path from the
+    inputs to the output, counting ``input_roundings`` for each input (1 when
+    the inputs are themselves rounded values of exact numbers): a sum or
+    difference counts ``max(N_left, N_right) + 1``, a product
+    ``N_left + N_right + 1`` (every product of the expanded polynomial picks up
+    the rounding factors of both operands), a negation nothing.  The degree is
+    the total degree of the output as a polynomial in the inputs.
+    """
+    args, assignments, returned = _straight_line(fdef)
+    env: dict[str, tuple[int, int]] = {a: (input_roundings, 1) for a in args}
+
+    def walk(node: ast.expr) -> tuple[int, int]:
+        if isinstance(node, ast.Name):
+            return env[node.id]
+        if isinstance(node, ast.Constant):
+            return (0, 0)
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
+            return walk(node.operand)
+        if isinstance(node, ast.BinOp):
+            (nl, dl), (nr, dr) = walk(node.left), walk(node.right)
+            if isinstance(node.op, ast.Mult):
+                return (nl + nr + 1, dl + dr)
+            if isinstance(node.op, (ast.Add, ast.Sub)):
+                return (max(nl, nr) + 1, max(dl, dr))
+        raise AssertionError(f"unexpected syntax: {ast.dump(node)}")
+
+    for target, expr in assignments:
+        env[target] = walk(expr)
+    return [env[r] for r in returned]
+
+
+#: Functions whose rounding counts and magnitude companions are emitted:
+#: (module, function name, names of the outputs).
+FILTERED_FUNCTIONS: tuple[tuple[str, str, tuple[str, ...]], ...] = (
+    ("formulas", "pencil_coefficients", ("c0", "c1", "c2", "c3", "c4")),
+    ("formulas", "paper_deltas", ("Delta2", "Delta3", "Delta4")),
+    ("kernels", "leading_minors_3", ("m2", "m3")),
+    ("kernels", "quadric_invariants", ("trA", "JA", "detA", "E1", "E2", "E3", "E4")),
+)
+
+
+def _kernel_value_functions() -> list[str]:
+    args, minors = derive_leading_minors_3()
+    out = _emit_function(
+        "leading_minors_3",
+        args,
+        minors,
+        "(m2, m3): leading principal minors of orders 2 and 3 of the symmetric 3x3 matrix\n"
+        "    with upper entries aij (Sylvester's criterion; order 1 is a00 itself).",
+    )
+    out += ["", ""]
+    cargs, compact = derive_compact_deltas()
+    out += [
+        *_emit_function(
+            "paper_deltas_compact",
+            cargs,
+            compact,
+            "Delta_2, Delta_3 and 27 Delta_4 (same signs as paper_deltas) in about 60 operations,\n"
+            "    for exact arithmetic; 27 Delta_4 = 4 I^3 - J^2 with the invariants I, J of the quartic.",
+        )[:-1],
+        "    return (Delta2, Delta3, Delta4_27)",
+    ]
+    out += ["", ""]
+    args, invariants = derive_quadric_invariants()
+    out += _emit_function(
+        "quadric_invariants",
+        args,
+        invariants,
+        "(trA, JA, detA, E1, E2, E3, E4) of the symmetric Q with upper entries qij: trace, sum of\n"
+        "    principal 2x2 minors and determinant of the quadratic part, and the sums of the principal\n"
+        "    minors of each order of Q.",
+    )
+    return out
+
+
+def _format_counts(counts: dict[str, dict[str, tuple[Any, ...]]]) -> list[str]:
+    lines = ["ROUNDING_COUNTS = {"]
+    for fname, entry in counts.items():
+        lines.append(f"    {fname!r}: {{")
+        for key, value in entry.items():
+            lines.append(f"        {key!r}: {value!r},")
+        lines.append("    },")
+    lines.append("}")
+    return lines
+
+
+def emit_kernels(formulas_text: str | None = None) -> str:
+    """The full text of ``_generated/kernels.py``."""
+    if formulas_text is None:
+        formulas_text = emit_formulas()
+    value_lines = _kernel_value_functions()
+    sources = {"formulas": _functions(formulas_text), "kernels": _functions("\n".join(value_lines))}
+    out: list[str] = [
+        '"""Companions of the closed forms for the number modes, generated by ``quadric_contact.codegen``.',
+        "",
+        "Do not edit: regenerate with ``python -m quadric_contact.codegen``.  Two more",
+        "straight-line functions (the leading minors of a quadratic part and the invariants",
+        "that fix the affine type of a quadric), the magnitude companion of every filtered",
+        "function (same operations, minus turned into plus, to be called with absolute",
+        "values), and ROUNDING_COUNTS: for every output, the largest number of rounded",
+        "operations on a path from the inputs (exact inputs, rounded inputs, and for the",
+        "magnitude companion) and its degree.  Like ``formulas``, everything runs on any",
+        "number type and compiles with numba unchanged.",
+        '"""',
+        "",
+        "# ruff: noqa",
+        "",
+        *value_lines,
+        "",
+        "",
+    ]
+    counts: dict[str, dict[str, tuple[Any, ...]]] = {}
+    for module, fname, outputs in FILTERED_FUNCTIONS:
+        fdef = sources[module][fname]
+        mag_lines = emit_magnitude_function(fdef)
+        out += [*mag_lines, "", ""]
+        mag_def = _functions("\n".join(mag_lines))[f"{fname}_magnitude"]
+        exact = rounding_counts(fdef, 0)
+        rounded = rounding_counts(fdef, 1)
+        mag = rounding_counts(mag_def, 0)
+        if [d for _, d in exact] != [d for _, d in mag]:
+            raise AssertionError(f"magnitude companion of {fname} has other degrees")
+        counts[fname] = {
+            "module": (module,),
+            "outputs": outputs,
+            "degree": tuple(d for _, d in exact),
+            "value": tuple(n for n, _ in exact),
+            "value_rounded_inputs": tuple(n for n, _ in rounded),
+            "magnitude": tuple(n for n, _ in mag),
+        }
+    out += _format_counts(counts)
+    out.append("")
+    return "\n".join(out)
+
+
+def regenerate_kernels(path: Path = KERNELS_PATH, check: bool = False) -> bool:
+    """Write (or with ``check=True`` only compare) ``_generated/kernels.py``."""
+    verify_invariants()
+    verify_compact_deltas()
+    text = emit_kernels()
+    current = path.read_text() if path.exists() else None
+    if check:
+        return current == text
+    path.write_text(text)
+    return current == text
+
+
 def regenerate(path: Path = GENERATED_PATH, check: bool = False) -> bool:
     """Write (or with ``check=True`` only compare) the generated module.
 
@@ -356,12 +746,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="quadric-contact codegen", description=__doc__.split("\n")[0])
     parser.add_argument("--check", action="store_true", help="only check that the file is current")
     args = parser.parse_args(argv)
-    same = regenerate(check=args.check)
-    if args.check:
-        print("generated formulas are current" if same else "generated formulas are OUT OF DATE")
-        return 0 if same else 1
-    print(f"wrote {GENERATED_PATH} ({'unchanged' if same else 'changed'})")
-    return 0
+    status = 0
+    for path, fn in ((GENERATED_PATH, regenerate), (KERNELS_PATH, regenerate_kernels)):
+        same = fn(check=args.check)
+        if args.check:
+            print(f"{path.name}: " + ("current" if same else "OUT OF DATE"))
+            status |= 0 if same else 1
+        else:
+            print(f"wrote {path} ({'unchanged' if same else 'changed'})")
+    return status
 
 
 if __name__ == "__main__":

@@ -1,0 +1,81 @@
+"""Number modes: one formula, many number types.
+
+=============  ===================================================  ==========
+mode           what it computes with                                answers
+=============  ===================================================  ==========
+``certified``  ``filter``, then ``ball``, then ``exact``             always, never wrong
+``filter``     binary64 + rigorous error bound                      where sure
+``float``      plain binary64                                       always, may be wrong
+``ball``       python-flint ``arb`` balls at ``prec`` bits           where sure
+``mpmath``     mpmath ``mpf`` at ``dps`` digits                      always, may be wrong
+``exact``      integers (each matrix scaled to integers)            always, exact
+=============  ===================================================  ==========
+
+A mode is an object; pass a name or an instance (to set options or to read
+its :attr:`~NumberMode.counts` afterwards)::
+
+    >>> import numpy as np
+    >>> from quadric_contact import transversal_contact
+    >>> from quadric_contact.modes import CertifiedMode
+    >>> mode = CertifiedMode()
+    >>> E = np.diag([2.0, 2.0, 3.0, -1.0])                          # Example 11
+    >>> Q = np.array([[1.0, 0, 0, 0], [0, 1, 0, 0], [0, 0, 0, 4], [0, 0, 4, 0]])
+    >>> transversal_contact(np.stack([E, E]), Q, mode=mode)
+    array([1, 1], dtype=int8)
+    >>> mode.last.decided["filter"]
+    2
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from .base import ContactCode, MatrixStack, NumberMode, Pairs, RegionCode, Sign, StageCounts
+from .certified import CertifiedMode
+from .float64 import FilterMode, FloatMode
+from .objects import BallMode, ExactMode, MpmathMode
+
+__all__ = [
+    "MODES",
+    "BallMode",
+    "CertifiedMode",
+    "ContactCode",
+    "ExactMode",
+    "FilterMode",
+    "FloatMode",
+    "MatrixStack",
+    "MpmathMode",
+    "NumberMode",
+    "Pairs",
+    "RegionCode",
+    "Sign",
+    "StageCounts",
+    "get_mode",
+]
+
+MODES: dict[str, type[NumberMode]] = {
+    "certified": CertifiedMode,
+    "filter": FilterMode,
+    "float": FloatMode,
+    "ball": BallMode,
+    "mpmath": MpmathMode,
+    "exact": ExactMode,
+}
+"""Mode names and their classes."""
+
+
+def get_mode(mode: str | NumberMode = "certified", **options: Any) -> NumberMode:
+    """A mode instance from a name (with ``options`` for its constructor) or an instance.
+
+    Raises
+    ------
+    ValueError
+        For an unknown name.
+    """
+    if isinstance(mode, NumberMode):
+        if options:
+            raise ValueError("options are only accepted with a mode name")
+        return mode
+    if mode not in MODES:
+        raise ValueError(f"mode must be one of {tuple(MODES)} or a NumberMode, got {mode!r}")
+    return MODES[mode](**options)

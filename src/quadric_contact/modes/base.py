@@ -1,0 +1,321 @@
+"""What every number mode shares: the three-valued sign, the result codes of the
+array predicates, the inputs they work on and the counts of who decided what.
+
+A number mode is an object (CGAL's filtered kernels, mpmath's contexts): the
+array predicates hand it validated matrices and read back codes; nothing in
+the predicates branches on the mode's name.
+"""
+
+from __future__ import annotations
+
+import threading
+from abc import ABC, abstractmethod
+from dataclasses import dataclass, field
+from enum import IntEnum
+from fractions import Fraction
+from typing import Any
+
+import numpy as np
+
+from ..errors import UndecidedError
+from ..results import Region
+
+__all__ = [
+    "ContactCode",
+    "MatrixStack",
+    "NumberMode",
+    "Pairs",
+    "RegionCode",
+    "Sign",
+    "StageCounts",
+]
+
+
+class Sign(IntEnum):
+    """A sign as a number mode knows it.
+
+    ``UNCERTAIN`` means "this mode cannot tell"; it is never read as ``False``
+    (``bool(Sign.UNCERTAIN)`` raises :class:`~quadric_contact.errors.UndecidedError`),
+    and in the int8 arrays of the modes its value 2 is non-zero.
+    """
+
+    NEGATIVE = -1
+    ZERO = 0
+    POSITIVE = 1
+    UNCERTAIN = 2
+
+    def __bool__(self) -> bool:
+        if self is Sign.UNCERTAIN:
+            raise UndecidedError("an UNCERTAIN sign has no truth value", self)
+        return self is not Sign.ZERO
+
+    @property
+    def certain(self) -> bool:
+        return self is not Sign.UNCERTAIN
+
+
+class ContactCode(IntEnum):
+    """Codes of :func:`~quadric_contact.batch.transversal_contact_batch` (int8 arrays).
+
+    ``CONTACT`` means ``P`` has non-real roots: transversal contact, for any pair
+    (Remark 9).  ``NO_CONTACT`` means all roots of ``P`` are real: no transversal
+    contact when ``E`` is small with respect to ``Q`` (Theorem 2, Corollary 10),
+    when ``Q`` is a plane (Theorem 14) or has no real points.  ``UNCERTAIN`` (only
+    from the modes that are not certified) is 2: non-zero, so a cast to bool
+    reads it as a possible contact, never as a clearance.
+    """
+
+    NO_CONTACT = 0
+    CONTACT = 1
+    UNCERTAIN = 2
+
+    @property
+    def transversal(self) -> bool | None:
+        """True, False, or None for ``UNCERTAIN``."""
+        return None if self is ContactCode.UNCERTAIN else self is ContactCode.CONTACT
+
+
+class RegionCode(IntEnum):
+    """Codes of :func:`~quadric_contact.batch.relative_position_batch` (int8 arrays).
+
+    The three regions of :class:`~quadric_contact.results.Region` are the sign of
+    ``X^T Q X`` over the ellipsoid: ``R_MINUS = -1``, ``CONTACT = 0`` (the surfaces
+    cross), ``R_PLUS = 1`` (Table 4; Theorem 14 for planes).  The other codes say
+    why there is no region: ``UNCERTAIN`` (2) the number mode cannot tell;
+    ``NO_ROW`` (3) all roots are real but their sign pattern is in no row of
+    Table 4 for the type of ``Q``, so ``E`` is not small with respect to ``Q``;
+    ``EXCLUDED`` (4) ``Q`` is of a type without a row (cones, intersecting or
+    coincident planes, quadrics without real points), as
+    :func:`~quadric_contact.relative_position` would raise.
+    """
+
+    R_MINUS = -1
+    CONTACT = 0
+    R_PLUS = 1
+    UNCERTAIN = 2
+    NO_ROW = 3
+    EXCLUDED = 4
+
+    @property
+    def region(self) -> Region | None:
+        """The :class:`Region`, or None for the codes that are not regions."""
+        return _CODE_TO_REGION.get(self)
+
+    @classmethod
+    def from_region(cls, region: Region | str | None) -> RegionCode:
+        """The code of a region (None, as from an undecided result, is ``NO_ROW``)."""
+        if region is None:
+            return cls.NO_ROW
+        return {v: k for k, v in _CODE_TO_REGION.items()}[Region(region)]
+
+
+_CODE_TO_REGION = {
+    RegionCode.R_MINUS: Region.R_MINUS,
+    RegionCode.CONTACT: Region.CONTACT,
+    RegionCode.R_PLUS: Region.R_PLUS,
+}
+
+INVALID = 5
+"""Internal code of the float kernels: the entry failed validation (the
+predicates diagnose it and raise the matching error)."""
+
+
+@dataclass
+class StageCounts:
+    """How many entries each stage of a mode decided, and how many stayed undecided.
+
+    ``decided`` maps a stage name (``"float"``, ``"filter"``, ``"ball"``,
+    ``"mpmath"``, ``"exact"``) to a count; ``undecided`` counts entries returned
+    ``UNCERTAIN``.
+    """
+
+    decided: dict[str, int] = field(default_factory=dict)
+    undecided: int = 0
+
+    @property
+    def total(self) -> int:
+        return sum(self.decided.values()) + self.undecided
+
+    @property
+    def escalated(self) -> int:
+        """Entries the first stage left to a later one (or left undecided)."""
+        first = next(iter(self.decided.values()), 0)
+        return self.total - first
+
+    def add(self, stage: str, count: int) -> None:
+        self.decided[stage] = self.decided.get(stage, 0) + int(count)
+
+    def merge(self, other: StageCounts) -> None:
+        for stage, count in other.decided.items():
+            self.add(stage, count)
+        self.undecided += other.undecided
+
+    def __str__(self) -> str:
+        parts = [f"{stage} {count}" for stage, count in self.decided.items()]
+        if self.undecided:
+            parts.append(f"undecided {self.undecided}")
+        return ", ".join(parts) or "nothing"
+
+
+@dataclass(frozen=True)
+class MatrixStack:
+    """Validated symmetric matrices, ``n`` of them.
+
+    Attributes
+    ----------
+    floats : ndarray, shape (n, 4, 4), float64
+        The matrices in binary64 (C-contiguous).  When ``exact`` is None they
+        *are* the input (a float is an exact dyadic rational); otherwise they are
+        the correctly rounded values of ``exact``.
+    exact : ndarray of Fraction, shape (n, 10), or None
+        The upper entries exactly, when the input was not binary64.
+    checked : bool
+        Symmetry and finiteness were verified on conversion (exact input);
+        float input is verified by the kernels that read it.
+    name : str
+        ``"E"`` or ``"Q"``, for messages.
+    shape : tuple of int
+        The caller's batch shape (``()`` for a single matrix), for messages.
+    """
+
+    floats: np.ndarray
+    exact: np.ndarray | None = None
+    checked: bool = False
+    name: str = "M"
+    shape: tuple[int, ...] = ()
+
+    def where(self, row: int) -> str:
+        """``E[2, 1]``-style position of a matrix in the caller's array."""
+        if not self.shape:
+            return self.name
+        idx = np.unravel_index(int(row), self.shape)
+        return f"{self.name}[{', '.join(str(int(i)) for i in idx)}]"
+
+    def __len__(self) -> int:
+        return int(self.floats.shape[0])
+
+    @property
+    def rounded(self) -> bool:
+        return self.exact is not None
+
+    def upper_exact(self, rows: np.ndarray) -> list[np.ndarray]:
+        """The ten upper-entry columns of ``rows`` as object arrays of exact rationals
+        (Fractions, or Python floats standing for their exact dyadic values)."""
+        from ..codegen import ENTRY_INDICES
+
+        if self.exact is not None:
+            sub = self.exact[rows]
+            return [sub[:, k] for k in range(10)]
+        sub = self.floats[rows]
+        return [sub[:, i, j].astype(object) for i, j in ENTRY_INDICES]
+
+
+@dataclass(frozen=True)
+class Pairs:
+    """The pairs ``(E[e_index[p]], Q[q_index[p]])`` for ``p`` in ``range(n)``.
+
+    ``e_index`` is None when pair ``p`` uses ``E[p]`` (same length) or ``E[0]``
+    (a single ellipsoid); likewise ``q_index``.
+    """
+
+    E: MatrixStack
+    Q: MatrixStack
+    n: int
+    e_index: np.ndarray | None = None
+    q_index: np.ndarray | None = None
+
+    def e_rows(self) -> np.ndarray:
+        return _rows(self.e_index, len(self.E), self.n)
+
+    def q_rows(self) -> np.ndarray:
+        return _rows(self.q_index, len(self.Q), self.n)
+
+    def take(self, which: np.ndarray) -> Pairs:
+        """The sub-batch of the pairs ``which`` (indices into ``range(n)``)."""
+        which = np.asarray(which, dtype=np.intp)
+        return Pairs(self.E, self.Q, int(which.size), self.e_rows()[which], self.q_rows()[which])
+
+    def kernel_indices(self) -> tuple[np.ndarray, np.ndarray, int, int]:
+        """``(e_index, q_index, e_stride, q_stride)`` as the float kernels read them:
+        an empty index array means ``row = p * stride``."""
+        empty = np.zeros(0, dtype=np.intp)
+        out: list[Any] = []
+        for index in (self.e_index, self.q_index):
+            out.append(empty if index is None else np.ascontiguousarray(index, dtype=np.intp))
+        strides = [0 if (self.e_index is not None or len(self.E) == 1) else 1]
+        strides.append(0 if (self.q_index is not None or len(self.Q) == 1) else 1)
+        return out[0], out[1], strides[0], strides[1]
+
+
+def _rows(index: np.ndarray | None, m: int, n: int) -> np.ndarray:
+    if index is not None:
+        return np.asarray(index, dtype=np.intp)
+    if m == n:
+        return np.arange(n, dtype=np.intp)
+    return np.zeros(n, dtype=np.intp)
+
+
+class NumberMode(ABC):
+    """A way of evaluating the closed forms (one formula, many number types).
+
+    Subclasses implement :meth:`contact`, :meth:`region` and
+    :meth:`classify`; each call records who decided what in :attr:`last`
+    and adds it to :attr:`counts` (thread-safe), which is how a caller reads
+    how many entries each stage of the certified mode decided.
+
+    Attributes
+    ----------
+    name : str
+    certified : bool
+        True if every answer other than ``UNCERTAIN`` is guaranteed to equal
+        the exact evaluation of the criterion on the given matrices.
+    """
+
+    name: str = "mode"
+    certified: bool = False
+
+    def __init__(self) -> None:
+        self.counts = StageCounts()
+        self.last = StageCounts()
+        self._lock = threading.Lock()
+
+    def _record(self, counts: StageCounts) -> None:
+        with self._lock:
+            self.last = counts
+            self.counts.merge(counts)
+
+    def __getstate__(self) -> dict[str, Any]:
+        state = dict(self.__dict__)
+        del state["_lock"]
+        return state
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__dict__.update(state)
+        self._lock = threading.Lock()
+
+    def reset_counts(self) -> None:
+        with self._lock:
+            self.counts = StageCounts()
+            self.last = StageCounts()
+
+    @abstractmethod
+    def contact(self, pairs: Pairs) -> np.ndarray:
+        """:class:`ContactCode` of every pair (int8, shape ``(pairs.n,)``)."""
+
+    @abstractmethod
+    def classify(self, Q: MatrixStack, rows: np.ndarray | None = None) -> np.ndarray:
+        """Candidate Table 4 rows (int64 bit masks, see :mod:`~quadric_contact.modes.decisions`)
+        of the quadrics ``rows`` (all by default): one bit where the type is certain."""
+
+    @abstractmethod
+    def region(self, pairs: Pairs) -> np.ndarray:
+        """:class:`RegionCode` of every pair (int8, shape ``(pairs.n,)``)."""
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}()"
+
+
+def as_fraction_array(values: Any) -> np.ndarray:
+    """An object array of Fractions (helper for tests and fixtures)."""
+    arr = np.asarray(values, dtype=object)
+    return np.vectorize(Fraction, otypes=[object])(arr)

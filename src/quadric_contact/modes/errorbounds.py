@@ -1,0 +1,294 @@
+"""Rigorous error bounds for the float filter, derived in the open.
+
+Every constant below is computed here, in exact rational arithmetic, from the
+rounding counts that :mod:`quadric_contact.codegen` reads off the generated
+straight-line programs (``kernels.ROUNDING_COUNTS``), and rounded *up* to a
+float.  Nothing is typed in.
+
+Model (Higham, *Accuracy and Stability of Numerical Algorithms*, 2nd ed.
+2002, §2.2, eq. (2.4)): in IEEE 754 binary64 with rounding to nearest,
+``fl(x op y) = (x op y)(1 + d)`` with ``|d| <= u = 2^-53`` for ``op`` in
+``+ - *``, provided the result is neither subnormal nor overflows.  The guards
+(:data:`INPUT_MIN`, :data:`INPUT_MAX`, :data:`COEFFICIENT_MIN`) make sure of
+that, by the *quantum* argument: a float ``x`` with ``|x| >= 2^e`` is an
+integer multiple of ``2^(e-52)``; products and sums of multiples of ``2^q``
+and ``2^r`` are multiples of ``2^(q+r)`` and ``2^min(q,r)``, and rounding to
+nearest keeps a multiple of ``2^q`` a multiple of ``2^q`` (when ``2^q`` is a
+float).  So every non-zero intermediate of a degree-``D`` program whose
+non-zero inputs are at least ``2^e`` in magnitude is at least ``2^(D(e-52))``.
+
+Straight-line programs (Higham, Lemma 3.1 and §3.1).  Expand the computed
+value of a program over ``+ - *`` as a sum over *paths*: each path is one
+product of the expanded polynomial (with its integer coefficient) times one
+factor ``(1 + d)`` per rounded operation it went through; a sum adds one factor
+to every path of both operands (``N = max + 1``), a product multiplies paths
+(``N = N_left + N_right + 1``).  With ``N`` that count for the output,
+``|fl(p) - p| <= gamma_N * p~`` where ``gamma_N = N u / (1 - N u)`` and ``p~`` is
+the sum over paths of the absolute values: exactly what the *magnitude
+companion* (same program, ``-`` turned into ``+``, absolute inputs) computes.
+Computed in floating point it gives ``M >= (1 - u)^N' p~`` (all terms are
+non-negative, ``N'`` its own count), so ``p~ <= M / (1 - u)^N'``.  A fused
+multiply-add only removes roundings from paths, so the bounds hold whether or
+not the compiler contracts.
+
+Everything here is used by :mod:`quadric_contact.modes.float64`; the tests
+check every bound against exact arithmetic on adversarial inputs.
+"""
+
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+from typing import Any
+
+from .._generated.kernels import ROUNDING_COUNTS
+
+__all__ = [
+    "COEFFICIENT_MIN",
+    "DELTA_ABSOLUTE",
+    "DELTA_RELATIVE",
+    "INPUT_MAX",
+    "INPUT_MIN",
+    "MINORS_ERRBOUND",
+    "PENCIL_ERRBOUND",
+    "RHO_MAX",
+    "ROUND_UP",
+    "UNIT_ROUNDOFF",
+    "gamma",
+    "program_errbound",
+    "round_up",
+]
+
+UNIT_ROUNDOFF = Fraction(1, 2**53)
+"""``u``: the unit roundoff of binary64 with rounding to nearest."""
+
+_U = UNIT_ROUNDOFF
+
+
+def gamma(n: int) -> Fraction:
+    """``gamma_n = n u / (1 - n u)`` (Higham, Lemma 3.1): ``|prod (1 + d_i)^(+-1) - 1| <= gamma_n``."""
+    if n * _U >= 1:
+        raise ValueError(f"gamma_{n} is undefined")
+    return n * _U / (1 - n * _U)
+
+
+def round_up(x: Fraction) -> float:
+    """The smallest binary64 number ``>= x`` (for positive, representable ``x``)."""
+    f = float(x)
+    if Fraction(f) < x:
+        f = math.nextafter(f, math.inf)
+    assert Fraction(f) >= x
+    return f
+
+
+def program_errbound(n_value: int, n_magnitude: int, degree: int, rounded_inputs: bool = False) -> float:
+    """``K`` with ``|fl(p) - p| <= fl(K * M)`` for a program output (``M`` its computed magnitude).
+
+    * exact inputs: ``|fl(p) - p| <= gamma_N p~ <= gamma_N (1-u)^-N' M``;
+    * inputs that are themselves rounded (``x^ = x (1 + d)``, exact rationals
+      converted to floats): each path also carries one factor per input it
+      multiplies, which the count with inputs weighing 1 includes
+      (``value_rounded_inputs``), and the magnitude at the true inputs is at
+      most ``(1-u)^-degree`` times the one at the rounded inputs;
+    * the final product ``fl(K M)`` may lose a factor ``(1 - u)``, hence the last division.
+    """
+    k = gamma(n_value) / (1 - _U) ** n_magnitude
+    if rounded_inputs:
+        k /= (1 - _U) ** degree
+    return round_up(k / (1 - _U))
+
+
+def _counts(name: str) -> dict[str, Any]:
+    """The rounding counts of one generated function (see :mod:`quadric_contact.codegen`)."""
+    return dict(ROUNDING_COUNTS[name])
+
+
+def _program_bounds(name: str, rounded: bool) -> tuple[float, ...]:
+    rc = _counts(name)
+    value = rc["value_rounded_inputs"] if rounded else rc["value"]
+    return tuple(
+        program_errbound(nv, nm, d, rounded)
+        for nv, nm, d in zip(value, rc["magnitude"], rc["degree"], strict=True)
+    )
+
+
+PENCIL_ERRBOUND = {rounded: _program_bounds("pencil_coefficients", rounded) for rounded in (False, True)}
+"""``K_k`` for ``c0 .. c4`` (keyed by "inputs are rounded"): ``|c^_k - c_k| <= fl(K_k * M_k)``."""
+
+MINORS_ERRBOUND = {rounded: _program_bounds("leading_minors_3", rounded) for rounded in (False, True)}
+"""``K`` for the leading minors ``m2, m3`` of the quadratic part of ``E`` (Sylvester)."""
+
+INVARIANTS_ERRBOUND = {rounded: _program_bounds("quadric_invariants", rounded) for rounded in (False, True)}
+"""``K`` for ``trA, J, detA, E1 .. E4`` (the affine type of ``Q``)."""
+
+# -- guards ------------------------------------------------------------------------
+
+INPUT_MIN_EXPONENT = -180
+INPUT_MAX_EXPONENT = 180
+INPUT_MIN = 2.0**INPUT_MIN_EXPONENT
+"""Non-zero matrix entries must be at least this in magnitude for the filter."""
+INPUT_MAX = 2.0**INPUT_MAX_EXPONENT
+"""Matrix entries must be at most this in magnitude for the filter (NaN fails too)."""
+
+
+def _check_input_guard() -> None:
+    # Lower guard: entries are multiples of 2^(-180-52); every program is of degree <= 4
+    # in them, so every non-zero intermediate (value or magnitude) is >= 2^(4 * -232) =
+    # 2^-928, normal; the error bound fl(K M) >= 2^-928 * K >= 2^-981 is normal too.
+    q = INPUT_MIN_EXPONENT - 52
+    assert 4 * q >= -1022 and 4 * q + math.log2(min(PENCIL_ERRBOUND[False])) >= -1022
+    # Upper guard: |intermediate| <= magnitude <= (number of paths) * 2^(4*180); the
+    # number of paths is the magnitude program at all ones (exact integers).
+    from .._generated import kernels
+
+    paths = max(kernels.pencil_coefficients_magnitude(*([1] * 20)))
+    assert math.log2(paths) + 4 * INPUT_MAX_EXPONENT + 1 < 1023
+
+
+_check_input_guard()
+
+COEFFICIENT_MIN = 2.0**-118
+"""After scaling the coefficients to ``[0, 2)``, non-zero ``|c_k|`` and their upper
+bounds must be at least this for the Delta stage."""
+
+
+def _check_coefficient_guard() -> None:
+    # Multiples of 2^(-118-52) to the 6th power (Delta_4 has degree 6) stay >= 2^-1020:
+    # no subnormal intermediate.  A non-zero magnitude is >= one product >= 2^(-118*6)
+    # (1-u)^N >= 2^-709, so K * M stays normal; a difference of two such magnitudes is a
+    # multiple of 2^-1020.
+    assert 6 * (-118 - 52) >= -1022
+
+
+_check_coefficient_guard()
+
+ROUND_UP = 1.0 + 4.0 * 2.0**-53
+"""``b = fl(fl(a + e) * ROUND_UP) >= a + e`` for non-negative normal ``a, e``:
+``fl(a + e) >= (a + e)(1 - u)`` and ``fl(s * ROUND_UP) >= s (1 + 4u)(1 - u)``, and
+``(1 - u)^2 (1 + 4u) >= 1``."""
+assert (1 - _U) ** 2 * (1 + 4 * _U) >= 1 and Fraction(ROUND_UP) == 1 + 4 * _U
+
+# -- the Delta stage -------------------------------------------------------------------
+#
+# The coefficients c^_k carry absolute errors e_k (from PENCIL_ERRBOUND), are scaled by
+# the same power of two s (exact) so that a_k = |c^_k| s < 1, and Delta_j (degree d_j,
+# counts N_j, N'_j) is evaluated at c^ s.  Two ways to bound |Delta^_j - Delta_j(c s)|:
+#
+# Relative (one magnitude program): with c_k = c^_k (1 + t_k), |t_k| <= rho (rho the
+# largest e_k / |c^_k| over the non-zero c^_k; c^_k = e_k = 0 means c_k = 0 exactly and
+# drops out), every product of degree <= d_j moves by at most (1 + rho)^d - 1 <= d rho
+# (1 + rho)^(d-1) times its size, so
+#     |Delta^ - Delta| <= (d (1 + RHO_MAX)^(d-1) rho + gamma_N) p~(a),   p~(a) <= A (1-u)^-N'.
+# The float computation fl(fl(fl(R rho^) + G) A) with rho^ = max fl(e_k / a_k) (each
+# quotient >= (1 - u) times the true one) loses at most (1 - u)^3, and rho <= rho^ / (1-u).
+#
+# Absolute (two magnitude programs, a and b >= a + e): every product moves by at most
+# p~_m(b) - p~_m(a), so |Delta^ - Delta| <= p~(b) - p~(a) + gamma_N p~(a)
+#     <= (B - A)(1-u)^-N' + A ((1-u)^-N' - (1+u)^-N' + gamma_N (1-u)^-N'),
+# with B - A <= fl(B - A) / (1 - u) and the final fl(fl(K1 D) + fl(K3 A)) losing (1-u)^2.
+
+RHO_MAX = 2.0**-10
+"""The relative bound is used only when ``rho^ <= RHO_MAX`` (otherwise the absolute one)."""
+
+
+def _delta_relative(j: int) -> tuple[float, float]:
+    rc = _counts("paper_deltas")
+    d, n, nm = rc["degree"][j], rc["value"][j], rc["magnitude"][j]
+    rho_max = Fraction(RHO_MAX) / (1 - _U)  # the true rho is at most rho^ / (1 - u)
+    loss = (1 - _U) ** 3
+    r = d * (1 + rho_max) ** (d - 1) / (1 - _U) / (1 - _U) ** nm / loss
+    g = gamma(n) / (1 - _U) ** nm / loss
+    return round_up(r), round_up(g)
+
+
+def _delta_absolute(j: int) -> tuple[float, float]:
+    rc = _counts("paper_deltas")
+    n, nm = rc["value"][j], rc["magnitude"][j]
+    loss = (1 - _U) ** 2
+    k1 = 1 / (1 - _U) ** (nm + 1) / loss
+    k3 = (1 / (1 - _U) ** nm - 1 / (1 + _U) ** nm + gamma(n) / (1 - _U) ** nm) / loss
+    return round_up(k1), round_up(k3)
+
+
+DELTA_RELATIVE = tuple(_delta_relative(j) for j in range(3))
+"""``(R_j, G_j)`` for ``Delta_2, Delta_3, Delta_4``: bound ``fl(fl(fl(R rho^) + G) A)``."""
+
+DELTA_ABSOLUTE = tuple(_delta_absolute(j) for j in range(3))
+"""``(K1_j, K3_j)`` for ``Delta_2, Delta_3, Delta_4``: bound ``fl(fl(K1 fl(B - A)) + fl(K3 A))``."""
+
+
+# -- the screen: a first stage with static bounds ---------------------------------------------
+#
+# Shewchuk-style stage A: the pencil's magnitude programs (the bulk of the filter's work)
+# replaced by static bounds.  Every product of c_k's program has k factors from E and 4 - k
+# from Q (c_k is homogeneous of those degrees), so its magnitude program is at most
+#     n_k * max|E|^k * max|Q|^(4-k),      n_k = the magnitude program at all ones
+# (exact integers), a product that takes at most five roundings to compute.  When the
+# quadratic part of Q is zero (a plane), c0 = c1 = 0 exactly: every product of their
+# programs has a factor from that block (the Laplace expansion takes rows 0, 1 of Q in
+# c0 and, with one row of E, in the first half of c1; the second half takes rows 2, 3 of Q
+# in columns other than 3), so their computed values and errors are exactly zero.
+#
+# If every coefficient then satisfies r_k <= EPS |c^_k| (exact zeros with a zero bound
+# pass), every one is known to relative error EPS.  The screen rescales with two positive
+# floats, beta ~ (|c0| / |c4|)^(1/4) (balancing the roots) and s = 1 / max |c_k beta^k|:
+# x_k = fl(fl(c^_k fl(beta^k)) s) is within relative error rho = (1 + EPS)(1 + u)^12 - 1 of
+# c_k beta^k s (at most 11 roundings: the powers of beta, the two products), and any
+# positive factors keep every sign the decisions read.  The relative form of the Delta
+# bound then reads bound_j = fl(SCREEN_DELTA[j] * A_j) with A_j the magnitude program at |x|.
+
+SCREEN_EPS = 2.0**-20
+"""The screen passes a pair only when every coefficient is known to this relative error."""
+
+
+def _screen_paths() -> tuple[int, ...]:
+    from .._generated import kernels
+
+    return tuple(int(v) for v in kernels.pencil_coefficients_magnitude(*([1] * 20)))
+
+
+SCREEN_PATHS = _screen_paths()
+"""``n_k``: the pencil's magnitude programs at all ones."""
+
+SCREEN_PENCIL = {
+    rounded: tuple(
+        round_up(Fraction(K) * n / (1 - _U) ** 5)
+        for K, n in zip(PENCIL_ERRBOUND[rounded], SCREEN_PATHS, strict=True)
+    )
+    for rounded in (False, True)
+}
+"""``r_k = fl(SCREEN_PENCIL[k] * fl(max|E|^k * max|Q|^(4-k)))`` bounds ``|c^_k - c_k|``
+(``PENCIL_ERRBOUND`` for the program, ``n_k`` for the static magnitude, ``(1-u)^-5`` for the
+products that compute it)."""
+
+
+def _screen_minors() -> dict[bool, tuple[float, ...]]:
+    from .._generated import kernels
+
+    paths = kernels.leading_minors_3_magnitude(*([1] * 6))
+    return {
+        rounded: tuple(
+            round_up(Fraction(K) * int(n) / (1 - _U) ** 4)
+            for K, n in zip(MINORS_ERRBOUND[rounded], paths, strict=True)
+        )
+        for rounded in (False, True)
+    }
+
+
+SCREEN_MINORS = _screen_minors()
+"""Bounds of the leading minors of ``E``: ``SCREEN_MINORS[j] * max|A|^(j + 2)``."""
+
+
+def _screen_delta() -> tuple[float, ...]:
+    rho = (1 + Fraction(SCREEN_EPS)) * (1 + _U) ** 12 - 1
+    rc = _counts("paper_deltas")
+    out = []
+    for j in range(3):
+        d, n, nm = rc["degree"][j], rc["value"][j], rc["magnitude"][j]
+        factor = (d * (1 + rho) ** (d - 1) * rho + gamma(n)) / (1 - _U) ** (nm + 1)
+        out.append(round_up(factor))
+    return tuple(out)
+
+
+SCREEN_DELTA = _screen_delta()
+"""``bound_j = fl(SCREEN_DELTA[j] * A_j)`` on the screen (``A_j``: magnitude program at ``|x|``)."""

@@ -1,0 +1,319 @@
+"""Modes that run the generated formulas on Python number objects: ``exact``
+(integers), ``ball`` (python-flint ``arb``) and ``mpmath`` (``mpf`` at a chosen
+precision).
+
+The formulas of :mod:`quadric_contact._generated` are straight-line ``+ - *``
+code, so numpy applies them to object arrays element by element: the loops
+run in C and each operation is one call of the number type.  A mode only says
+how to turn exact input entries into its numbers (:meth:`ObjectMode.convert`,
+one matrix at a time, so that it may scale a matrix by a positive factor: signs,
+root signs and the real/non-real nature of the roots do not change) and how to
+read a sign (:meth:`ObjectMode.signs`).
+"""
+
+from __future__ import annotations
+
+import contextlib
+from collections.abc import Iterator
+from fractions import Fraction
+from typing import Any
+
+import numpy as np
+
+from .._generated import formulas, kernels
+from ..codegen import ENTRY_INDICES
+from .base import MatrixStack, NumberMode, Pairs, StageCounts
+from .decisions import (
+    ELLIPSOID_NOT,
+    ELLIPSOID_UNCERTAIN,
+    contact_from_signs,
+    ellipsoid_from_signs,
+    masks_from_invariant_signs,
+    region_from_signs,
+)
+from .validation import raise_not_ellipsoid, validate_rows
+
+__all__ = ["BallMode", "ExactMode", "MpmathMode", "ObjectMode", "integer_rows"]
+
+_UNC = 2
+
+
+class ObjectMode(NumberMode):
+    """Shared evaluation for the object modes."""
+
+    stage = "object"
+
+    # -- what a subclass provides -------------------------------------------------------
+
+    def convert(self, stack: MatrixStack, rows: np.ndarray) -> list[np.ndarray]:
+        """The ten upper-entry columns of the matrices ``rows`` in this mode's numbers
+        (each matrix may be multiplied by its own positive factor)."""
+        raise NotImplementedError
+
+    def signs(self, values: np.ndarray) -> np.ndarray:
+        """int8 signs (``UNCERTAIN`` where the mode cannot tell)."""
+        raise NotImplementedError
+
+    @contextlib.contextmanager
+    def context(self) -> Iterator[None]:
+        """Scope precision changes to one evaluation."""
+        yield
+
+    def deltas(self, c: list[np.ndarray]) -> tuple[np.ndarray, ...]:
+        """``(Delta_2, Delta_3, Delta_4)`` or positive multiples of them."""
+        return tuple(formulas.paper_deltas(*c))
+
+    # -- shared -------------------------------------------------------------------------
+
+    def _pair_signs(self, pairs: Pairs) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """``(ellipsoid status, c signs (n, 5) for the paper's sign of E, Delta signs (n, 3),
+        E rows)``."""
+        e_rows, q_rows = pairs.e_rows(), pairs.q_rows()
+        ue, ie = np.unique(e_rows, return_inverse=True)
+        uq, iq = np.unique(q_rows, return_inverse=True)
+        validate_rows(pairs.E, ue, "E")
+        validate_rows(pairs.Q, uq, "Q")
+        with self.context():
+            e_cols = [c[ie] for c in self.convert(pairs.E, ue)]
+            q_cols = [c[iq] for c in self.convert(pairs.Q, uq)]
+            c = list(formulas.pencil_coefficients(*e_cols, *q_cols))
+            m2, m3 = kernels.leading_minors_3(*(e_cols[k] for k in (0, 1, 2, 4, 5, 7)))
+            sa = _exact_sign(e_cols[0])
+            sc = np.stack([self.signs(x) for x in c], axis=1)
+            ell = ellipsoid_from_signs(sa, self.signs(m2), self.signs(m3), sc[:, 4])
+            # The paper's sign of E: for -E the odd coefficients (and their signs) flip.
+            flip = sa < 0
+            sc[flip, 1] = _neg(sc[flip, 1])
+            sc[flip, 3] = _neg(sc[flip, 3])
+            sd = np.stack([self.signs(x) for x in self.deltas(c)], axis=1)
+        return ell, sc, sd, e_rows
+
+    def _finish(self, pairs: Pairs, ell: np.ndarray, codes: np.ndarray, e_rows: np.ndarray) -> np.ndarray:
+        bad = ell == ELLIPSOID_NOT
+        if bad.any():
+            raise_not_ellipsoid(pairs.E, int(e_rows[np.argmax(bad)]))
+        codes = np.where(ell == ELLIPSOID_UNCERTAIN, _UNC, codes).astype(np.int8)
+        decided = int(np.count_nonzero(codes != _UNC))
+        self._record(StageCounts({self.stage: decided}, codes.size - decided))
+        return codes
+
+    def contact(self, pairs: Pairs) -> np.ndarray:
+        if pairs.n == 0:
+            return np.empty(0, dtype=np.int8)
+        ell, _, sd, e_rows = self._pair_signs(pairs)
+        codes = contact_from_signs(sd[:, 0], sd[:, 1], sd[:, 2])
+        return self._finish(pairs, ell, codes, e_rows)
+
+    def region(self, pairs: Pairs) -> np.ndarray:
+        if pairs.n == 0:
+            return np.empty(0, dtype=np.int8)
+        ell, sc, sd, e_rows = self._pair_signs(pairs)
+        contact = contact_from_signs(sd[:, 0], sd[:, 1], sd[:, 2])
+        used, where = np.unique(pairs.q_rows(), return_inverse=True)
+        masks = self.classify(pairs.Q, used)[np.asarray(where).reshape(-1)]
+        codes = region_from_signs(contact, sc, masks)
+        return self._finish(pairs, ell, codes, e_rows)
+
+    def invariant_signs(self, Q: MatrixStack, rows: np.ndarray) -> np.ndarray:
+        """``(k, 8)`` signs of ``(trA, J, detA, E1 .. E4, q33)`` of the quadrics ``rows``."""
+        validate_rows(Q, rows, "Q")
+        with self.context():
+            cols = self.convert(Q, rows)
+            v = kernels.quadric_invariants(*cols)
+            out = np.stack([self.signs(x) for x in v] + [_exact_sign(cols[9])], axis=1)
+        return out.astype(np.int8)
+
+    def classify(self, Q: MatrixStack, rows: np.ndarray | None = None) -> np.ndarray:
+        index = np.arange(len(Q)) if rows is None else np.asarray(rows)
+        return masks_from_invariant_signs(self.invariant_signs(Q, index))
+
+
+def _neg(s: np.ndarray) -> np.ndarray:
+    return np.where(s == _UNC, _UNC, -s).astype(np.int8)
+
+
+def _exact_sign(x: np.ndarray) -> np.ndarray:
+    return (np.asarray(x > 0, dtype=np.int8) - np.asarray(x < 0, dtype=np.int8)).astype(np.int8)
+
+
+# -- exact ---------------------------------------------------------------------------------
+
+
+def integer_rows(stack: MatrixStack, rows: np.ndarray) -> list[np.ndarray]:
+    """Each matrix as integers with its own positive scale (exact).
+
+    Float input: every entry is ``m 2^e`` with an integer mantissa ``|m| < 2^53``;
+    one power of two per matrix (the smallest exponent of its non-zero entries)
+    makes all ten integers, found with ``numpy.frexp`` for the whole stack.
+    Exact input: the least common denominator of each matrix.
+    """
+    if stack.exact is not None:
+        out = [np.empty(len(rows), dtype=object) for _ in range(10)]
+        for r, row in enumerate(stack.exact[rows]):
+            fr = [Fraction(v) for v in row]
+            d = 1
+            for v in fr:
+                d = d * v.denominator // _gcd(d, v.denominator)
+            for k, v in enumerate(fr):
+                out[k][r] = v.numerator * (d // v.denominator)
+        return out
+    f = stack.floats[rows]
+    upper = np.stack([f[:, i, j] for i, j in ENTRY_INDICES], axis=1)
+    mant, ex = np.frexp(upper)
+    m = (mant * 2.0**53).astype(np.int64)  # exact: |mant| in [1/2, 1)
+    e = np.where(m == 0, np.iinfo(np.int32).max, ex.astype(np.int64) - 53)
+    emin = e.min(axis=1, keepdims=True)
+    emin = np.where(emin == np.iinfo(np.int32).max, 0, emin)
+    shift = np.where(m == 0, 0, e - emin)
+    small = (shift <= 10).all(axis=1)
+    ints = np.empty(upper.shape, dtype=object)
+    if small.any():  # 53 + 10 bits fit in int64
+        ints[small] = (m[small] << shift[small]).astype(object)
+    big = ~small
+    if big.any():
+        ints[big] = m[big].astype(object) << shift[big].astype(object)
+    return [ints[:, k] for k in range(10)]
+
+
+def _gcd(a: int, b: int) -> int:
+    import math
+
+    return math.gcd(a, b)
+
+
+class ExactMode(ObjectMode):
+    """Exact integer arithmetic: the answer for the matrices exactly as given.
+
+    Parameters
+    ----------
+    backend : {"int", "fmpz"}
+        Python integers (default, measured faster for the sizes that occur) or
+        python-flint ``fmpz``.
+    """
+
+    name = "exact"
+    stage = "exact"
+    certified = True
+
+    def __init__(self, backend: str = "int") -> None:
+        super().__init__()
+        if backend not in ("int", "fmpz"):
+            raise ValueError(f"backend must be 'int' or 'fmpz', got {backend!r}")
+        self.backend = backend
+
+    def convert(self, stack: MatrixStack, rows: np.ndarray) -> list[np.ndarray]:
+        cols = integer_rows(stack, rows)
+        if self.backend == "fmpz":
+            import flint
+
+            to = np.frompyfunc(flint.fmpz, 1, 1)
+            cols = [to(c) for c in cols]
+        return cols
+
+    def signs(self, values: np.ndarray) -> np.ndarray:
+        return _exact_sign(values)
+
+    def deltas(self, c: list[np.ndarray]) -> tuple[np.ndarray, ...]:
+        # Exact arithmetic may use the short form (27 Delta_4 = 4 I^3 - J^2): same signs.
+        return tuple(kernels.paper_deltas_compact(*c))
+
+    def __repr__(self) -> str:
+        return f"ExactMode(backend={self.backend!r})"
+
+
+# -- ball ----------------------------------------------------------------------------------
+
+
+class BallMode(ObjectMode):
+    """Ball arithmetic (python-flint ``arb``) at ``prec`` bits.
+
+    A sign is reported only when the ball excludes zero, or when the ball is
+    exactly zero (arb propagates exact zeros: a product with an exact zero is an
+    exact zero); otherwise ``UNCERTAIN``.  Float entries convert exactly, exact
+    rationals are rounded into balls that contain them.
+    """
+
+    name = "ball"
+    stage = "ball"
+    certified = True
+
+    def __init__(self, prec: int = 128) -> None:
+        super().__init__()
+        if int(prec) < 2:
+            raise ValueError("prec must be at least 2 bits")
+        self.prec = int(prec)
+
+    @contextlib.contextmanager
+    def context(self) -> Iterator[None]:
+        import flint
+
+        old = flint.ctx.prec
+        flint.ctx.prec = self.prec
+        try:
+            yield
+        finally:
+            flint.ctx.prec = old
+
+    def convert(self, stack: MatrixStack, rows: np.ndarray) -> list[np.ndarray]:
+        import flint
+
+        def ball(v: Any) -> Any:
+            if isinstance(v, Fraction):
+                return flint.arb(flint.fmpq(v.numerator, v.denominator))
+            return flint.arb(v)
+
+        to = np.frompyfunc(ball, 1, 1)
+        return [to(c) for c in stack.upper_exact(rows)]
+
+    def signs(self, values: np.ndarray) -> np.ndarray:
+        pos = np.asarray(values > 0, dtype=bool)
+        neg = np.asarray(values < 0, dtype=bool)
+        zero = np.frompyfunc(lambda x: x.is_zero(), 1, 1)(values).astype(bool)
+        return np.where(pos, 1, np.where(neg, -1, np.where(zero, 0, _UNC))).astype(np.int8)
+
+    def __repr__(self) -> str:
+        return f"BallMode(prec={self.prec})"
+
+
+# -- mpmath ------------------------------------------------------------------------------------
+
+
+class MpmathMode(ObjectMode):
+    """mpmath floating point at ``dps`` decimal digits (plain: no error bound, so,
+    like ``float``, it answers everything and may be wrong where the exact value is
+    tiny or zero).  The precision is set with ``mpmath.workdps`` for each
+    evaluation and restored afterwards."""
+
+    name = "mpmath"
+    stage = "mpmath"
+    certified = False
+
+    def __init__(self, dps: int = 50) -> None:
+        super().__init__()
+        if int(dps) < 1:
+            raise ValueError("dps must be positive")
+        self.dps = int(dps)
+
+    @contextlib.contextmanager
+    def context(self) -> Iterator[None]:
+        import mpmath
+
+        with mpmath.workdps(self.dps):
+            yield
+
+    def convert(self, stack: MatrixStack, rows: np.ndarray) -> list[np.ndarray]:
+        import mpmath
+
+        def number(v: Any) -> Any:
+            if isinstance(v, Fraction):
+                return mpmath.mpf(v.numerator) / v.denominator
+            return mpmath.mpf(v)
+
+        to = np.frompyfunc(number, 1, 1)
+        return [to(c) for c in stack.upper_exact(rows)]
+
+    def signs(self, values: np.ndarray) -> np.ndarray:
+        return _exact_sign(values)
+
+    def __repr__(self) -> str:
+        return f"MpmathMode(dps={self.dps})"

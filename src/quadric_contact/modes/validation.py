@@ -1,0 +1,65 @@
+"""Diagnosing bad input for the array predicates, with the package's errors.
+
+The float kernels only flag an entry as invalid; the functions here say which
+matrix is at fault and why, and raise the matching error of
+:mod:`quadric_contact.errors` with the offending matrix attached.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import NonFiniteError, NotAnEllipsoidError, NotSymmetricError
+from .base import MatrixStack
+
+__all__ = ["raise_not_ellipsoid", "validate_rows"]
+
+
+def validate_rows(stack: MatrixStack, rows: np.ndarray, name: str | None = None) -> None:
+    """Raise for the first matrix among ``rows`` with a non-finite entry or that is not symmetric."""
+    if stack.checked or len(rows) == 0:
+        return
+    from .float64 import check_stack
+
+    sub = np.ascontiguousarray(stack.floats[rows])
+    flags = check_stack(sub)
+    if not flags.any():
+        return
+    k = int(np.argmax(flags != 0))
+    row = int(rows[k])
+    M = stack.floats[row]
+    where = stack.where(row)
+    if flags[k] == 1:
+        i, j = (int(v) for v in np.argwhere(~np.isfinite(M))[0])
+        raise NonFiniteError(
+            f"{where} has a non-finite entry at ({i}, {j}): {M[i, j]!r}", M, entry=(i, j), index=row
+        )
+    i, j = (int(v) for v in np.argwhere(M != M.T)[0])
+    i, j = min(i, j), max(i, j)
+    raise NotSymmetricError(
+        f"{where} is not symmetric: M[{i},{j}] = {M[i, j]!r} but M[{j},{i}] = {M[j, i]!r}",
+        M,
+        entry=(i, j),
+        index=row,
+    )
+
+
+def exact_matrix(stack: MatrixStack, row: int) -> object:
+    """The exact :class:`~quadric_contact.Quadric` of a matrix of the stack."""
+    from ..quadric import Quadric
+
+    if stack.exact is not None:
+        return Quadric._from_upper(tuple(stack.exact[row]))
+    return Quadric.from_matrix(stack.floats[row])
+
+
+def raise_not_ellipsoid(stack: MatrixStack, row: int) -> None:
+    """Raise :class:`NotAnEllipsoidError` for the matrix ``row`` (exact type in the details)."""
+    q = exact_matrix(stack, row)
+    kind = q.kind  # type: ignore[attr-defined]
+    raise NotAnEllipsoidError(
+        f"{stack.where(row)} is not a real ellipsoid: it is {kind.value} ({kind.real_points})",
+        q,
+        kind=kind,
+        index=int(row),
+    )

@@ -1,0 +1,125 @@
+"""Properties on random rational pairs (hypothesis, exact constructions):
+
+* certified == exact, for exact rational input and for its binary64 rounding;
+* plain float == exact wherever the filter's error bounds (alone) are conclusive;
+* the discriminant criterion == numeric root finding (numpy eigenvalues, mpmath
+  polyroots at 50 digits) away from tangency.
+"""
+
+import mpmath
+import numpy as np
+from hypothesis import assume, given
+from hypothesis import strategies as st
+
+from quadric_contact import ExcludedQuadricError, characteristic_polynomial
+from quadric_contact.batch import relative_position_batch, transversal_contact_batch
+from quadric_contact.modes import ContactCode, RegionCode
+from quadric_contact.modes.decisions import CONTACT_TABLE, sign_index
+from quadric_contact.modes.float64 import filter_quantities
+from quadric_contact.regions import decide_region
+from quadric_contact.strategies import ellipsoids, quadrics, tangent_pairs
+
+pairs = st.one_of(
+    st.tuples(ellipsoids(), quadrics()),
+    st.tuples(ellipsoids(min_axis=0.05, max_axis=0.5), quadrics(kind="plane")),
+    tangent_pairs(),
+)
+batches = st.lists(pairs, min_size=1, max_size=6)
+
+
+def _exact(e, q):
+    P = characteristic_polynomial(e, q)
+    contact = ContactCode.NO_CONTACT if P.structure.all_real else ContactCode.CONTACT
+    try:
+        region = RegionCode.from_region(decide_region(P, small=True, method="theory").region)
+    except ExcludedQuadricError:
+        region = RegionCode.EXCLUDED
+    return contact, region
+
+
+def _stacks(batch, exact):
+    dtype = object if exact else float
+    E = np.array(
+        [[[v if exact else float(v) for v in row] for row in e.matrix] for e, _ in batch], dtype=dtype
+    )
+    Q = np.array(
+        [[[v if exact else float(v) for v in row] for row in q.matrix] for _, q in batch], dtype=dtype
+    )
+    return E, Q
+
+
+@given(batches)
+def test_certified_equals_exact_on_rational_pairs(batch):
+    want = [_exact(e, q) for e, q in batch]
+    E, Q = _stacks(batch, exact=True)
+    assert list(transversal_contact_batch(E, Q)) == [c for c, _ in want]
+    assert list(relative_position_batch(E, Q)) == [r for _, r in want]
+
+
+@given(batches)
+def test_certified_equals_exact_on_their_binary64_roundings(batch):
+    E, Q = _stacks(batch, exact=False)
+    from quadric_contact import Quadric
+
+    want = [_exact(Quadric.from_matrix(e), Quadric.from_matrix(q)) for e, q in zip(E, Q, strict=True)]
+    assert list(transversal_contact_batch(E, Q)) == [c for c, _ in want]
+    assert list(relative_position_batch(E, Q)) == [r for _, r in want]
+
+
+@given(batches)
+def test_float_equals_exact_wherever_its_error_bound_is_conclusive(batch):
+    E, Q = _stacks(batch, exact=False)
+    from quadric_contact import Quadric
+
+    # The bounds alone: no structural knowledge (equal quadratic parts, exact rank of Q).
+    fq = filter_quantities(E, Q, same_ok=False)
+    deltas = fq["signs"][5:]
+    floats = transversal_contact_batch(E, Q, mode="float")
+    for k in range(len(batch)):
+        if fq["outside"][k]:
+            continue
+        code = CONTACT_TABLE[sum(m * sign_index(int(s[k])) for m, s in zip((1, 4, 16), deltas, strict=True))]
+        if code == 2:
+            continue
+        exact, _ = _exact(Quadric.from_matrix(E[k]), Quadric.from_matrix(Q[k]))
+        assert code == exact == floats[k]
+
+
+def _mpmath_nonreal(P, digits=50):
+    """Non-real roots by mpmath polyroots at ``digits``, or None when too close to call."""
+    with mpmath.workdps(digits):
+        coeffs = [mpmath.mpf(c.numerator) / c.denominator for c in reversed(P.coefficients)]
+        roots = mpmath.polyroots(coeffs, maxsteps=400, extraprec=4 * digits)
+        scale = max(1, max(abs(r) for r in roots))
+        imag = [abs(mpmath.im(r)) / scale for r in roots]
+        if any(mpmath.mpf(10) ** (-digits // 2) < v < mpmath.mpf(10) ** (-digits // 4) for v in imag):
+            return None
+        return any(v > mpmath.mpf(10) ** (-digits // 4) for v in imag)
+
+
+def _numpy_nonreal(E, Q):
+    """Non-real eigenvalues of -Q E^-1 (numpy), or None when too close to call."""
+    w = np.linalg.eigvals(-Q @ np.linalg.inv(E))
+    scale = max(1.0, float(np.max(np.abs(w))))
+    im = np.abs(w.imag) / scale
+    if np.any((im > 1e-12) & (im < 1e-6)):
+        return None
+    return bool(np.any(im >= 1e-6))
+
+
+@given(st.lists(st.tuples(ellipsoids(), quadrics()), min_size=1, max_size=6))
+def test_discriminant_criterion_agrees_with_numeric_root_finding(batch):
+    E, Q = _stacks(batch, exact=True)
+    codes = transversal_contact_batch(E, Q)
+    checked = 0
+    for (e, q), code in zip(batch, codes, strict=True):
+        P = characteristic_polynomial(e, q)
+        numeric = _mpmath_nonreal(P)
+        if numeric is None:
+            continue
+        assert (code == ContactCode.CONTACT) == numeric
+        eig = _numpy_nonreal(P.E.to_numpy(), q.to_numpy())
+        if eig is not None:
+            assert (code == ContactCode.CONTACT) == eig
+        checked += 1
+    assume(checked > 0)
