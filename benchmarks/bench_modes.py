@@ -1,0 +1,25 @@
+"""What accuracy costs: the number modes against their peers.
+
+The measurement itself lives in :mod:`quadric_contact.benchmark` so that the
+installed command runs it too; this script is the same thing from a checkout::
+
+    PYTHONPATH=src python benchmarks/bench_modes.py [--profile smoke|quick|full] [--huge]
+
+which is ``quadric-contact bench`` with the same options: a table per mode and
+peer (time per test, wrong, undecided) on random pairs and on the near-tangent
+ladder, throughput against batch size with peak memory, the memory-bandwidth
+limit of reading the inputs, escalation rates, the targets as ratios measured in
+the same run, and a plot of time against error.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
+
+from quadric_contact.cli import main  # noqa: E402
+
+if __name__ == "__main__":
+    sys.exit(main(["bench", *sys.argv[1:]]))
