@@ -52,7 +52,16 @@ from .classification import QuadricKind
 from .modes import BallMode, CertifiedMode, ExactMode, FilterMode, FloatMode, MpmathMode, NumberMode
 from .samples import SAMPLE_KINDS, random_pairs
 
-__all__ = ["PROFILES", "Measurement", "Report", "run"]
+__all__ = [
+    "EIG_TOL",
+    "GENERIC_KINDS",
+    "PROFILES",
+    "Measurement",
+    "Report",
+    "peer_numpy_eigvals",
+    "peer_numpy_roots",
+    "run",
+]
 
 K = QuadricKind
 GENERIC_KINDS = (
