@@ -228,7 +228,12 @@ def neutral_eigenvectors() -> Finding:
     )
 
 
-def _one_pair(examples: int) -> Finding:
+@proof.search(
+    "ellipsoids against arbitrary symmetric matrices: never two non-real pairs",
+    examples=EXAMPLES,
+    large=5000,
+)
+def one_pair_evidence(examples: int) -> Finding:
     seen = defaultdict(int)
     entry = st.integers(-9, 9)
 
@@ -252,25 +257,6 @@ def _one_pair(examples: int) -> Finding:
 
     search()
     return agrees(f"non-real roots per pencil: {dict(sorted(seen.items()))}; never more than 2")
-
-
-@proof.check(
-    "ellipsoids against arbitrary symmetric matrices: never two non-real pairs",
-    method=Method.EVIDENCE,
-    size=f"{EXAMPLES} hypothesis examples",
-)
-def one_pair_evidence() -> Finding:
-    return _one_pair(EXAMPLES)
-
-
-@proof.check(
-    "ellipsoids against arbitrary symmetric matrices: never two non-real pairs (large search)",
-    method=Method.EVIDENCE,
-    size="5000 hypothesis examples",
-    slow=True,
-)
-def one_pair_evidence_large() -> Finding:
-    return _one_pair(5000)
 
 
 @proof.check(

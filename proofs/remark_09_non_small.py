@@ -140,7 +140,13 @@ def rational_points_near(v: np.ndarray) -> list[tuple[Fraction, Fraction, Fracti
     ]
 
 
-def _crossing(examples: int) -> Finding:
+@proof.search(
+    "non-real roots imply points of E on both sides of Q",
+    examples=EXAMPLES,
+    large=4000,
+    detail="exact rational points near the extremes of Q on E",
+)
+def nonreal_means_crossing(examples: int) -> Finding:
     seen = {"non-real": 0, "real": 0}
     axis = st.fractions(F(1, 4), 3, max_denominator=6)
     coord = st.fractions(-6, 6, max_denominator=4)
@@ -191,22 +197,3 @@ def _crossing(examples: int) -> Finding:
     return agrees(
         f"{seen['non-real']} pencils with non-real roots: each ellipsoid has points on both sides of Q"
     )
-
-
-@proof.check(
-    "non-real roots imply points of E on both sides of Q",
-    method=Method.EVIDENCE,
-    size=f"{EXAMPLES} hypothesis examples, exact rational points near the extremes of Q on E",
-)
-def nonreal_means_crossing() -> Finding:
-    return _crossing(EXAMPLES)
-
-
-@proof.check(
-    "non-real roots imply points of E on both sides of Q (large search)",
-    method=Method.EVIDENCE,
-    size="4000 hypothesis examples, exact rational points near the extremes of Q on E",
-    slow=True,
-)
-def nonreal_means_crossing_large() -> Finding:
-    return _crossing(4000)

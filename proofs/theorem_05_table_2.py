@@ -317,7 +317,12 @@ def printed_table_1(kind: QuadricKind, e: tuple[Fraction, ...], q: tuple[Fractio
     return printed, corrected
 
 
-def _general_position(examples: int) -> Finding:
+@proof.search(
+    "the package's smallness on moved pairs equals Table 1 evaluated here",
+    examples=EXAMPLES,
+    large=3000,
+)
+def smallness_in_general_position(examples: int) -> Finding:
     counts = {True: 0, False: 0}
 
     @settings(
@@ -358,22 +363,3 @@ def _general_position(examples: int) -> Finding:
     return agrees(
         f"{counts[True]} small and {counts[False]} not small pairs, all as Table 1 (corrected) says"
     )
-
-
-@proof.check(
-    "the package's smallness on moved pairs equals Table 1 evaluated here",
-    method=Method.EVIDENCE,
-    size=f"{EXAMPLES} hypothesis examples",
-)
-def smallness_in_general_position() -> Finding:
-    return _general_position(EXAMPLES)
-
-
-@proof.check(
-    "the package's smallness on moved pairs equals Table 1 evaluated here (large search)",
-    method=Method.EVIDENCE,
-    size="3000 hypothesis examples",
-    slow=True,
-)
-def smallness_in_general_position_large() -> Finding:
-    return _general_position(3000)

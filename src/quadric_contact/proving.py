@@ -38,6 +38,7 @@ the test suite checks that the committed file equals :func:`render_report`.
 
 from __future__ import annotations
 
+import functools
 import importlib.util
 import re
 import sys
@@ -235,6 +236,34 @@ class Proof:
             if any(c.name == func.__name__ for c in self.checks):
                 raise ValueError(f"duplicate check name {func.__name__!r} in {self.result}")
             self.checks.append(CheckSpec(func.__name__, title, method, func, erratum, slow, size))
+            return func
+
+        return register
+
+    def search(
+        self,
+        title: str,
+        *,
+        examples: int,
+        large: int,
+        detail: str = "",
+    ) -> Callable[[Callable[[int], Finding]], Callable[[int], Finding]]:
+        """Register a hypothesis search twice: ``examples`` examples in the default
+        run, and ``large`` examples as a slow check (``<name>_large``, title
+        suffixed "(large search)").  The decorated function takes the number of
+        examples; ``detail`` is appended to the stated size."""
+        suffix = f", {detail}" if detail else ""
+
+        def register(func: Callable[[int], Finding]) -> Callable[[int], Finding]:
+            for name, n, slow, label in (
+                (func.__name__, examples, False, title),
+                (f"{func.__name__}_large", large, True, f"{title} (large search)"),
+            ):
+                run = functools.partial(func, n)
+                run.__name__ = name  # type: ignore[attr-defined]
+                self.check(label, method=Method.EVIDENCE, slow=slow, size=f"{n} hypothesis examples{suffix}")(
+                    run
+                )
             return func
 
         return register
