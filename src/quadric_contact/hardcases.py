@@ -133,32 +133,47 @@ def _full(upper: Sequence[Fraction], exact: bool) -> np.ndarray:
 
 # -- the ladder ------------------------------------------------------------------------
 
-# kind: (Q, vertex, axis of the normal, direction of R+ along it)
+
+def _at_vertex(q: Quadric, vertex: tuple[int, int, int]) -> tuple[Quadric, tuple[int, int, int], int, int]:
+    """``(Q, vertex, axis, plus)``: the axis of the normal at ``vertex`` and the direction
+    of ``R+`` along it, read off the gradient of ``X^T Q X`` there (exactly one
+    coordinate of it is non-zero at these vertices)."""
+    if q.value_at(vertex) != 0:
+        raise ValueError(f"{vertex} is not on {q}")
+    X = (*(F(v) for v in vertex), F(1))
+    grad = [2 * sum((q.matrix[i][j] * X[j] for j in range(4)), F(0)) for i in range(3)]
+    axes = [i for i in range(3) if grad[i] != 0]
+    if len(axes) != 1:
+        raise ValueError(f"the normal of {q} at {vertex} is not along an axis: {grad}")
+    return q, vertex, axes[0], 1 if grad[axes[0]] > 0 else -1
+
+
+# kind: (Q, vertex, axis of the normal, direction of R+ along it), the last two derived
 _LADDER_Q: dict[QuadricKind, tuple[Quadric, tuple[int, int, int], int, int]] = {
-    K.ELLIPSOID: (Quadric.ellipsoid(4, 3, 2), (0, 0, 2), 2, 1),
-    K.HYPERBOLOID_ONE_SHEET: (Quadric.hyperboloid_one_sheet(2, 3, 2), (2, 0, 0), 0, 1),
-    K.HYPERBOLOID_TWO_SHEETS: (Quadric.hyperboloid_two_sheets(3, 2, 2), (0, 0, 2), 2, -1),
-    K.ELLIPTIC_PARABOLOID: (Quadric.elliptic_paraboloid(3, 2), (0, 0, 0), 2, -1),
-    K.HYPERBOLIC_PARABOLOID: (Quadric.hyperbolic_paraboloid(3, 2), (0, 0, 0), 2, -1),
-    K.ELLIPTIC_CYLINDER: (Quadric.elliptic_cylinder(3, 2), (3, 0, 0), 0, 1),
-    K.HYPERBOLIC_CYLINDER: (Quadric.hyperbolic_cylinder(3, 2), (3, 0, 0), 0, 1),
-    K.PARABOLIC_CYLINDER: (Quadric.parabolic_cylinder(3), (0, 0, 0), 2, -1),
-    K.PARALLEL_PLANES: (Quadric.parallel_planes(3), (3, 0, 0), 0, 1),
-    K.PLANE: (Quadric.plane((0, 0, 1), 0), (0, 0, 0), 2, 1),
+    K.ELLIPSOID: _at_vertex(Quadric.ellipsoid(4, 3, 2), (0, 0, 2)),
+    K.HYPERBOLOID_ONE_SHEET: _at_vertex(Quadric.hyperboloid_one_sheet(2, 3, 2), (2, 0, 0)),
+    K.HYPERBOLOID_TWO_SHEETS: _at_vertex(Quadric.hyperboloid_two_sheets(3, 2, 2), (0, 0, 2)),
+    K.ELLIPTIC_PARABOLOID: _at_vertex(Quadric.elliptic_paraboloid(3, 2), (0, 0, 0)),
+    K.HYPERBOLIC_PARABOLOID: _at_vertex(Quadric.hyperbolic_paraboloid(3, 2), (0, 0, 0)),
+    K.ELLIPTIC_CYLINDER: _at_vertex(Quadric.elliptic_cylinder(3, 2), (3, 0, 0)),
+    K.HYPERBOLIC_CYLINDER: _at_vertex(Quadric.hyperbolic_cylinder(3, 2), (3, 0, 0)),
+    K.PARABOLIC_CYLINDER: _at_vertex(Quadric.parabolic_cylinder(3), (0, 0, 0)),
+    K.PARALLEL_PLANES: _at_vertex(Quadric.parallel_planes(3), (3, 0, 0)),
+    K.PLANE: _at_vertex(Quadric.plane((0, 0, 1), 0), (0, 0, 0)),
 }
 
 # The same with power-of-two parameters (for the dyadic family).
 _DYADIC_Q: dict[QuadricKind, tuple[Quadric, tuple[int, int, int], int, int]] = {
-    K.ELLIPSOID: (Quadric.ellipsoid(4, 2, 2), (0, 0, 2), 2, 1),
-    K.HYPERBOLOID_ONE_SHEET: (Quadric.hyperboloid_one_sheet(2, 4, 2), (2, 0, 0), 0, 1),
-    K.HYPERBOLOID_TWO_SHEETS: (Quadric.hyperboloid_two_sheets(4, 2, 2), (0, 0, 2), 2, -1),
-    K.ELLIPTIC_PARABOLOID: (Quadric.elliptic_paraboloid(4, 2), (0, 0, 0), 2, -1),
-    K.HYPERBOLIC_PARABOLOID: (Quadric.hyperbolic_paraboloid(4, 2), (0, 0, 0), 2, -1),
-    K.ELLIPTIC_CYLINDER: (Quadric.elliptic_cylinder(4, 2), (4, 0, 0), 0, 1),
-    K.HYPERBOLIC_CYLINDER: (Quadric.hyperbolic_cylinder(4, 2), (4, 0, 0), 0, 1),
-    K.PARABOLIC_CYLINDER: (Quadric.parabolic_cylinder(4), (0, 0, 0), 2, -1),
-    K.PARALLEL_PLANES: (Quadric.parallel_planes(4), (4, 0, 0), 0, 1),
-    K.PLANE: (Quadric.plane((0, 0, 1), 0), (0, 0, 0), 2, 1),
+    K.ELLIPSOID: _at_vertex(Quadric.ellipsoid(4, 2, 2), (0, 0, 2)),
+    K.HYPERBOLOID_ONE_SHEET: _at_vertex(Quadric.hyperboloid_one_sheet(2, 4, 2), (2, 0, 0)),
+    K.HYPERBOLOID_TWO_SHEETS: _at_vertex(Quadric.hyperboloid_two_sheets(4, 2, 2), (0, 0, 2)),
+    K.ELLIPTIC_PARABOLOID: _at_vertex(Quadric.elliptic_paraboloid(4, 2), (0, 0, 0)),
+    K.HYPERBOLIC_PARABOLOID: _at_vertex(Quadric.hyperbolic_paraboloid(4, 2), (0, 0, 0)),
+    K.ELLIPTIC_CYLINDER: _at_vertex(Quadric.elliptic_cylinder(4, 2), (4, 0, 0)),
+    K.HYPERBOLIC_CYLINDER: _at_vertex(Quadric.hyperbolic_cylinder(4, 2), (4, 0, 0)),
+    K.PARABOLIC_CYLINDER: _at_vertex(Quadric.parabolic_cylinder(4), (0, 0, 0)),
+    K.PARALLEL_PLANES: _at_vertex(Quadric.parallel_planes(4), (4, 0, 0)),
+    K.PLANE: _at_vertex(Quadric.plane((0, 0, 1), 0), (0, 0, 0)),
 }
 
 _G = F(1, 4)  # semi-axis of E along the normal
