@@ -45,6 +45,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from quadric_contact import Quadric, characteristic_polynomial
+from quadric_contact.discriminants import revised_sign_list
 from quadric_contact.proving import Finding, Method, Proof, agrees, ensure
 from quadric_contact.strategies import ellipsoids, quadrics
 
@@ -78,27 +79,9 @@ def discrimination(coeffs: list[Fraction]) -> tuple[int, int, int, int]:
     return tuple((v > 0) - (v < 0) for v in values)  # type: ignore[return-value]
 
 
-def revised(signs: tuple[int, ...]) -> list[int]:
-    """Yang's revised sign list (zeros between non-zero signs replaced by -s, -s, s, s, ...)."""
-    out = list(signs)
-    last = max((i for i, v in enumerate(out) if v), default=-1)
-    i = 0
-    while i <= last:
-        if out[i] == 0:
-            j = i
-            while out[j] == 0:
-                j += 1
-            s = out[i - 1]
-            for r in range(1, j - i + 1):
-                out[i + r - 1] = s * (-1) ** (r * (r + 1) // 2)
-            i = j
-        i += 1
-    return out
-
-
 def yang_counts(signs: tuple[int, ...]) -> tuple[int, int]:
     """(distinct real roots, distinct non-real pairs) by Yang's Theorem 1."""
-    rev = [v for v in revised(signs) if v]
+    rev = [v for v in revised_sign_list(signs) if v]
     changes = sum(1 for u, v in itertools.pairwise(rev) if u != v)
     return len(rev) - 2 * changes, changes
 

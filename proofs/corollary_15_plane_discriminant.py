@@ -29,30 +29,17 @@ import sympy as sp
 from quadric_contact import Region, characteristic_polynomial, paper, plane_side
 from quadric_contact.proving import Finding, Method, Proof, agrees, differs, ensure
 
+from ._plane_pencil import general_plane_pencil
+
 proof = Proof("Corollary 15", "c3^2 < 4 c4 c2 and the sign of c3 decide a plane")
 
-LAM = sp.Symbol("lambda")
 C = sp.symbols("c0:5")
 
 
 def general_pencil() -> tuple[list[sp.Expr], sp.Matrix, sp.Matrix]:
     """Coefficients of det(l E + P) for (x - m)^T A (x - m) = 1 and the plane n.x = d."""
-    a = sp.symbols("a00 a01 a02 a11 a12 a22", real=True)
-    A = sp.Matrix([[a[0], a[1], a[2]], [a[1], a[3], a[4]], [a[2], a[4], a[5]]])
-    m = sp.Matrix(sp.symbols("m1:4", real=True))
-    n = sp.Matrix(sp.symbols("n1:4", real=True))
-    d = sp.Symbol("d", real=True)
-    E = sp.zeros(4, 4)
-    E[:3, :3] = A
-    E[:3, 3] = -A * m
-    E[3, :3] = (-A * m).T
-    E[3, 3] = (m.T * A * m)[0, 0] - 1
-    P0 = sp.zeros(4, 4)
-    P0[:3, 3] = n / 2
-    P0[3, :3] = n.T / 2
-    P0[3, 3] = -d
-    poly = sp.Poly(sp.expand((LAM * E + P0).det(method="berkowitz")), LAM)
-    return [sp.expand(poly.coeff_monomial(LAM**k)) for k in range(5)], A, n
+    c, A, _, n, _ = general_plane_pencil()
+    return c, A, n
 
 
 def printed_delta(key: str) -> sp.Expr:

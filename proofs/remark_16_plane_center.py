@@ -26,23 +26,15 @@ from quadric_contact import Region, paper, plane_side
 from quadric_contact.proving import Finding, Method, Proof, agrees, ensure
 from quadric_contact.strategies import ellipsoids, planes
 
+from ._plane_pencil import plane_pencil
+
 proof = Proof("Remark 16", "c3 = (a x_c + b y_c + c z_c - d) / (alpha^2 beta^2 gamma^2)")
 
-LAM = sp.Symbol("lambda")
 EXAMPLES = 200
 
 
 def pencil_c3(A: sp.Matrix, m: sp.Matrix, n: sp.Matrix, d: sp.Expr) -> sp.Expr:
-    E = sp.zeros(4, 4)
-    E[:3, :3] = A
-    E[:3, 3] = -A * m
-    E[3, :3] = (-A * m).T
-    E[3, 3] = (m.T * A * m)[0, 0] - 1
-    P0 = sp.zeros(4, 4)
-    P0[:3, 3] = n / 2
-    P0[3, :3] = n.T / 2
-    P0[3, 3] = -d
-    return sp.Poly(sp.expand((LAM * E + P0).det(method="berkowitz")), LAM).coeff_monomial(LAM**3)
+    return plane_pencil(A, m, n, d)[3]
 
 
 @proof.check(

@@ -33,9 +33,9 @@ import sympy as sp
 from quadric_contact import paper
 from quadric_contact.proving import Finding, Method, Proof, agrees, ensure
 
-proof = Proof("Theorem 14", "an ellipsoid and a plane: roots 0, 0 and a pair", covers=("eq. (12)",))
+from ._plane_pencil import LAM, general_plane_pencil
 
-LAM = sp.Symbol("lambda")
+proof = Proof("Theorem 14", "an ellipsoid and a plane: roots 0, 0 and a pair", covers=("eq. (12)",))
 
 
 def sphere_and_plane() -> tuple[sp.Expr, sp.Symbol, sp.Symbol]:
@@ -75,33 +75,12 @@ def roots_and_signs() -> Finding:
     )
 
 
-def general_pencil() -> tuple[list[sp.Expr], sp.Matrix, sp.Matrix, sp.Matrix, sp.Symbol]:
-    """Coefficients of det(l E + P) for (x - m)^T A (x - m) = 1 and the plane n.x = d."""
-    a00, a01, a02, a11, a12, a22 = sp.symbols("a00 a01 a02 a11 a12 a22", real=True)
-    A = sp.Matrix([[a00, a01, a02], [a01, a11, a12], [a02, a12, a22]])
-    m = sp.Matrix(sp.symbols("m1:4", real=True))
-    n = sp.Matrix(sp.symbols("n1:4", real=True))
-    d = sp.Symbol("d", real=True)
-    E = sp.zeros(4, 4)
-    E[:3, :3] = A
-    E[:3, 3] = -A * m
-    E[3, :3] = (-A * m).T
-    E[3, 3] = (m.T * A * m)[0, 0] - 1
-    P0 = sp.zeros(4, 4)
-    P0[:3, 3] = n / 2
-    P0[3, :3] = n.T / 2
-    P0[3, 3] = -d
-    poly = sp.Poly(sp.expand((LAM * E + P0).det(method="berkowitz")), LAM)
-    coeffs = [sp.expand(poly.coeff_monomial(LAM**k)) for k in range(5)]
-    return coeffs, A, m, n, d
-
-
 @proof.check(
     "general ellipsoid and plane: c0 = c1 = 0, c4 = -det A, c3 = det A (n.m - d), c2 = -n^T adj(A) n / 4",
     method=Method.IDENTITY,
 )
 def general_coefficients() -> Finding:
-    c, A, m, n, d = general_pencil()
+    c, A, m, n, d = general_plane_pencil()
     detA = A.det()
     ensure(c[0] == 0 and c[1] == 0, "0 is a double root")
     ensure(sp.expand(c[4] + detA) == 0, "c4 = -det A")
@@ -116,7 +95,7 @@ def general_coefficients() -> Finding:
     "transversal contact iff the non-zero roots are non-real, for any ellipsoid", method=Method.IDENTITY
 )
 def general_transversal() -> Finding:
-    c, A, m, n, d = general_pencil()
+    c, A, m, n, d = general_plane_pencil()
     detA = A.det()
     Ainv_nn = (n.T * A.adjugate() * n)[0, 0] / detA
     h = (n.T * m)[0, 0] - d
