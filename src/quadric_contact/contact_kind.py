@@ -35,6 +35,7 @@ import flint
 
 from .algebraic import QuadraticNumber, _frac, _monic, _poly
 from .classification import QuadricKind
+from .linalg import nullspace
 from .pencil import CharacteristicPolynomial, characteristic_polynomial
 from .segre import SegreSymbol, segre_symbol
 
@@ -145,36 +146,6 @@ class ContactAnalysis:
 QMat = list[list[QuadraticNumber]]
 
 
-def _kernel(A: QMat) -> list[list[QuadraticNumber]]:
-    m, n = len(A), len(A[0])
-    R = [list(r) for r in A]
-    pivots: list[int] = []
-    row = 0
-    for col in range(n):
-        piv = next((i for i in range(row, m) if not R[i][col].is_zero()), None)
-        if piv is None:
-            continue
-        R[row], R[piv] = R[piv], R[row]
-        inv = R[row][col].inverse()
-        R[row] = [v * inv for v in R[row]]
-        for i in range(m):
-            if i != row and not R[i][col].is_zero():
-                f = R[i][col]
-                R[i] = [a - f * b for a, b in zip(R[i], R[row], strict=True)]
-        pivots.append(col)
-        row += 1
-        if row == m:
-            break
-    basis = []
-    for fcol in (c for c in range(n) if c not in pivots):
-        v = [QuadraticNumber(0) for _ in range(n)]
-        v[fcol] = QuadraticNumber(1)
-        for i, pc in enumerate(pivots):
-            v[pc] = -R[i][fcol]
-        basis.append(v)
-    return basis
-
-
 def _form(M: QMat, u: list[QuadraticNumber], v: list[QuadraticNumber]) -> QuadraticNumber:
     acc = QuadraticNumber(0)
     for i in range(4):
@@ -252,7 +223,13 @@ def _line_solutions(
 def _member(lam: QuadraticNumber, E: Any, Q: Any) -> tuple[SingularMember, bool]:
     Em = [[QuadraticNumber(E[i, j]) for j in range(4)] for i in range(4)]
     S = [[lam * Em[i][j] + QuadraticNumber(Q[i, j]) for j in range(4)] for i in range(4)]
-    K = _kernel(S)
+    K = nullspace(
+        S,
+        zero=QuadraticNumber(0),
+        one=QuadraticNumber(1),
+        is_zero=QuadraticNumber.is_zero,
+        inverse=QuadraticNumber.inverse,
+    )
     rank = 4 - len(K)
     points: list[tuple[QuadraticNumber, QuadraticNumber, QuadraticNumber]] = []
     count = 0

@@ -63,6 +63,7 @@ import flint
 from .algebraic import RealAlgebraic, _fmpq, _monic, _poly, algebraic_value, real_roots, sign_at
 from .classification import QuadricKind
 from .errors import ExcludedQuadricError
+from .linalg import nullspace, solve
 from .pencil import as_quadric
 from .quadric import Quadric
 from .results import Region
@@ -233,65 +234,6 @@ def _matvec(A: Mat, v: Sequence[Fraction]) -> list[Fraction]:
     return [sum((A[i][k] * v[k] for k in range(len(v))), Fraction(0)) for i in range(len(A))]
 
 
-def _nullspace(A: Mat) -> list[list[Fraction]]:
-    """A basis of the kernel of a rational matrix (exact Gauss-Jordan)."""
-    m, n = len(A), len(A[0])
-    R = [list(r) for r in A]
-    pivots: list[int] = []
-    row = 0
-    for col in range(n):
-        piv = next((i for i in range(row, m) if R[i][col] != 0), None)
-        if piv is None:
-            continue
-        R[row], R[piv] = R[piv], R[row]
-        p = R[row][col]
-        R[row] = [v / p for v in R[row]]
-        for i in range(m):
-            if i != row and R[i][col] != 0:
-                f = R[i][col]
-                R[i] = [a - f * b for a, b in zip(R[i], R[row], strict=True)]
-        pivots.append(col)
-        row += 1
-        if row == m:
-            break
-    free = [c for c in range(n) if c not in pivots]
-    basis = []
-    for fcol in free:
-        v = [Fraction(0)] * n
-        v[fcol] = Fraction(1)
-        for i, pc in enumerate(pivots):
-            v[pc] = -R[i][fcol]
-        basis.append(v)
-    return basis
-
-
-def _solve_sym(A: Mat, b: Sequence[Fraction]) -> list[Fraction] | None:
-    """One solution of ``A y = b`` (None if inconsistent)."""
-    n = len(A)
-    R = [[*A[i], b[i]] for i in range(n)]
-    pivots: list[int] = []
-    row = 0
-    for col in range(n):
-        piv = next((i for i in range(row, n) if R[i][col] != 0), None)
-        if piv is None:
-            continue
-        R[row], R[piv] = R[piv], R[row]
-        p = R[row][col]
-        R[row] = [v / p for v in R[row]]
-        for i in range(n):
-            if i != row and R[i][col] != 0:
-                f = R[i][col]
-                R[i] = [a - f * c for a, c in zip(R[i], R[row], strict=True)]
-        pivots.append(col)
-        row += 1
-    if any(R[i][n] != 0 for i in range(row, n)):
-        return None
-    y = [Fraction(0)] * n
-    for i, pc in enumerate(pivots):
-        y[pc] = R[i][n]
-    return y
-
-
 # -- polynomial helpers ---------------------------------------------------------------------
 
 
@@ -335,7 +277,7 @@ def _setup(E: Quadric, Q: Quadric) -> tuple[list[Fraction], Mat, list[Fraction],
     """``(D, A', b', c', r)`` of the module docstring."""
     AE = [[E[i, j] for j in range(3)] for i in range(3)]
     bE = [E[i, 3] for i in range(3)]
-    x0 = _solve_sym(AE, [-v for v in bE])
+    x0 = solve(AE, [-v for v in bE])
     assert x0 is not None
     r = -E.value_at(x0)
     assert r > 0
@@ -504,18 +446,18 @@ def _multiple_eigen(
 ) -> list[CriticalSet]:
     """Critical sets at a double or triple (rational) eigenvalue."""
     H = [[Ap[i][j] - (lam * D[i] if i == j else 0) for j in range(3)] for i in range(3)]
-    kernel = _nullspace(H)
+    kernel = nullspace(H, zero=Fraction(0), one=Fraction(1))
     if any(sum((k[i] * bp[i] for i in range(3)), Fraction(0)) != 0 for k in kernel):
         return []  # inconsistent
     lamA = RealAlgebraic(lam)
     if m == 3:
         return [CriticalSet(RealAlgebraic(lam * r + cp), "surface", None, lamA)]
-    y = _solve_sym(H, [-v for v in bp])
+    y = solve(H, [-v for v in bp])
     assert y is not None
     # make y_p D-orthogonal to the kernel (Gram matrix solve)
     G = [[sum((k1[i] * D[i] * k2[i] for i in range(3)), Fraction(0)) for k2 in kernel] for k1 in kernel]
     rhs = [sum((k[i] * D[i] * y[i] for i in range(3)), Fraction(0)) for k in kernel]
-    coef = _solve_sym(G, rhs)
+    coef = solve(G, rhs)
     assert coef is not None
     yp = [y[i] - sum((coef[j] * kernel[j][i] for j in range(len(kernel))), Fraction(0)) for i in range(3)]
     rho = r - sum((yp[i] * D[i] * yp[i] for i in range(3)), Fraction(0))
