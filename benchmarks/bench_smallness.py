@@ -46,7 +46,7 @@ sys.path.insert(0, str(ROOT / "src"))
 sys.path.insert(0, str(ROOT))
 
 from tests.table_search import adversarial_placements, corollary_10_says_transversal, vertices  # noqa: E402
-from tests.test_table_verification import N_PARAMS, ORDERED, max_scale  # noqa: E402
+from tests.test_table_verification import ORDERED, max_scale  # noqa: E402
 
 from quadric_contact import Quadric, QuadricKind, characteristic_polynomial  # noqa: E402
 from quadric_contact.classification import TABLE_1_KINDS  # noqa: E402
@@ -75,7 +75,7 @@ def rand_motion(rng: random.Random, bound: int = 5) -> RigidMotion:
 
 
 def standard_pair(rng: random.Random, kind: QuadricKind, u: Fraction) -> tuple[Quadric, Quadric, dict, tuple]:
-    ps = [rand_frac(rng, 0.5, 5) or F(1, 2) for _ in range(N_PARAMS[kind])]
+    ps = [rand_frac(rng, 0.5, 5) or F(1, 2) for _ in Quadric.standard_parameters(kind)]
     n = ORDERED.get(kind, 0)
     ps = sorted(ps[:n], reverse=True) + ps[n:]
     p = dict(zip("abc", ps, strict=False))

@@ -281,19 +281,6 @@ def hyperbolic_cylinder_counterexample() -> Finding:
     )
 
 
-NPARAMS = {
-    QuadricKind.ELLIPSOID: 3,
-    QuadricKind.HYPERBOLOID_ONE_SHEET: 3,
-    QuadricKind.HYPERBOLOID_TWO_SHEETS: 3,
-    QuadricKind.ELLIPTIC_PARABOLOID: 2,
-    QuadricKind.HYPERBOLIC_PARABOLOID: 2,
-    QuadricKind.ELLIPTIC_CYLINDER: 2,
-    QuadricKind.HYPERBOLIC_CYLINDER: 2,
-    QuadricKind.PARABOLIC_CYLINDER: 1,
-    QuadricKind.PARALLEL_PLANES: 1,
-}
-
-
 def printed_table_1(kind: QuadricKind, e: tuple[Fraction, ...], q: tuple[Fraction, ...]) -> tuple[bool, bool]:
     """(printed verdict, corrected verdict) of Table 1 for rational parameters, evaluated here."""
     row = next(r for r in paper.PRINTED["Table 1"].splitlines() if r.split("|")[0].strip() == kind.value)

@@ -383,9 +383,9 @@ def placements() -> Finding:
     def search(
         kind: QuadricKind, centre: tuple[Fraction, ...], rot: object, motion: object, flip: bool
     ) -> None:
-        q = Quadric.standard(kind, **dict(zip("abc", (5, 4, 3)[: _nparams(kind)], strict=False))).moved(
-            motion
-        )
+        q = Quadric.standard(
+            kind, **dict(zip(Quadric.standard_parameters(kind), (5, 4, 3), strict=False))
+        ).moved(motion)
         q = -q if flip else q
         p = motion.apply(centre)
         e = Quadric.ellipsoid(Fraction(1, 20), Fraction(1, 30), Fraction(1, 40), center=p, rotation=rot)
@@ -401,12 +401,6 @@ def placements() -> Finding:
 
     search()
     return agrees(f"{len(met)} of the 18 (type, region) cases met, each with the pattern of Table 4")
-
-
-def _nparams(kind: QuadricKind) -> int:
-    if kind in (K.ELLIPSOID, K.HYPERBOLOID_ONE_SHEET, K.HYPERBOLOID_TWO_SHEETS):
-        return 3
-    return 1 if kind in (K.PARABOLIC_CYLINDER, K.PARALLEL_PLANES) else 2
 
 
 @proof.check(

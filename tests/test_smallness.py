@@ -24,17 +24,6 @@ from quadric_contact.strategies import rigid_motions
 
 K = QuadricKind
 P = paper.PRINTED
-N_PARAMS = {
-    K.ELLIPSOID: 3,
-    K.HYPERBOLOID_ONE_SHEET: 3,
-    K.HYPERBOLOID_TWO_SHEETS: 3,
-    K.ELLIPTIC_PARABOLOID: 2,
-    K.HYPERBOLIC_PARABOLOID: 2,
-    K.ELLIPTIC_CYLINDER: 2,
-    K.HYPERBOLIC_CYLINDER: 2,
-    K.PARABOLIC_CYLINDER: 1,
-    K.PARALLEL_PLANES: 1,
-}
 
 
 def _erratum(key):
@@ -82,7 +71,7 @@ pos = st.fractions(Fraction(1, 4), 6, max_denominator=6).filter(lambda v: v > 0)
 @st.composite
 def standard_pairs(draw, kind=None):
     k = draw(st.sampled_from(TABLE_1_KINDS)) if kind is None else kind
-    params = [draw(pos) for _ in range(N_PARAMS[k])]
+    params = [draw(pos) for _ in range(len(Quadric.standard_parameters(k)))]
     names = dict(zip("abc", params, strict=False))
     axes = [
         draw(st.fractions(Fraction(1, 8), 3, max_denominator=8).filter(lambda v: v > 0)) for _ in range(3)

@@ -39,17 +39,6 @@ from quadric_contact.strategies import rotations
 
 F = Fraction
 K = QuadricKind
-N_PARAMS = {
-    K.ELLIPSOID: 3,
-    K.HYPERBOLOID_ONE_SHEET: 3,
-    K.HYPERBOLOID_TWO_SHEETS: 3,
-    K.ELLIPTIC_PARABOLOID: 2,
-    K.HYPERBOLIC_PARABOLOID: 2,
-    K.ELLIPTIC_CYLINDER: 2,
-    K.HYPERBOLIC_CYLINDER: 2,
-    K.PARABOLIC_CYLINDER: 1,
-    K.PARALLEL_PLANES: 1,
-}
 ORDERED = {
     K.ELLIPSOID: 3,
     K.HYPERBOLOID_ONE_SHEET: 2,
@@ -97,7 +86,7 @@ axis = st.fractions(F(1, 4), 3, max_denominator=4).filter(lambda v: v > 0)
 
 @st.composite
 def pairs(draw, kind, u):
-    ps = [draw(param) for _ in range(N_PARAMS[kind])]
+    ps = [draw(param) for _ in range(len(Quadric.standard_parameters(kind)))]
     n = ORDERED.get(kind, 0)
     ps = sorted(ps[:n], reverse=True) + ps[n:]
     p = dict(zip("abc", ps, strict=False))
@@ -205,7 +194,7 @@ def test_max_scale_is_the_boundary_of_table_1():
     """The scale formula of this search and the smallness module agree exactly
     at the boundary (u = 1 small, u slightly above not small)."""
     for kind in TABLE_1_KINDS:
-        p = dict(zip("abc", [F(3), F(2), F(1)][: N_PARAMS[kind]], strict=False))
+        p = dict(zip(Quadric.standard_parameters(kind), [F(3), F(2), F(1)], strict=False))
         shape = (F(1), F(2, 3), F(1, 2))
         s = max_scale(kind, p, shape)
         inside = table_1(kind, alpha=s, beta=s * shape[1], gamma=s * shape[2], **p)

@@ -16,6 +16,7 @@ result that used it.
 
 from __future__ import annotations
 
+import inspect
 import math
 from collections.abc import Iterable, Sequence
 from fractions import Fraction
@@ -408,14 +409,7 @@ class Quadric:
         return cls._from_upper((z, z, z, n[0] / 2, z, z, n[1] / 2, z, n[2] / 2, -to_fraction(offset)))
 
     @classmethod
-    def standard(cls, kind: QuadricKind | str, **params: Any) -> Quadric:
-        """The standard form of Table 1 for ``kind`` with parameters ``a, b, c``.
-
-        Examples
-        --------
-        >>> Quadric.standard("hyperboloid of one sheet", a=1, b=1, c=2).equation()
-        'x**2 + y**2 - z**2/4 - 1'
-        """
+    def _standard_maker(cls, kind: QuadricKind | str) -> Any:
         kind = QuadricKind(kind)
         makers: dict[QuadricKind, Any] = {
             QuadricKind.ELLIPSOID: cls.ellipsoid,
@@ -430,10 +424,38 @@ class Quadric:
         }
         if kind not in makers:
             raise QuadricContactError(f"{kind} has no standard form in Table 1", kind)
+        return makers[kind]
+
+    @classmethod
+    def standard(cls, kind: QuadricKind | str, **params: Any) -> Quadric:
+        """The standard form of Table 1 for ``kind`` with parameters ``a, b, c``
+        (those of :meth:`standard_parameters`).
+
+        Examples
+        --------
+        >>> Quadric.standard("hyperboloid of one sheet", a=1, b=1, c=2).equation()
+        'x**2 + y**2 - z**2/4 - 1'
+        """
+        maker = cls._standard_maker(kind)
         try:
-            return makers[kind](**params)
+            return maker(**params)
         except TypeError as exc:
             raise ShapeError(f"wrong parameters for the standard {kind}: {exc}", params) from exc
+
+    @classmethod
+    def standard_parameters(cls, kind: QuadricKind | str) -> tuple[str, ...]:
+        """The names of the parameters of the standard form of Table 1 for ``kind``
+        (read off its constructor's signature).
+
+        Examples
+        --------
+        >>> Quadric.standard_parameters("elliptic paraboloid")
+        ('a', 'b')
+        >>> Quadric.standard_parameters("ellipsoid")
+        ('a', 'b', 'c')
+        """
+        signature = inspect.signature(cls._standard_maker(kind))
+        return tuple(name for name in signature.parameters if name in ("a", "b", "c"))
 
     # -- rigid motions -------------------------------------------------------------
 

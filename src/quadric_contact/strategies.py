@@ -98,17 +98,7 @@ def ellipsoids(
 
 
 def _standard(draw: Any, kind: QuadricKind, lo: Any, hi: Any) -> Quadric:
-    nparams = {
-        QuadricKind.ELLIPSOID: 3,
-        QuadricKind.HYPERBOLOID_ONE_SHEET: 3,
-        QuadricKind.HYPERBOLOID_TWO_SHEETS: 3,
-        QuadricKind.ELLIPTIC_PARABOLOID: 2,
-        QuadricKind.HYPERBOLIC_PARABOLOID: 2,
-        QuadricKind.ELLIPTIC_CYLINDER: 2,
-        QuadricKind.HYPERBOLIC_CYLINDER: 2,
-        QuadricKind.PARABOLIC_CYLINDER: 1,
-        QuadricKind.PARALLEL_PLANES: 1,
-    }[kind]
+    nparams = len(Quadric.standard_parameters(kind))
     params = sorted((draw(_positive(lo, hi)) for _ in range(nparams)), reverse=True)
     return Quadric.standard(kind, **dict(zip("abc", params, strict=False)))
 
