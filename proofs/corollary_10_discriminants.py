@@ -41,12 +41,12 @@ from fractions import Fraction
 
 import flint
 import sympy as sp
-from hypothesis import HealthCheck, given, settings
+from hypothesis import given
 from hypothesis import strategies as st
 
 from quadric_contact import Quadric, characteristic_polynomial
 from quadric_contact.discriminants import revised_sign_list
-from quadric_contact.proving import Finding, Method, Proof, agrees, ensure
+from quadric_contact.proving import Finding, Method, Proof, agrees, ensure, search_settings
 from quadric_contact.strategies import ellipsoids, quadrics
 
 proof = Proof("Corollary 10", "Delta_4 < 0, or Delta_4 = 0 and Delta_3 < 0, is transversal contact")
@@ -220,13 +220,7 @@ def one_pair_evidence(examples: int) -> Finding:
     seen = defaultdict(int)
     entry = st.integers(-9, 9)
 
-    @settings(
-        max_examples=examples,
-        derandomize=True,
-        database=None,
-        deadline=None,
-        suppress_health_check=list(HealthCheck),
-    )
+    @search_settings(examples)
     @given(e=ellipsoids(), upper=st.tuples(*([entry] * 10)))
     def search(e: Quadric, upper: tuple[int, ...]) -> None:
         Q = Quadric._from_upper(tuple(Fraction(u) for u in upper))
@@ -250,13 +244,7 @@ def one_pair_evidence(examples: int) -> Finding:
 def criterion_evidence() -> Finding:
     seen = defaultdict(int)
 
-    @settings(
-        max_examples=EXAMPLES,
-        derandomize=True,
-        database=None,
-        deadline=None,
-        suppress_health_check=list(HealthCheck),
-    )
+    @search_settings(EXAMPLES)
     @given(e=ellipsoids(), q=quadrics())
     def search(e: Quadric, q: Quadric) -> None:
         P = characteristic_polynomial(e, q)

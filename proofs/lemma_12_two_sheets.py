@@ -26,11 +26,11 @@ from __future__ import annotations
 from fractions import Fraction
 
 import sympy as sp
-from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import assume, given
 from hypothesis import strategies as st
 
 from quadric_contact import Quadric, characteristic_polynomial, paper
-from quadric_contact.proving import Finding, Method, Proof, agrees, ensure
+from quadric_contact.proving import Finding, Method, Proof, agrees, ensure, search_settings
 from quadric_contact.strategies import points, rigid_motions, rotations
 
 proof = Proof("Lemma 12", "root signs for a two-sheet hyperboloid", covers=("eq. (11)",))
@@ -132,13 +132,7 @@ def scaling() -> Finding:
 def placements() -> Finding:
     seen = {"----": 0, "--++": 0}
 
-    @settings(
-        max_examples=EXAMPLES,
-        derandomize=True,
-        database=None,
-        deadline=None,
-        suppress_health_check=list(HealthCheck),
-    )
+    @search_settings(EXAMPLES)
     @given(
         params=st.tuples(*(st.integers(2, 6) for _ in range(3))),
         centre=points(bound=8),

@@ -27,11 +27,11 @@ from __future__ import annotations
 from fractions import Fraction
 
 import numpy as np
-from hypothesis import HealthCheck, given, settings
+from hypothesis import given
 from hypothesis import strategies as st
 
 from quadric_contact import Quadric, characteristic_polynomial
-from quadric_contact.proving import Finding, Method, Proof, agrees, ensure
+from quadric_contact.proving import Finding, Method, Proof, agrees, ensure, search_settings
 from quadric_contact.smallness import smallness
 from quadric_contact.strategies import quadrics, rotations
 
@@ -151,13 +151,7 @@ def nonreal_means_crossing(examples: int) -> Finding:
     axis = st.fractions(F(1, 4), 3, max_denominator=6)
     coord = st.fractions(-6, 6, max_denominator=4)
 
-    @settings(
-        max_examples=examples,
-        derandomize=True,
-        database=None,
-        deadline=None,
-        suppress_health_check=list(HealthCheck),
-    )
+    @search_settings(examples)
     @given(
         axes=st.tuples(axis, axis, axis),
         rot=rotations(),

@@ -20,10 +20,10 @@ the centre agree whenever there is no transversal contact.
 from __future__ import annotations
 
 import sympy as sp
-from hypothesis import HealthCheck, given, settings
+from hypothesis import given
 
 from quadric_contact import Region, paper, plane_side
-from quadric_contact.proving import Finding, Method, Proof, agrees, ensure
+from quadric_contact.proving import Finding, Method, Proof, agrees, ensure, search_settings
 from quadric_contact.strategies import ellipsoids, planes
 
 from ._plane_pencil import plane_pencil
@@ -87,13 +87,7 @@ def c3_rotated() -> Finding:
 def centre_side_evidence() -> Finding:
     seen = {"crossing": 0, "clear": 0}
 
-    @settings(
-        max_examples=EXAMPLES,
-        derandomize=True,
-        database=None,
-        deadline=None,
-        suppress_health_check=list(HealthCheck),
-    )
+    @search_settings(EXAMPLES)
     @given(e=ellipsoids(), p=planes())
     def search(e: object, p: object) -> None:
         side = plane_side(e, p)

@@ -32,12 +32,12 @@ from __future__ import annotations
 from fractions import Fraction
 
 import sympy as sp
-from hypothesis import HealthCheck, given, settings
+from hypothesis import given
 from hypothesis import strategies as st
 
 from quadric_contact import Quadric, QuadricKind, paper
 from quadric_contact.classification import TABLE_1_KINDS
-from quadric_contact.proving import Finding, Method, Proof, agrees, differs, ensure
+from quadric_contact.proving import Finding, Method, Proof, agrees, differs, ensure, search_settings
 from quadric_contact.smallness import printed_table_2, smallness
 from quadric_contact.strategies import rigid_motions
 
@@ -312,13 +312,7 @@ def printed_table_1(kind: QuadricKind, e: tuple[Fraction, ...], q: tuple[Fractio
 def smallness_in_general_position(examples: int) -> Finding:
     counts = {True: 0, False: 0}
 
-    @settings(
-        max_examples=examples,
-        derandomize=True,
-        database=None,
-        deadline=None,
-        suppress_health_check=list(HealthCheck),
-    )
+    @search_settings(examples)
     @given(
         kind=st.sampled_from(TABLE_1_KINDS),
         e=st.tuples(*(st.fractions(Fraction(1, 10), 2, max_denominator=10) for _ in range(3))),

@@ -42,12 +42,12 @@ from collections.abc import Callable
 from fractions import Fraction
 
 import sympy as sp
-from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import assume, given
 from hypothesis import strategies as st
 
 from quadric_contact import ROOT_SIGN_TABLE, Quadric, QuadricKind, Region, characteristic_polynomial, paper
 from quadric_contact.classification import TABLE_1_KINDS
-from quadric_contact.proving import Finding, Method, Proof, agrees, differs, ensure
+from quadric_contact.proving import Finding, Method, Proof, agrees, differs, ensure, search_settings
 from quadric_contact.regions import derive_root_sign_table
 from quadric_contact.strategies import points, rigid_motions, rotations
 
@@ -366,13 +366,7 @@ for _i in range(10):
 def placements() -> Finding:
     met: set[tuple[QuadricKind, str]] = set()
 
-    @settings(
-        max_examples=EXAMPLES,
-        derandomize=True,
-        database=None,
-        deadline=None,
-        suppress_health_check=list(HealthCheck),
-    )
+    @search_settings(EXAMPLES)
     @given(
         kind=st.sampled_from(TABLE_1_KINDS),
         centre=points(bound=8),

@@ -72,6 +72,7 @@ __all__ = [
     "load_proofs",
     "render_report",
     "run_proof",
+    "search_settings",
     "select",
     "write_report",
 ]
@@ -167,6 +168,22 @@ class CheckSpec:
     @property
     def method_text(self) -> str:
         return f"{self.method.value} ({self.size})" if self.size else self.method.value
+
+
+def search_settings(examples: int) -> Any:
+    """Hypothesis settings of every search in ``proofs/``: ``examples`` examples,
+    derandomized and without an example database, so that a search states its size
+    and gives the same evidence on every run; no deadline, no health checks (the
+    examples are exact computations of very different costs)."""
+    from hypothesis import HealthCheck, settings
+
+    return settings(
+        max_examples=examples,
+        derandomize=True,
+        database=None,
+        deadline=None,
+        suppress_health_check=list(HealthCheck),
+    )
 
 
 class Proof:
