@@ -3,46 +3,22 @@ against the exact geometry of constructed configurations."""
 
 from fractions import Fraction
 
-import mpmath
-import numpy as np
 import pytest
 from hypothesis import assume, given
+from tests.oracles import mpmath_nonreal, numpy_nonreal
 
 from quadric_contact import Quadric, characteristic_polynomial, transversal_contact
 from quadric_contact.strategies import ellipsoids, quadrics, tangent_pairs
-
-
-def _numeric_nonreal(P, digits=50):
-    """Non-real roots by mpmath polyroots at ``digits``, or None if too close to call."""
-    with mpmath.workdps(digits):
-        coeffs = [mpmath.mpf(c.numerator) / c.denominator for c in reversed(P.coefficients)]
-        roots = mpmath.polyroots(coeffs, maxsteps=400, extraprec=4 * digits)
-        scale = max(1, max(abs(r) for r in roots))
-        imag = [abs(mpmath.im(r)) / scale for r in roots]
-        if any(mpmath.mpf(10) ** (-digits // 2) < v < mpmath.mpf(10) ** (-digits // 4) for v in imag):
-            return None
-        return any(v > mpmath.mpf(10) ** (-digits // 4) for v in imag)
-
-
-def _eig_nonreal(E, Q):
-    """Non-real eigenvalues of -Q E^-1 (numpy), or None if too close to call."""
-    M = -Q.to_numpy() @ np.linalg.inv(E.to_numpy())
-    w = np.linalg.eigvals(M)
-    scale = max(1.0, float(np.max(np.abs(w))))
-    im = np.abs(w.imag) / scale
-    if np.any((im > 1e-12) & (im < 1e-6)):
-        return None
-    return bool(np.any(im >= 1e-6))
 
 
 @given(e=ellipsoids(), q=quadrics())
 def test_nonreal_roots_agree_with_mpmath_and_numpy(e, q):
     P = characteristic_polynomial(e, q)
     exact = not P.structure.all_real
-    numeric = _numeric_nonreal(P)
+    numeric = mpmath_nonreal(P)
     assume(numeric is not None)
     assert exact == numeric
-    eig = _eig_nonreal(P.E, q)
+    eig = numpy_nonreal(P.E.to_numpy(), q.to_numpy())
     if eig is not None:
         assert exact == eig
 

@@ -6,17 +6,16 @@
   polyroots at 50 digits) away from tangency.
 """
 
-import mpmath
 import numpy as np
 from hypothesis import assume, given
 from hypothesis import strategies as st
+from tests.oracles import mpmath_nonreal, numpy_nonreal, scalar_codes
 
-from quadric_contact import ExcludedQuadricError, characteristic_polynomial
+from quadric_contact import characteristic_polynomial
 from quadric_contact.batch import relative_position_batch, transversal_contact_batch
-from quadric_contact.modes import ContactCode, RegionCode
+from quadric_contact.modes import ContactCode
 from quadric_contact.modes.decisions import CONTACT_TABLE, sign_index
 from quadric_contact.modes.float64 import filter_quantities
-from quadric_contact.regions import decide_region
 from quadric_contact.strategies import ellipsoids, quadrics, tangent_pairs
 
 pairs = st.one_of(
@@ -25,16 +24,6 @@ pairs = st.one_of(
     tangent_pairs(),
 )
 batches = st.lists(pairs, min_size=1, max_size=6)
-
-
-def _exact(e, q):
-    P = characteristic_polynomial(e, q)
-    contact = ContactCode.NO_CONTACT if P.structure.all_real else ContactCode.CONTACT
-    try:
-        region = RegionCode.from_region(decide_region(P, small=True, method="theory").region)
-    except ExcludedQuadricError:
-        region = RegionCode.EXCLUDED
-    return contact, region
 
 
 def _stacks(batch, exact):
@@ -50,7 +39,7 @@ def _stacks(batch, exact):
 
 @given(batches)
 def test_certified_equals_exact_on_rational_pairs(batch):
-    want = [_exact(e, q) for e, q in batch]
+    want = [scalar_codes(e, q) for e, q in batch]
     E, Q = _stacks(batch, exact=True)
     assert list(transversal_contact_batch(E, Q)) == [c for c, _ in want]
     assert list(relative_position_batch(E, Q)) == [r for _, r in want]
@@ -61,7 +50,7 @@ def test_certified_equals_exact_on_their_binary64_roundings(batch):
     E, Q = _stacks(batch, exact=False)
     from quadric_contact import Quadric
 
-    want = [_exact(Quadric.from_matrix(e), Quadric.from_matrix(q)) for e, q in zip(E, Q, strict=True)]
+    want = [scalar_codes(Quadric.from_matrix(e), Quadric.from_matrix(q)) for e, q in zip(E, Q, strict=True)]
     assert list(transversal_contact_batch(E, Q)) == [c for c, _ in want]
     assert list(relative_position_batch(E, Q)) == [r for _, r in want]
 
@@ -81,30 +70,8 @@ def test_float_equals_exact_wherever_its_error_bound_is_conclusive(batch):
         code = CONTACT_TABLE[sum(m * sign_index(int(s[k])) for m, s in zip((1, 4, 16), deltas, strict=True))]
         if code == 2:
             continue
-        exact, _ = _exact(Quadric.from_matrix(E[k]), Quadric.from_matrix(Q[k]))
+        exact, _ = scalar_codes(Quadric.from_matrix(E[k]), Quadric.from_matrix(Q[k]))
         assert code == exact == floats[k]
-
-
-def _mpmath_nonreal(P, digits=50):
-    """Non-real roots by mpmath polyroots at ``digits``, or None when too close to call."""
-    with mpmath.workdps(digits):
-        coeffs = [mpmath.mpf(c.numerator) / c.denominator for c in reversed(P.coefficients)]
-        roots = mpmath.polyroots(coeffs, maxsteps=400, extraprec=4 * digits)
-        scale = max(1, max(abs(r) for r in roots))
-        imag = [abs(mpmath.im(r)) / scale for r in roots]
-        if any(mpmath.mpf(10) ** (-digits // 2) < v < mpmath.mpf(10) ** (-digits // 4) for v in imag):
-            return None
-        return any(v > mpmath.mpf(10) ** (-digits // 4) for v in imag)
-
-
-def _numpy_nonreal(E, Q):
-    """Non-real eigenvalues of -Q E^-1 (numpy), or None when too close to call."""
-    w = np.linalg.eigvals(-Q @ np.linalg.inv(E))
-    scale = max(1.0, float(np.max(np.abs(w))))
-    im = np.abs(w.imag) / scale
-    if np.any((im > 1e-12) & (im < 1e-6)):
-        return None
-    return bool(np.any(im >= 1e-6))
 
 
 @given(st.lists(st.tuples(ellipsoids(), quadrics()), min_size=1, max_size=6))
@@ -114,11 +81,11 @@ def test_discriminant_criterion_agrees_with_numeric_root_finding(batch):
     checked = 0
     for (e, q), code in zip(batch, codes, strict=True):
         P = characteristic_polynomial(e, q)
-        numeric = _mpmath_nonreal(P)
+        numeric = mpmath_nonreal(P)
         if numeric is None:
             continue
         assert (code == ContactCode.CONTACT) == numeric
-        eig = _numpy_nonreal(P.E.to_numpy(), q.to_numpy())
+        eig = numpy_nonreal(P.E.to_numpy(), q.to_numpy())
         if eig is not None:
             assert (code == ContactCode.CONTACT) == eig
         checked += 1

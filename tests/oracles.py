@@ -1,0 +1,51 @@
+"""Reference answers the tests compare the predicates with.
+
+* :func:`scalar_codes`: the exact scalar path (``characteristic_polynomial``,
+  Yang's discrimination sequence for contact; Descartes' rule and Table 4 with
+  smallness asserted for the region) as the array predicates' codes.
+* :func:`mpmath_nonreal` and :func:`numpy_nonreal`: numeric root finding, an
+  oracle independent of the discriminants, answering None where a root is too
+  close to the real axis to call.
+"""
+
+from __future__ import annotations
+
+import mpmath
+import numpy as np
+
+from quadric_contact import ExcludedQuadricError, characteristic_polynomial
+from quadric_contact.modes import ContactCode, RegionCode
+from quadric_contact.regions import decide_region
+
+
+def scalar_codes(e, q):
+    """``(ContactCode, RegionCode)`` of the pair by the exact scalar path."""
+    P = characteristic_polynomial(e, q)
+    contact = ContactCode.NO_CONTACT if P.structure.all_real else ContactCode.CONTACT
+    try:
+        region = RegionCode.from_region(decide_region(P, small=True, method="theory").region)
+    except ExcludedQuadricError:
+        region = RegionCode.EXCLUDED
+    return contact, region
+
+
+def mpmath_nonreal(P, digits=50):
+    """Non-real roots of ``P`` by mpmath polyroots at ``digits``, or None if too close to call."""
+    with mpmath.workdps(digits):
+        coeffs = [mpmath.mpf(c.numerator) / c.denominator for c in reversed(P.coefficients)]
+        roots = mpmath.polyroots(coeffs, maxsteps=400, extraprec=4 * digits)
+        scale = max(1, max(abs(r) for r in roots))
+        imag = [abs(mpmath.im(r)) / scale for r in roots]
+        if any(mpmath.mpf(10) ** (-digits // 2) < v < mpmath.mpf(10) ** (-digits // 4) for v in imag):
+            return None
+        return any(v > mpmath.mpf(10) ** (-digits // 4) for v in imag)
+
+
+def numpy_nonreal(E, Q):
+    """Non-real eigenvalues of ``-Q E^-1`` (numpy arrays), or None if too close to call."""
+    w = np.linalg.eigvals(-Q @ np.linalg.inv(E))
+    scale = max(1.0, float(np.max(np.abs(w))))
+    im = np.abs(w.imag) / scale
+    if np.any((im > 1e-12) & (im < 1e-6)):
+        return None
+    return bool(np.any(im >= 1e-6))
