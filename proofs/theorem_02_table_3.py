@@ -34,8 +34,8 @@ from fractions import Fraction
 
 import sympy as sp
 
-from quadric_contact import Quadric, RigidMotion, characteristic_polynomial, paper
-from quadric_contact.contact_kind import ContactKind, contact_kind
+from quadric_contact import Quadric, RigidMotion, characteristic_polynomial, contact_kind, paper
+from quadric_contact.contact_kind import ContactKind
 from quadric_contact.proving import Finding, Method, Proof, agrees, differs, ensure
 from quadric_contact.segre import segre_symbol
 from quadric_contact.smallness import smallness

@@ -49,3 +49,32 @@ def numpy_nonreal(E, Q):
     if np.any((im > 1e-12) & (im < 1e-6)):
         return None
     return bool(np.any(im >= 1e-6))
+
+
+def _criterion(what, E, Q, mode="certified"):
+    """The paper's criterion on a stack (or one pair): the first stage of every mode, which
+    these tests check mode by mode; ``mode.last`` counts its stages by name."""
+    from quadric_contact.batch import as_stack, make_pairs
+    from quadric_contact.modes import StageCounts, get_mode
+
+    m = get_mode(mode)
+    pairs, shape = make_pairs(as_stack(E, "E"), as_stack(Q, "Q"))
+    codes, names, which = m.staged(f"criterion_{what}", pairs)
+    counts = StageCounts()
+    for k, name in enumerate(names):
+        counts.add(name, int(np.count_nonzero(which == k)))
+    counts.undecided = int(np.count_nonzero(which < 0))
+    m._record(counts)
+    if shape == ():
+        return (ContactCode if what == "contact" else RegionCode)(int(codes[0]))
+    return codes.reshape(shape)
+
+
+def criterion_contact(E, Q, *, mode="certified"):
+    """``1`` non-real roots, ``0`` all roots real, ``2`` uncertain (:class:`ContactCode` values)."""
+    return _criterion("contact", E, Q, mode)
+
+
+def criterion_region(E, Q, *, mode="certified"):
+    """The criterion and Table 4's reading of the root signs, no smallness (:class:`RegionCode`)."""
+    return _criterion("region", E, Q, mode)

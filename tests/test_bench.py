@@ -40,7 +40,7 @@ def test_bench_smoke_profile_writes_table_json_and_reports_targets(tmp_path, cap
 def test_peers_agree_with_exact_far_from_tangency():
     import numpy as np
 
-    from quadric_contact.batch import transversal_contact_batch
+    from quadric_contact.benchmark import criterion_stack as transversal_contact_batch
     from quadric_contact.samples import random_pairs
 
     E, Q, _ = random_pairs(30, np.random.default_rng(4), kinds=benchmark.GENERIC_KINDS)
@@ -54,7 +54,7 @@ def test_fcl_peer_when_installed():
     pytest.importorskip("fcl")
     import numpy as np
 
-    from quadric_contact.batch import transversal_contact_batch
+    from quadric_contact.benchmark import criterion_stack as transversal_contact_batch
     from quadric_contact.classification import QuadricKind
     from quadric_contact.samples import random_pairs
 

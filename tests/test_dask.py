@@ -4,7 +4,8 @@ dask.distributed is installed, an in-process cluster passed as ``client``."""
 import numpy as np
 import pytest
 
-from quadric_contact.batch import relative_position_batch, transversal_contact_batch
+from quadric_contact import relative_position as relative_position_batch
+from quadric_contact import transversal_contact as transversal_contact_batch
 from quadric_contact.errors import ShapeError
 from quadric_contact.modes import CertifiedMode
 from quadric_contact.samples import random_pairs

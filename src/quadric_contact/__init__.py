@@ -8,8 +8,7 @@ from __future__ import annotations
 
 from .algebraic import RealAlgebraic
 from .classification import QuadricKind
-from .contact import transversal_contact
-from .contact_kind import ContactAnalysis, ContactKind, analyze_contact, contact_kind
+from .contact_kind import ContactAnalysis, ContactKind, analyze_contact
 from .descartes import RootSigns, root_signs
 from .discriminants import RootStructure, discrimination_sequence, paper_deltas, root_structure
 from .errors import (
@@ -28,14 +27,23 @@ from .errors import (
 )
 from .geometric import GeometricDecision, decide_geometrically
 from .invariants import QuadricInvariants, invariants
+from .modes import ContactCode, ContactKindCode, CriterionCode, RegionCode, SmallnessCode
 from .motions import RigidMotion, rotation_from_quaternion
 from .pencil import CharacteristicPolynomial, characteristic_polynomial
-from .plane import plane_side
+from .predicates import (
+    CriterionResult,
+    contact_kind,
+    corollary_10,
+    plane_side,
+    relative_position,
+    smallness,
+    transversal_contact,
+)
 from .quadric import Quadric
-from .regions import ROOT_SIGN_TABLE, relative_position
+from .regions import ROOT_SIGN_TABLE
 from .results import ContactResult, PlaneSideResult, Region, RegionResult
 from .segre import SegreSymbol, segre_symbol
-from .smallness import SmallnessReport, printed_table_2, smallness, table_1
+from .smallness import SmallnessReport, printed_table_2, table_1
 
 __version__ = "0.1.0"
 
@@ -43,8 +51,12 @@ __all__ = [
     "ROOT_SIGN_TABLE",
     "CharacteristicPolynomial",
     "ContactAnalysis",
+    "ContactCode",
     "ContactKind",
+    "ContactKindCode",
     "ContactResult",
+    "CriterionCode",
+    "CriterionResult",
     "DegeneratePencilError",
     "EquationError",
     "ExcludedQuadricError",
@@ -62,18 +74,21 @@ __all__ = [
     "QuadricKind",
     "RealAlgebraic",
     "Region",
+    "RegionCode",
     "RegionResult",
     "RigidMotion",
     "RootSigns",
     "RootStructure",
     "SegreSymbol",
     "ShapeError",
+    "SmallnessCode",
     "SmallnessReport",
     "UndecidedError",
     "__version__",
     "analyze_contact",
     "characteristic_polynomial",
     "contact_kind",
+    "corollary_10",
     "decide_geometrically",
     "discrimination_sequence",
     "invariants",

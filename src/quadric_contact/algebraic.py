@@ -458,8 +458,15 @@ class RealAlgebraic:
 def _simple_between(lo: Fraction, hi: Fraction) -> Fraction:
     """A rational with a small denominator strictly inside ``(lo, hi)``, near the middle."""
     w = hi - lo
-    # a power-of-two grid finer than a quarter of the width
-    k = max(0, -math.floor(math.log2(w)) + 2) if w > 0 else 0
+    # a power-of-two grid finer than a quarter of the width (floor(log2 w) from the bit
+    # lengths: w may be far below the smallest float)
+    if w > 0:
+        e = w.numerator.bit_length() - w.denominator.bit_length()
+        if Fraction(2) ** e > w:
+            e -= 1
+        k = max(0, -e + 2)
+    else:
+        k = 0
     den = 2**k
     mid = (lo + hi) / 2
     cand = Fraction(round(mid * den), den)

@@ -1,42 +1,20 @@
-"""Array predicates: stacks of matrices, broadcasting, number modes, dask.
+"""The array layer of the predicates: stacks of matrices, broadcasting, dask.
 
-:func:`transversal_contact_batch` and :func:`relative_position_batch` take one
-``(4, 4)`` matrix or a stack ``(..., 4, 4)`` for ``E``, ``Q`` or both (numpy
-arrays of any real dtype, nested sequences, object arrays of exact rationals,
-:class:`~quadric_contact.Quadric` objects, dask arrays), broadcast the batch
-shapes as numpy does, and return int8 arrays of codes (or one code for a
-single pair).  :func:`~quadric_contact.transversal_contact` and
-:func:`~quadric_contact.relative_position` call them for stacks and for the
-number modes other than the exact default.
-
-What is evaluated on a stack
-----------------------------
-The paper's criterion, as it stands, with no smallness test (the Tables 1-2
-test is not vectorised):
-
-* contact: does ``P(lambda) = det(lambda E + Q)`` have non-real roots?  Yes
-  means transversal contact for *any* pair (Remark 9); no means no transversal
-  contact when ``E`` is small with respect to ``Q`` (Theorem 2, Corollary 10),
-  and always when ``Q`` is a plane (Theorem 14) or has no real points.
-* region: the contact answer, then the root-sign pattern (Descartes' rule, exact
-  when all roots are real) matched against Table 4 for the type of ``Q``
-  (Theorem 13; Theorem 14 for planes), exactly as
-  :func:`~quadric_contact.relative_position` does when smallness is asserted.
-
-The codes are :class:`~quadric_contact.modes.ContactCode` and
-:class:`~quadric_contact.modes.RegionCode` (regions are the sign of ``X^T Q X``
-on ``E``: ``R- = -1``, ``contact = 0``, ``R+ = 1``).  ``UNCERTAIN`` (2) appears
-only with the modes that are not certified (``filter`` and ``ball`` answer
-``UNCERTAIN`` where they are not sure; ``float`` and ``mpmath`` answer everything
-and may be wrong).  The default ``certified`` mode always answers and its
-answer equals the exact evaluation of the criterion on the given matrices (a
-float is the exact dyadic rational it stores).
+:func:`is_stack` decides, from the type of an input alone, whether it is one
+matrix or a stack; :func:`as_stack` validates and converts either to a
+:class:`~quadric_contact.modes.MatrixStack` (numpy arrays of any real dtype,
+nested sequences, object arrays of exact rationals, lists or object arrays of
+:class:`~quadric_contact.Quadric` or equations); :func:`make_pairs` broadcasts two
+stacks as numpy does; :func:`run_stack` asks a number mode one question about
+every pair (eagerly, or chunk by chunk for dask arrays) and returns an int8 array
+of codes shaped like the broadcast batch.  The public predicates of
+:mod:`quadric_contact.predicates` call it for stacks.
 
 Input validation raises the errors of :mod:`quadric_contact.errors`:
 :class:`ShapeError` (not ``(..., 4, 4)``, or batch shapes that do not
 broadcast), :class:`NonFiniteError`, :class:`NotSymmetricError`,
-:class:`NotANumberError`, and :class:`NotAnEllipsoidError` (decided exactly in
-the certified and exact modes) naming the offending matrix, e.g. ``E[3, 1]``.
+:class:`NotANumberError`, and :class:`NotAnEllipsoidError` naming the offending
+matrix, e.g. ``E[3, 1]``.
 """
 
 from __future__ import annotations
@@ -48,30 +26,66 @@ from typing import Any
 import numpy as np
 
 from .errors import NotANumberError, NotSymmetricError, ShapeError
-from .modes import ContactCode, MatrixStack, NumberMode, Pairs, RegionCode, get_mode
+from .modes import MatrixStack, NumberMode, Pairs, get_mode
 
 __all__ = [
-    "ContactCode",
-    "RegionCode",
     "as_stack",
     "is_stack",
     "make_pairs",
-    "relative_position_batch",
-    "transversal_contact_batch",
+    "run_stack",
 ]
 
 
+def _is_single(value: Any) -> bool:
+    """One quadric given as an object (not a nested sequence or an array)."""
+    from .quadric import Quadric
+
+    return isinstance(value, (Quadric, str)) or (type(value).__module__ or "").startswith("sympy")
+
+
+def _quadric_array(value: Any) -> bool:
+    """An object array whose items are Quadrics or equations (not the entries of matrices:
+    an object array ending in ``(4, 4)`` holds matrix entries)."""
+    if value.ndim >= 2 and tuple(value.shape[-2:]) == (4, 4):
+        return False
+    return bool(value.size) and _is_single(value.reshape(-1)[0])
+
+
 def is_stack(value: Any) -> bool:
-    """True for a stack of matrices ``(..., 4, 4)`` with at least one batch axis
-    (numpy or dask arrays, or nested sequences three levels deep)."""
+    """True for a stack of matrices, decided by the type of ``value`` alone.
+
+    A stack is an array (numpy, dask) with at least three dimensions ``(..., 4, 4)``,
+    an object array of :class:`~quadric_contact.Quadric` or equations, or a list or
+    tuple whose items are matrices (nested sequences or arrays), Quadrics or equations
+    (an empty list is an empty stack).  One matrix is a :class:`Quadric`, an equation,
+    a sympy expression, a ``(4, 4)`` array or a list of four rows.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> is_stack(np.eye(4)), is_stack(np.eye(4)[None]), is_stack(["x**2 - 1"]), is_stack("x - 1")
+    (False, True, True, False)
+    """
+    if _is_single(value):
+        return False
     ndim = getattr(value, "ndim", None)
     if ndim is not None and hasattr(value, "shape"):
-        return int(ndim) >= 3
-    if isinstance(value, (list, tuple)) and value:
+        if int(ndim) >= 3:
+            return True
+        dtype = getattr(value, "dtype", None)
+        if dtype is not None and dtype.kind == "O" and int(ndim) >= 1 and value.size:
+            return _quadric_array(value)
+        return False
+    if isinstance(value, (list, tuple)):
+        if not value:
+            return True
         first = value[0]
+        if _is_single(first):
+            return True
         if isinstance(first, (list, tuple)) and first:
             inner = first[0]
             return isinstance(inner, (list, tuple)) or getattr(inner, "ndim", 0) >= 1
+        return getattr(first, "ndim", 0) >= 2
     return False
 
 
@@ -97,12 +111,19 @@ def as_stack(value: Any, name: str = "M") -> MatrixStack:
     ShapeError, NotANumberError, NonFiniteError, NotRationalError, NotSymmetricError
     """
     from .pencil import as_quadric
-    from .quadric import Quadric
 
-    if isinstance(value, (str, Quadric)) or (type(value).__module__ or "").startswith("sympy"):
+    if _is_single(value):
         return _exact_stack([as_quadric(value, name).upper], (), name)
-    if isinstance(value, (list, tuple)) and value and all(isinstance(v, Quadric) for v in value):
-        return _exact_stack([v.upper for v in value], (len(value),), name)
+    if isinstance(value, (list, tuple)) and not value:
+        return MatrixStack(np.empty((0, 4, 4)), None, True, name, (0,))
+    if isinstance(value, (list, tuple)) and any(_is_single(v) for v in value):
+        return _exact_stack(
+            [as_quadric(v, f"{name}[{k}]").upper for k, v in enumerate(value)], (len(value),), name
+        )
+    if isinstance(value, np.ndarray) and value.dtype == object and _quadric_array(value):
+        flat = value.reshape(-1)
+        uppers = [as_quadric(v, f"{name}[{k}]").upper for k, v in enumerate(flat)]
+        return _exact_stack(uppers, tuple(value.shape), name)
     try:
         arr = np.asarray(value)
     except (ValueError, TypeError) as exc:
@@ -200,107 +221,56 @@ def make_pairs(E: MatrixStack, Q: MatrixStack) -> tuple[Pairs, tuple[int, ...]]:
     return Pairs(E, Q, n, indices[0], indices[1]), tuple(shape)
 
 
-# -- the predicates ---------------------------------------------------------------------------
+# -- asking a mode about every pair ----------------------------------------------------------
+
+_QUESTIONS = {
+    "contact": "contact",
+    "region": "region",
+    "kind": "kind",
+    "plane": "region",
+    "smallness": "public_smallness",
+    "criterion": "criterion",
+}
 
 
-def transversal_contact_batch(
-    E: Any, Q: Any, *, mode: str | NumberMode = "certified", client: Any = None, compute: bool = True
+def run_stack(
+    question: str, E: Any, Q: Any, mode: Any = "certified", client: Any = None, compute: bool = True
 ) -> Any:
-    """Transversal contact for every pair of a broadcast of ``E`` and ``Q``.
+    """Ask ``mode`` the question ``question`` about every pair of the broadcast of ``E`` and ``Q``.
 
-    Parameters
-    ----------
-    E : array_like, shape (4, 4) or (..., 4, 4)
-        Real ellipsoids (either sign of the matrix).
-    Q : array_like, shape (4, 4) or (..., 4, 4)
-        Quadrics.
-    mode : str or NumberMode
-        ``"certified"`` (default, never wrong), ``"exact"``, ``"filter"``,
-        ``"float"``, ``"ball"``, ``"mpmath"``, or a mode instance (pass one to
-        read its :attr:`~quadric_contact.modes.NumberMode.counts` afterwards).
-    client : dask.distributed.Client, optional
-        For dask input: compute on this cluster (default: dask's local threads).
-    compute : bool
-        For dask input: return the computed numpy array (default) or the lazy dask array.
-
-    Returns
-    -------
-    numpy.ndarray of int8, shape = broadcast batch shape; or one ContactCode
-        :class:`~quadric_contact.modes.ContactCode`: 1 non-real roots
-        (transversal contact, Remark 9), 0 all roots real (no transversal contact
-        under smallness, Corollary 10; for planes, Theorem 14), 2 uncertain.
-
-    Raises
-    ------
-    ShapeError, NonFiniteError, NotSymmetricError, NotANumberError, NotAnEllipsoidError
-
-    References
-    ----------
-    Theorem 2, Corollary 10, Remark 9, Theorem 14.
-
-    Examples
-    --------
-    Example 11 (``Delta_4 = 0``, ``Delta_3 < 0``: contact), and the same ellipsoid
-    moved up by 10:
-
-    >>> import numpy as np
-    >>> E = np.diag([2.0, 2.0, 3.0, -1.0])
-    >>> E_up = E.copy(); E_up[2, 3] = E_up[3, 2] = -30.0; E_up[3, 3] = 299.0
-    >>> Q = np.array([[1.0, 0, 0, 0], [0, 1, 0, 0], [0, 0, 0, 4], [0, 0, 4, 0]])
-    >>> transversal_contact_batch(np.stack([E, E_up]), Q)
-    array([1, 0], dtype=int8)
-    """
-    return _run("contact", E, Q, mode, client, compute)
-
-
-def relative_position_batch(
-    E: Any, Q: Any, *, mode: str | NumberMode = "certified", client: Any = None, compute: bool = True
-) -> Any:
-    """Where each ellipsoid lies with respect to its quadric (Table 4), as codes.
-
-    Parameters are those of :func:`transversal_contact_batch`.
-
-    Returns
-    -------
-    numpy.ndarray of int8 (or one RegionCode)
-        :class:`~quadric_contact.modes.RegionCode`: -1 ``R-``, 0 transversal
-        contact, 1 ``R+``; 2 uncertain, 3 no row of Table 4 matches (``E`` is
-        not small with respect to ``Q``), 4 ``Q`` has no row (cones, intersecting
-        or coincident planes, no real points).
-
-    Raises
-    ------
-    ShapeError, NonFiniteError, NotSymmetricError, NotANumberError, NotAnEllipsoidError
-
-    References
-    ----------
-    Theorem 13, Table 4, Lemma 12, Theorem 14.
-
-    Examples
-    --------
-    Example 17: the bee and the hyperboloid S2 (outside: ``R+``) and the
-    separating plane ``z = 6`` (below it: ``R-``):
-
-    >>> from quadric_contact import Quadric
-    >>> bee = Quadric.from_equation("(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1")
-    >>> S2 = Quadric.from_equation("x**2 + y**2 - 0.25*(z-3)**2 - 1")
-    >>> plane = Quadric.from_equation("z - 6")
-    >>> relative_position_batch(bee, [S2, plane])
-    array([ 1, -1], dtype=int8)
-    """
-    return _run("region", E, Q, mode, client, compute)
-
-
-def _run(what: str, E: Any, Q: Any, mode: Any, client: Any, compute: bool) -> Any:
+    ``question`` is ``"contact"``, ``"region"``, ``"kind"``, ``"plane"`` (``region`` with
+    every ``Q`` required to be a plane), ``"smallness"`` or ``"criterion"``.  Returns an int8
+    array shaped like the broadcast batch (dask input: chunk by chunk, computed unless
+    ``compute=False``)."""
+    if question not in _QUESTIONS:
+        raise ValueError(f"question must be one of {tuple(_QUESTIONS)}, got {question!r}")
     if _is_dask(E) or _is_dask(Q):
-        return _run_dask(what, E, Q, mode, client, compute)
+        return _run_dask(question, E, Q, mode, client, compute)
     m = get_mode(mode)
     pairs, shape = make_pairs(as_stack(E, "E"), as_stack(Q, "Q"))
-    if what == "contact":
-        codes = m.contact(pairs)
-        return ContactCode(int(codes[0])) if shape == () else codes.reshape(shape)
-    codes = m.region(pairs)
-    return RegionCode(int(codes[0])) if shape == () else codes.reshape(shape)
+    if question == "plane":
+        _require_planes(m, pairs)
+    codes = getattr(m, _QUESTIONS[question])(pairs)
+    return np.asarray(codes, dtype=np.int8).reshape(shape)
+
+
+def _require_planes(mode: NumberMode, pairs: Pairs) -> None:
+    from .classification import QuadricKind
+    from .errors import NotAPlaneError
+    from .modes.decisions import KINDS, UNCERTAIN_ROW, rows_from_masks
+    from .modes.validation import exact_matrix
+
+    used = np.unique(pairs.q_rows())
+    rows = rows_from_masks(mode.classify(pairs.Q, used))
+    for k, row in enumerate(rows):
+        kind = None if row == UNCERTAIN_ROW else KINDS[int(row) // 2]
+        if kind is not QuadricKind.PLANE:
+            q = exact_matrix(pairs.Q, int(used[k]))
+            kind = q.kind  # type: ignore[attr-defined]
+            if kind is not QuadricKind.PLANE:
+                raise NotAPlaneError(
+                    f"{pairs.Q.where(int(used[k]))} is not a plane: it is {kind.value}", q, kind=kind
+                )
 
 
 # -- dask ---------------------------------------------------------------------------------------
@@ -326,13 +296,11 @@ def _run_dask(what: str, E: Any, Q: Any, mode: Any, client: Any, compute: bool) 
     if not shape:
         Eb, Qb = Eb[None], Qb[None]
     Eb, Qb = da.core.unify_chunks(Eb, tuple(range(Eb.ndim)), Qb, tuple(range(Qb.ndim)))[1]
-    fn = transversal_contact_batch if what == "contact" else relative_position_batch
-
     def block(e: np.ndarray, q: np.ndarray) -> np.ndarray:
         from .modes.float64 import single_threaded
 
         with single_threaded():
-            return np.asarray(fn(e, q, mode=m), dtype=np.int8).reshape(e.shape[:-2])
+            return np.asarray(run_stack(what, e, q, m), dtype=np.int8).reshape(e.shape[:-2])
 
     out = da.map_blocks(block, Eb, Qb, drop_axis=[Eb.ndim - 2, Eb.ndim - 1], dtype=np.int8)
     if not shape:

@@ -47,7 +47,7 @@ from typing import Any
 
 import numpy as np
 
-from .batch import transversal_contact_batch
+from .batch import run_stack
 from .classification import QuadricKind
 from .modes import BallMode, CertifiedMode, ExactMode, FilterMode, FloatMode, MpmathMode, NumberMode
 from .samples import SAMPLE_KINDS, random_pairs
@@ -103,6 +103,12 @@ PROFILES: dict[str, dict[str, Any]] = {
         "exact_timing_pairs": 20_000,
     },
 }
+
+
+def criterion_stack(E: Any, Q: Any, *, mode: Any = "certified") -> np.ndarray:
+    """The paper's criterion on a stack (:func:`quadric_contact.corollary_10`): the stage the
+    number modes compute first, and what the mode measurements below time."""
+    return run_stack("criterion", E, Q, mode)
 
 
 @dataclass
@@ -399,7 +405,7 @@ def _measure_modes(
         n = n_slow if name in _SLOW else len(E)
         repeat = 1 if name in _SLOW else 3
         seconds, codes = _best_of(
-            functools.partial(transversal_contact_batch, E[:n], Q[:n], mode=mode), repeat
+            functools.partial(criterion_stack, E[:n], Q[:n], mode=mode), repeat
         )
         decided = codes != 2
         note = ""
@@ -481,7 +487,7 @@ def _measure_fcl(rng: np.random.Generator, cfg: dict[str, Any], report: Report) 
     E, Q = E[keep], Q[keep]
     geo_q = {k: v[keep] for k, v in geo_q.items()}
     geo_e = {k: v[keep] for k, v in geo_e.items()}
-    contact = transversal_contact_batch(E, Q, mode="exact")
+    contact = criterion_stack(E, Q, mode="exact")
     truth = exact_overlap(E, Q, contact)
     seconds, got = _best_of(lambda: peer_fcl(geo_e, geo_q, range(len(E))), 1)
     report.measurements.append(
@@ -496,7 +502,7 @@ def _measure_fcl(rng: np.random.Generator, cfg: dict[str, Any], report: Report) 
             "truth: contact or one inside the other",
         )
     )
-    seconds, codes = _best_of(lambda: transversal_contact_batch(E, Q), 3)
+    seconds, codes = _best_of(lambda: criterion_stack(E, Q), 3)
     report.measurements.append(
         Measurement(
             "certified",
@@ -518,7 +524,7 @@ def _hard(report: Report, cfg: dict[str, Any]) -> None:
     cases = [c for c in hard_cases(cfg.get("hard_families", FAMILIES)) if not c.exact_input]
     E = np.stack([c.matrices()[0] for c in cases])
     Q = np.stack([c.matrices()[1] for c in cases])
-    truth = transversal_contact_batch(E, Q, mode="exact")
+    truth = criterion_stack(E, Q, mode="exact")
     _measure_modes("hard", E, Q, truth, {**cfg, "slow_pairs": len(E)}, report)
     _measure_peers("hard", E, Q, truth, cfg, report)
     # the ladder, distance by distance
@@ -527,7 +533,7 @@ def _hard(report: Report, cfg: dict[str, Any]) -> None:
     methods: dict[str, np.ndarray] = {}
     El, Ql = E[ladder], Q[ladder]
     for name, mode in _modes():
-        methods[name] = transversal_contact_batch(El, Ql, mode=mode)
+        methods[name] = criterion_stack(El, Ql, mode=mode)
     methods["numpy eigvals"] = peer_numpy_eigvals(El, Ql)
     methods["numpy roots"] = peer_numpy_roots(El, Ql)
     t = truth[ladder]
@@ -600,9 +606,9 @@ def _throughput(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -
         for name, mode in (("float", FloatMode()), ("filter", FilterMode()), ("certified", CertifiedMode())):
             e, q = E[:size], Q[:size]
             repeat = 5 if size <= 10**5 else 2
-            seconds, _ = _best_of(functools.partial(transversal_contact_batch, e, q, mode=mode), repeat)
+            seconds, _ = _best_of(functools.partial(criterion_stack, e, q, mode=mode), repeat)
             with _traced() as peak:
-                transversal_contact_batch(e, q, mode=mode)
+                criterion_stack(e, q, mode=mode)
             report.throughput.append(
                 {"mode": name, "n": size, "seconds": seconds, "rate": size / seconds, "peak_bytes": peak[0]}
             )
@@ -621,7 +627,7 @@ def _escalation(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -
         while done < total:
             n = min(10**6, total - done)
             E, Q, _ = random_pairs(n, rng, kinds=kinds)
-            transversal_contact_batch(E, Q, mode=mode)
+            criterion_stack(E, Q, mode=mode)
             done += n
         report.escalation[population] = {
             "pairs": total,
@@ -636,7 +642,7 @@ def _exact_timing(report: Report, cfg: dict[str, Any], rng: np.random.Generator)
     E, Q, _ = random_pairs(n, rng)
     out = {}
     for backend in ("int", "fmpz"):
-        seconds, _ = _best_of(functools.partial(transversal_contact_batch, E, Q, mode=ExactMode(backend)), 2)
+        seconds, _ = _best_of(functools.partial(criterion_stack, E, Q, mode=ExactMode(backend)), 2)
         out[backend] = seconds / n
     return out
 
@@ -779,7 +785,7 @@ def huge_run(pairs: int = 10**8, chunk: int = 250_000, seed: int = 0) -> dict[st
     both = da.map_blocks(block, chunks=chunks, dtype=np.float64)
     mode = CertifiedMode()
     t = time.perf_counter()
-    codes = transversal_contact_batch(both[:, 0], both[:, 1], mode=mode)
+    codes = criterion_stack(both[:, 0], both[:, 1], mode=mode)
     seconds = time.perf_counter() - t
     return {
         "pairs": pairs,
@@ -825,8 +831,8 @@ def run(
     for population, kinds in (("generic", GENERIC_KINDS), ("random", SAMPLE_KINDS)):
         log(f"modes and peers on {cfg['pairs']} {population} pairs ...")
         E, Q, _ = random_pairs(cfg["pairs"], rng, kinds=kinds)
-        transversal_contact_batch(E[:100], Q[:100], mode="float")  # compile / load the kernels
-        truth = transversal_contact_batch(E, Q, mode="exact")
+        criterion_stack(E[:100], Q[:100], mode="float")  # compile / load the kernels
+        truth = criterion_stack(E, Q, mode="exact")
         _measure_modes(population, E, Q, truth, cfg, report)
         _measure_peers(population, E, Q, truth, cfg, report)
     log("hard cases ...")

@@ -37,6 +37,8 @@ from enum import StrEnum
 from typing import Any
 
 __all__ = [
+    "NO_REAL_POINTS",
+    "REFUSED_KINDS",
     "TABLE_1_KINDS",
     "Inertia",
     "QuadricKind",
@@ -119,6 +121,25 @@ TABLE_1_KINDS: tuple[QuadricKind, ...] = (
     QuadricKind.PARABOLIC_CYLINDER,
     QuadricKind.PARALLEL_PLANES,
 )
+
+NO_REAL_POINTS: frozenset[QuadricKind] = frozenset(
+    {
+        QuadricKind.IMAGINARY_ELLIPSOID,
+        QuadricKind.IMAGINARY_ELLIPTIC_CYLINDER,
+        QuadricKind.IMAGINARY_PARALLEL_PLANES,
+        QuadricKind.EMPTY,
+    }
+)
+"""Types without a real point: nothing to touch or cross.  ``X^T Q X`` keeps one sign on
+all of space (the matrix is semidefinite, or a nonzero constant): an ellipsoid lies in
+``R+`` when that sign is positive (:attr:`Quadric.canonical_sign` > 0), in ``R-``
+otherwise.  (An imaginary cone is one real point and imaginary intersecting planes a
+real line: an ellipsoid can touch them, so they are not here.)"""
+
+REFUSED_KINDS: frozenset[QuadricKind] = frozenset({QuadricKind.COINCIDENT_PLANES, QuadricKind.ZERO})
+"""Types no predicate answers for: a plane counted twice (``X^T Q X`` does not change sign
+across it, so its sign cannot see a crossing; pass the plane itself) and the zero matrix."""
+
 
 _NONDEGENERATE = {
     QuadricKind.ELLIPSOID,

@@ -32,7 +32,7 @@ from .contact import decide_transversal
 from .errors import NotAPlaneError, QuadricContactError
 from .ledger import Ledger
 from .pencil import as_quadric, characteristic_polynomial
-from .plane import plane_side
+from .plane import plane_side_exact as plane_side
 from .quadric import Quadric
 from .regions import decide_region
 from .results import ContactResult, PlaneSideResult, Region, RegionResult

@@ -12,30 +12,34 @@ The decision, for an ellipsoid ``E`` and a quadric ``Q``:
 4. All roots real and ``E`` small with respect to ``Q`` (Tables 1, 2, or the
    caller's assertion): no transversal contact (Theorem 2).
 5. All roots real and ``E`` not known to be small: the paper does not decide
-   (Remark 9).  With ``method="auto"`` the exact geometric decision settles
-   it and says so; with ``method="theory"`` the result is undecided.
+   (Remark 9).  With ``method="auto"`` the exact separation certificate
+   (:mod:`quadric_contact.certificate`: a definite member of the pencil, or four
+   simple real roots without one) settles it, and where it cannot (a tangency, a
+   multiple root) the exact geometric decision does; the result says which.  With
+   ``method="theory"`` the result is undecided.
 """
 
 from __future__ import annotations
 
 from typing import Any
 
-from .classification import QuadricKind
+from .certificate import separation_certificate
+from .classification import NO_REAL_POINTS, REFUSED_KINDS, QuadricKind
 from .errors import ExcludedQuadricError
 from .pencil import CharacteristicPolynomial, characteristic_polynomial
-from .results import ContactResult
+from .quadric import Quadric
+from .results import ContactResult, Region
 
-__all__ = ["decide_transversal", "transversal_contact"]
+__all__ = ["NO_REAL_POINTS", "decide_transversal", "refuse", "transversal_contact_exact"]
 
-NO_REAL_POINTS = frozenset(
-    {
-        QuadricKind.IMAGINARY_ELLIPSOID,
-        QuadricKind.IMAGINARY_ELLIPTIC_CYLINDER,
-        QuadricKind.IMAGINARY_PARALLEL_PLANES,
-        QuadricKind.EMPTY,
-    }
-)
-"""Types whose real point set is empty: nothing to touch."""
+
+
+def refuse(Q: Quadric, what: str = "Q") -> None:
+    """Raise :class:`ExcludedQuadricError` for the types no predicate answers for
+    (:data:`~quadric_contact.classification.REFUSED_KINDS`)."""
+    kind = Q.kind
+    if kind in REFUSED_KINDS:
+        raise ExcludedQuadricError(f"{what} is {kind.value}: {kind.excluded_reason}", Q, kind=kind)
 
 METHODS = ("auto", "theory")
 
@@ -106,6 +110,9 @@ def decide_transversal(
     """
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
+    refuse(P.Q)
+    if P.Q.kind in NO_REAL_POINTS:
+        return ContactResult(False, "no real points", f"Q is {P.Q.kind.value}: it has no real surface", P)
     structure = P.structure
     reading = _corollary_10_reading(P)
     if not structure.all_real:
@@ -121,8 +128,6 @@ def decide_transversal(
         return ContactResult(
             False, "Theorem 14", f"all roots of P are real ({reading}): no transversal contact", P
         )
-    if kind in NO_REAL_POINTS:
-        return ContactResult(False, "no real points", f"Q is an {kind.value}: it has no real points", P)
     if not kind.in_table_1 and method == "theory":
         raise ExcludedQuadricError(
             f"Q is {kind.value}: {kind.excluded_reason}; all roots of P are real, so only the theory of "
@@ -153,6 +158,11 @@ def decide_transversal(
         + ": Corollary 10 cannot rule out two intersection curves (Remark 9)"
     )
     if method == "auto":
+        cert = separation_certificate(P)
+        if cert.decided:
+            return ContactResult(
+                cert.region is Region.CONTACT, "separation certificate", f"{why}; {cert}", P, report, cert
+            )
         geo = _geometric(P.E, P.Q)
         return ContactResult(
             geo.transversal,
@@ -167,79 +177,35 @@ def decide_transversal(
     return ContactResult(None, None, why, P, report)
 
 
-def transversal_contact(
-    E: Any,
-    Q: Any,
-    *,
-    small: bool | None = None,
-    method: str = "auto",
-    mode: str = "certified",
-) -> Any:
-    """Are the ellipsoid ``E`` and the quadric ``Q`` in transversal contact?
+def transversal_contact_exact(
+    E: Any, Q: Any, *, small: bool | None = None, method: str = "auto"
+) -> ContactResult:
+    """Transversal contact of one pair, decided exactly (the scalar path of the
+    ``certified`` and ``exact`` modes of :func:`quadric_contact.transversal_contact`).
 
     Parameters
     ----------
-    E : Quadric, matrix-like or equation; or a stack ``(..., 4, 4)``
+    E : Quadric, matrix-like or equation
         A real ellipsoid (either sign of its matrix).
-    Q : Quadric, matrix-like or equation; or a stack ``(..., 4, 4)``
-        Any quadric; planes are handled by Theorem 14.
-    small : bool, optional
-        Assert that ``E`` is (or is not) small with respect to ``Q``.  By
-        default smallness is decided exactly (Table 2).
-    method : {"auto", "theory"}
-        ``"theory"`` uses only the paper's results and reports undecided
-        where they do not apply; ``"auto"`` falls back on the exact geometric
-        decision.
-    mode : {"certified", "exact", "float", "ball", "mpmath"}
-        Number mode.  For a single pair ``"certified"`` and ``"exact"`` give
-        the exact answer; stacks go to the array predicates.
+    Q : Quadric, matrix-like or equation
+        Any quadric but a double plane or the zero matrix.
+    small, method
+        As for :func:`decide_transversal`.
 
     Returns
     -------
     ContactResult
-        For a single pair: usable as a bool (``bool()`` raises
-        :class:`~quadric_contact.errors.UndecidedError` if undecided), with
-        the deciding result and the values it looked at.  For stacks: a
-        numpy array.
 
     Raises
     ------
     NotAnEllipsoidError, ExcludedQuadricError, and the input errors of :class:`Quadric`.
 
-    References
-    ----------
-    Theorem 2, Corollary 10, Remark 9, Theorem 14.
-
     Examples
     --------
     Example 11 (``Delta_4 = 0``, ``Delta_3 < 0``):
 
-    >>> r = transversal_contact("2*x**2 + 2*y**2 + 3*z**2 - 1", "x**2 + y**2 + 8*z")
+    >>> r = transversal_contact_exact("2*x**2 + 2*y**2 + 3*z**2 - 1", "x**2 + y**2 + 8*z")
     >>> bool(r), r.decided_by
     (True, 'Remark 9')
-
-    Example 17, the bee and the trunk (small, all roots real):
-
-    >>> r = transversal_contact("(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1", "x**2 + y**2 - 0.25*(z-3)**2 - 1")
-    >>> bool(r), r.decided_by
-    (False, 'Corollary 10')
-
-    A flat ellipsoid pressed into the throat of a hyperboloid is not small:
-    all roots are real, yet the surfaces cross (Remark 9); the geometric
-    decision settles it.
-
-    >>> disc, throat = "100*(x - 17/20)**2 + y**2 + z**2 - 1", "x**2 + y**2 - z**2/100 - 1"
-    >>> transversal_contact(disc, throat, method="theory").decided
-    False
-    >>> r = transversal_contact(disc, throat)
-    >>> bool(r), r.decided_by
-    (True, 'geometric decision')
     """
-    from .batch import is_stack
-
-    if is_stack(E) or is_stack(Q) or mode not in ("certified", "exact"):
-        from .batch import transversal_contact_batch
-
-        return transversal_contact_batch(E, Q, mode=mode)
-    P = characteristic_polynomial(E, Q)
-    return decide_transversal(P, small=small, method=method)
+    return decide_transversal(characteristic_polynomial(E, Q), small=small, method=method)

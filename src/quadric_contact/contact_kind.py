@@ -39,17 +39,19 @@ from .linalg import nullspace
 from .pencil import CharacteristicPolynomial, characteristic_polynomial
 from .segre import SegreSymbol, segre_symbol
 
-__all__ = ["ContactAnalysis", "ContactKind", "SingularMember", "analyze_contact", "contact_kind"]
+__all__ = ["ContactAnalysis", "ContactKind", "SingularMember", "analyze_contact", "contact_kind_exact"]
 
 
 class ContactKind(StrEnum):
-    """How the surfaces of ``E`` and ``Q`` meet (the rows of Table 3)."""
+    """How the surfaces of ``E`` and ``Q`` meet (the rows of Table 3), and ``UNCERTAIN``."""
 
     NONE = "none"
     TANGENT_POINT = "tangent_point"
     TWO_TANGENT_POINTS = "two_tangent_points"
     TRANSVERSAL = "transversal"
     TANGENT_CURVE = "tangent_curve"
+    UNCERTAIN = "uncertain"
+    """Only from the number modes that abstain (``filter``, ``ball``): they cannot tell."""
 
     def __str__(self) -> str:
         return self.value
@@ -315,10 +317,15 @@ def analyze_contact(E: Any, Q: Any, *, small: bool | None = None) -> ContactAnal
     >>> [[str(c.to_sympy()) for c in p] for m in a.members for p in m.points]
     [['1', '0', '0'], ['-1', '0', '0']]
     """
-    from .contact import decide_transversal
+    from .contact import NO_REAL_POINTS, decide_transversal, refuse
 
     P = characteristic_polynomial(E, Q)
     e, q = P.E, P.Q
+    refuse(q)
+    if q.kind in NO_REAL_POINTS:
+        # No real surface to touch or cross (X^T Q X keeps one sign on all of space).
+        seg = segre_symbol(e, q)
+        return ContactAnalysis(ContactKind.NONE, seg, (), 0, False, False, "no real points", False, P)
     members: list[SingularMember] = []
     coincident = False
     for lam in _multiple_roots(P):
@@ -354,8 +361,10 @@ def analyze_contact(E: Any, Q: Any, *, small: bool | None = None) -> ContactAnal
     )
 
 
-def contact_kind(E: Any, Q: Any, *, small: bool | None = None) -> ContactKind:
-    """The kind of contact (a row of Table 3) between ``E`` and ``Q``.
+def contact_kind_exact(E: Any, Q: Any, *, small: bool | None = None) -> ContactKind:
+    """The kind of contact (a row of Table 3) between ``E`` and ``Q``, decided exactly for
+    one pair (the scalar path of :func:`quadric_contact.contact_kind` in the ``certified``
+    and ``exact`` modes).
 
     See :func:`analyze_contact` for the evidence behind the answer.
 
@@ -376,9 +385,9 @@ def contact_kind(E: Any, Q: Any, *, small: bool | None = None) -> ContactKind:
     --------
     A unit sphere inside a circular one-sheet hyperboloid, touching its throat:
 
-    >>> contact_kind("x**2 + y**2 + z**2 - 1", "x**2 + y**2 - z**2/4 - 1")
+    >>> contact_kind_exact("x**2 + y**2 + z**2 - 1", "x**2 + y**2 - z**2/4 - 1")
     <ContactKind.TANGENT_CURVE: 'tangent_curve'>
-    >>> contact_kind("2*x**2 + 2*y**2 + 3*z**2 - 1", "x**2 + y**2 + 8*z")   # Example 11
+    >>> contact_kind_exact("2*x**2 + 2*y**2 + 3*z**2 - 1", "x**2 + y**2 + 8*z")   # Example 11
     <ContactKind.TRANSVERSAL: 'transversal'>
     """
     return analyze_contact(E, Q, small=small).kind

@@ -750,7 +750,7 @@ def _external_contact_kind() -> Callable[..., Any] | None:
         module = importlib.import_module(f"{__package__ or 'quadric_contact'}.contact_kind")
     except ImportError:
         return None
-    fn = getattr(module, "contact_kind", None)
+    fn = getattr(module, "contact_kind_exact", None)
     return fn if callable(fn) else None
 
 

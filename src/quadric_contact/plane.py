@@ -21,11 +21,13 @@ from .errors import NotAPlaneError
 from .pencil import as_quadric, characteristic_polynomial
 from .results import PlaneSideResult, Region
 
-__all__ = ["plane_side"]
+__all__ = ["plane_side_exact"]
 
 
-def plane_side(E: Any, P: Any) -> PlaneSideResult:
+def plane_side_exact(E: Any, P: Any) -> PlaneSideResult:
     """Which side of the plane ``P`` is the ellipsoid ``E`` on, or does it cross it?
+    Decided exactly for one pair (the scalar path of the ``certified`` and ``exact``
+    modes of :func:`quadric_contact.plane_side`).
 
     Parameters
     ----------
@@ -58,7 +60,7 @@ def plane_side(E: Any, P: Any) -> PlaneSideResult:
     --------
     Example 17, the bee against the plane ``z = 6``: ``c3 = -3/2 < 0``, Zone 2.
 
-    >>> r = plane_side("(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1", "z - 6")
+    >>> r = plane_side_exact("(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1", "z - 6")
     >>> r.zone, r.algorithm_1_zone, r.c3
     (<Region.R_MINUS: 'R-'>, 2, Fraction(-3, 2))
 
@@ -66,7 +68,7 @@ def plane_side(E: Any, P: Any) -> PlaneSideResult:
     plane ``z = 0``, ``P = -lambda^2 (1 + 4 lambda (lambda - 2)) / 4``:
 
     >>> from quadric_contact import Quadric
-    >>> r = plane_side(Quadric.sphere(1, center=(0, 0, 2)), "z")
+    >>> r = plane_side_exact(Quadric.sphere(1, center=(0, 0, 2)), "z")
     >>> r.polynomial.coefficients[2:], r.zone
     ((Fraction(-1, 4), Fraction(2, 1), Fraction(-1, 1)), <Region.R_PLUS: 'R+'>)
 
@@ -74,7 +76,7 @@ def plane_side(E: Any, P: Any) -> PlaneSideResult:
     normalisation) ``c3`` is the plane's equation at the centre divided by
     ``alpha^2 beta^2 gamma^2``:
 
-    >>> r = plane_side(Quadric.ellipsoid(2, 1, 1, center=(1, 2, 3)), "x + 2*y + 2*z - 4")
+    >>> r = plane_side_exact(Quadric.ellipsoid(2, 1, 1, center=(1, 2, 3)), "x + 2*y + 2*z - 4")
     >>> r.center_value, r.c3, r.c3 == r.center_value / (2**2 * 1**2 * 1**2)
     (Fraction(7, 1), Fraction(7, 4), True)
     """

@@ -29,14 +29,15 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any
 
+from .certificate import separation_certificate
 from .classification import TABLE_1_KINDS, QuadricKind
-from .contact import NO_REAL_POINTS, _geometric, decide_transversal
+from .contact import NO_REAL_POINTS, _geometric, decide_transversal, refuse
 from .errors import ExcludedQuadricError
 from .pencil import CharacteristicPolynomial, characteristic_polynomial
 from .quadric import Quadric
 from .results import Region, RegionResult
 
-__all__ = ["ROOT_SIGN_TABLE", "derive_root_sign_table", "relative_position"]
+__all__ = ["ROOT_SIGN_TABLE", "decide_region", "derive_root_sign_table", "relative_position_exact"]
 
 K = QuadricKind
 ROOT_SIGN_TABLE: dict[QuadricKind, dict[Region, str]] = {
@@ -140,9 +141,20 @@ def decide_region(
     """
     Q = P.Q
     kind = Q.kind
-    if kind in NO_REAL_POINTS or (
-        kind not in ROOT_SIGN_TABLE and P.structure.all_real and method == "theory"
-    ):
+    refuse(Q)
+    if kind in NO_REAL_POINTS:
+        # X^T Q X keeps one sign on all of space: E lies on that side (tangency allowed).
+        contact = decide_transversal(P, small=small, method=method)
+        region = Region.R_PLUS if Q.canonical_sign > 0 else Region.R_MINUS
+        return RegionResult(
+            region,
+            "no real points",
+            f"Q is {kind.value}: X^T Q X is {'>=' if region is Region.R_PLUS else '<='} 0 on all of space",
+            P,
+            contact,
+            {},
+        )
+    if kind not in ROOT_SIGN_TABLE and P.structure.all_real and method == "theory":
         raise ExcludedQuadricError(
             f"relative position needs Q of a type of Table 1 or a plane; Q is {kind.value}"
             + (f" ({kind.excluded_reason})" if kind.excluded_reason else ""),
@@ -164,11 +176,8 @@ def decide_region(
     if contact.transversal is None:
         return RegionResult(None, None, contact.reason, P, contact, expected)
     if contact.geometric is not None:
-        return RegionResult(
-            contact.geometric.region, "geometric decision", contact.reason, P, contact, expected
-        )
-    if contact.decided_by == "no real points":  # pragma: no cover - excluded above
-        raise ExcludedQuadricError(f"Q is {kind.value}: it has no regions", Q, kind=kind)
+        region = contact.geometric.region
+        return RegionResult(region, contact.decided_by, contact.reason, P, contact, expected)
     if getattr(contact.smallness, "table_4_applies", True) is False:
         # E is small only in the enclosing sense (two ellipsoids, Q small w.r.t. E):
         # Corollary 10 holds but Theorem 13 / Table 4 do not (erratum table-1-ellipsoid-enclosing).
@@ -177,6 +186,10 @@ def decide_region(
             "to E), where Theorem 13 / Table 4 do not apply"
         )
         if method == "auto":
+            cert = separation_certificate(P)
+            if cert.decided:
+                by = "separation certificate"
+                return RegionResult(cert.region, by, f"{why}; {cert}", P, contact, expected)
             geo = _geometric(P.E, P.Q)
             return RegionResult(geo.region, "geometric decision", f"{why}; {geo}", P, contact, expected)
         return RegionResult(None, None, why, P, contact, expected)
@@ -203,32 +216,24 @@ def decide_region(
     )
 
 
-def relative_position(
-    E: Any,
-    Q: Any,
-    *,
-    small: bool | None = None,
-    method: str = "auto",
-    mode: str = "certified",
-) -> Any:
-    """Where is the ellipsoid ``E`` with respect to ``Q``: ``R-``, ``R+`` or in contact?
+def relative_position_exact(
+    E: Any, Q: Any, *, small: bool | None = None, method: str = "auto"
+) -> RegionResult:
+    """Where the ellipsoid ``E`` is with respect to ``Q``, decided exactly for one pair
+    (the scalar path of the ``certified`` and ``exact`` modes of
+    :func:`quadric_contact.relative_position`).
 
     Parameters
     ----------
-    E, Q : Quadric, matrix-like or equation; or stacks ``(..., 4, 4)``
+    E, Q : Quadric, matrix-like or equation
     small : bool, optional
         Assert smallness instead of deciding it (Table 2).
     method : {"auto", "theory"}
-        As for :func:`~quadric_contact.transversal_contact`.
-    mode : {"certified", "exact", "float", "ball", "mpmath"}
-        Number mode; stacks go to the array predicates.
+        As for :func:`~quadric_contact.contact.decide_transversal`.
 
     Returns
     -------
     RegionResult
-        ``.region`` is a :class:`Region` (``R-``, ``R+``, ``contact``) or None
-        when undecided; the result compares equal to its region.  For stacks,
-        a numpy array of region codes.
 
     Raises
     ------
@@ -247,23 +252,9 @@ def relative_position(
     >>> from quadric_contact import Quadric
     >>> H = Quadric.hyperboloid_two_sheets(2, 3, 1)
     >>> for centre in [(0, 0, 0), (0, 0, 2)]:
-    ...     r = relative_position(Quadric.sphere(1, center=centre), H)
+    ...     r = relative_position_exact(Quadric.sphere(1, center=centre), H)
     ...     print(centre, r.region, r.polynomial.signs.pattern)
     (0, 0, 0) R+ --++
     (0, 0, 2) R- ----
-
-    Example 17: the bee is outside the hyperboloid S2 (``R+``):
-
-    >>> bee = "(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1"
-    >>> r = relative_position(bee, "x**2 + y**2 - 0.25*(z-3)**2 - 1")
-    >>> r.region, r.decided_by, r.polynomial.signs.pattern
-    (<Region.R_PLUS: 'R+'>, 'Theorem 13 / Table 4', '-+++')
     """
-    from .batch import is_stack
-
-    if is_stack(E) or is_stack(Q) or mode not in ("certified", "exact"):
-        from .batch import relative_position_batch
-
-        return relative_position_batch(E, Q, mode=mode)
-    P = characteristic_polynomial(E, Q)
-    return decide_region(P, small=small, method=method)
+    return decide_region(characteristic_polynomial(E, Q), small=small, method=method)

@@ -84,8 +84,13 @@ class ContactResult:
     polynomial : CharacteristicPolynomial
     smallness : object
         The smallness report used (or ``"asserted by caller"``, or None).
-    geometric : GeometricDecision or None
-        The exact geometric decision, when it decided.
+    geometric : SeparationCertificate, GeometricDecision or None
+        The exact smallness-free decision, when one decided (``decided_by`` is
+        ``"separation certificate"`` or ``"geometric decision"``).
+    mode : str
+        The number mode that decided (``"exact"`` for the exact scalar path of the
+        ``certified`` and ``exact`` modes); the polynomial and its Deltas are exact
+        in every mode, for audit.
 
     Examples
     --------
@@ -107,6 +112,7 @@ class ContactResult:
     polynomial: CharacteristicPolynomial
     smallness: Any = None
     geometric: Any = None
+    mode: str = "exact"
 
     @property
     def decided(self) -> bool:
@@ -143,6 +149,7 @@ class ContactResult:
         return {
             "transversal_contact": self.transversal,
             "decided": self.decided,
+            "mode": self.mode,
             "decided_by": self.decided_by,
             "reason": self.reason,
             "smallness": _smallness_repr(self.smallness),
@@ -179,10 +186,12 @@ class RegionResult:
         ``"geometric decision"``, ...
     reason : str
     polynomial : CharacteristicPolynomial
-    contact : ContactResult
-        The transversal-contact decision it relied on.
+    contact : ContactResult or None
+        The transversal-contact decision it relied on (exact path).
     expected : dict
         The Table 4 root-sign pattern of each region for ``Q`` as given.
+    mode : str
+        The number mode that decided (``"exact"`` on the exact scalar path).
 
     Examples
     --------
@@ -196,8 +205,9 @@ class RegionResult:
     decided_by: str | None
     reason: str
     polynomial: CharacteristicPolynomial
-    contact: ContactResult
+    contact: ContactResult | None
     expected: dict[str, str] = field(default_factory=dict)
+    mode: str = "exact"
 
     @property
     def decided(self) -> bool:
@@ -228,6 +238,7 @@ class RegionResult:
         return {
             "region": self.region.value if self.region else None,
             "decided": self.decided,
+            "mode": self.mode,
             "decided_by": self.decided_by,
             "reason": self.reason,
             "table_4_patterns": self.expected,
@@ -244,8 +255,9 @@ class PlaneSideResult:
     """Answer of :func:`~quadric_contact.plane_side` (Theorem 14, Corollary 15).
 
     ``zone`` is ``R-`` (Algorithm 1's Zone 2), ``R+`` (Zone 1) or ``contact``
-    (Zone 0, transversal contact); ``tangent`` is True when the plane touches
-    the ellipsoid (a double non-zero root).  ``c2, c3, c4`` are the
+    (Zone 0, transversal contact), or None when an abstaining number mode cannot
+    tell; ``tangent`` is True when the plane touches the ellipsoid (a double
+    non-zero root), None when the number mode does not decide tangency.  ``c2, c3, c4`` are the
     coefficients of ``P(lambda) = lambda^2 (c4 lambda^2 + c3 lambda + c2)``
     (eq. (12)) and ``center_value`` the plane's equation at the ellipsoid's
     centre (Remark 16).
@@ -262,15 +274,21 @@ class PlaneSideResult:
     (Fraction(39, 20), False)
     """
 
-    zone: Region
-    tangent: bool
-    decided_by: str
+    zone: Region | None
+    tangent: bool | None
+    decided_by: str | None
     reason: str
     polynomial: CharacteristicPolynomial
     c2: Fraction
     c3: Fraction
     c4: Fraction
     center_value: Fraction
+    mode: str = "exact"
+
+    @property
+    def decided(self) -> bool:
+        """False only for an ``UNCERTAIN`` answer of an abstaining number mode."""
+        return self.zone is not None
 
     @property
     def discriminant(self) -> Fraction:
@@ -279,7 +297,7 @@ class PlaneSideResult:
 
     def __eq__(self, other: object) -> bool:
         if isinstance(other, (Region, str)):
-            return self.zone == Region(other)
+            return self.zone is not None and self.zone == Region(other)
         if isinstance(other, PlaneSideResult):
             return self.zone == other.zone and self.polynomial == other.polynomial
         return NotImplemented
@@ -290,13 +308,16 @@ class PlaneSideResult:
     @property
     def algorithm_1_zone(self) -> int:
         """Zone number of Algorithm 1: 1 for R+, 2 for R-, 0 for contact."""
+        if self.zone is None:
+            raise UndecidedError(f"the zone is undecided: {self.reason}", self)
         return {Region.R_PLUS: 1, Region.R_MINUS: 2, Region.CONTACT: 0}[self.zone]
 
     def to_dict(self) -> dict[str, Any]:
         """Everything as JSON-ready data (exact numbers as strings)."""
         return {
-            "zone": self.zone.value,
-            "algorithm_1_zone": self.algorithm_1_zone,
+            "zone": None if self.zone is None else self.zone.value,
+            "algorithm_1_zone": None if self.zone is None else self.algorithm_1_zone,
+            "mode": self.mode,
             "tangent": self.tangent,
             "decided_by": self.decided_by,
             "reason": self.reason,
@@ -307,4 +328,5 @@ class PlaneSideResult:
 
     def __str__(self) -> str:
         t = " (tangent)" if self.tangent else ""
-        return f"{self.zone.value}{t} ({self.decided_by}: {self.reason})"
+        where = "UNDECIDED" if self.zone is None else self.zone.value
+        return f"{where}{t} ({self.decided_by or 'no result applies'}: {self.reason})"

@@ -59,7 +59,7 @@ import flint
 
 from .algebraic import RealAlgebraic, _fmpq, algebraic_value, workprec
 from .classification import TABLE_1_KINDS, QuadricKind
-from .errors import ExcludedQuadricError, NotANumberError, ShapeError
+from .errors import ExcludedQuadricError, NotANumberError, ShapeError, UndecidedError
 from .invariants import QuadricInvariants, invariants
 from .pencil import as_quadric
 from .quadric import Quadric
@@ -339,15 +339,23 @@ class SmallnessReport:
     (True, (), ['0.316228', '0.182574', '1.00000', '1.00000', '2.00000'])
     """
 
-    small: bool
+    small: bool | None
     kind: QuadricKind
     conditions: tuple[Condition, ...]
     alternative: tuple[Condition, ...]
-    paper_small: bool
+    paper_small: bool | None
     table_4_applies: bool
     parameters: dict[str, Any] = field(repr=False, compare=False)
+    mode: str = "exact"
+
+    @property
+    def decided(self) -> bool:
+        """False only for an ``UNCERTAIN`` answer of an abstaining number mode."""
+        return self.small is not None
 
     def __bool__(self) -> bool:
+        if self.small is None:
+            raise UndecidedError(f"smallness is undecided in {self.mode} mode", self)
         return self.small
 
     @property
@@ -374,7 +382,12 @@ class SmallnessReport:
         }
 
     def __str__(self) -> str:
-        verdict = "small" if self.small else "NOT small"
+        verdict = {True: "small", False: "NOT small", None: "UNDECIDED (small or not)"}[self.small]
+        if not self.conditions:
+            return (
+                f"E is {verdict} with respect to Q ({self.kind.value}), decided in {self.mode} mode; "
+                "the exact smallness report shows the conditions"
+            )
         lines = [f"E is {verdict} with respect to Q ({self.kind.value}); Table 1 (corrected):"]
         lines += [f"  {c}" for c in self.conditions]
         if self.alternative:

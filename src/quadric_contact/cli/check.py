@@ -46,7 +46,7 @@ def _fmt(x: Fraction) -> str:
 def run(args: argparse.Namespace) -> int:
     from ..classification import QuadricKind
     from ..pencil import as_quadric, characteristic_polynomial
-    from ..plane import plane_side
+    from ..plane import plane_side_exact as plane_side
     from ..regions import decide_region
     from . import EXIT_OK, EXIT_UNDECIDED
 
@@ -65,6 +65,7 @@ def run(args: argparse.Namespace) -> int:
     else:
         P = characteristic_polynomial(E, Q)
         region = decide_region(P, small=small, method=args.method)
+        assert region.contact is not None  # the exact path always attaches it
         out["contact"] = region.contact.to_dict()
         out["region"] = region.to_dict()
         decided = region.decided
@@ -84,9 +85,11 @@ def run(args: argparse.Namespace) -> int:
         f"  roots: {P.structure.describe()}; signs {P.signs.pattern} ({P.signs.method})",
     ]
     if Q.kind is QuadricKind.PLANE:
+        assert side.zone is not None  # the exact path always decides
         lines += [f"zone: {side.zone.value} (Algorithm 1 zone {side.algorithm_1_zone}); {side}"]
     else:
         c = region.contact
+        assert c is not None
         if c.smallness is not None:
             verdict = getattr(c.smallness, "small", c.smallness)
             lines.append(f"smallness: {verdict}")

@@ -1,15 +1,20 @@
-"""Number modes: one formula, many number types.
+"""Number modes: one question, many number types.
 
-=============  ===================================================  ==========
+A number mode chooses the arithmetic of every stage of the decision
+(:mod:`~quadric_contact.modes.pipeline`), never the question:
+
+=============  ===================================================  ==========================
 mode           what it computes with                                answers
-=============  ===================================================  ==========
-``certified``  ``filter``, then ``ball``, then ``exact``             always, never wrong
-``filter``     binary64 + rigorous error bound                      where sure
-``float``      plain binary64                                       always, may be wrong
-``ball``       python-flint ``arb`` balls at ``prec`` bits           where sure
-``mpmath``     mpmath ``mpf`` at ``dps`` digits                      always, may be wrong
-``exact``      integers (each matrix scaled to integers)            always, exact
-=============  ===================================================  ==========
+=============  ===================================================  ==========================
+``certified``  ``filter``, then ``ball``, then ``exact``; the exact  always, never wrong
+               scalar predicates for what the stages leave
+``filter``     binary64 + rigorous error bound                      where sure, else UNCERTAIN
+``float``      plain binary64 (exact structural zeros)              always, may be wrong
+``ball``       python-flint ``arb`` balls at ``prec`` bits           where sure, else UNCERTAIN
+``mpmath``     mpmath ``mpf`` at ``dps`` digits (exact structural    always, may be wrong
+               zeros)
+``exact``      integers, exact rationals                            always, never wrong
+=============  ===================================================  ==========================
 
 A mode is an object; pass a name or an instance (to set options or to read
 its :attr:`~NumberMode.counts` afterwards)::
@@ -22,7 +27,7 @@ its :attr:`~NumberMode.counts` afterwards)::
     >>> Q = np.array([[1.0, 0, 0, 0], [0, 1, 0, 0], [0, 0, 0, 4], [0, 0, 4, 0]])
     >>> transversal_contact(np.stack([E, E]), Q, mode=mode)
     array([1, 1], dtype=int8)
-    >>> mode.last.decided["filter"]
+    >>> mode.last.decided["criterion (filter)"]
     2
 """
 
@@ -30,7 +35,18 @@ from __future__ import annotations
 
 from typing import Any
 
-from .base import ContactCode, MatrixStack, NumberMode, Pairs, RegionCode, Sign, StageCounts
+from .base import (
+    ContactCode,
+    ContactKindCode,
+    CriterionCode,
+    MatrixStack,
+    NumberMode,
+    Pairs,
+    RegionCode,
+    Sign,
+    SmallnessCode,
+    StageCounts,
+)
 from .certified import CertifiedMode
 from .float64 import FilterMode, FloatMode
 from .objects import BallMode, ExactMode, MpmathMode
@@ -40,6 +56,8 @@ __all__ = [
     "BallMode",
     "CertifiedMode",
     "ContactCode",
+    "ContactKindCode",
+    "CriterionCode",
     "ExactMode",
     "FilterMode",
     "FloatMode",
@@ -49,6 +67,7 @@ __all__ = [
     "Pairs",
     "RegionCode",
     "Sign",
+    "SmallnessCode",
     "StageCounts",
     "get_mode",
 ]

@@ -22,11 +22,14 @@ from ..results import Region
 
 __all__ = [
     "ContactCode",
+    "ContactKindCode",
+    "CriterionCode",
     "MatrixStack",
     "NumberMode",
     "Pairs",
     "RegionCode",
     "Sign",
+    "SmallnessCode",
     "StageCounts",
 ]
 
@@ -55,14 +58,13 @@ class Sign(IntEnum):
 
 
 class ContactCode(IntEnum):
-    """Codes of :func:`~quadric_contact.batch.transversal_contact_batch` (int8 arrays).
+    """Codes of the array predicate :func:`~quadric_contact.transversal_contact` (int8 arrays).
 
-    ``CONTACT`` means ``P`` has non-real roots: transversal contact, for any pair
-    (Remark 9).  ``NO_CONTACT`` means all roots of ``P`` are real: no transversal
-    contact when ``E`` is small with respect to ``Q`` (Theorem 2, Corollary 10),
-    when ``Q`` is a plane (Theorem 14) or has no real points.  ``UNCERTAIN`` (only
-    from the modes that are not certified) is 2: non-zero, so a cast to bool
-    reads it as a possible contact, never as a clearance.
+    ``CONTACT``: the surfaces of ``E`` and ``Q`` cross (transversal contact);
+    ``NO_CONTACT``: they do not (apart, or touching without crossing); for every
+    pair, small or not.  ``UNCERTAIN`` (only from the modes that abstain, ``filter``
+    and ``ball``) is 2: non-zero, so a cast to bool reads it as a possible contact,
+    never as a clearance.
     """
 
     NO_CONTACT = 0
@@ -75,18 +77,85 @@ class ContactCode(IntEnum):
         return None if self is ContactCode.UNCERTAIN else self is ContactCode.CONTACT
 
 
+class CriterionCode(IntEnum):
+    """Codes of :func:`~quadric_contact.corollary_10`, the paper's raw criterion: the nature
+    of the roots of ``P(lambda) = det(lambda E + Q)``, not the geometry.
+
+    ``NON_REAL``: ``P`` has a pair of non-real roots (transversal contact for any pair,
+    Remark 9); ``ALL_REAL``: all roots are real (no transversal contact *when* ``E`` is
+    small with respect to ``Q``, Corollary 10; for a plane always, Theorem 14);
+    ``UNCERTAIN``: the mode cannot tell.
+    """
+
+    ALL_REAL = 0
+    NON_REAL = 1
+    UNCERTAIN = 2
+
+
+class ContactKindCode(IntEnum):
+    """Codes of the array predicate :func:`~quadric_contact.contact_kind` (the rows of Table 3).
+
+    ``NONE`` no contact, ``TRANSVERSAL`` the surfaces cross, ``UNCERTAIN`` (abstaining
+    modes only), ``TANGENT_POINT``, ``TWO_TANGENT_POINTS``, ``TANGENT_CURVE``.
+    """
+
+    NONE = 0
+    TRANSVERSAL = 1
+    UNCERTAIN = 2
+    TANGENT_POINT = 3
+    TWO_TANGENT_POINTS = 4
+    TANGENT_CURVE = 5
+
+    @classmethod
+    def from_kind(cls, kind: Any) -> ContactKindCode:
+        """The code of a :class:`~quadric_contact.contact_kind.ContactKind`."""
+        return cls[str(getattr(kind, "name", kind)).upper()]
+
+    def to_kind(self) -> Any:
+        """The :class:`~quadric_contact.contact_kind.ContactKind` of the code."""
+        from ..contact_kind import ContactKind
+
+        return ContactKind[self.name]
+
+
+class SmallnessCode(IntEnum):
+    """Codes of the array predicate :func:`~quadric_contact.smallness` (Definition 1).
+
+    ``SMALL``: ``E`` is small with respect to ``Q`` and Table 4 applies;
+    ``SMALL_ENCLOSING``: two ellipsoids, ``E`` small only because ``Q`` is small with
+    respect to ``E`` (Corollary 10 holds, Table 4 does not; erratum
+    ``table-1-ellipsoid-enclosing``); ``NOT_SMALL``; ``EXCLUDED``: ``Q`` has no row in
+    Table 1 (a plane, a cone, intersecting or coincident planes, no real points), where
+    the scalar :func:`~quadric_contact.smallness.smallness` raises
+    :class:`~quadric_contact.errors.ExcludedQuadricError`; ``UNCERTAIN`` (abstaining modes).
+    """
+
+    NOT_SMALL = 0
+    SMALL = 1
+    UNCERTAIN = 2
+    EXCLUDED = 3
+    SMALL_ENCLOSING = 4
+
+    @property
+    def small(self) -> bool | None:
+        """True, False, or None (uncertain, excluded)."""
+        if self in (SmallnessCode.UNCERTAIN, SmallnessCode.EXCLUDED):
+            return None
+        return self is not SmallnessCode.NOT_SMALL
+
+
 class RegionCode(IntEnum):
-    """Codes of :func:`~quadric_contact.batch.relative_position_batch` (int8 arrays).
+    """Codes of the array predicates :func:`~quadric_contact.relative_position` and
+    :func:`~quadric_contact.plane_side` (int8 arrays).
 
     The three regions of :class:`~quadric_contact.results.Region` are the sign of
-    ``X^T Q X`` over the ellipsoid: ``R_MINUS = -1``, ``CONTACT = 0`` (the surfaces
-    cross), ``R_PLUS = 1`` (Table 4; Theorem 14 for planes).  The other codes say
-    why there is no region: ``UNCERTAIN`` (2) the number mode cannot tell;
-    ``NO_ROW`` (3) all roots are real but their sign pattern is in no row of
-    Table 4 for the type of ``Q``, so ``E`` is not small with respect to ``Q``;
-    ``EXCLUDED`` (4) ``Q`` is of a type without a row (cones, intersecting or
-    coincident planes, quadrics without real points), as
-    :func:`~quadric_contact.relative_position` would raise.
+    ``X^T Q X`` over the surface of the ellipsoid: ``R_MINUS = -1`` (``<= 0``),
+    ``CONTACT = 0`` (both signs: the surfaces cross), ``R_PLUS = 1`` (``>= 0``);
+    tangency counts as being in a region.  ``UNCERTAIN`` (2): an abstaining mode
+    cannot tell.  Only the paper's raw reading of Table 4 (internal: the criterion
+    stage) produces the last two: ``NO_ROW`` (3) all roots are real but their sign
+    pattern is in no row of Table 4 for the type of ``Q``; ``EXCLUDED`` (4) ``Q`` is
+    of a type without a row.
     """
 
     R_MINUS = -1
@@ -151,7 +220,7 @@ class StageCounts:
         self.undecided += other.undecided
 
     def __str__(self) -> str:
-        parts = [f"{stage} {count}" for stage, count in self.decided.items()]
+        parts = [f"{stage} {count}" for stage, count in self.decided.items() if count]
         if self.undecided:
             parts.append(f"undecided {self.undecided}")
         return ", ".join(parts) or "nothing"
@@ -258,21 +327,42 @@ def _rows(index: np.ndarray | None, m: int, n: int) -> np.ndarray:
 class NumberMode(ABC):
     """A way of evaluating the closed forms (one formula, many number types).
 
-    Subclasses implement :meth:`contact`, :meth:`region` and
-    :meth:`classify`; each call records who decided what in :attr:`last`
-    and adds it to :attr:`counts` (thread-safe), which is how a caller reads
-    how many entries each stage of the certified mode decided.
+    The public array predicates ask a mode three questions, :meth:`contact`,
+    :meth:`region` and :meth:`kind`, and always mean the geometry (do the surfaces
+    cross, where is ``E``, how do they touch), for every pair.  They are answered by
+    one pipeline (:mod:`quadric_contact.modes.pipeline`) from the *stages* a mode
+    implements with its numbers:
+
+    * :meth:`criterion_contact`, :meth:`criterion_region`: the paper's criterion (the
+      nature of the roots of ``P``, Corollary 10 / Remark 9, and the Table 4 reading
+      of their signs; Theorem 14 for planes), with no smallness test;
+    * :meth:`classify`: the type of each quadric;
+    * :meth:`smallness`: Definition 1 through Tables 1-2 (corrected);
+    * :meth:`separation`: the smallness-free separation certificate
+      (:mod:`quadric_contact.modes.separation`).
+
+    Every public call records which stage settled how many entries in :attr:`last`
+    and adds it to :attr:`counts` (thread-safe).
 
     Attributes
     ----------
     name : str
     certified : bool
-        True if every answer other than ``UNCERTAIN`` is guaranteed to equal
-        the exact evaluation of the criterion on the given matrices.
+        True if every answer other than ``UNCERTAIN`` is guaranteed right (for the
+        matrices as given).
+    complete : bool
+        True if the mode ends with the exact scalar predicates for what its stages leave
+        (``certified``, ``exact``): it never answers ``UNCERTAIN``.
+    uses_smallness : bool
+        The pipeline tries Corollary 10 through :meth:`smallness` before the separation
+        certificate (not for ``exact``, whose separation is cheaper than exact smallness).
     """
 
     name: str = "mode"
+    stage: str = "mode"
     certified: bool = False
+    complete: bool = False
+    uses_smallness: bool = True
 
     def __init__(self) -> None:
         self.counts = StageCounts()
@@ -298,9 +388,56 @@ class NumberMode(ABC):
             self.counts = StageCounts()
             self.last = StageCounts()
 
-    @abstractmethod
+    # -- the questions (one pipeline for every mode) -------------------------------------
+
     def contact(self, pairs: Pairs) -> np.ndarray:
-        """:class:`ContactCode` of every pair (int8, shape ``(pairs.n,)``)."""
+        """:class:`ContactCode` of every pair: do the surfaces cross (int8, ``(pairs.n,)``)."""
+        from .pipeline import decide
+
+        return decide(self, pairs, "contact")
+
+    def region(self, pairs: Pairs) -> np.ndarray:
+        """:class:`RegionCode` of every pair: the side of ``Q`` the surface of ``E`` is on."""
+        from .pipeline import decide
+
+        return decide(self, pairs, "region")
+
+    def kind(self, pairs: Pairs) -> np.ndarray:
+        """:class:`ContactKindCode` of every pair (Table 3)."""
+        from .pipeline import decide
+
+        return decide(self, pairs, "kind")
+
+    def criterion(self, pairs: Pairs) -> np.ndarray:
+        """:class:`CriterionCode` of every pair (the raw criterion), recording its counts."""
+        codes, names, which = self.staged("criterion_contact", pairs)
+        counts = StageCounts()
+        for k, name in enumerate(names):
+            counts.add(f"criterion ({name})", int(np.count_nonzero(which == k)))
+        counts.undecided = int(np.count_nonzero(which < 0))
+        self._record(counts)
+        return codes
+
+    def public_smallness(self, pairs: Pairs) -> np.ndarray:
+        """:class:`SmallnessCode` of every pair, recording its counts."""
+        codes, names, which = self.staged("smallness", pairs)
+        counts = StageCounts()
+        for k, name in enumerate(names):
+            counts.add(f"smallness ({name})", int(np.count_nonzero(which == k)))
+        counts.undecided = int(np.count_nonzero(which < 0))
+        self._record(counts)
+        return codes
+
+    # -- the stages -------------------------------------------------------------------------
+
+    @abstractmethod
+    def criterion_contact(self, pairs: Pairs) -> np.ndarray:
+        """The criterion: ``1`` non-real roots, ``0`` all roots real (``ContactCode`` values;
+        ``UNCERTAIN`` where the mode cannot tell).  Validates the input."""
+
+    @abstractmethod
+    def criterion_region(self, pairs: Pairs) -> np.ndarray:
+        """The criterion and Table 4's reading of the root signs (``RegionCode`` values)."""
 
     @abstractmethod
     def classify(self, Q: MatrixStack, rows: np.ndarray | None = None) -> np.ndarray:
@@ -308,8 +445,24 @@ class NumberMode(ABC):
         of the quadrics ``rows`` (all by default): one bit where the type is certain."""
 
     @abstractmethod
-    def region(self, pairs: Pairs) -> np.ndarray:
-        """:class:`RegionCode` of every pair (int8, shape ``(pairs.n,)``)."""
+    def separation(self, pairs: Pairs) -> np.ndarray:
+        """Separation certificate codes (``RegionCode`` values -1, 0, 1 or ``UNCERTAIN``)."""
+
+    def smallness(self, pairs: Pairs) -> np.ndarray:
+        """:class:`SmallnessCode` of every pair (Tables 1-2, corrected)."""
+        raise NotImplementedError(f"{type(self).__name__} does not decide smallness on arrays")
+
+    def quick_smallness(self, pairs: Pairs) -> np.ndarray:
+        """The smallness the pipeline tries before the separation certificate (by default
+        :meth:`smallness`; the certified cascade leaves out its slow exact stage)."""
+        return self.smallness(pairs)
+
+    def staged(self, method: str, pairs: Pairs) -> tuple[np.ndarray, list[str], np.ndarray]:
+        """Run the stage ``method``: ``(codes, stage names, index of the stage that decided
+        each entry or -1)``.  A cascade (the certified mode) reports each of its stages."""
+        codes = getattr(self, method)(pairs)
+        which = np.where(codes != 2, 0, -1).astype(np.int8)
+        return codes, [self.stage], which
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}()"

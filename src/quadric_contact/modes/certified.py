@@ -1,21 +1,23 @@
-"""The certified mode: a cascade of stages, each answering only where it is sure.
+"""The certified mode: a cascade of number modes, each answering only where it is sure.
 
-``filter`` (binary64 with a rigorous error bound) decides almost everything; what
-it leaves ``UNCERTAIN`` goes to ``ball`` (python-flint ``arb``), and what that
-leaves to ``exact`` (integers), which always decides.  Every stage is certified,
-so the answer equals the exact evaluation of the same criterion on the same
-matrices.  This is CGAL's filtered predicate (``Filtered_predicate.h``), with
-the escalations counted so that the caller can read who decided what
-(:attr:`CertifiedMode.last`, :attr:`CertifiedMode.counts`).
+Every stage of the decision pipeline (:mod:`quadric_contact.modes.pipeline`: the
+criterion, smallness, the separation certificate) runs down the cascade: ``filter``
+(binary64 with a rigorous error bound) decides almost everything; what it leaves
+``UNCERTAIN`` goes to ``ball`` (python-flint ``arb``), and what that leaves to
+``exact`` (integers).  What the stages leave (tangencies, multiple roots) is decided
+by the exact scalar predicates.  Every stage is certified, so the answer is the exact
+answer for the matrices as given.  This is CGAL's filtered predicate
+(``Filtered_predicate.h``), with the escalations counted so that the caller can read
+who decided what (:attr:`CertifiedMode.last`, :attr:`CertifiedMode.counts`).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 
 import numpy as np
 
-from .base import MatrixStack, NumberMode, Pairs, StageCounts
+from .base import MatrixStack, NumberMode, Pairs
 from .decisions import UNCERTAIN_ROW, rows_from_masks
 from .float64 import FilterMode
 from .objects import BallMode, ExactMode
@@ -45,7 +47,9 @@ class CertifiedMode(NumberMode):
     """
 
     name = "certified"
+    stage = "certified"
     certified = True
+    complete = True
 
     def __init__(
         self,
@@ -63,31 +67,43 @@ class CertifiedMode(NumberMode):
             raise ValueError("every stage of a certified cascade must be certified")
         self.stages = stages
 
-    def _cascade(self, pairs: Pairs, run: Callable[[NumberMode, Pairs], np.ndarray]) -> np.ndarray:
-        counts = StageCounts()
-        first = self.stages[0]
-        codes = run(first, pairs)
+    def staged(self, method: str, pairs: Pairs) -> tuple[np.ndarray, list[str], np.ndarray]:
+        """Run ``method`` down the cascade: each stage gets what the previous ones left
+        ``UNCERTAIN``.  ``quick_smallness`` leaves out the last (exact) stage: the pipeline
+        sends what smallness cannot settle quickly to the separation certificate."""
+        stages = self.stages
+        if method == "quick_smallness":
+            method = "smallness"
+            stages = stages[:-1] if len(stages) > 1 else stages
+        which = np.full(pairs.n, -1, dtype=np.int8)
+        codes = getattr(stages[0], method)(pairs)
         todo = np.flatnonzero(codes == _UNC)
-        counts.add(_stage(first), pairs.n - todo.size)
-        for stage in self.stages[1:]:
+        which[codes != _UNC] = 0
+        for k, stage in enumerate(stages[1:], start=1):
             if todo.size == 0:
-                counts.add(_stage(stage), 0)
-                continue
-            sub = run(stage, pairs.take(todo))
+                break
+            sub = getattr(stage, method)(pairs.take(todo))
             codes[todo] = sub
             done = sub != _UNC
-            counts.add(_stage(stage), int(np.count_nonzero(done)))
+            which[todo[done]] = k
             todo = todo[~done]
-        counts.undecided = int(todo.size)
-        self._record(counts)
-        return codes
+        return codes, [_stage(s) for s in stages], which
 
-    def contact(self, pairs: Pairs) -> np.ndarray:
-        return self._cascade(pairs, lambda stage, p: stage.contact(p))
+    def _first_decisive(self, method: str, pairs: Pairs) -> np.ndarray:
+        return self.staged(method, pairs)[0]
 
-    def region(self, pairs: Pairs) -> np.ndarray:
+    def criterion_contact(self, pairs: Pairs) -> np.ndarray:
+        return self._first_decisive("criterion_contact", pairs)
+
+    def criterion_region(self, pairs: Pairs) -> np.ndarray:
         # Each stage classifies the quadrics of the pairs it receives, with its own numbers.
-        return self._cascade(pairs, lambda stage, p: stage.region(p))
+        return self._first_decisive("criterion_region", pairs)
+
+    def separation(self, pairs: Pairs) -> np.ndarray:
+        return self._first_decisive("separation", pairs)
+
+    def smallness(self, pairs: Pairs) -> np.ndarray:
+        return self._first_decisive("smallness", pairs)
 
     def classify(self, Q: MatrixStack, rows: np.ndarray | None = None) -> np.ndarray:
         index = np.arange(len(Q)) if rows is None else np.asarray(rows)

@@ -292,3 +292,65 @@ def _screen_delta() -> tuple[float, ...]:
 
 SCREEN_DELTA = _screen_delta()
 """``bound_j = fl(SCREEN_DELTA[j] * A_j)`` on the screen (``A_j``: magnitude program at ``|x|``)."""
+
+
+# -- the separation certificate: members s E + Q of the pencil -------------------------------
+#
+# The separation stage (:mod:`quadric_contact.modes.separation`) reads the inertia of a member
+# M* = s E + Q of the pencil at a float sample point s from the signs of the sums E1 .. E4 of
+# its principal minors (``quadric_invariants`` applied to the member).  The member is computed
+# as M^ = fl(fl(s e^) + q^), where e^, q^ are the float entries and, when the inputs are
+# roundings of exact rationals (r = 1), e^ = e (1 + t), q^ = q (1 + t'), |t|, |t'| <= u.  With
+# W* = |s e| + |q| (entrywise) and a = (1 + u)^(2 + r) - 1:
+#     |M^ - M*| <= a W*,   |M^| <= (1 + a) W*.
+# For E_k (degree k, value count N, magnitude count N'):
+#     |E_k^ - E_k(M^)| <= gamma_N p~(|M^|) <= gamma_N (1 + a)^k p~(W*)          (evaluation)
+#     |E_k(M^) - E_k(M*)| <= p~(|M*| + a W*) - p~(|M*|) <= ((1 + a)^k - 1) p~(W*)  (inputs)
+# (p~ has non-negative coefficients and is homogeneous of degree k, and |M*| <= W*).  The
+# magnitude entries are computed as W^ = fl(fl(|s| |e^|) + |q^|) >= (1 - u)^(2 + r) W*, and
+# the magnitude program on W^ gives M^_k >= (1 - u)^N' p~(W^), so
+#     |E_k^ - E_k(M*)| <= K_k fl(M^_k),
+#     K_k = ((1 + gamma_N)(1 + a)^k - 1) / (1 - u)^(N' + (2 + r) k) / (1 - u)
+# (the last factor for the rounding of the final product).  Guards: every non-zero entry of
+# M^ and of W^ lies in [INPUT_MIN, INPUT_MAX] (then, as for the inputs above, every non-zero
+# intermediate of the degree-4 programs and every bound is a normal number), and the products
+# s e must not underflow: |s| and the non-zero |e| lie in [2^-300, 2^300] and [INPUT_MIN,
+# INPUT_MAX], so a non-zero |s e| >= 2^-480 is normal and the standard model holds for it.
+
+
+SAMPLE_MIN = 2.0**-300
+SAMPLE_MAX = 2.0**300
+"""A non-zero sample point ``s`` of the separation stage must lie in ``[SAMPLE_MIN, SAMPLE_MAX]``."""
+
+
+def _member_errbound(k: int, rounded: bool) -> float:
+    rc = _counts("quadric_invariants")
+    j = rc["outputs"].index(f"E{k}")
+    n, nm, d = rc["value"][j], rc["magnitude"][j], rc["degree"][j]
+    assert d == k
+    r = 1 if rounded else 0
+    a = (1 + _U) ** (2 + r) - 1
+    numerator = (1 + gamma(n)) * (1 + a) ** k - 1
+    return round_up(numerator / (1 - _U) ** (nm + (2 + r) * k) / (1 - _U))
+
+
+MEMBER_ERRBOUND = {
+    rounded: tuple(_member_errbound(k, rounded) for k in range(1, 5)) for rounded in (False, True)
+}
+"""``K_k`` for ``E1 .. E4`` of a member ``s E + Q`` (keyed by "inputs are rounded"):
+``|E_k^ - E_k(s E + Q)| <= fl(K_k * M_k)`` with ``M_k`` the magnitude program at ``W^``."""
+
+
+def _check_member_guard() -> None:
+    # |s e| >= 2^-300 * 2^-180 = 2^-480: normal, so fl(s e) = s e (1 + d).  The members'
+    # entries are guarded like the inputs, so _check_input_guard's argument applies.
+    assert math.log2(SAMPLE_MIN) + INPUT_MIN_EXPONENT >= -1022
+    assert math.log2(SAMPLE_MAX) + INPUT_MAX_EXPONENT <= 1000
+    from .._generated import kernels
+
+    paths = max(kernels.quadric_invariants_magnitude(*([1] * 10)))
+    assert math.log2(paths) + 4 * INPUT_MAX_EXPONENT + 1 < 1023
+    assert 4 * (INPUT_MIN_EXPONENT - 52) + math.log2(min(MEMBER_ERRBOUND[False])) >= -1022
+
+
+_check_member_guard()

@@ -44,13 +44,14 @@ from .._generated import formulas, kernels
 from . import errorbounds as eb
 from ._jit import HAVE_NUMBA, numba
 from ._jit import njit as _njit
-from .base import INVALID, MatrixStack, NumberMode, Pairs, StageCounts
+from .base import INVALID, MatrixStack, NumberMode, Pairs
 from .decisions import (
     CONTACT_TABLE,
     ELLIPSOID_NOT,
     ELLIPSOID_UNCERTAIN,
     ELLIPSOID_YES,
     ROWS,
+    UNCERTAIN_ROW,
     ellipsoid_from_signs,
     ellipsoid_status,
     masks_from_invariant_signs,
@@ -126,6 +127,60 @@ def _psgn(v: float) -> int:
 @_njit(inline=True)
 def _sidx(s: int) -> int:
     return 3 if s == _UNC else s + 1
+
+
+@_njit(inline=True)
+def _split(a: float) -> tuple[float, float]:
+    """Veltkamp's splitting: ``a = hi + lo`` with halves of 26 bits (no overflow below 2^996)."""
+    c = 134217729.0 * a
+    hi = c - (c - a)
+    return hi, a - hi
+
+
+@_njit(inline=True)
+def _same_product(a: float, b: float, c: float, d: float) -> bool:
+    """``a b == c d`` exactly (Dekker's TwoProduct: ``a b = p + e`` with both floats), for
+    factors that are zero or in ``[2^-400, 2^400]`` (then no error term underflows)."""
+    p = a * b
+    q = c * d
+    if p != q:
+        return False
+    ah, al = _split(a)
+    bh, bl = _split(b)
+    ch, cl = _split(c)
+    dh, dl = _split(d)
+    e1 = ((ah * bh - p) + ah * bl + al * bh) + al * bl
+    e2 = ((ch * dh - q) + ch * dl + cl * dh) + cl * dl
+    return e1 == e2
+
+
+@_njit(inline=True)
+def _tame(x: float) -> bool:
+    a = abs(x)
+    return a == 0.0 or (2.0**-400 <= a <= 2.0**400)
+
+
+@_njit(inline=True)
+def _proportional(
+    e00: float, e01: float, e02: float, e11: float, e12: float, e22: float,
+    q00: float, q01: float, q02: float, q11: float, q12: float, q22: float,
+) -> bool:
+    """The quadratic part of ``Q`` is ``k`` times that of ``E`` (``e00 != 0``), decided
+    exactly: then ``lambda = -k`` is a double root of ``P`` and ``Delta_4 = 0``
+    identically (equal quadratic parts, as for the bee and the crown of Example 17, are
+    ``k = 1``)."""
+    if not (
+        _tame(e00) and _tame(e01) and _tame(e02) and _tame(e11) and _tame(e12) and _tame(e22)
+        and _tame(q00) and _tame(q01) and _tame(q02) and _tame(q11) and _tame(q12) and _tame(q22)
+    ) or e00 == 0.0:
+        return False
+    return (
+        _same_product(q01, e00, q00, e01)
+        and _same_product(q02, e00, q00, e02)
+        and _same_product(q11, e00, q00, e11)
+        and _same_product(q12, e00, q00, e12)
+        and _same_product(q22, e00, q00, e22)
+    )  # fmt: skip
 
 
 _NO_EXPONENT = -100000
@@ -363,13 +418,10 @@ def _filter_pairs_impl(
             r0 = 0.0 if zb[0 * _NB + i] != 0.0 else r0
             c1 = 0.0 if zb[1 * _NB + i] != 0.0 else c1
             r1 = 0.0 if zb[1 * _NB + i] != 0.0 else r1
-            # Quadratic parts equal up to sign (compared exactly): lambda = -+1 is a double
-            # root, so Delta_4 = 0 identically.
-            same = abs(e00 - q00) + abs(e01 - q01) + abs(e02 - q02) + abs(e11 - q11) + abs(e12 - q12)
-            same += abs(e22 - q22)
-            opposite = abs(e00 + q00) + abs(e01 + q01) + abs(e02 + q02) + abs(e11 + q11) + abs(e12 + q12)
-            opposite += abs(e22 + q22)
-            ra[_SAME * _NB + i] = same_flag if (same == 0.0) | (opposite == 0.0) else 0.0
+            # Proportional quadratic parts (compared exactly): lambda = -k is a double root,
+            # so Delta_4 = 0 identically.
+            prop = _proportional(e00, e01, e02, e11, e12, e22, q00, q01, q02, q11, q12, q22)
+            ra[_SAME * _NB + i] = same_flag if prop else 0.0
             s2, s3 = _minors(e00, e01, e02, e11, e12, e22)
             t2, t3 = _minors_mag(abs(e00), abs(e01), abs(e02), abs(e11), abs(e12), abs(e22))
             ra[_M2 * _NB + i] = s2
@@ -790,9 +842,15 @@ def _float_pairs_impl(
     qrows: Any,
     qmasks: Any,
     want_region: bool,
+    qflags: Any,
+    same_ok: bool,
+    prop: Any,
     out: Any,
 ) -> None:
-    """Plain binary64 on the pairs ``lo .. hi`` (gather, straight-line arithmetic, decisions)."""
+    """Plain binary64 on the pairs ``lo .. hi`` (gather, straight-line arithmetic, decisions),
+    with the filter's exact structural zeros: ``c0 = 0`` (``det Q = 0``) and ``c1 = 0``
+    (``rank Q <= 2``) from the per-quadric flags, ``Delta_4 = 0`` for proportional quadratic
+    parts."""
     B = _NB
     eb_ = np.empty(16 * _NB)
     qb_ = np.empty(16 * _NB)
@@ -822,6 +880,9 @@ def _float_pairs_impl(
             s2, s3 = _minors(e00, e01, e02, e11, e12, e22)
             mv[0 * _NB + i] = s2
             mv[1 * _NB + i] = s3
+            z = qflags[qi[i]]
+            c0 = 0.0 if z & 1 else c0
+            c1 = 0.0 if z & 2 else c1
             o = -1.0 if e00 < 0.0 else 1.0
             c1 = o * c1
             c3 = o * c3
@@ -831,6 +892,15 @@ def _float_pairs_impl(
             cv[3 * _NB + i] = c3
             cv[4 * _NB + i] = c4
             d2, d3, d4 = _deltas(c0, c1, c2, c3, c4)
+            if prop.shape[0] > 0:
+                if prop[blo + i] != 0:
+                    d4 = 0.0
+            elif same_ok and _proportional(
+                e00, e01, e02, e11, e12, e22,
+                qb_[0 * _NB + i], qb_[1 * _NB + i], qb_[2 * _NB + i], qb_[4 * _NB + i], qb_[5 * _NB + i],
+                qb_[7 * _NB + i],
+            ):  # fmt: skip
+                d4 = 0.0
             dv[0 * _NB + i] = d2
             dv[1 * _NB + i] = d3
             dv[2 * _NB + i] = d4
@@ -1016,10 +1086,14 @@ def float_pairs(
     qmasks: np.ndarray | None = None,
     qflags: np.ndarray | None = None,
     same_ok: bool = False,
+    prop: np.ndarray | None = None,
     backend: str = "numba",
     threads: int | None = None,
 ) -> np.ndarray:
     """Codes for ``n`` pairs of the float64 stacks ``E``, ``Q`` (``(m, 4, 4)``).
+
+    ``prop`` (plain float only): per pair, whether the quadratic parts are proportional,
+    decided exactly beforehand (for rounded exact input, whose floats cannot tell).
 
     Returns :class:`ContactCode` values (or :class:`RegionCode` values when
     ``qrows``, the row of every quadric, is given), ``UNCERTAIN`` where the
@@ -1034,11 +1108,12 @@ def float_pairs(
     rows = np.zeros(1, dtype=np.int16) if qrows is None else np.ascontiguousarray(qrows, dtype=np.int16)
     masks = np.zeros(1, dtype=np.int64) if qmasks is None else np.ascontiguousarray(qmasks, dtype=np.int64)
     out = np.empty(n, dtype=np.int8)
+    pp = np.zeros(0, dtype=np.int8) if prop is None else np.ascontiguousarray(prop, dtype=np.int8)
     if n == 0:
         return out
     if backend == "numpy" or not HAVE_NUMBA:
         return _numpy_pairs(
-            E, Q, eidx, qidx, es, qs, n, filtered, rounded, rows, masks, want_region, flags, same_ok
+            E, Q, eidx, qidx, es, qs, n, filtered, rounded, rows, masks, want_region, flags, same_ok, pp
         )
     if backend != "numba":
         raise ValueError(f"backend must be one of {BACKENDS}, got {backend!r}")
@@ -1114,7 +1189,9 @@ def float_pairs(
         )
     else:
         run_parallel(
-            lambda lo, hi: _float_pairs(E, Q, eidx, qidx, es, qs, lo, hi, rows, masks, want_region, out),
+            lambda lo, hi: _float_pairs(
+                E, Q, eidx, qidx, es, qs, lo, hi, rows, masks, want_region, flags, same_ok, pp, out
+            ),
             n,
             threads,
         )
@@ -1207,6 +1284,34 @@ def _table_index(signs: list[np.ndarray]) -> np.ndarray:
     return sum(m * np.where(x == _UNC, 3, x + 1) for m, x in zip((1, 4, 16), signs, strict=True))  # type: ignore[return-value]
 
 
+def _split_np(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    c = 134217729.0 * a
+    hi = c - (c - a)
+    return hi, a - hi
+
+
+def proportional_quadratic_parts(A_e: np.ndarray, A_q: np.ndarray) -> np.ndarray:
+    """numpy variant of the kernels' exact test that ``A_q = k A_e`` (``(6, k)`` arrays of the
+    quadratic parts' upper entries ``00, 01, 02, 11, 12, 22``): ``q_ij e00 == q00 e_ij``
+    exactly, by Dekker's TwoProduct, for entries that are zero or in ``[2^-400, 2^400]``."""
+    with np.errstate(all="ignore"):
+        absv = np.abs(np.concatenate([A_e, A_q]))
+        tame = ((absv == 0) | ((absv >= 2.0**-400) & (absv <= 2.0**400))).all(axis=0) & (A_e[0] != 0)
+        e00, q00 = A_e[0], A_q[0]
+        ok = tame.copy()
+        for t in range(1, 6):
+            a, b, c, d = A_q[t], e00, q00, A_e[t]
+            p, q = a * b, c * d
+            ah, al = _split_np(a)
+            bh, bl = _split_np(b)
+            ch, cl = _split_np(c)
+            dh, dl = _split_np(d)
+            e1 = ((ah * bh - p) + ah * bl + al * bh) + al * bl
+            e2 = ((ch * dh - q) + ch * dl + cl * dh) + cl * dl
+            ok &= (p == q) & (e1 == e2)
+    return ok
+
+
 def filter_quantities(
     Em: np.ndarray,
     Qm: np.ndarray,
@@ -1238,7 +1343,7 @@ def filter_quantities(
         c[1] = np.where(z & 2, 0.0, c[1])
         A_e = np.stack([e[t] for t in (0, 1, 2, 4, 5, 7)])
         A_q = np.stack([q[t] for t in (0, 1, 2, 4, 5, 7)])
-        same = same_ok & ((A_e == A_q).all(axis=0) | (A_e == -A_q).all(axis=0))
+        same = same_ok & proportional_quadratic_parts(A_e, A_q)
         mc = kernels.pencil_coefficients_magnitude(*(np.abs(v) for v in e + q))
         mm = kernels.leading_minors_3_magnitude(*(np.abs(e[t]) for t in (0, 1, 2, 4, 5, 7)))
         r = [KP[t] * mc[t] for t in range(5)]
@@ -1378,6 +1483,7 @@ def _numpy_pairs(
     want_region: bool,
     qflags: np.ndarray,
     same_ok: bool,
+    prop: np.ndarray,
 ) -> np.ndarray:
     from ..codegen import ENTRY_INDICES
 
@@ -1401,6 +1507,9 @@ def _numpy_pairs(
             q = [Qm[:, i, j] for i, j in ENTRY_INDICES]
             with np.errstate(all="ignore"):
                 c = list(formulas.pencil_coefficients(*e, *q))
+                z = qflags[iq]
+                c[0] = np.where(z & 1, 0.0, c[0])
+                c[1] = np.where(z & 2, 0.0, c[1])
                 mi = kernels.leading_minors_3(e[0], e[1], e[2], e[4], e[5], e[7])
                 ell = ellipsoid_from_signs(
                     np.sign(e[0]).astype(np.int8),
@@ -1411,7 +1520,13 @@ def _numpy_pairs(
                 o = np.where(e[0] < 0, -1.0, 1.0)
                 c[1] = o * c[1]
                 c[3] = o * c[3]
-                d = formulas.paper_deltas(*c)
+                d = list(formulas.paper_deltas(*c))
+                if prop.shape[0] > 0:
+                    d[2] = np.where(prop[lo:hi] != 0, 0.0, d[2])
+                elif same_ok:
+                    A_e = np.stack([e[t] for t in (0, 1, 2, 4, 5, 7)])
+                    A_q = np.stack([q[t] for t in (0, 1, 2, 4, 5, 7)])
+                    d[2] = np.where(proportional_quadratic_parts(A_e, A_q), 0.0, d[2])
                 signs = [_numpy_sign(v, None) for v in c] + [_numpy_sign(v, None) for v in d]
         contact = CONTACT_TABLE[_table_index(signs[5:])]
         if want_region:
@@ -1465,9 +1580,10 @@ def _numpy_invariant_signs(Q: np.ndarray, filtered: bool, K: np.ndarray) -> np.n
 
 
 class FloatMode(NumberMode):
-    """Plain binary64 (``mode="float"``): the fastest, and wrong near tangency or
-    wherever a structural zero is left to rounding (it never says ``UNCERTAIN``,
-    except for an ellipsoid it cannot even see as one).
+    """Plain binary64 (``mode="float"``): the fastest; it always answers and may be wrong
+    near tangency, but not on structural zeros: it reads the exact facts the filter reads
+    (``det Q = 0``, ``rank Q <= 2``, the type, computed exactly once per quadric where
+    binary64 cannot tell) and recognises proportional quadratic parts exactly.
 
     Parameters
     ----------
@@ -1491,6 +1607,12 @@ class FloatMode(NumberMode):
 
     def _kernel(self, pairs: Pairs, qtypes: Any, qflags: np.ndarray | None) -> np.ndarray:
         qrows, qmasks = qtypes if qtypes is not None else (None, None)
+        rounded = pairs.E.rounded or pairs.Q.rounded
+        prop = None
+        if rounded and not self.filtered:
+            from .objects import _proportional_exact
+
+            prop = _proportional_exact(pairs, pairs.e_rows(), pairs.q_rows()).astype(np.int8)
         return float_pairs(
             pairs.E.floats,
             pairs.Q.floats,
@@ -1501,13 +1623,31 @@ class FloatMode(NumberMode):
             qrows=qrows,
             qmasks=qmasks,
             qflags=qflags,
-            same_ok=not (pairs.E.rounded or pairs.Q.rounded),
+            same_ok=not rounded,
+            prop=prop,
             backend=self.backend,
             threads=self.threads,
         )
 
+    def _structural_flags(self, Q: MatrixStack, used: np.ndarray) -> np.ndarray:
+        """Per quadric (length ``len(Q)``): the exact facts ``det Q = 0`` (bit 0) and
+        ``rank Q <= 2`` (bit 1), computed exactly (:func:`exact_facts`) for the quadrics whose
+        determinant binary64 cannot tell from zero, so that plain float reads the structural
+        zeros of cylinders, planes and parallel planes as the filter does."""
+        flags = np.zeros(len(Q), dtype=np.int8)
+        if used.size == 0:
+            return flags
+        signs = float_invariant_signs(
+            np.ascontiguousarray(Q.floats[used]), filtered=True, rounded=Q.rounded, backend=self.backend
+        )
+        maybe = used[(signs[:, 6] == 0) | (signs[:, 6] == _UNC)]
+        if maybe.size:
+            flags[maybe] = exact_facts(Q, maybe)[0]
+        return flags
+
     def _codes(self, pairs: Pairs, qtypes: Any) -> np.ndarray:
-        codes = self._kernel(pairs, qtypes, None)
+        flags = None if self.filtered else self._structural_flags(pairs.Q, np.unique(pairs.q_rows()))
+        codes = self._kernel(pairs, qtypes, flags)
         invalid = codes == INVALID
         if invalid.any():
             codes[invalid] = _diagnose(pairs, np.flatnonzero(invalid))
@@ -1528,25 +1668,36 @@ class FloatMode(NumberMode):
                 if flags.any() or types is not None:
                     again = self._kernel(pairs.take(todo), types, flags)
                     codes[todo] = np.where(again == INVALID, _UNC, again)
-        decided = int(np.count_nonzero(codes != _UNC))
-        self._record(StageCounts({self.stage: decided}, pairs.n - decided))
         return codes
 
-    def contact(self, pairs: Pairs) -> np.ndarray:
+    def criterion_contact(self, pairs: Pairs) -> np.ndarray:
         return self._codes(pairs, None)
 
-    def region(self, pairs: Pairs) -> np.ndarray:
+    def criterion_region(self, pairs: Pairs) -> np.ndarray:
         used = np.unique(pairs.q_rows())
         masks = np.zeros(len(pairs.Q), dtype=np.int64)
         masks[used] = self.classify(pairs.Q, used)
         return self._codes(pairs, (rows_from_masks(masks), masks))
 
+    def separation(self, pairs: Pairs) -> np.ndarray:
+        from .separation import separation_float
+
+        return separation_float(pairs, certified=self.filtered, backend=self.backend, threads=self.threads)
+
     def classify(self, Q: MatrixStack, rows: np.ndarray | None = None) -> np.ndarray:
+        """The type of each quadric: binary64 with the filter's bounds; plain ``float`` takes
+        the exact type where binary64 cannot tell (once per quadric), so that a structural
+        zero (a cylinder's ``det Q = 0``) is never read from rounding noise."""
         index = np.arange(len(Q)) if rows is None else np.asarray(rows, dtype=np.intp)
         validate_rows(Q, index)
         sub = np.ascontiguousarray(Q.floats[index])
-        signs = float_invariant_signs(sub, filtered=self.filtered, rounded=Q.rounded, backend=self.backend)
-        return masks_from_invariant_signs(signs)
+        signs = float_invariant_signs(sub, filtered=True, rounded=Q.rounded, backend=self.backend)
+        masks = masks_from_invariant_signs(signs)
+        if not self.filtered:
+            unsure = np.flatnonzero(rows_from_masks(masks) == UNCERTAIN_ROW)
+            if unsure.size:
+                masks[unsure] = exact_facts(Q, index[unsure])[1]
+        return masks
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}(backend={self.backend!r})"

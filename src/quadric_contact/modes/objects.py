@@ -22,7 +22,7 @@ import numpy as np
 
 from .._generated import formulas, kernels
 from ..codegen import ENTRY_INDICES
-from .base import MatrixStack, NumberMode, Pairs, StageCounts
+from .base import MatrixStack, NumberMode, Pairs
 from .decisions import (
     ELLIPSOID_NOT,
     ELLIPSOID_UNCERTAIN,
@@ -42,6 +42,9 @@ class ObjectMode(NumberMode):
     """Shared evaluation for the object modes."""
 
     stage = "object"
+    structural = False
+    """Read the exact structural zeros (set for the plain ``mpmath`` mode, whose rounding
+    would otherwise give them a random sign)."""
 
     # -- what a subclass provides -------------------------------------------------------
 
@@ -77,6 +80,13 @@ class ObjectMode(NumberMode):
             e_cols = [c[ie] for c in self.convert(pairs.E, ue)]
             q_cols = [c[iq] for c in self.convert(pairs.Q, uq)]
             c = list(formulas.pencil_coefficients(*e_cols, *q_cols))
+            if self.structural:
+                # The exact structural zeros the filter reads: c0 = 0 (det Q = 0), c1 = 0
+                # (rank Q <= 2), and Delta_4 = 0 for proportional quadratic parts.
+                facts = _structural_facts(pairs.Q, uq)[iq]
+                zero = self.number(0.0)
+                c[0] = np.where(facts & 1, zero, c[0])
+                c[1] = np.where(facts & 2, zero, c[1])
             m2, m3 = kernels.leading_minors_3(*(e_cols[k] for k in (0, 1, 2, 4, 5, 7)))
             sa = _exact_sign(e_cols[0])
             sc = np.stack([self.signs(x) for x in c], axis=1)
@@ -86,25 +96,33 @@ class ObjectMode(NumberMode):
             sc[flip, 1] = _neg(sc[flip, 1])
             sc[flip, 3] = _neg(sc[flip, 3])
             sd = np.stack([self.signs(x) for x in self.deltas(c)], axis=1)
+            if self.structural:
+                sd[_proportional_exact(pairs, e_rows, q_rows), 2] = 0
         return ell, sc, sd, e_rows
 
     def _finish(self, pairs: Pairs, ell: np.ndarray, codes: np.ndarray, e_rows: np.ndarray) -> np.ndarray:
         bad = ell == ELLIPSOID_NOT
         if bad.any():
             raise_not_ellipsoid(pairs.E, int(e_rows[np.argmax(bad)]))
-        codes = np.where(ell == ELLIPSOID_UNCERTAIN, _UNC, codes).astype(np.int8)
-        decided = int(np.count_nonzero(codes != _UNC))
-        self._record(StageCounts({self.stage: decided}, codes.size - decided))
-        return codes
+        return np.where(ell == ELLIPSOID_UNCERTAIN, _UNC, codes).astype(np.int8)
 
-    def contact(self, pairs: Pairs) -> np.ndarray:
+    def number(self, value: float) -> Any:
+        """A float sample point as a number of this mode (exactly)."""
+        raise NotImplementedError
+
+    def separation(self, pairs: Pairs) -> np.ndarray:
+        from .separation import separation_objects
+
+        return separation_objects(self, pairs, certified=self.certified)
+
+    def criterion_contact(self, pairs: Pairs) -> np.ndarray:
         if pairs.n == 0:
             return np.empty(0, dtype=np.int8)
         ell, _, sd, e_rows = self._pair_signs(pairs)
         codes = contact_from_signs(sd[:, 0], sd[:, 1], sd[:, 2])
         return self._finish(pairs, ell, codes, e_rows)
 
-    def region(self, pairs: Pairs) -> np.ndarray:
+    def criterion_region(self, pairs: Pairs) -> np.ndarray:
         if pairs.n == 0:
             return np.empty(0, dtype=np.int8)
         ell, sc, sd, e_rows = self._pair_signs(pairs)
@@ -126,6 +144,28 @@ class ObjectMode(NumberMode):
     def classify(self, Q: MatrixStack, rows: np.ndarray | None = None) -> np.ndarray:
         index = np.arange(len(Q)) if rows is None else np.asarray(rows)
         return masks_from_invariant_signs(self.invariant_signs(Q, index))
+
+
+def _structural_facts(Q: MatrixStack, rows: np.ndarray) -> np.ndarray:
+    """Bit 0: ``det Q = 0``; bit 1: ``rank Q <= 2`` (exact, once per quadric)."""
+    signs = ExactMode().invariant_signs(Q, np.asarray(rows, dtype=np.intp))
+    det_zero = signs[:, 6] == 0
+    return (det_zero.astype(np.int8) | ((det_zero & (signs[:, 5] == 0)).astype(np.int8) << 1)).astype(np.int8)
+
+
+def _proportional_exact(pairs: Pairs, e_rows: np.ndarray, q_rows: np.ndarray) -> np.ndarray:
+    """Per pair: the quadratic part of ``Q`` is a multiple of that of ``E``, exactly."""
+    quad = (0, 1, 2, 4, 5, 7)
+    ue, ie = np.unique(e_rows, return_inverse=True)
+    uq, iq = np.unique(q_rows, return_inverse=True)
+    ecols = pairs.E.upper_exact(ue)
+    qcols = pairs.Q.upper_exact(uq)
+    out = np.ones(len(e_rows), dtype=bool)
+    e00, q00 = ecols[0][ie], qcols[0][iq]
+    for t in quad[1:]:
+        a = (qcols[t][iq] * e00 - q00 * ecols[t][ie]).astype(object)
+        out &= np.array([Fraction(v) == 0 for v in a], dtype=bool)
+    return out
 
 
 def _neg(s: np.ndarray) -> np.ndarray:
@@ -194,6 +234,8 @@ class ExactMode(ObjectMode):
     name = "exact"
     stage = "exact"
     certified = True
+    complete = True
+    uses_smallness = False
 
     def __init__(self, backend: str = "int") -> None:
         super().__init__()
@@ -216,6 +258,20 @@ class ExactMode(ObjectMode):
     def deltas(self, c: list[np.ndarray]) -> tuple[np.ndarray, ...]:
         # Exact arithmetic may use the short form (27 Delta_4 = 4 I^3 - J^2): same signs.
         return tuple(kernels.paper_deltas_compact(*c))
+
+    def number(self, value: float) -> Any:
+        return Fraction(value)
+
+    def separation(self, pairs: Pairs) -> np.ndarray:
+        """Float sample points first (cheap); where they do not separate the roots, exact
+        sample points between the exactly isolated roots."""
+        from .separation import separation_isolated
+
+        codes = super().separation(pairs)
+        todo = np.flatnonzero(codes == _UNC)
+        if todo.size:
+            codes[todo] = separation_isolated(pairs.take(todo))
+        return codes
 
     def __repr__(self) -> str:
         return f"ExactMode(backend={self.backend!r})"
@@ -254,6 +310,11 @@ class BallMode(ObjectMode):
         finally:
             flint.ctx.prec = old
 
+    def number(self, value: float) -> Any:
+        import flint
+
+        return flint.arb(value)
+
     def convert(self, stack: MatrixStack, rows: np.ndarray) -> list[np.ndarray]:
         import flint
 
@@ -287,6 +348,12 @@ class MpmathMode(ObjectMode):
     name = "mpmath"
     stage = "mpmath"
     certified = False
+    structural = True
+
+    def classify(self, Q: MatrixStack, rows: np.ndarray | None = None) -> np.ndarray:
+        """The type of each quadric, exactly (once per quadric): a structural zero such as a
+        cylinder's ``det Q = 0`` is not left to the rounding of ``dps`` digits."""
+        return ExactMode().classify(Q, rows)
 
     def __init__(self, dps: int = 50) -> None:
         super().__init__()
@@ -300,6 +367,11 @@ class MpmathMode(ObjectMode):
 
         with mpmath.workdps(self.dps):
             yield
+
+    def number(self, value: float) -> Any:
+        import mpmath
+
+        return mpmath.mpf(value)
 
     def convert(self, stack: MatrixStack, rows: np.ndarray) -> list[np.ndarray]:
         import mpmath

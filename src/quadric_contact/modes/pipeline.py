@@ -1,0 +1,245 @@
+"""The complete decision on stacks: one meaning, whatever the numbers.
+
+Every array predicate answers the *geometric* question for every pair (do the
+surfaces cross? on which side of ``Q`` is ``E``? how do they touch?), small or
+not.  The paper's criterion is the fast way to the answer where it applies, not
+the answer itself.  A number mode supplies the arithmetic of each step; the
+steps and the order in which they hand pairs on are written once, here:
+
+1. **criterion** (:meth:`~quadric_contact.modes.base.NumberMode.criterion_contact`):
+   the pencil's root structure.  Non-real roots mean transversal contact for any
+   pair (Remark 9); for a plane all roots real means no transversal contact
+   (Theorem 14) and the side comes from Corollary 15; a quadric without a real
+   surface (an imaginary quadric, a point, a line) is never crossed and ``X^T Q X``
+   has one sign on all of space.
+2. **smallness** (:meth:`~quadric_contact.modes.base.NumberMode.smallness`, where
+   the mode offers it): all roots real and ``E`` small with respect to ``Q``
+   (Tables 1-2, corrected) means no transversal contact (Corollary 10), and unless
+   ``E`` is small only in the enclosing sense, Table 4 names the region
+   (Theorem 13).
+3. **separation** (:mod:`quadric_contact.modes.separation`): a definite member of
+   the pencil proves strict separation (S-lemma), four simple real roots without
+   one prove a crossing; no smallness and no type of ``Q`` needed.
+4. **exact pair**: what no earlier step settled (tangencies, multiple roots) is
+   decided by the exact scalar predicates, pair by pair, in the modes that always
+   decide exactly (``certified``, ``exact``).  The modes that abstain (``filter``,
+   ``ball``) answer ``UNCERTAIN`` there; the plain ones (``float``, ``mpmath``)
+   have answered everything at step 3.
+
+Every step is counted in the mode's :class:`~quadric_contact.modes.base.StageCounts`
+under ``"<step> (<numbers>)"``, e.g. ``"criterion (filter)"``, ``"separation (exact)"``,
+``"exact pair"``.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ..classification import NO_REAL_POINTS, REFUSED_KINDS, TABLE_1_KINDS, QuadricKind
+from ..errors import ExcludedQuadricError
+from .base import ContactCode, ContactKindCode, Pairs, RegionCode, StageCounts
+from .decisions import KINDS, UNCERTAIN_ROW, rows_from_masks
+from .separation import CROSSING, SEP_MINUS, SEP_PLUS
+
+if TYPE_CHECKING:
+    from .base import NumberMode
+
+__all__ = ["QUESTIONS", "decide"]
+
+_UNC = 2
+
+QUESTIONS = ("contact", "region", "kind")
+
+_CLASS_TABLE, _CLASS_PLANE, _CLASS_NO_SURFACE, _CLASS_OTHER, _CLASS_UNCERTAIN = 0, 1, 2, 3, 4
+
+
+def _classes(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, np.ndarray]:
+    """Per pair: the class of ``Q`` (Table 1 type, plane, no surface, other, uncertain) and
+    its canonical sign (+1/-1; 0 when uncertain).  Raises for a refused type."""
+    used, where = np.unique(pairs.q_rows(), return_inverse=True)
+    rows = rows_from_masks(mode.classify(pairs.Q, used))
+    klass = np.full(used.size, _CLASS_UNCERTAIN, dtype=np.int8)
+    sign = np.zeros(used.size, dtype=np.int8)
+    for k, row in enumerate(rows):
+        kind = None if row == UNCERTAIN_ROW else KINDS[int(row) // 2]
+        if kind is None or kind in REFUSED_KINDS:
+            # Refusing input is not the mode's business: where the mode cannot rule a
+            # refused type out, the exact type decides (once per quadric).
+            from .validation import exact_matrix
+
+            q = exact_matrix(pairs.Q, int(used[k]))
+            if q.kind not in REFUSED_KINDS:  # type: ignore[attr-defined]
+                continue  # leave it uncertain
+            kind = q.kind  # type: ignore[attr-defined]
+            raise ExcludedQuadricError(
+                f"{pairs.Q.where(int(used[k]))} is {kind.value}: "
+                + (
+                    "a plane counted twice; pass the plane itself"
+                    if kind is QuadricKind.COINCIDENT_PLANES
+                    else "the zero matrix is not a surface"
+                ),
+                q,
+                kind=kind,
+                index=int(used[k]),
+            )
+        sign[k] = -1 if int(row) % 2 else 1
+        if kind in TABLE_1_KINDS:
+            klass[k] = _CLASS_TABLE
+        elif kind is QuadricKind.PLANE:
+            klass[k] = _CLASS_PLANE
+        elif kind in NO_REAL_POINTS:
+            klass[k] = _CLASS_NO_SURFACE
+        else:
+            klass[k] = _CLASS_OTHER
+    where = np.asarray(where).reshape(-1)
+    return klass[where], sign[where]
+
+
+def _staged(mode: NumberMode, method: str, pairs: Pairs) -> tuple[np.ndarray, list[str], np.ndarray]:
+    return mode.staged(method, pairs)
+
+
+def decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
+    """Codes answering ``question`` (``"contact"``, ``"region"`` or ``"kind"``) for every pair.
+
+    Returns :class:`ContactCode`, :class:`RegionCode` or :class:`ContactKindCode`
+    values (int8); records the stage counts in ``mode``."""
+    if question not in QUESTIONS:
+        raise ValueError(f"question must be one of {QUESTIONS}, got {question!r}")
+    n = pairs.n
+    counts = StageCounts()
+    out = np.full(n, _UNC, dtype=np.int8)
+    if n == 0:
+        mode._record(counts)
+        return out
+    todo = np.ones(n, dtype=bool)
+
+    def settle(which: np.ndarray, values: Any, label: str) -> None:
+        which = which & todo
+        k = int(np.count_nonzero(which))
+        if k:
+            out[which] = values if np.isscalar(values) else np.asarray(values)[which]
+            todo[which] = False
+        counts.add(label, k)
+
+    # 1. criterion: the root structure of P (validates the input on the way).
+    method = "criterion_region" if question == "region" else "criterion_contact"
+    crit, names, which = _staged(mode, method, pairs)
+    klass, qsign = _classes(mode, pairs)
+    labels = [f"criterion ({name})" for name in names]
+    surfaceless = klass == _CLASS_NO_SURFACE
+    if question == "region":
+        settle(surfaceless, np.where(qsign > 0, 1, -1).astype(np.int8), "no real points (type)")
+    else:
+        none = ContactCode.NO_CONTACT if question == "contact" else ContactKindCode.NONE
+        settle(surfaceless, none, "no real points (type)")
+    for k, label in enumerate(labels):
+        here = which == k
+        if question == "region":
+            settle(here & (crit == RegionCode.CONTACT), RegionCode.CONTACT, label)
+            on_side = (crit == RegionCode.R_MINUS) | (crit == RegionCode.R_PLUS)
+            settle(here & on_side & (klass == _CLASS_PLANE), crit, label)
+        else:
+            answer = ContactCode.CONTACT if question == "contact" else ContactKindCode.TRANSVERSAL
+            settle(here & (crit == ContactCode.CONTACT), answer, label)
+            if question == "contact":
+                settle(
+                    here & (crit == ContactCode.NO_CONTACT) & (klass == _CLASS_PLANE),
+                    ContactCode.NO_CONTACT,
+                    label,
+                )
+    all_real = (crit == RegionCode.R_MINUS) | (crit == RegionCode.R_PLUS) | (crit == RegionCode.NO_ROW)
+    if question != "region":
+        all_real = crit == ContactCode.NO_CONTACT
+
+    # 2. smallness: Corollary 10 and Table 4 where they apply.
+    if question != "kind" and getattr(mode, "uses_smallness", False):
+        cand = np.flatnonzero(todo & all_real & (klass == _CLASS_TABLE))
+        names = []
+        if cand.size:
+            try:
+                sm, names, which = _staged(mode, "quick_smallness", pairs.take(cand))
+            except NotImplementedError:
+                names = []
+        if names:
+            from .base import SmallnessCode
+
+            for k, name in enumerate(names):
+                here = np.zeros(n, dtype=bool)
+                hit = which == k
+                if question == "contact":
+                    small = hit & ((sm == SmallnessCode.SMALL) | (sm == SmallnessCode.SMALL_ENCLOSING))
+                    here[cand[small]] = True
+                    settle(here, ContactCode.NO_CONTACT, f"smallness ({name})")
+                else:
+                    side = (crit[cand] == RegionCode.R_MINUS) | (crit[cand] == RegionCode.R_PLUS)
+                    small = hit & (sm == SmallnessCode.SMALL) & side
+                    here[cand[small]] = True
+                    settle(here, crit, f"smallness ({name})")
+
+    # 3. separation: definite members, or four simple real roots without one.
+    rest = np.flatnonzero(todo)
+    if rest.size:
+        sep, names, which = _staged(mode, "separation", pairs.take(rest))
+        for k, name in enumerate(names):
+            hit = which == k
+            here = np.zeros(n, dtype=bool)
+            here[rest[hit]] = True
+            values = np.full(n, _UNC, dtype=np.int8)
+            values[rest] = _from_separation(sep, question)
+            settle(here, values, f"separation ({name})")
+
+    # 4. the exact scalar predicates, pair by pair.
+    rest = np.flatnonzero(todo)
+    if rest.size and getattr(mode, "complete", False):
+        values = _exact_pairs(pairs, rest, question)
+        here = np.zeros(n, dtype=bool)
+        here[rest] = True
+        full = np.full(n, _UNC, dtype=np.int8)
+        full[rest] = values
+        settle(here, full, "exact pair")
+    counts.undecided = int(np.count_nonzero(todo))
+    mode._record(counts)
+    return out
+
+
+def _from_separation(sep: np.ndarray, question: str) -> np.ndarray:
+    out = np.full(sep.shape, _UNC, dtype=np.int8)
+    separated = (sep == SEP_MINUS) | (sep == SEP_PLUS)
+    crossing = sep == CROSSING
+    if question == "contact":
+        out[separated] = ContactCode.NO_CONTACT
+        out[crossing] = ContactCode.CONTACT
+    elif question == "region":
+        out[separated | crossing] = sep[separated | crossing]
+    else:
+        out[separated] = ContactKindCode.NONE
+        out[crossing] = ContactKindCode.TRANSVERSAL
+    return out
+
+
+def _exact_pairs(pairs: Pairs, rows: np.ndarray, question: str) -> np.ndarray:
+    """The exact scalar answer for the pairs ``rows`` (cached per pair of matrices)."""
+    from ..contact import transversal_contact_exact
+    from ..contact_kind import analyze_contact
+    from ..regions import relative_position_exact
+    from .validation import exact_matrix
+
+    e_rows, q_rows = pairs.e_rows()[rows], pairs.q_rows()[rows]
+    cache: dict[tuple[int, int], int] = {}
+    out = np.empty(rows.size, dtype=np.int8)
+    for t in range(rows.size):
+        key = (int(e_rows[t]), int(q_rows[t]))
+        if key not in cache:
+            E, Q = exact_matrix(pairs.E, key[0]), exact_matrix(pairs.Q, key[1])
+            if question == "contact":
+                r = transversal_contact_exact(E, Q)
+                cache[key] = int(ContactCode.CONTACT if r.transversal else ContactCode.NO_CONTACT)
+            elif question == "region":
+                cache[key] = int(RegionCode.from_region(relative_position_exact(E, Q).region))
+            else:
+                cache[key] = int(ContactKindCode.from_kind(analyze_contact(E, Q).kind))
+        out[t] = cache[key]
+    return out

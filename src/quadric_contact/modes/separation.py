@@ -1,0 +1,513 @@
+"""The separation certificate: where ``E`` lies against ``Q``, read off the members of the pencil.
+
+This stage needs no smallness (Definition 1) and no type of ``Q``: it answers the
+geometric question for any pair, and it certifies its own answers.  ``E`` is an
+ellipsoid with the paper's sign (``det E < 0``, positive definite quadratic part) and
+``f(X) = X^T Q X`` is read on the *surface* of ``E``.
+
+Three facts
+-----------
+1. *S-lemma (Finsler).*  ``f > 0`` on the surface of ``E`` iff some member
+   ``lambda E + Q`` of the pencil is positive definite; ``f < 0`` there iff some
+   member is negative definite.  One direction is immediate: on the surface
+   ``X^T E X = 0``, so ``f(X) = X^T (lambda E + Q) X``.  Conversely, the cone
+   ``{X^T E X = 0}`` has no point at infinity (``A_E`` is definite), so ``f >= t > 0``
+   on the surface means ``Q - t e4 e4^T >= 0`` on the cone, and since ``E`` is
+   indefinite Finsler's lemma gives ``mu`` with ``Q - t e4 e4^T - mu E >= 0``; then
+   ``Q - (mu - eps) E`` is positive definite for a small ``eps > 0`` (its null vectors
+   for ``eps = 0`` lie at infinity, where ``E`` is positive).
+2. *Signature sequence.*  ``n+(lambda)``, the number of positive eigenvalues of
+   ``lambda E + Q``, is that of ``-E`` (one) for ``lambda -> -inf`` and that of ``E``
+   (three) for ``lambda -> +inf``; it is constant between consecutive roots of
+   ``P(lambda) = det(lambda E + Q)`` and changes across a root of multiplicity ``m`` by
+   at most ``m`` and by a number of the parity of ``m`` (the eigenvalues are analytic in
+   ``lambda``; ``P`` is their product).
+3. *Tangency needs a multiple root.*  If the surfaces touch at ``X`` (or ``f`` has a
+   zero extremum on ``E`` at ``X``), then ``(lambda0 E + Q) X = 0`` for a real
+   ``lambda0`` and ``P'(lambda0) = tr(adj(lambda0 E + Q) E)`` is ``kappa X^T E X = 0``
+   (rank 3) or 0 (lower rank): ``lambda0`` is a multiple root.
+
+The certificate
+---------------
+With approximate roots ``r1 <= r2 <= r3 <= r4`` of ``P`` and the sample points
+``s12, s23, s34`` between them:
+
+* a member that is certainly definite at any sample point proves ``f > 0``
+  (``R_PLUS``) or ``f < 0`` (``R_MINUS``) on ``E``: strict separation, whatever
+  the roots;
+* if ``n+`` is certain at the three sample points and ``1, n+(s12), n+(s23), n+(s34), 3``
+  moves by exactly one at each step, each of the four intervals holds exactly one
+  simple root (an odd multiplicity, four in all): the roots are real and simple, so
+  there is no tangency (fact 3), the sampled gaps are all the gaps, and if no member
+  is definite ``f`` takes both signs (fact 1): the surfaces cross (``CONTACT``);
+* anything else (a tangency, a multiple root, sample points that do not separate the
+  roots, a sign a mode cannot tell) is ``UNCERTAIN`` for the certified modes.
+
+The codes are those of :class:`~quadric_contact.modes.base.RegionCode`: ``-1`` ``E``
+in the interior of ``R-``, ``0`` the surfaces cross, ``1`` ``E`` in the interior of
+``R+``, ``2`` uncertain.  The inertia of a member comes from the signs of the sums
+``E1 .. E4`` of its principal minors (Descartes' rule is exact for the real-rooted
+characteristic polynomial), in binary64 with the rigorous bounds of
+:data:`~quadric_contact.modes.errorbounds.MEMBER_ERRBOUND`, or in the numbers of an
+object mode (ball, mpmath, exact); :func:`separation_isolated` places exact rational
+sample points between the exactly isolated roots.  The plain ``float`` and ``mpmath``
+modes answer everything: where they find no definite member they say the surfaces
+cross.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from .._generated import formulas, kernels
+from . import errorbounds as eb
+from ._jit import HAVE_NUMBA
+from ._jit import njit as _njit
+from .base import Pairs
+
+__all__ = [
+    "CROSSING",
+    "SEP_MINUS",
+    "SEP_PLUS",
+    "UNCERTAIN",
+    "decide_from_counts",
+    "quartic_roots",
+    "separation_float",
+    "separation_isolated",
+    "separation_objects",
+]
+
+SEP_MINUS = -1
+CROSSING = 0
+SEP_PLUS = 1
+UNCERTAIN = 2
+
+_pencil = _njit(formulas.pencil_coefficients, inline=True)
+_invariants = _njit(kernels.quadric_invariants, inline=True)
+_invariants_mag = _njit(kernels.quadric_invariants_magnitude, inline=True)
+_INPUT_MIN = eb.INPUT_MIN
+_INPUT_MAX = eb.INPUT_MAX
+_SAMPLE_MIN = eb.SAMPLE_MIN
+_SAMPLE_MAX = eb.SAMPLE_MAX
+_TWO_PI_3 = 2.0943951023931957
+_FOUR_PI_3 = 4.1887902047863905
+
+
+# -- approximate roots of the quartic --------------------------------------------------------
+
+
+@_njit(inline=True)
+def _cubic_roots(A: float, B: float, C: float) -> tuple[float, float, float]:
+    """The roots of ``t^3 + A t^2 + B t + C`` when they are real (trigonometric form);
+    approximations only (the certificate does not trust them)."""
+    a3 = A / 3.0
+    P = B - A * a3
+    Qc = a3 * (2.0 * a3 * a3 - B) + C
+    if P >= 0.0:
+        w = np.cbrt(-Qc)
+        return w - a3, w - a3, w - a3
+    m = 2.0 * math.sqrt(-P / 3.0)
+    arg = 3.0 * Qc / (P * m)
+    arg = min(1.0, max(-1.0, arg))
+    th = math.acos(arg) / 3.0
+    return m * math.cos(th) - a3, m * math.cos(th - _TWO_PI_3) - a3, m * math.cos(th - _FOUR_PI_3) - a3
+
+
+@_njit(inline=True)
+def _polish(x: float, b0: float, b1: float, b2: float, b3: float) -> float:
+    """Two Newton steps on the monic ``x^4 + b3 x^3 + b2 x^2 + b1 x + b0``, each kept only if
+    it lowers ``|p|``."""
+    for _ in range(2):
+        p = (((x + b3) * x + b2) * x + b1) * x + b0
+        d = ((4.0 * x + 3.0 * b3) * x + 2.0 * b2) * x + b1
+        if d == 0.0 or not math.isfinite(p):
+            break
+        y = x - p / d
+        q = (((y + b3) * y + b2) * y + b1) * y + b0
+        if not abs(q) < abs(p):
+            break
+        x = y
+    return x
+
+
+@_njit(inline=True)
+def quartic_roots(
+    c0: float, c1: float, c2: float, c3: float, c4: float
+) -> tuple[float, float, float, float, bool]:
+    """Approximate real roots ``r1 <= r2 <= r3 <= r4`` of ``c4 x^4 + .. + c0`` (``c4 != 0``),
+    assuming all four are real (Euler's solution through the resolvent cubic, on the
+    polynomial scaled by a power of two above Fujiwara's root bound, then polished by
+    Newton's method); the flag is False when the numbers are not finite.
+
+    Examples
+    --------
+    >>> [round(r, 12) for r in quartic_roots(24.0, -50.0, 35.0, -10.0, 1.0)[:4]]
+    [1.0, 2.0, 3.0, 4.0]
+    """
+    a3 = c3 / c4
+    a2 = c2 / c4
+    a1 = c1 / c4
+    a0 = c0 / c4
+    bound = 2.0 * max(abs(a3), math.sqrt(abs(a2)), np.cbrt(abs(a1)), math.sqrt(math.sqrt(abs(a0) / 2.0)))
+    if not math.isfinite(bound):
+        return 0.0, 0.0, 0.0, 0.0, False
+    if bound == 0.0:
+        return 0.0, 0.0, 0.0, 0.0, True
+    scale = 2.0 ** math.ceil(math.log2(bound))
+    b3 = a3 / scale
+    b2 = a2 / (scale * scale)
+    b1 = a1 / (scale * scale * scale)
+    b0 = a0 / (scale * scale * scale * scale)
+    h = b3 / 4.0
+    p = b2 - 6.0 * h * h
+    q = b1 - 2.0 * b2 * h + 8.0 * h * h * h
+    r = b0 - b1 * h + b2 * h * h - 3.0 * h * h * h * h
+    z1, z2, z3 = _cubic_roots(2.0 * p, p * p - 4.0 * r, -q * q)
+    a = math.sqrt(max(z1, 0.0))
+    b = math.sqrt(max(z2, 0.0))
+    c = math.sqrt(max(z3, 0.0))
+    if q > 0.0:
+        c = -c
+    y0 = 0.5 * (a + b + c) - h
+    y1 = 0.5 * (a - b - c) - h
+    y2 = 0.5 * (-a + b - c) - h
+    y3 = 0.5 * (-a - b + c) - h
+    y0 = _polish(y0, b0, b1, b2, b3) * scale
+    y1 = _polish(y1, b0, b1, b2, b3) * scale
+    y2 = _polish(y2, b0, b1, b2, b3) * scale
+    y3 = _polish(y3, b0, b1, b2, b3) * scale
+    # sort four numbers (a sorting network)
+    if y0 > y1:
+        y0, y1 = y1, y0
+    if y2 > y3:
+        y2, y3 = y3, y2
+    if y0 > y2:
+        y0, y2 = y2, y0
+    if y1 > y3:
+        y1, y3 = y3, y1
+    if y1 > y2:
+        y1, y2 = y2, y1
+    ok = math.isfinite(y0) and math.isfinite(y1) and math.isfinite(y2) and math.isfinite(y3)
+    return y0, y1, y2, y3, ok
+
+
+# -- inertia of a member -----------------------------------------------------------------------
+
+
+@_njit(inline=True)
+def _sign(v: float, err: float, certified: bool) -> int:
+    if not certified:
+        return 1 if v > 0.0 else (-1 if v < 0.0 else 0)
+    if v > err:
+        return 1
+    if v < -err:
+        return -1
+    if err == 0.0:
+        return 0
+    return UNCERTAIN
+
+
+@_njit(inline=True)
+def _variations(a: int, b: int, c: int, d: int) -> int:
+    """Sign variations of ``(1, -a, b, -c, d)``: the positive eigenvalues of a symmetric
+    matrix whose principal-minor sums have the signs ``a, b, c, d`` (Descartes)."""
+    count = 0
+    last = 1
+    for s in (-a, b, -c, d):
+        if s != 0:
+            if s != last:
+                count += 1
+            last = s
+    return count
+
+
+@_njit(inline=True)
+def positive_count(s1: int, s2: int, s3: int, s4: int) -> int:
+    """Positive eigenvalues of a *nonsingular* member from the three-valued signs of
+    ``E1 .. E4`` (``UNCERTAIN = 2``): the count every completion of the uncertain signs agrees
+    on, or -1.  The determinant ``E4`` must be certainly non-zero: a singular member (the
+    sample point is a root) says nothing about the gap it is meant to sample."""
+    if s4 != 1 and s4 != -1:
+        return -1
+    lo1, hi1 = (-1, 1) if s1 == UNCERTAIN else (s1, s1)
+    lo2, hi2 = (-1, 1) if s2 == UNCERTAIN else (s2, s2)
+    lo3, hi3 = (-1, 1) if s3 == UNCERTAIN else (s3, s3)
+    found = -1
+    for a in range(lo1, hi1 + 1):
+        for b in range(lo2, hi2 + 1):
+            for c in range(lo3, hi3 + 1):
+                n = _variations(a, b, c, s4)
+                if found == -1:
+                    found = n
+                elif n != found:
+                    return -1
+    return found
+
+
+@_njit(inline=True)
+def _guarded(x: float) -> bool:
+    a = abs(x)
+    return a == 0.0 or (_INPUT_MIN <= a <= _INPUT_MAX)
+
+
+@_njit(inline=True)
+def _member_count(s: float, e: Any, q: Any, K: Any, certified: bool) -> int:
+    """``n+`` of the member ``s E + Q`` (-1 if uncertain)."""
+    if certified and s != 0.0 and not (_SAMPLE_MIN <= abs(s) <= _SAMPLE_MAX):
+        return -1
+    m0 = s * e[0] + q[0]
+    m1 = s * e[1] + q[1]
+    m2 = s * e[2] + q[2]
+    m3 = s * e[3] + q[3]
+    m4 = s * e[4] + q[4]
+    m5 = s * e[5] + q[5]
+    m6 = s * e[6] + q[6]
+    m7 = s * e[7] + q[7]
+    m8 = s * e[8] + q[8]
+    m9 = s * e[9] + q[9]
+    inv = _invariants(m0, m1, m2, m3, m4, m5, m6, m7, m8, m9)
+    if not certified:
+        return positive_count(
+            _sign(inv[3], 0.0, False),
+            _sign(inv[4], 0.0, False),
+            _sign(inv[5], 0.0, False),
+            _sign(inv[6], 0.0, False),
+        )
+    a = abs(s)
+    w0 = a * abs(e[0]) + abs(q[0])
+    w1 = a * abs(e[1]) + abs(q[1])
+    w2 = a * abs(e[2]) + abs(q[2])
+    w3 = a * abs(e[3]) + abs(q[3])
+    w4 = a * abs(e[4]) + abs(q[4])
+    w5 = a * abs(e[5]) + abs(q[5])
+    w6 = a * abs(e[6]) + abs(q[6])
+    w7 = a * abs(e[7]) + abs(q[7])
+    w8 = a * abs(e[8]) + abs(q[8])
+    w9 = a * abs(e[9]) + abs(q[9])
+    ok = (
+        _guarded(m0) and _guarded(m1) and _guarded(m2) and _guarded(m3) and _guarded(m4)
+        and _guarded(m5) and _guarded(m6) and _guarded(m7) and _guarded(m8) and _guarded(m9)
+        and _guarded(w0) and _guarded(w1) and _guarded(w2) and _guarded(w3) and _guarded(w4)
+        and _guarded(w5) and _guarded(w6) and _guarded(w7) and _guarded(w8) and _guarded(w9)
+    )  # fmt: skip
+    if not ok:
+        return -1
+    mag = _invariants_mag(w0, w1, w2, w3, w4, w5, w6, w7, w8, w9)
+    return positive_count(
+        _sign(inv[3], K[0] * mag[3], True),
+        _sign(inv[4], K[1] * mag[4], True),
+        _sign(inv[5], K[2] * mag[5], True),
+        _sign(inv[6], K[3] * mag[6], True),
+    )
+
+
+@_njit(inline=True)
+def decide_from_counts(n12: int, n23: int, n34: int, certified: bool) -> int:
+    """The separation code from ``n+`` at the three sample points (-1: uncertain)."""
+    if n12 == 4 or n23 == 4 or n34 == 4:
+        return SEP_PLUS
+    if n12 == 0 or n23 == 0 or n34 == 0:
+        return SEP_MINUS
+    steps = abs(n12 - 1) == 1 and abs(n23 - n12) == 1 and abs(n34 - n23) == 1 and abs(3 - n34) == 1
+    if n12 >= 0 and n23 >= 0 and n34 >= 0 and steps:
+        return CROSSING
+    return UNCERTAIN if certified else CROSSING
+
+
+@_njit(inline=True)
+def _separation_one(e: Any, q: Any, K: Any, certified: bool) -> int:
+    if e[0] < 0.0:
+        for k in range(10):
+            e[k] = -e[k]
+    if certified:
+        for k in range(10):
+            if not (_guarded(e[k]) and _guarded(q[k])):
+                return UNCERTAIN
+    c0, c1, c2, c3, c4 = _pencil(e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7], e[8], e[9],
+                                 q[0], q[1], q[2], q[3], q[4], q[5], q[6], q[7], q[8], q[9])  # fmt: skip
+    if c4 == 0.0:
+        return UNCERTAIN if certified else CROSSING
+    r0, r1, r2, r3, ok = quartic_roots(c0, c1, c2, c3, c4)
+    if not ok:
+        return UNCERTAIN if certified else CROSSING
+    # The likeliest certificate first: outside (R+) is the gap between the two largest roots.
+    n34 = _member_count(0.5 * (r2 + r3), e, q, K, certified)
+    if n34 == 4:
+        return SEP_PLUS
+    n12 = _member_count(0.5 * (r0 + r1), e, q, K, certified)
+    if n12 == 0:
+        return SEP_MINUS
+    n23 = _member_count(0.5 * (r1 + r2), e, q, K, certified)
+    return decide_from_counts(n12, n23, n34, certified)
+
+
+def _separation_impl(
+    E: Any,
+    Q: Any,
+    eidx: Any,
+    qidx: Any,
+    es: int,
+    qs: int,
+    lo: int,
+    hi: int,
+    K: Any,
+    certified: bool,
+    out: Any,
+) -> None:
+    e = np.empty(10)
+    q = np.empty(10)
+    for p in range(lo, hi):
+        ie = eidx[p] if eidx.shape[0] > 0 else p * es
+        iq = qidx[p] if qidx.shape[0] > 0 else p * qs
+        e[0] = E[ie, 0, 0]
+        e[1] = E[ie, 0, 1]
+        e[2] = E[ie, 0, 2]
+        e[3] = E[ie, 0, 3]
+        e[4] = E[ie, 1, 1]
+        e[5] = E[ie, 1, 2]
+        e[6] = E[ie, 1, 3]
+        e[7] = E[ie, 2, 2]
+        e[8] = E[ie, 2, 3]
+        e[9] = E[ie, 3, 3]
+        q[0] = Q[iq, 0, 0]
+        q[1] = Q[iq, 0, 1]
+        q[2] = Q[iq, 0, 2]
+        q[3] = Q[iq, 0, 3]
+        q[4] = Q[iq, 1, 1]
+        q[5] = Q[iq, 1, 2]
+        q[6] = Q[iq, 1, 3]
+        q[7] = Q[iq, 2, 2]
+        q[8] = Q[iq, 2, 3]
+        q[9] = Q[iq, 3, 3]
+        out[p] = _separation_one(e, q, K, certified)
+
+
+_separation_kernel = _njit(_separation_impl)
+
+
+def separation_float(
+    pairs: Pairs, *, certified: bool, backend: str = "numba", threads: int | None = None
+) -> np.ndarray:
+    """Separation codes of every pair in binary64: certified (``UNCERTAIN`` where a sign or
+    a guard fails) or plain (always an answer).  Inputs are assumed validated (finite,
+    symmetric, ``E`` an ellipsoid)."""
+    from .float64 import run_parallel
+
+    n = pairs.n
+    out = np.empty(n, dtype=np.int8)
+    if n == 0:
+        return out
+    rounded = pairs.E.rounded or pairs.Q.rounded
+    K = np.array(eb.MEMBER_ERRBOUND[rounded])
+    eidx, qidx, es, qs = pairs.kernel_indices()
+    E, Q = pairs.E.floats, pairs.Q.floats
+    if backend == "numpy" or not HAVE_NUMBA:
+        _separation_impl(E, Q, eidx, qidx, es, qs, 0, n, K, certified, out)
+        return out
+    run_parallel(
+        lambda lo, hi: _separation_kernel(E, Q, eidx, qidx, es, qs, lo, hi, K, certified, out), n, threads
+    )
+    return out
+
+
+# -- object modes: the same certificate in other numbers ------------------------------------------
+
+
+def _approx(values: np.ndarray) -> np.ndarray:
+    """Floats near the values of an object array (ints, Fractions, mpf, arb midpoints)."""
+
+    def one(v: Any) -> float:
+        mid = getattr(v, "mid", None)
+        if callable(mid):
+            v = mid()
+        try:
+            return float(v)
+        except (OverflowError, ValueError):
+            return math.nan
+
+    return np.frompyfunc(one, 1, 1)(values).astype(np.float64)
+
+
+def sample_points(coefficients: list[np.ndarray]) -> np.ndarray:
+    """``(n, 3)`` float sample points ``s12, s23, s34`` between the approximate roots of each
+    quartic (``coefficients``: ``c0 .. c4`` as float arrays); NaN where they cannot be had."""
+    c = [np.asarray(x, dtype=np.float64) for x in coefficients]
+    n = c[0].shape[0]
+    out = np.full((n, 3), np.nan)
+    roots = np.vectorize(lambda *a: quartic_roots(*a), otypes=[float] * 4 + [bool])
+    with np.errstate(all="ignore"):
+        good = np.isfinite(np.stack(c)).all(axis=0) & (c[4] != 0.0)
+        if good.any():
+            r0, r1, r2, r3, ok = roots(*(x[good] for x in c))
+            s = np.stack([0.5 * (r0 + r1), 0.5 * (r1 + r2), 0.5 * (r2 + r3)], axis=1)
+            s[~np.asarray(ok, dtype=bool)] = np.nan
+            out[good] = s
+    return out
+
+
+def separation_objects(mode: Any, pairs: Pairs, *, certified: bool) -> np.ndarray:
+    """Separation codes with the numbers of an object mode (``ball``, ``mpmath``, ``exact``):
+    sample points from approximate roots, the members' principal-minor sums in the mode's
+    numbers, their signs by :meth:`~quadric_contact.modes.objects.ObjectMode.signs`."""
+    n = pairs.n
+    out = np.full(n, UNCERTAIN, dtype=np.int8)
+    if n == 0:
+        return out
+    e_rows, q_rows = pairs.e_rows(), pairs.q_rows()
+    ue, ie = np.unique(e_rows, return_inverse=True)
+    uq, iq = np.unique(q_rows, return_inverse=True)
+    with mode.context():
+        e_cols = [col[ie] for col in mode.convert(pairs.E, ue)]
+        q_cols = [col[iq] for col in mode.convert(pairs.Q, uq)]
+        flip = _approx(e_cols[0]) < 0
+        if flip.any():
+            e_cols = [np.where(flip, -col, col) for col in e_cols]
+        c = formulas.pencil_coefficients(*e_cols, *q_cols)
+        samples = sample_points([_approx(x) for x in c])
+        counts = np.full((n, 3), -1, dtype=np.int64)
+        number = mode.number
+        for k in range(3):
+            s = samples[:, k]
+            ok = np.isfinite(s)
+            if not ok.any():
+                continue
+            idx = np.flatnonzero(ok)
+            sv = np.array([number(float(v)) for v in s[idx]], dtype=object)
+            member = [sv * e[idx] + qq[idx] for e, qq in zip(e_cols, q_cols, strict=True)]
+            inv = kernels.quadric_invariants(*member)
+            signs = [mode.signs(np.asarray(inv[j], dtype=object)) for j in range(3, 7)]
+            for t, i in enumerate(idx):
+                counts[i, k] = positive_count(
+                    int(signs[0][t]), int(signs[1][t]), int(signs[2][t]), int(signs[3][t])
+                )
+    for p in range(n):
+        out[p] = decide_from_counts(int(counts[p, 0]), int(counts[p, 1]), int(counts[p, 2]), certified)
+    return out
+
+
+def separation_isolated(pairs: Pairs) -> np.ndarray:
+    """Exact separation codes with exact sample points between the exactly isolated roots
+    (:func:`quadric_contact.certificate.separation_certificate`): a definite member gives
+    ``R_MINUS``/``R_PLUS``; four simple real roots and none definite ``CONTACT``; otherwise
+    (a multiple root without a definite member: a tangency or a degenerate pencil)
+    ``UNCERTAIN``."""
+    from ..certificate import separation_certificate
+    from ..pencil import characteristic_polynomial
+    from ..results import Region
+    from .validation import exact_matrix
+
+    codes = {Region.R_MINUS: SEP_MINUS, Region.CONTACT: CROSSING, Region.R_PLUS: SEP_PLUS, None: UNCERTAIN}
+    n = pairs.n
+    out = np.full(n, UNCERTAIN, dtype=np.int8)
+    e_rows, q_rows = pairs.e_rows(), pairs.q_rows()
+    cache: dict[tuple[int, int], int] = {}
+    for p in range(n):
+        key = (int(e_rows[p]), int(q_rows[p]))
+        if key not in cache:
+            P = characteristic_polynomial(exact_matrix(pairs.E, key[0]), exact_matrix(pairs.Q, key[1]))
+            cache[key] = codes[separation_certificate(P).region]
+        out[p] = cache[key]
+    return out
