@@ -559,7 +559,11 @@ def compile_expression(expr: Any, symbols: Sequence[Any]) -> Callable[..., Any]:
             return lambda v, c: c(Fraction(1)) / base(v, c) ** (-n)
         raise ValueError(f"not a rational expression in {symbols}: {e} ({sympy.srepr(e)[:60]})")
 
-    fn = build(sympy.sympify(expr))
+    if isinstance(expr, (str, bytes)):
+        # Text is never evaluated (sympify would run it as Python): build the
+        # expression with sympy, or read text with quadric_contact.parsing.
+        raise TypeError("compile_expression takes a sympy expression, not text")
+    fn = build(sympy.sympify(expr, strict=True))
 
     def run(*values: Any, const: Callable[[Fraction], Any] = Fraction) -> Any:
         return fn(values, const)
