@@ -7,12 +7,19 @@ reach the package from users, courses and other programs: in
 takes (:func:`~quadric_contact.rational.to_fraction`), on the command line and
 in scene files.  They are read here by a tokenizer and a recursive-descent
 parser into a small syntax tree, which :func:`evaluate` folds over an
-:class:`Algebra`: exact sparse polynomials with :class:`fractions.Fraction`
-coefficients (:class:`PolynomialAlgebra`) for quadrics, numbers and
-trajectories, or any other algebra with the same eight operations (for
-instance sympy objects built programmatically, for families of quadrics
-whose coefficients contain declared parameters).  Nothing here calls
+:class:`Algebra`: exact sparse polynomials over Q (:class:`PolynomialAlgebra`)
+for quadrics, numbers and trajectories, or any other algebra with the same
+eight operations (for instance sympy objects built programmatically, for
+families of quadrics whose coefficients contain parameters declared with
+``parse_expression(..., parameters=("u", "w"))``).  Nothing here calls
 ``eval``, ``exec``, ``compile``, ``sympify``, ``parse_expr`` or ``S()``.
+
+The readers: :func:`parse_quadric_equation` (the ten matrix entries of an
+equation of degree 2 in ``x, y, z``), :func:`parse_polynomial` (exponent
+tuple to :class:`~fractions.Fraction`), :func:`parse_univariate`
+(coefficients of a polynomial in ``t``), :func:`parse_number` (a
+:class:`~fractions.Fraction`) and :func:`parse_expression` (the syntax
+tree, for other algebras).
 
 Grammar
 -------
@@ -37,7 +44,8 @@ exclusive or).  Numbers are exact: ``0.1`` is ``1/10``, ``1e-5`` is
 
 Refused, with an :class:`~quadric_contact.errors.EquationError` (or, for a
 number, :class:`~quadric_contact.errors.NotANumberError`) whose message names
-the offending text and its position and shows it under a caret: unknown
+the offending text and its position (1-based; ``details["offset"]`` is the
+0-based index) and shows it under a caret: unknown
 names (``x2``: "did you mean 2*x or x**2?"), function calls (``sin(x)``),
 implicit multiplication (``3(z - 1)``, ``2x``, ``(x)(y)``, ``x y``: write
 ``*``), an exponent that is not a literal non-negative integer (``x**-1``,
@@ -53,21 +61,25 @@ Every input is accepted or refused after a bounded amount of work; the
 bounds are the module constants :data:`MAX_LENGTH` (characters),
 :data:`MAX_DIGITS` (decimal digits of the numerator and of the denominator
 of every literal and every intermediate rational), :data:`MAX_EXPONENT`,
-:data:`MAX_DEPTH` (nesting of parentheses, signs and powers),
+:data:`MAX_DEPTH` (nesting of parentheses and signs),
 :data:`MAX_DEGREE` (degree of every intermediate polynomial) and
 :data:`MAX_WORK` (arithmetic steps, weighted by the size of the numbers).
-Measured on a laptop-class core, the slowest input that the bounds admit is
-read or refused in a few tens of milliseconds
-(``benchmarks/bench_parsing.py`` measures the hostile cases).
+Numbers and lengths are checked before anything is computed with them, the
+degree of a product before it is formed.  The slowest inputs the bounds
+admit are read or refused in well under 100 ms
+(``benchmarks/bench_parsing.py`` measures them).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import re
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, Protocol, TypeVar
+
+import flint
 
 from .entries import ENTRY_INDICES
 from .errors import EquationError, NotANumberError
@@ -99,9 +111,10 @@ __all__ = [
     "quadric_entries",
 ]
 
-MAX_LENGTH = 10_000
-"""Longest text read, in characters (a quadric's printed equation with
-1000-digit coefficients fits)."""
+MAX_LENGTH = 5_000
+"""Longest text read, in characters: a number with a numerator and a
+denominator of :data:`MAX_DIGITS` digits fits, and so does a quadric's
+printed equation with coefficients of a few hundred digits."""
 
 MAX_DIGITS = 1_000
 """Most decimal digits in the numerator, and in the denominator, of a literal
@@ -114,22 +127,23 @@ MAX_EXPONENT = 1_000
 :data:`MAX_DIGITS` and :data:`MAX_DEGREE`)."""
 
 MAX_DEPTH = 64
-"""Deepest nesting of parentheses, unary signs and powers."""
+"""Deepest nesting of parentheses and unary signs (exponents are literals, and
+a power of a power needs parentheses)."""
 
 MAX_DEGREE = 8
 """Highest total degree of any polynomial that arises while evaluating (the
 result may be required to have a lower one, 2 for a quadric); so
 ``(x**2 + 1)**2 - x**4`` is read as the quadric ``2*x**2 + 1``."""
 
-MAX_WORK = 20_000
-"""Most arithmetic steps spent on one input.  A step is one operation on two
-coefficients, counted once more for every :data:`WORK_BITS` bits of the
-operands; a product of polynomials with ``m`` and ``n`` terms costs ``m*n``
-such steps, a sum ``m + n``."""
+MAX_WORK = 10_000
+"""Most arithmetic steps spent on one input.  A product of polynomials with
+``m`` and ``n`` terms costs ``m*n`` steps, a sum one more than the terms of
+the smaller operand; each step counts once more for every
+:data:`WORK_BITS` bits of the largest coefficient it produced (numerator and
+denominator together), since big numbers cost more."""
 
 WORK_BITS = 512
-"""Operand size (bits of numerators and denominators together) counted as one
-more step; see :data:`MAX_WORK`."""
+"""Coefficient size counted as one more step; see :data:`MAX_WORK`."""
 
 _LIMIT = 10**MAX_DIGITS  # a numerator or a denominator must stay below this
 _LIMIT_BITS = _LIMIT.bit_length()
@@ -255,14 +269,18 @@ def _refuse(text: str, message: str, start: int, end: int | None = None, *, what
 _DIGITS = r"[0-9](?:_?[0-9])*"
 _TOKEN = re.compile(
     rf"""
-    (?P<ws>[ \t\r\n]+)
-  | (?P<number>(?:{_DIGITS}(?:\.(?:{_DIGITS})?)?|\.{_DIGITS})(?:[eE][+-]?{_DIGITS})?)
-  | (?P<name>[A-Za-z_][A-Za-z0-9_]*)
-  | (?P<op>\*\*|==|//|[-+*/^()=])
+    [ \t\r\n]*                                  # blanks before the token
+    (?:
+      (?P<number>(?:{_DIGITS}(?:\.(?:{_DIGITS})?)?|\.{_DIGITS})(?:[eE][+-]?{_DIGITS})?)
+    | (?P<name>[A-Za-z_][A-Za-z0-9_]*)
+    | (?P<op>\*\*|==|//|[-+*/^()=])
+    | (?P<end>\Z)
+    )
     """,
     re.VERBOSE,
 )
 _NUMBER = re.compile(rf"(?P<int>{_DIGITS})?(?:\.(?P<frac>{_DIGITS})?)?(?:[eE](?P<exp>[+-]?{_DIGITS}))?")
+_INTEGER = re.compile(_DIGITS)
 
 _CHAR_HINTS = {
     ",": "a comma is not allowed (decimals are written with '.': 0.5)",
@@ -284,28 +302,30 @@ _CHAR_HINTS = {
     "%": "'%' is not allowed (percentages: write /100)",
 }
 
-_CONSTANT_NAMES = {"pi", "e", "E", "I", "oo", "inf", "infinity", "nan", "tau"}
+_CONSTANT_NAMES = frozenset({"pi", "e", "E", "I", "oo", "inf", "infinity", "nan", "tau"})
 
-
-@dataclass(frozen=True, slots=True)
-class _Token:
-    kind: str  # "number", "name", "op", "end"
-    text: str
-    start: int
-    end: int
-    value: Fraction | None = None
+# A token is a tuple (kind, text, start, end, value): kind is one of these,
+# value the exact Fraction of a number (None otherwise).
+_NUM, _NAME, _OP, _END = "number", "name", "op", "end"
+_Token = tuple[str, str, int, int, Fraction | None]
 
 
 def _number_value(text: str, literal: str, start: int, what: str) -> Fraction:
-    m = _NUMBER.fullmatch(literal)
-    assert m is not None, literal
-    int_part = (m["int"] or "").replace("_", "")
-    frac_part = (m["frac"] or "").replace("_", "").rstrip("0")
-    exp_text = (m["exp"] or "0").replace("_", "")
-    sign = -1 if exp_text.startswith("-") else 1
-    exp_digits = exp_text.lstrip("+-").lstrip("0") or "0"
-    mantissa = (int_part + frac_part).lstrip("0")
     end = start + len(literal)
+    if literal.isdigit():  # the common case: a plain integer
+        digits = literal.lstrip("0")
+        if len(digits) <= MAX_DIGITS:
+            return Fraction(int(digits or "0"))
+        mantissa, frac_part, exp_digits, sign = digits, "", "0", 1
+    else:
+        m = _NUMBER.fullmatch(literal)
+        assert m is not None, literal
+        int_part = (m["int"] or "").replace("_", "")
+        frac_part = (m["frac"] or "").replace("_", "").rstrip("0")
+        exp_text = (m["exp"] or "0").replace("_", "")
+        sign = -1 if exp_text.startswith("-") else 1
+        exp_digits = exp_text.lstrip("+-").lstrip("0") or "0"
+        mantissa = (int_part + frac_part).lstrip("0")
     if len(mantissa) > MAX_DIGITS:
         raise _refuse(
             text,
@@ -317,8 +337,8 @@ def _number_value(text: str, literal: str, start: int, what: str) -> Fraction:
         )
     if not mantissa:
         return Fraction(0)
-    scale = len(exp_digits) <= 6 and sign * int(exp_digits) - len(frac_part)
-    if scale is False or not -2 * MAX_DIGITS <= scale <= MAX_DIGITS:
+    scale = sign * int(exp_digits) - len(frac_part) if len(exp_digits) <= 6 else None
+    if scale is None or not -2 * MAX_DIGITS <= scale <= MAX_DIGITS:
         raise _refuse(
             text,
             f"the number {{where}} is too large or too small: more than {MAX_DIGITS} digits (MAX_DIGITS)",
@@ -326,7 +346,7 @@ def _number_value(text: str, literal: str, start: int, what: str) -> Fraction:
             end,
             what=what,
         )
-    value = Fraction(int(mantissa)) * Fraction(10) ** scale
+    value = Fraction(int(mantissa) * 10**scale) if scale >= 0 else Fraction(int(mantissa), 10**-scale)
     if abs(value.numerator) >= _LIMIT or value.denominator >= _LIMIT:
         raise _refuse(
             text,
@@ -338,58 +358,66 @@ def _number_value(text: str, literal: str, start: int, what: str) -> Fraction:
     return value
 
 
+def _bad_character(text: str, pos: int, what: str) -> EquationError:
+    c = text[pos]
+    if c.isspace():
+        desc = f"the space character U+{ord(c):04X} {{where}} is not allowed (use an ordinary space)"
+    elif not c.isprintable():
+        desc = f"the control character U+{ord(c):04X} {{where}} is not allowed"
+    else:
+        desc = f"the character {c!r} {{where}} is not allowed"
+        hint = _CHAR_HINTS.get(c)
+        if hint is None and c.isdigit():
+            hint = "only the ASCII digits 0-9 are allowed"
+        if hint is None and c.isalpha():
+            hint = "names are ASCII letters, digits and _"
+        desc += f" ({hint})" if hint else " (only numbers, names, + - * / ** ^ ( ) and = are)"
+    return _refuse(text, desc, pos, what=what)
+
+
 def _tokenize(text: str, what: str) -> list[_Token]:
     tokens: list[_Token] = []
-    pos, n = 0, len(text)
+    append = tokens.append
     match = _TOKEN.match
-    while pos < n:
+    pos, n = 0, len(text)
+    while True:
         m = match(text, pos)
         if m is None:
-            c = text[pos]
-            if c.isspace():
-                desc = f"the space character U+{ord(c):04X} {{where}} is not allowed (use an ordinary space)"
-            elif not c.isprintable():
-                desc = f"the control character U+{ord(c):04X} {{where}} is not allowed"
-            else:
-                desc = f"the character {c!r} {{where}} is not allowed"
-                hint = _CHAR_HINTS.get(c)
-                if hint is None and c.isdigit():
-                    hint = "only the ASCII digits 0-9 are allowed"
-                if hint is None and c.isalpha():
-                    hint = "names are ASCII: x, y, z"
-                desc += f" ({hint})" if hint else " (only numbers, names, + - * / ** ^ ( ) and = are)"
-            raise _refuse(text, desc, pos, what=what)
-        kind = m.lastgroup
-        assert kind is not None
-        end = m.end()
-        literal = m.group()
-        if kind == "number":
+            pos = len(text) - len(text[pos:].lstrip(" \t\r\n"))
+            raise _bad_character(text, pos, what)
+        kind = m.lastgroup or _END
+        start, end = m.span(kind)
+        literal = m[kind]
+        if kind == _NUM:
             nxt = text[end : end + 1]
-            if nxt in (".", "_") or nxt.isdigit() or nxt in ("e", "E"):
+            if nxt and (nxt in "._eE" or nxt.isdigit()):
                 bad_end = end
                 while bad_end < n and (text[bad_end].isalnum() or text[bad_end] in "._"):
                     bad_end += 1
                 raise _refuse(
-                    text, f"malformed number {text[pos:bad_end]!r} {{where}}", pos, bad_end, what=what
+                    text, f"malformed number {text[start:bad_end]!r} {{where}}", start, bad_end, what=what
                 )
-            tokens.append(_Token("number", literal, pos, end, _number_value(text, literal, pos, what)))
-        elif kind == "op":
+            append((_NUM, literal, start, end, _number_value(text, literal, start, what)))
+        elif kind == _OP:
             if literal == "//":
                 raise _refuse(
-                    text, "'//' {where} is not allowed ('/' divides exactly)", pos, end, what=what
+                    text, "'//' {where} is not allowed ('/' divides exactly)", start, end, what=what
                 )
-            tokens.append(_Token("op", literal, pos, end))
-        elif kind == "name":
-            tokens.append(_Token("name", literal, pos, end))
+            append((_OP, literal, start, end, None))
+        elif kind == _NAME:
+            append((_NAME, literal, start, end, None))
+        else:
+            append((_END, "", n, n, None))
+            return tokens
         pos = end
-    tokens.append(_Token("end", "", n, n))
-    return tokens
 
 
 # -- the parser ---------------------------------------------------------------------------
 
 
 class _Parser:
+    """Recursive descent over the token list, one method per rule of the grammar."""
+
     def __init__(self, text: str, names: dict[str, str], what: str) -> None:
         self.text = text
         self.names = names
@@ -397,173 +425,165 @@ class _Parser:
         self.tokens = _tokenize(text, what)
         self.i = 0
 
-    # helpers
-    def peek(self) -> _Token:
-        return self.tokens[self.i]
-
-    def advance(self) -> _Token:
-        tok = self.tokens[self.i]
-        self.i += 1
-        return tok
-
     def refuse(self, message: str, start: int, end: int | None = None) -> EquationError:
         return _refuse(self.text, message, start, end, what=self.what)
 
-    def allowed(self) -> str:
-        return f"; allowed names: {', '.join(self.names)}" if self.names else ": a number contains no names"
-
-    # grammar
     def parse(self, allow_equation: bool) -> Expr:
-        if self.peek().kind == "end":
+        tokens = self.tokens
+        if tokens[0][0] == _END:
             raise EquationError(f"{self.what}: empty text" if self.what else "empty text", self.text)
         lhs = self.expression(0)
-        tok = self.peek()
-        if tok.text == "=":
+        tok = tokens[self.i]
+        if tok[1] == "=":
             if not allow_equation:
-                raise self.refuse("'=' {where} is not allowed here (not an equation)", tok.start, tok.end)
-            self.advance()
-            if self.peek().kind == "end":
-                raise self.refuse("expected an expression after '=' {where}", tok.start, tok.end)
+                raise self.refuse("'=' {where} is not allowed here (not an equation)", tok[2], tok[3])
+            self.i += 1
+            if tokens[self.i][0] == _END:
+                raise self.refuse("expected an expression after '=' {where}", tok[2], tok[3])
             rhs = self.expression(0)
-            tok2 = self.peek()
-            if tok2.text == "=":
-                raise self.refuse("a second '=' {where}: an equation has one", tok2.start, tok2.end)
+            tok2 = tokens[self.i]
+            if tok2[1] == "=":
+                raise self.refuse("a second '=' {where}: an equation has one", tok2[2], tok2[3])
             lhs = Equation(lhs, rhs, lhs.start, rhs.end)
             tok = tok2
-        if tok.text == "==":
-            raise self.refuse("'==' {where}: an equation is written with a single '='", tok.start, tok.end)
-        if tok.kind != "end":
-            if tok.text == ")":
-                raise self.refuse("unmatched ')' {where}", tok.start, tok.end)
-            raise self.refuse(f"unexpected {tok.text!r} {{where}}", tok.start, tok.end)
+        if tok[1] == "==":
+            raise self.refuse("'==' {where}: an equation is written with a single '='", tok[2], tok[3])
+        if tok[0] != _END:
+            if tok[1] == ")":
+                raise self.refuse("unmatched ')' {where}", tok[2], tok[3])
+            raise self.refuse(f"unexpected {tok[1]!r} {{where}}", tok[2], tok[3])
         return lhs
 
     def expression(self, depth: int) -> Expr:
+        """expression = term { ("+" | "-") term }"""
         first = self.term(depth)
-        terms: list[tuple[str, Expr]] = [("+", first)]
-        while self.peek().text in ("+", "-"):
-            op = self.advance().text
-            terms.append((op, self.term(depth)))
-        if len(terms) == 1:
+        tokens = self.tokens
+        op = tokens[self.i][1]
+        if op != "+" and op != "-":
             return first
+        terms: list[tuple[str, Expr]] = [("+", first)]
+        while op == "+" or op == "-":
+            self.i += 1
+            terms.append((op, self.term(depth)))
+            op = tokens[self.i][1]
         return Sum(tuple(terms), first.start, terms[-1][1].end)
 
     def term(self, depth: int) -> Expr:
+        """term = factor { ("*" | "/") factor }; two factors side by side are refused."""
         first = self.factor(depth)
-        factors: list[tuple[str, Expr]] = [("*", first)]
+        tokens = self.tokens
+        factors: list[tuple[str, Expr]] | None = None
         while True:
-            tok = self.peek()
-            if tok.text in ("*", "/"):
-                self.advance()
-                factors.append((tok.text, self.factor(depth)))
-            elif tok.kind in ("number", "name") or tok.text == "(":
-                self.implicit(factors[-1][1], tok, depth)
+            tok = tokens[self.i]
+            op = tok[1]
+            if op == "*" or op == "/":
+                self.i += 1
+                if factors is None:
+                    factors = [("*", first)]
+                factors.append((op, self.factor(depth)))
+            elif tok[0] == _NUM or tok[0] == _NAME or op == "(":
+                self.implicit(factors[-1][1] if factors else first, tok, depth)
             else:
                 break
-        if len(factors) == 1:
+        if factors is None:
             return first
         return Product(tuple(factors), first.start, factors[-1][1].end)
 
     def implicit(self, left: Expr, tok: _Token, depth: int) -> None:
         """Two operands side by side: refuse, suggesting the explicit product."""
-        if tok.kind == "name" and tok.text not in self.names:
+        if tok[0] == _NAME and tok[1] not in self.names:
             self.unknown_name(tok)
         save = self.i
         try:
             right_end = self.factor(depth).end
         except EquationError:
-            right_end = tok.end
+            right_end = tok[3]
         self.i = save
         left_text = self.text[left.start : left.end]
-        right_text = self.text[tok.start : right_end]
+        right_text = self.text[tok[2] : right_end]
         raise self.refuse(
-            f"implicit multiplication {{where}}: write {left_text}*{right_text}", tok.start, tok.end
+            f"implicit multiplication {{where}}: write {left_text}*{right_text}", tok[2], tok[3]
         )
 
     def factor(self, depth: int) -> Expr:
-        if depth > MAX_DEPTH:
-            tok = self.peek()
-            raise self.refuse(
-                f"nesting deeper than {MAX_DEPTH} levels {{where}} (MAX_DEPTH)", tok.start, tok.end
-            )
-        tok = self.peek()
-        if tok.text in ("+", "-"):
-            self.advance()
-            operand = self.factor(depth + 1)
-            if tok.text == "+":
-                return operand
-            return Neg(operand, tok.start, operand.end)
-        return self.power(depth)
+        """factor = ("+" | "-") factor | power"""
+        tok = self.tokens[self.i]
+        sign = tok[1]
+        if sign != "+" and sign != "-":
+            return self.power(depth)
+        if depth >= MAX_DEPTH:
+            raise self.refuse(f"nesting deeper than {MAX_DEPTH} levels {{where}} (MAX_DEPTH)", tok[2], tok[3])
+        self.i += 1
+        operand = self.factor(depth + 1)
+        return operand if sign == "+" else Neg(operand, tok[2], operand.end)
 
     def power(self, depth: int) -> Expr:
+        """power = atom [ ("**" | "^") exponent ]"""
         base = self.atom(depth)
-        tok = self.peek()
-        if tok.text not in ("**", "^"):
+        tok = self.tokens[self.i]
+        if tok[1] != "**" and tok[1] != "^":
             return base
-        self.advance()
+        self.i += 1
         exponent, end = self.exponent(tok)
-        nxt = self.peek()
-        if nxt.text in ("**", "^"):
-            raise self.refuse(
-                "a power of a power {where}: write parentheses, (a**b)**c", nxt.start, nxt.end
-            )
+        nxt = self.tokens[self.i]
+        if nxt[1] == "**" or nxt[1] == "^":
+            raise self.refuse("a power of a power {where}: write parentheses, (a**b)**c", nxt[2], nxt[3])
         return Power(base, exponent, base.start, end)
 
     def exponent(self, op: _Token) -> tuple[int, int]:
-        tok = self.peek()
-        paren = tok.text == "("
+        """exponent = [ "+" ] integer | "(" [ "+" ] integer ")" """
+        tokens = self.tokens
+        tok = tokens[self.i]
+        paren = tok[1] == "("
         if paren:
-            self.advance()
-            tok = self.peek()
-        if tok.text == "+":
-            self.advance()
-            tok = self.peek()
-        if tok.text == "-":
+            self.i += 1
+            tok = tokens[self.i]
+        if tok[1] == "+":
+            self.i += 1
+            tok = tokens[self.i]
+        if tok[1] == "-":
             raise self.refuse(
                 "a negative exponent {where}: exponents are non-negative integers "
                 "(write 1/x**2 for a number x)",
-                tok.start,
-                tok.end,
+                tok[2],
+                tok[3],
             )
-        if tok.kind != "number":
-            got = "the end" if tok.kind == "end" else repr(tok.text)
+        if tok[0] != _NUM:
+            got = "the end" if tok[0] == _END else repr(tok[1])
             raise self.refuse(
-                f"the exponent after {op.text!r} {{where}} must be a non-negative integer literal, got {got}",
-                tok.start,
-                tok.end,
+                f"the exponent after {op[1]!r} {{where}} must be a non-negative integer literal, got {got}",
+                tok[2],
+                tok[3],
             )
-        if not re.fullmatch(_DIGITS, tok.text):
+        if not _INTEGER.fullmatch(tok[1]):
             raise self.refuse(
-                f"the exponent {tok.text} {{where}} must be a non-negative integer literal",
-                tok.start,
-                tok.end,
+                f"the exponent {tok[1]} {{where}} must be a non-negative integer literal", tok[2], tok[3]
             )
-        assert tok.value is not None and tok.value.denominator == 1
-        n = int(tok.value)
-        if n > MAX_EXPONENT:
+        value = tok[4]
+        assert value is not None and value.denominator == 1
+        if value > MAX_EXPONENT:
             raise self.refuse(
-                f"the exponent {tok.text} {{where}} is larger than {MAX_EXPONENT} (MAX_EXPONENT)",
-                tok.start,
-                tok.end,
+                f"the exponent {tok[1]} {{where}} is larger than {MAX_EXPONENT} (MAX_EXPONENT)",
+                tok[2],
+                tok[3],
             )
-        self.advance()
-        end = tok.end
+        self.i += 1
+        end = tok[3]
         if paren:
-            close = self.peek()
-            if close.text != ")":
-                raise self.refuse("expected ')' after the exponent {where}", close.start, close.end)
-            self.advance()
-            end = close.end
-        return n, end
+            close = tokens[self.i]
+            if close[1] != ")":
+                raise self.refuse("expected ')' after the exponent {where}", close[2], close[3])
+            self.i += 1
+            end = close[3]
+        return int(value), end
 
     def unknown_name(self, tok: _Token) -> None:
-        name = tok.text
-        nxt = self.tokens[self.i + 1]
-        if nxt.text == "(":
+        name = tok[1]
+        if self.tokens[self.i + 1][1] == "(":
             raise self.refuse(
                 f"the function call {name}(...) {{where}} is not allowed: only + - * / ** and parentheses",
-                tok.start,
-                tok.end,
+                tok[2],
+                tok[3],
             )
         hint = ""
         variables = [v for v, k in self.names.items() if k == "variable"]
@@ -575,54 +595,50 @@ class _Parser:
             hint = " (only rational numbers are allowed)"
         elif variables and all(c in variables for c in name):
             hint = f" (did you mean {'*'.join(name)}?)"
-        raise self.refuse(
-            f"unknown name {name!r} {{where}}{hint}{self.allowed()}", tok.start, tok.end
-        )
+        allowed = ": a number contains no names"
+        if self.names:
+            allowed = f"; allowed names: {', '.join(self.names)}"
+        raise self.refuse(f"unknown name {name!r} {{where}}{hint}{allowed}", tok[2], tok[3])
 
     def atom(self, depth: int) -> Expr:
-        tok = self.peek()
-        if tok.kind == "number":
-            self.advance()
-            assert tok.value is not None
-            return Number(tok.value, tok.start, tok.end)
-        if tok.kind == "name":
-            kind = self.names.get(tok.text)
-            if kind is None:
+        """atom = number | name | "(" expression ")" """
+        tok = self.tokens[self.i]
+        kind = tok[0]
+        if kind == _NUM:
+            self.i += 1
+            assert tok[4] is not None
+            return Number(tok[4], tok[2], tok[3])
+        if kind == _NAME:
+            name_kind = self.names.get(tok[1])
+            if name_kind is None:
                 self.unknown_name(tok)
-            assert kind is not None
-            self.advance()
-            return Name(tok.text, kind, tok.start, tok.end)
-        if tok.text == "(":
-            self.advance()
-            if depth + 1 > MAX_DEPTH:
+            self.i += 1
+            return Name(tok[1], name_kind or "", tok[2], tok[3])
+        if tok[1] == "(":
+            if depth >= MAX_DEPTH:
                 raise self.refuse(
-                    f"nesting deeper than {MAX_DEPTH} levels {{where}} (MAX_DEPTH)", tok.start, tok.end
+                    f"nesting deeper than {MAX_DEPTH} levels {{where}} (MAX_DEPTH)", tok[2], tok[3]
                 )
+            self.i += 1
             inner = self.expression(depth + 1)
-            close = self.peek()
-            if close.text != ")":
-                if close.kind == "end":
-                    raise self.refuse("the '(' {where} is never closed", tok.start, tok.end)
-                raise self.refuse(f"expected ')' {{where}}, got {close.text!r}", close.start, close.end)
-            self.advance()
-            return _respan(inner, tok.start, close.end)
-        if tok.kind == "end":
+            close = self.tokens[self.i]
+            if close[1] != ")":
+                if close[0] == _END:
+                    raise self.refuse("the '(' {where} is never closed", tok[2], tok[3])
+                raise self.refuse(f"expected ')' {{where}}, got {close[1]!r}", close[2], close[3])
+            self.i += 1
+            return _respan(inner, tok[2], close[3])
+        if kind == _END:
             prev = self.tokens[self.i - 1] if self.i else tok
-            raise self.refuse(
-                f"expected a number, a name or '(' after {prev.text!r} {{where}}", tok.start, tok.end
-            )
-        if tok.text == ")":
-            raise self.refuse("unexpected ')' {where}: expected a number, a name or '('", tok.start, tok.end)
+            raise self.refuse(f"expected a number, a name or '(' after {prev[1]!r} {{where}}", tok[2], tok[3])
         raise self.refuse(
-            f"unexpected {tok.text!r} {{where}}: expected a number, a name or '('", tok.start, tok.end
+            f"unexpected {tok[1]!r} {{where}}: expected a number, a name or '('", tok[2], tok[3]
         )
 
 
 def _respan(node: Expr, start: int, end: int) -> Expr:
     """The node with the span of its parentheses (for messages that quote it)."""
-    fields = {f: getattr(node, f) for f in node.__dataclass_fields__}
-    fields["start"], fields["end"] = start, end
-    return type(node)(**fields)
+    return dataclasses.replace(node, start=start, end=end)
 
 
 # -- algebras ------------------------------------------------------------------------------
@@ -636,6 +652,8 @@ class Algebra(Protocol[T]):
     An algebra refuses an operation by raising :class:`Refusal`; evaluate
     adds where.  ``variable`` receives every declared name, variables and
     parameters alike (:attr:`Name.kind` tells them apart in the tree).
+    :func:`evaluate` never uses a value twice, so an algebra may update its
+    operands in place.
     """
 
     def constant(self, value: Fraction) -> T: ...
@@ -658,124 +676,188 @@ class Algebra(Protocol[T]):
 Polynomial = dict[tuple[int, ...], Fraction]
 """A sparse polynomial: exponent tuple (over the declared variables) -> non-zero coefficient."""
 
+_Packed = dict[int, Any]  # packed monomial -> non-zero flint.fmpq
 
-def _size(p: Polynomial) -> int:
-    return max((c.numerator.bit_length() + c.denominator.bit_length() for c in p.values()), default=0)
+if hasattr(flint.fmpq, "height_bits"):
+
+    def _height(c: Any) -> int:
+        return int(c.height_bits())
+
+else:  # pragma: no cover - older python-flint
+
+    def _height(c: Any) -> int:
+        return max(abs(int(c.p)).bit_length(), int(c.q).bit_length())
 
 
-def _degree(p: Polynomial) -> int:
-    return max((sum(e) for e in p), default=0)
+_FLINT_LIMIT = flint.fmpz(_LIMIT)
+_ONE = flint.fmpq(1)
 
 
 class PolynomialAlgebra:
-    """Exact sparse polynomials over Q in the variables ``variables``.
+    """Exact sparse polynomials over Q in ``variables``, with every bound checked.
 
-    Every coefficient is checked against :data:`MAX_DIGITS`, every degree
-    against ``max_degree`` (default :data:`MAX_DEGREE`), and the work against
-    ``budget`` (default :data:`MAX_WORK`).  Division is by non-zero constants
-    only.
+    Internally a polynomial is a dict from a *packed* monomial (the exponent
+    of variable ``i`` in bits ``8i..8i+7``, so multiplying monomials adds
+    integers) to a non-zero ``flint.fmpq``; :meth:`to_dict` gives the public
+    form, exponent tuple to :class:`~fractions.Fraction`.  Every coefficient
+    is checked against :data:`MAX_DIGITS`, every degree against
+    ``max_degree`` (default :data:`MAX_DEGREE`) and the work against
+    ``budget`` (default :data:`MAX_WORK`).  Division is by non-zero
+    constants only.
 
     Examples
     --------
-    >>> tree = parse_expression("(x - 1/2)^2", variables=("x",))
-    >>> evaluate(tree, PolynomialAlgebra(("x",)))
+    >>> alg = PolynomialAlgebra(("x",))
+    >>> alg.to_dict(evaluate(parse_expression("(x - 1/2)^2", variables=("x",)), alg))
     {(2,): Fraction(1, 1), (1,): Fraction(-1, 1), (0,): Fraction(1, 4)}
     """
 
     def __init__(
         self, variables: Sequence[str], *, max_degree: int = MAX_DEGREE, budget: int = MAX_WORK
     ) -> None:
+        if not 0 <= max_degree < 256:
+            raise ValueError(f"max_degree must be in [0, 255], got {max_degree}")
         self.variables = tuple(variables)
-        self.index = {v: i for i, v in enumerate(self.variables)}
-        self.zero = (0,) * len(self.variables)
+        self.shift = {v: 8 * i for i, v in enumerate(self.variables)}
         self.max_degree = max_degree
         self.budget = budget
         self.work = 0
+        self._degrees: dict[int, int] = {0: 0}
 
-    def _charge(self, steps: int) -> None:
-        self.work += steps
+    # -- bookkeeping
+    def _key_degree(self, key: int) -> int:
+        d = self._degrees.get(key)
+        if d is None:
+            d, k = 0, key
+            while k:
+                d += k & 255
+                k >>= 8
+            self._degrees[key] = d
+        return d
+
+    def degree(self, p: _Packed) -> int:
+        """Total degree (0 for the zero polynomial)."""
+        return max(map(self._key_degree, p), default=0)
+
+    def _charge(self, steps: int, coefficients: Iterable[Any], *, counted: bool = False) -> None:
+        """Count ``steps`` operations, weighted by the size of the coefficients
+        they produced (``counted``: their unweighted count was charged before),
+        and check those coefficients against MAX_DIGITS."""
+        bits = 0
+        for c in coefficients:
+            h = _height(c)
+            if h >= _LIMIT_BITS - 1 and (c.q >= _FLINT_LIMIT or abs(c.p) >= _FLINT_LIMIT):
+                raise Refusal(f"a number with more than {MAX_DIGITS} digits (MAX_DIGITS) arises {{where}}")
+            if h > bits:
+                bits = h
+        self.work += steps * ((0 if counted else 1) + 2 * bits // WORK_BITS)
         if self.work > self.budget:
             raise Refusal(
                 f"more than {self.budget} arithmetic steps (MAX_WORK) {{where}}: "
                 "the input is too costly to expand"
             )
 
-    def _checked(self, p: Polynomial) -> Polynomial:
-        for c in p.values():
-            if abs(c.numerator) >= _LIMIT or c.denominator >= _LIMIT:
-                raise Refusal(f"a number with more than {MAX_DIGITS} digits (MAX_DIGITS) arises {{where}}")
-        return p
+    def to_dict(self, p: _Packed) -> Polynomial:
+        """The public form: exponent tuple (over ``variables``) -> Fraction."""
+        out: Polynomial = {}
+        for key, c in p.items():
+            out[tuple((key >> self.shift[v]) & 255 for v in self.variables)] = Fraction(int(c.p), int(c.q))
+        return out
 
-    def _is_constant(self, p: Polynomial) -> bool:
-        return not p or (len(p) == 1 and self.zero in p)
+    @staticmethod
+    def _constant_of(p: _Packed) -> Any:
+        """The value of a constant polynomial, or None if it is not constant."""
+        if not p:
+            return flint.fmpq(0)
+        if len(p) == 1 and 0 in p:
+            return p[0]
+        return None
 
-    def constant(self, value: Fraction) -> Polynomial:
-        return {self.zero: Fraction(value)} if value else {}
+    # -- the operations
+    def constant(self, value: Fraction) -> _Packed:
+        return {0: flint.fmpq(value.numerator, value.denominator)} if value else {}
 
-    def variable(self, name: str) -> Polynomial:
-        if name not in self.index:
+    def variable(self, name: str) -> _Packed:
+        if name not in self.shift:
             raise Refusal(f"{name!r} {{where}} is not a variable of this polynomial")
-        e = [0] * len(self.variables)
-        e[self.index[name]] = 1
-        return {tuple(e): Fraction(1)}
+        if self.max_degree < 1:
+            raise Refusal(f"the variable {name!r} {{where}}: only a constant is allowed here")
+        return {1 << self.shift[name]: _ONE}
 
-    def add(self, a: Polynomial, b: Polynomial) -> Polynomial:
-        self._charge(1 + len(b) * (1 + (_size(a) + _size(b)) // WORK_BITS))
-        out = dict(a)
-        for e, c in b.items():
-            s = out.get(e, 0) + c
-            if s:
-                out[e] = s
+    def add(self, a: _Packed, b: _Packed) -> _Packed:
+        if len(b) > len(a):
+            a, b = b, a
+        for k, c in b.items():
+            v = a.get(k)
+            if v is None:
+                a[k] = c
             else:
-                out.pop(e, None)
-        return self._checked(out)
+                s = v + c
+                if s:
+                    a[k] = s
+                else:
+                    del a[k]
+        self._charge(1 + len(b), (a[k] for k in b if k in a))
+        return a
 
-    def neg(self, a: Polynomial) -> Polynomial:
-        self._charge(len(a))
-        return {e: -c for e, c in a.items()}
+    def neg(self, a: _Packed) -> _Packed:
+        for k, c in a.items():
+            a[k] = -c
+        self._charge(1, ())
+        return a
 
-    def sub(self, a: Polynomial, b: Polynomial) -> Polynomial:
+    def sub(self, a: _Packed, b: _Packed) -> _Packed:
         return self.add(a, self.neg(b))
 
-    def mul(self, a: Polynomial, b: Polynomial) -> Polynomial:
-        d = _degree(a) + _degree(b)
-        if a and b and d > self.max_degree:
+    def mul(self, a: _Packed, b: _Packed) -> _Packed:
+        if not a or not b:
+            return {}
+        if len(a) < len(b):
+            a, b = b, a
+        if len(b) == 1 and 0 in b:  # by a constant
+            c = b[0]
+            out = {k: v * c for k, v in a.items()}
+            self._charge(len(a), out.values())
+            return out
+        d = self.degree(a) + self.degree(b)
+        if d > self.max_degree:
             raise Refusal(
                 f"a product of degree {d} {{where}}: more than the {self.max_degree} allowed (MAX_DEGREE)"
             )
-        self._charge(len(a) * len(b) * (1 + (_size(a) + _size(b)) // WORK_BITS))
-        out: Polynomial = {}
-        for ea, ca in a.items():
-            for eb, cb in b.items():
-                e = tuple(i + j for i, j in zip(ea, eb, strict=True))
-                s = out.get(e, 0) + ca * cb
-                if s:
-                    out[e] = s
-                else:
-                    out.pop(e, None)
-        return self._checked(out)
+        self._charge(len(a) * len(b), ())  # refuse before the work, not after
+        out = {}
+        get = out.get
+        for kb, cb in b.items():
+            for ka, ca in a.items():
+                k = ka + kb
+                v = get(k)
+                out[k] = ca * cb if v is None else v + ca * cb
+        out = {k: v for k, v in out.items() if v}
+        self._charge(len(a) * len(b), out.values(), counted=True)
+        return out
 
-    def div(self, a: Polynomial, b: Polynomial) -> Polynomial:
-        if not self._is_constant(b):
+    def div(self, a: _Packed, b: _Packed) -> _Packed:
+        c = self._constant_of(b)
+        if c is None:
             names = ", ".join(self.variables)
             raise Refusal(f"division by an expression in {names} {{where}}: the result is not a polynomial")
-        if not b:
+        if not c:
             raise Refusal("division by zero {where}")
-        return self.mul(a, {self.zero: 1 / b[self.zero]})
+        return self.mul(a, {0: 1 / c})
 
-    def pow(self, a: Polynomial, n: int) -> Polynomial:
+    def pow(self, a: _Packed, n: int) -> _Packed:
         if n == 0:
-            return {self.zero: Fraction(1)}
+            return {0: _ONE}
         if not a:
             return {}
-        if self._is_constant(a):
-            c = a[self.zero]
-            bits = max(abs(c.numerator).bit_length(), c.denominator.bit_length()) - 1
-            if bits * n >= _LIMIT_BITS:
+        c = self._constant_of(a)
+        if c is not None:
+            if (_height(c) - 1) * n >= _LIMIT_BITS:
                 raise Refusal(f"a power with more than {MAX_DIGITS} digits (MAX_DIGITS) {{where}}")
-            self._charge(1 + n * (bits + 1) // WORK_BITS)
-            return self._checked({self.zero: c**n})
-        d = _degree(a) * n
+            out = {0: c**n}
+            self._charge(1 + n.bit_length(), out.values())
+            return out
+        d = self.degree(a) * n
         if d > self.max_degree:
             raise Refusal(
                 f"a power of degree {d} {{where}}: more than the {self.max_degree} allowed (MAX_DEGREE)"
@@ -823,8 +905,15 @@ def _eval(node: Expr, alg: Algebra[T]) -> T:
             return alg.constant(node.value)
         if isinstance(node, Name):
             return alg.variable(node.name)
-        if isinstance(node, Neg):
-            return alg.neg(_eval(node.operand, alg))
+        if isinstance(node, Product):
+            acc = _eval(node.factors[0][1], alg)
+            for op, factor in node.factors[1:]:
+                value = _eval(factor, alg)
+                try:
+                    acc = alg.mul(acc, value) if op == "*" else alg.div(acc, value)
+                except Refusal as exc:
+                    raise _Located(str(exc), factor.start if op == "/" else node.start, factor.end) from None
+            return acc
         if isinstance(node, Sum):
             acc = _eval(node.terms[0][1], alg)
             for op, term in node.terms[1:]:
@@ -834,18 +923,10 @@ def _eval(node: Expr, alg: Algebra[T]) -> T:
                 except Refusal as exc:
                     raise _Located(str(exc), node.start, term.end) from None
             return acc
-        if isinstance(node, Product):
-            acc = _eval(node.factors[0][1], alg)
-            for op, factor in node.factors[1:]:
-                value = _eval(factor, alg)
-                try:
-                    acc = alg.mul(acc, value) if op == "*" else alg.div(acc, value)
-                except Refusal as exc:
-                    start = factor.start if op == "/" else node.start
-                    raise _Located(str(exc), start, factor.end) from None
-            return acc
         if isinstance(node, Power):
             return alg.pow(_eval(node.base, alg), node.exponent)
+        if isinstance(node, Neg):
+            return alg.neg(_eval(node.operand, alg))
         if isinstance(node, Equation):
             return alg.sub(_eval(node.lhs, alg), _eval(node.rhs, alg))
     except Refusal as exc:
@@ -935,8 +1016,9 @@ def _locate_degree(tree: Expr, variables: Sequence[str], max_degree: int) -> tup
     for side in sides:
         terms = [t for _, t in side.terms] if isinstance(side, Sum) else [side]
         for t in terms:
+            alg = PolynomialAlgebra(variables)
             try:
-                if _degree(_eval(t, PolynomialAlgebra(variables))) > max_degree:
+                if alg.degree(_eval(t, alg)) > max_degree:
                     return t.start, t.end
             except _Located:
                 return t.start, t.end
@@ -973,12 +1055,13 @@ def parse_polynomial(
     >>> parse_polynomial("x**2 - (x - 1)*(x + 1)", ("x",))
     {(0,): Fraction(1, 1)}
     """
-    if max_degree > MAX_DEGREE:
-        raise ValueError(f"max_degree {max_degree} exceeds MAX_DEGREE = {MAX_DEGREE}")
+    if not 0 <= max_degree <= MAX_DEGREE:
+        raise ValueError(f"max_degree must be in [0, MAX_DEGREE = {MAX_DEGREE}], got {max_degree}")
     what = what or ("equation" if equation else "polynomial")
     tree = parse_expression(text, variables, equation=equation, what=what)
-    poly = evaluate(tree, PolynomialAlgebra(variables), text=text, what=what)
-    degree = _degree(poly)
+    alg = PolynomialAlgebra(variables)
+    packed = evaluate(tree, alg, text=text, what=what)
+    degree = alg.degree(packed)
     if degree > max_degree:
         start, end = _locate_degree(tree, variables, max_degree)
         raise _refuse(
@@ -988,7 +1071,7 @@ def parse_polynomial(
             end,
             what=what,
         )
-    return poly
+    return alg.to_dict(packed)
 
 
 def parse_univariate(
@@ -1009,7 +1092,7 @@ def parse_univariate(
     """
     what = what or f"polynomial in {variable}"
     poly = parse_polynomial(text, (variable,), max_degree=max_degree, what=what)
-    degree = _degree(poly)
+    degree = max((e[0] for e in poly), default=0)
     return tuple(poly.get((k,), Fraction(0)) for k in range(degree + 1))
 
 
