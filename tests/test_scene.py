@@ -184,7 +184,9 @@ BAD = [
         "every piece placed in the tree",
     ),
     (
-        mutate('equation = "(x - 3)^2 + (y - 3)^2 + 3*(z - 5.5)^2 = 0.1"', 'equation = "x^2 + y^2 - z^2 = 1"'),
+        mutate(
+            'equation = "(x - 3)^2 + (y - 3)^2 + 3*(z - 5.5)^2 = 0.1"', 'equation = "x^2 + y^2 - z^2 = 1"'
+        ),
         "ellipsoid[0]",
         "a real ellipsoid",
     ),

@@ -39,6 +39,8 @@ from typing import Any
 
 import flint
 
+from .errors import EquationError
+
 __all__ = [
     "QuadraticNumber",
     "RealAlgebraic",
@@ -562,7 +564,10 @@ def compile_expression(expr: Any, symbols: Sequence[Any]) -> Callable[..., Any]:
     if isinstance(expr, (str, bytes)):
         # Text is never evaluated (sympify would run it as Python): build the
         # expression with sympy, or read text with quadric_contact.parsing.
-        raise TypeError("compile_expression takes a sympy expression, not text")
+        raise EquationError(
+            "compile_expression takes a sympy expression, not text (read text with quadric_contact.parsing)",
+            expr,
+        )
     fn = build(sympy.sympify(expr, strict=True))
 
     def run(*values: Any, const: Callable[[Fraction], Any] = Fraction) -> Any:

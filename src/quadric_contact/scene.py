@@ -306,10 +306,12 @@ class Scene:
 
 
 class _BadFloat:
-    """A TOML float that is not a finite number (inf, nan), kept for the error message."""
+    """A TOML float that is not a finite number (inf, nan) or is beyond the number
+    parser's bounds, kept for the error message."""
 
-    def __init__(self, text: str) -> None:
+    def __init__(self, text: str, reason: str = "") -> None:
         self.text = text
+        self.reason = reason
 
     def __repr__(self) -> str:
         return self.text
@@ -318,10 +320,12 @@ class _BadFloat:
 def _parse_float(text: str) -> Any:
     """A TOML float, read exactly by the package's number parser (bounded:
     ``1e99999999`` is refused, not computed)."""
+    if text.lstrip("+-") in ("inf", "nan"):
+        return _BadFloat(text, "not finite")
     try:
         return parse_number(text)
-    except QuadricContactError:
-        return _BadFloat(text)
+    except QuadricContactError as exc:
+        return _BadFloat(text, str(exc).splitlines()[0])
 
 
 _MISSING = object()
@@ -397,7 +401,7 @@ class _Reader:
         if isinstance(value, (bool, dict, list)) or value is None:
             raise self.error(key, "a finite number", value)
         if isinstance(value, _BadFloat):
-            raise self.error(key, "a finite number", value)
+            raise self.error(key, "a finite number", value, value.reason)
         try:
             x = to_fraction(value)
         except QuadricContactError as exc:
