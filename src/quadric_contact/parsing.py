@@ -135,10 +135,10 @@ MAX_DEGREE = 8
 result may be required to have a lower one, 2 for a quadric); so
 ``(x**2 + 1)**2 - x**4`` is read as the quadric ``2*x**2 + 1``."""
 
-MAX_WORK = 10_000
+MAX_WORK = 5_000
 """Most arithmetic steps spent on one input.  A product of polynomials with
-``m`` and ``n`` terms costs ``m*n`` steps, a sum one more than the terms of
-the smaller operand; each step counts once more for every
+``m`` and ``n`` terms costs ``m*n`` steps, a sum as many as the terms of the
+smaller operand (at least one); each step counts once more for every
 :data:`WORK_BITS` bits of the largest coefficient it produced (numerator and
 denominator together), since big numbers cost more."""
 
@@ -271,10 +271,10 @@ _TOKEN = re.compile(
     rf"""
     [ \t\r\n]*                                  # blanks before the token
     (?:
-      (?P<number>(?:{_DIGITS}(?:\.(?:{_DIGITS})?)?|\.{_DIGITS})(?:[eE][+-]?{_DIGITS})?)
-    | (?P<name>[A-Za-z_][A-Za-z0-9_]*)
-    | (?P<op>\*\*|==|//|[-+*/^()=])
-    | (?P<end>\Z)
+      ((?:{_DIGITS}(?:\.(?:{_DIGITS})?)?|\.{_DIGITS})(?:[eE][+-]?{_DIGITS})?)(?![._eE0-9])  # 1: number
+    | ([A-Za-z_][A-Za-z0-9_]*)                                                    # 2: name
+    | (\*\*|==|//|[-+*/^()=])                                                     # 3: operator
+    | (\Z)                                                                        # 4: the end
     )
     """,
     re.VERBOSE,
@@ -378,38 +378,36 @@ def _bad_character(text: str, pos: int, what: str) -> EquationError:
 def _tokenize(text: str, what: str) -> list[_Token]:
     tokens: list[_Token] = []
     append = tokens.append
-    match = _TOKEN.match
-    pos, n = 0, len(text)
-    while True:
-        m = match(text, pos)
-        if m is None:
-            pos = len(text) - len(text[pos:].lstrip(" \t\r\n"))
-            raise _bad_character(text, pos, what)
-        kind = m.lastgroup or _END
-        start, end = m.span(kind)
-        literal = m[kind]
-        if kind == _NUM:
-            nxt = text[end : end + 1]
-            if nxt and (nxt in "._eE" or nxt.isdigit()):
-                bad_end = end
-                while bad_end < n and (text[bad_end].isalnum() or text[bad_end] in "._"):
-                    bad_end += 1
-                raise _refuse(
-                    text, f"malformed number {text[start:bad_end]!r} {{where}}", start, bad_end, what=what
-                )
+    pos = 0
+    for m in _TOKEN.finditer(text):
+        if m.start() != pos:  # the scan skipped characters the grammar does not know
+            break
+        i = m.lastindex or 4
+        start, end = m.span(i)
+        literal = m.group(i)
+        if i == 1:
             append((_NUM, literal, start, end, _number_value(text, literal, start, what)))
-        elif kind == _OP:
+        elif i == 3:
             if literal == "//":
                 raise _refuse(
                     text, "'//' {where} is not allowed ('/' divides exactly)", start, end, what=what
                 )
             append((_OP, literal, start, end, None))
-        elif kind == _NAME:
+        elif i == 2:
             append((_NAME, literal, start, end, None))
         else:
-            append((_END, "", n, n, None))
+            append((_END, "", end, end, None))
             return tokens
         pos = end
+    pos = len(text) - len(text[pos:].lstrip(" \t\r\n"))
+    c = text[pos]
+    if "0" <= c <= "9" or (c == "." and "0" <= text[pos + 1 : pos + 2] <= "9"):
+        # a number followed by what cannot follow one: "1.2.3", "2e", "1_"
+        end = pos + 1
+        while end < len(text) and ((text[end].isascii() and text[end].isalnum()) or text[end] in "._"):
+            end += 1
+        raise _refuse(text, f"malformed number {text[pos:end]!r} {{where}}", pos, end, what=what)
+    raise _bad_character(text, pos, what)
 
 
 # -- the parser ---------------------------------------------------------------------------
@@ -797,7 +795,7 @@ class PolynomialAlgebra:
                     a[k] = s
                 else:
                     del a[k]
-        self._charge(1 + len(b), (a[k] for k in b if k in a))
+        self._charge(max(1, len(b)), (a[k] for k in b if k in a))
         return a
 
     def neg(self, a: _Packed) -> _Packed:
