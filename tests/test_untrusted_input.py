@@ -70,6 +70,8 @@ ENTRY_POINTS: dict[str, Callable[[str], Any]] = {
     "Quadric.translated": lambda s: Quadric.sphere(1).translated((s, 0, 0)),
     "Quadric.plane (offset)": lambda s: Quadric.plane((0, 0, 1), s),
     "Quadric.scaled": lambda s: Quadric.sphere(1).scaled(s),
+    "Quadric.standard (kind)": lambda s: Quadric.standard(s, a=1),
+    "Quadric.standard (parameter)": lambda s: Quadric.standard("ellipsoid", a=s, b=1, c=1),
     "rotation_from_quaternion": lambda s: rotation_from_quaternion(1, s, 0, 0),
     "transversal_contact(object array)": lambda s: qc.transversal_contact(_object_matrix(s), TRUNK),
     "transversal_contact(string array)": lambda s: qc.transversal_contact(
@@ -174,6 +176,8 @@ def warm_up(tmp_path_factory):
         "Quadric.translated": "1",
         "Quadric.plane (offset)": "1",
         "Quadric.scaled": "2",
+        "Quadric.standard (kind)": "parallel planes",
+        "Quadric.standard (parameter)": "2",
         "rotation_from_quaternion": "1",
         "transversal_contact(object array)": "-1/10",
         "transversal_contact(string array)": "-0.1",

@@ -230,7 +230,8 @@ Expr = Number | Name | Neg | Sum | Product | Power | Equation
 class Refusal(Exception):
     """Raised by an :class:`Algebra` to refuse an operation (division by zero,
     a degree or a number too large, ...); :func:`evaluate` turns it into an
-    :class:`~quadric_contact.errors.EquationError` that says where."""
+    :class:`~quadric_contact.errors.EquationError` that says where: a
+    ``{where}`` in the message becomes "at position N" (else it is appended)."""
 
 
 def _show_char(c: str) -> str:

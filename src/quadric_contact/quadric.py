@@ -386,7 +386,12 @@ class Quadric:
 
     @classmethod
     def _standard_maker(cls, kind: QuadricKind | str) -> Any:
-        kind = QuadricKind(kind)
+        try:
+            kind = QuadricKind(kind)
+        except ValueError:
+            names = ", ".join(repr(k.value) for k in QuadricKind if k.in_table_1)
+            message = f"{kind!r} is not a kind of quadric; Table 1 has {names}"
+            raise QuadricContactError(message, kind) from None
         makers: dict[QuadricKind, Any] = {
             QuadricKind.ELLIPSOID: cls.ellipsoid,
             QuadricKind.HYPERBOLOID_ONE_SHEET: cls.hyperboloid_one_sheet,
