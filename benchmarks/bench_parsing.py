@@ -125,7 +125,14 @@ def readme_equations() -> list[str]:
         if f.name.endswith(".toml"):
             found += re.findall(r'^equation = "([^"]+)"', f.read_text(), flags=re.M)
             found += re.findall(r'plane = "([^"]+)"', f.read_text())
-    return list(dict.fromkeys(found))
+    readable = []
+    for text in dict.fromkeys(found):
+        try:
+            parse_quadric_equation(text)
+        except QuadricContactError:
+            continue  # the README's examples of refusals
+        readable.append(text)
+    return readable
 
 
 def _coefficient(rng: random.Random) -> Fraction:
