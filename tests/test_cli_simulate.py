@@ -92,7 +92,7 @@ def test_not_small_is_refused_with_the_failing_condition(tmp_path, capsys):
             'equation = "x^2 + y^2 - z^2/100 = 1"\n[[ellipsoid]]',
         )
         .replace(
-            'name = "e"\nequation = "x^2 + y^2 + z^2 = 1"', 'name = "e"\nequation = "100x^2 + y^2 + z^2 = 1"'
+            'name = "e"\nequation = "x^2 + y^2 + z^2 = 1"', 'name = "e"\nequation = "100*x^2 + y^2 + z^2 = 1"'
         )
     )
     assert main(["simulate", str(scene), "--effects", "contact"]) == 2

@@ -172,5 +172,5 @@ def test_zone_0_counts_contact_with_the_part_of_a_surface_beyond_its_plane(tree)
     assert r.touching == ["crown"]
     assert r.regions["trunk"].region is Region.R_MINUS  # well inside the trunk
     # the contact points are all below the plane, outside Zone 1 where the crown belongs
-    crown = Quadric.from_equation("x^2 + y^2 + 3(z - 8.36291)^2 - 20")
+    crown = Quadric.from_equation("x^2 + y^2 + 3*(z - 8.36291)^2 - 20")
     assert crown.value_at((0, 0, F(578, 100))) > 0 > crown.value_at((0, 0, F(579, 100)))  # pole in between

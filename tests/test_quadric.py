@@ -123,7 +123,7 @@ def test_from_coefficients_eq_6():
 
 @pytest.mark.parametrize(
     "text",
-    ["3(z-5.5)^2 + x^2 + y^2 - 0.1", "x**2 + y**2 + 3*(z - 5.5)**2 = 0.1", "x^2+y^2+3 (z-5.5)^2-1/10"],
+    ["3*(z-5.5)^2 + x^2 + y^2 - 0.1", "x**2 + y**2 + 3*(z - 5.5)**2 = 0.1", "x^2+y^2+3 *(z-5.5)^2-1/10"],
 )
 def test_equation_syntaxes(text):
     assert Quadric.from_equation(text) == Quadric.from_equation("x**2 + y**2 + 3*(z-5.5)**2 - 0.1")
@@ -142,6 +142,9 @@ def test_equation_syntaxes(text):
         "",
         "x**2 +",
         "__import__('os')",
+        "3(z-5.5)^2 + x^2 + y^2 - 0.1",
+        "x^2+y^2+3 (z-5.5)^2-1/10",
+        "x2 + y2 + z2 - 1",
     ],
 )
 def test_bad_equations(text):

@@ -25,15 +25,15 @@ tree = { plane = "z = 6", plus = "crown", minus = "trunk" }
 
 [[object.piece]]
 name = "crown"
-equation = "x^2 + y^2 + 3(z - 8.36291)^2 = 20"
+equation = "x^2 + y^2 + 3*(z - 8.36291)^2 = 20"
 
 [[object.piece]]
 name = "trunk"
-equation = "x^2 + y^2 - 0.25(z - 3)^2 = 1"
+equation = "x^2 + y^2 - 0.25*(z - 3)^2 = 1"
 
 [[ellipsoid]]
 name = "bee"
-equation = "(x - 3)^2 + (y - 3)^2 + 3(z - 5.5)^2 = 0.1"
+equation = "(x - 3)^2 + (y - 3)^2 + 3*(z - 5.5)^2 = 0.1"
 motion = { type = "keyframes", keys = [{ t = 0, at = [3, 3, 5.5] }, { t = 2, at = [1.5, 0.5, 6.5] }] }
 """
 
@@ -66,11 +66,11 @@ def test_builtin_scenes_load_and_cover_several_quadric_types():
 def test_default_scene_is_example_17():
     s = builtin_scene()
     (tree,) = s.objects
-    assert tree.pieces[0].quadric == Quadric.from_equation("x^2 + y^2 + 3(z - 8.36291)^2 - 20")
-    assert tree.pieces[1].quadric == Quadric.from_equation("x^2 + y^2 - 0.25(z - 3)^2 - 1")
+    assert tree.pieces[0].quadric == Quadric.from_equation("x^2 + y^2 + 3*(z - 8.36291)^2 - 20")
+    assert tree.pieces[1].quadric == Quadric.from_equation("x^2 + y^2 - 0.25*(z - 3)^2 - 1")
     assert tree.splits()[0].plane == Quadric.from_equation("z - 6")
     bee = s.ellipsoids[0]
-    assert bee.quadric == Quadric.from_equation("(x-3)^2 + (y-3)^2 + 3(z-5.5)^2 - 0.1")
+    assert bee.quadric == Quadric.from_equation("(x-3)^2 + (y-3)^2 + 3*(z-5.5)^2 - 0.1")
     assert bee.center == (3, 3, F(11, 2))
     assert isinstance(bee.trajectory, Keyframes)
 
@@ -165,12 +165,12 @@ BAD = [
     (mutate('plus = "crown"', 'plus = "leaves"'), "object[0].tree.plus", "the name of a piece"),
     (mutate('plane = "z = 6"', 'plane = "z^2 = 6"'), "object[0].tree.plane", "the equation of a plane"),
     (
-        mutate('equation = "x^2 + y^2 + 3(z - 8.36291)^2 = 20"', 'equation = "x^3 = 1"'),
+        mutate('equation = "x^2 + y^2 + 3*(z - 8.36291)^2 = 20"', 'equation = "x^3 = 1"'),
         "object[0].piece[0].equation",
         "a valid quadric",
     ),
     (
-        mutate('equation = "x^2 + y^2 + 3(z - 8.36291)^2 = 20"', 'equation = "x^2 + y^2 - z^2 = 0"'),
+        mutate('equation = "x^2 + y^2 + 3*(z - 8.36291)^2 = 20"', 'equation = "x^2 + y^2 - z^2 = 0"'),
         "object[0].piece[0]",
         "a quadric of Table 1 or a plane",
     ),
@@ -184,7 +184,9 @@ BAD = [
         "every piece placed in the tree",
     ),
     (
-        mutate('equation = "(x - 3)^2 + (y - 3)^2 + 3(z - 5.5)^2 = 0.1"', 'equation = "x^2 + y^2 - z^2 = 1"'),
+        mutate(
+            'equation = "(x - 3)^2 + (y - 3)^2 + 3*(z - 5.5)^2 = 0.1"', 'equation = "x^2 + y^2 - z^2 = 1"'
+        ),
         "ellipsoid[0]",
         "a real ellipsoid",
     ),

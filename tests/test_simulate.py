@@ -26,15 +26,15 @@ tree = { plane = "z = 6", plus = "crown", minus = "trunk" }
 
 [[object.piece]]
 name = "crown"
-equation = "x^2 + y^2 + 3(z - 8.36291)^2 = 20"
+equation = "x^2 + y^2 + 3*(z - 8.36291)^2 = 20"
 
 [[object.piece]]
 name = "trunk"
-equation = "x^2 + y^2 - 0.25(z - 3)^2 = 1"
+equation = "x^2 + y^2 - 0.25*(z - 3)^2 = 1"
 
 [[ellipsoid]]
 name = "bee"
-equation = "(x - 3)^2 + (y - 3)^2 + 3(z - 5.5)^2 = 0.1"
+equation = "(x - 3)^2 + (y - 3)^2 + 3*(z - 5.5)^2 = 0.1"
 motion = { type = "linear", velocity = [-0.5, -0.6, -0.2] }
 """
 

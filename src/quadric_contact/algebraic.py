@@ -39,6 +39,8 @@ from typing import Any
 
 import flint
 
+from .errors import EquationError
+
 __all__ = [
     "QuadraticNumber",
     "RealAlgebraic",
@@ -566,7 +568,14 @@ def compile_expression(expr: Any, symbols: Sequence[Any]) -> Callable[..., Any]:
             return lambda v, c: c(Fraction(1)) / base(v, c) ** (-n)
         raise ValueError(f"not a rational expression in {symbols}: {e} ({sympy.srepr(e)[:60]})")
 
-    fn = build(sympy.sympify(expr))
+    if isinstance(expr, (str, bytes)):
+        # Text is never evaluated (sympify would run it as Python): build the
+        # expression with sympy, or read text with quadric_contact.parsing.
+        raise EquationError(
+            "compile_expression takes a sympy expression, not text (read text with quadric_contact.parsing)",
+            expr,
+        )
+    fn = build(sympy.sympify(expr, strict=True))
 
     def run(*values: Any, const: Callable[[Fraction], Any] = Fraction) -> Any:
         return fn(values, const)

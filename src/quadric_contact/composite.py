@@ -120,8 +120,8 @@ class Composite:
 
     >>> tree = Composite.separated(
     ...     "tree", "z - 6",
-    ...     plus=Piece("crown", Quadric.from_equation("x^2 + y^2 + 3(z - 8.36291)^2 - 20")),
-    ...     minus=Piece("trunk", Quadric.from_equation("x^2 + y^2 - 0.25(z - 3)^2 - 1")))
+    ...     plus=Piece("crown", Quadric.from_equation("x^2 + y^2 + 3*(z - 8.36291)^2 - 20")),
+    ...     minus=Piece("trunk", Quadric.from_equation("x^2 + y^2 - 0.25*(z - 3)^2 - 1")))
     >>> [p.name for p in tree.pieces], [s.name for s in tree.splits()]
     (['crown', 'trunk'], ['z - 6'])
     """
@@ -249,7 +249,7 @@ def algorithm_1(E: Any, composite: Composite, *, ledger: Ledger | None = None) -
 
     >>> from quadric_contact.scene import builtin_scene
     >>> tree = builtin_scene("bee_and_tree").objects[0]
-    >>> r = algorithm_1("(x-3)^2 + (y-3)^2 + 3(z-5.5)^2 - 0.1", tree)
+    >>> r = algorithm_1("(x-3)^2 + (y-3)^2 + 3*(z-5.5)^2 - 0.1", tree)
     >>> r.zones, [p.name for p in r.pieces]
     ({'z - 6': 2}, ['trunk'])
     """
@@ -363,7 +363,7 @@ def algorithm_2(
     >>> from quadric_contact.scene import builtin_scene
     >>> tree = builtin_scene("bee_and_tree").objects[0]
     >>> led = Ledger()
-    >>> r = algorithm_2("(x-3)^2 + (y-3)^2 + 3(z-5.5)^2 - 0.1", tree, small=True, region=True, ledger=led)
+    >>> r = algorithm_2("(x-3)^2 + (y-3)^2 + 3*(z-5.5)^2 - 0.1", tree, small=True, region=True, ledger=led)
     >>> r.contact, r.regions["trunk"].region, sorted(r.contacts), led.cost("crown")
     (False, <Region.R_PLUS: 'R+'>, ['trunk'], 0)
     """

@@ -25,8 +25,10 @@ class QuadricContactError(Exception):
 
 
 class NotANumberError(QuadricContactError, TypeError):
-    """An entry is not a real number (a string that does not parse, a complex,
-    a bool, an arbitrary object)."""
+    """An entry is not a real number (a string the number parser refuses, a
+    complex, a bool, an arbitrary object).  For a string, as for
+    :class:`EquationError`, the message quotes the offending part under a
+    caret and ``.details`` holds its ``position``."""
 
 
 class NonFiniteError(QuadricContactError, ValueError):
@@ -47,7 +49,14 @@ class NotSymmetricError(QuadricContactError, ValueError):
 
 
 class EquationError(QuadricContactError, ValueError):
-    """An equation cannot be read as a polynomial of degree <= 2 in x, y, z."""
+    """An equation or expression cannot be read: the package's parser
+    (:mod:`quadric_contact.parsing`) refuses the text, or it is not a
+    polynomial of the degree required (<= 2 in x, y, z for a quadric).
+
+    For text, the message names the offending part and its position and
+    quotes it under a caret; ``.value`` is the text and ``.details`` has
+    ``position`` (1-based, as printed), ``offset`` and ``end`` (0-based, a
+    slice of the text)."""
 
 
 # -- wrong kinds of quadric -----------------------------------------------------

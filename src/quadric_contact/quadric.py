@@ -169,10 +169,13 @@ class Quadric:
     def from_equation(cls, equation: Any) -> Quadric:
         """From an equation in ``x, y, z`` of degree at most 2.
 
-        ``equation`` is a string (``"x**2 + y**2 - (z-3)**2/4 - 1"``, ``"^"``
-        and implicit products such as ``"3(z-5.5)^2"`` are accepted, as is
-        ``"lhs = rhs"``) or a sympy expression / equality.  Decimal literals
-        are read as exact decimals.
+        ``equation`` is a string (``"x**2 + y**2 - (z-3)**2/4 - 1"``; ``^``
+        is accepted for ``**``, as is ``"lhs = rhs"``; products are written
+        with ``*``) or a sympy expression / equality built by the caller.
+        Strings are read by the package's own parser
+        (:func:`~quadric_contact.parsing.parse_quadric_equation`, grammar and
+        bounds in :mod:`quadric_contact.parsing`), never evaluated.  Decimal
+        literals are read as exact decimals.
 
         Returns
         -------
@@ -181,48 +184,21 @@ class Quadric:
         Raises
         ------
         EquationError
-            Unparsable text, other symbols than x, y, z, a non-polynomial
-            term, degree above 2, or an irrational coefficient.
+            Text the parser refuses (unknown names, functions, implicit
+            multiplication, ...: the message names the offending text and
+            its position), other symbols than x, y, z, a non-polynomial
+            term, degree above 2 after expansion, or an irrational coefficient.
 
         Examples
         --------
         >>> Quadric.from_equation("x**2 + y**2 - 0.25*(z-3)**2 = 1").kind
         <QuadricKind.HYPERBOLOID_ONE_SHEET: 'hyperboloid of one sheet'>
         """
-        import sympy
+        from .parsing import parse_quadric_equation
 
-        x, y, z = sympy.symbols("x y z")
-        expr = _parse_equation(equation, (x, y, z))
-        try:
-            poly = sympy.Poly(sympy.expand(expr), x, y, z)
-        except sympy.PolynomialError as exc:
-            raise EquationError(f"{equation!r} is not a polynomial in x, y, z", equation) from exc
-        if poly.total_degree() > 2:
-            raise EquationError(
-                f"{equation!r} has degree {poly.total_degree()}; a quadric has degree <= 2", equation
-            )
-        if poly.free_symbols_in_domain:
-            others = sorted(map(str, poly.free_symbols_in_domain))
-            raise EquationError(f"{equation!r} has other symbols than x, y, z: {others}", equation)
-        v = (x, y, z)
-
-        def coeff(monomial: Any) -> Fraction:
-            c = poly.coeff_monomial(monomial)
-            try:
-                return to_fraction(c)
-            except (NotRationalError, NotANumberError, NonFiniteError) as exc:
-                raise EquationError(
-                    f"coefficient {c} of {monomial} in {equation!r}: {exc}", equation
-                ) from exc
-
-        m = [[Fraction(0)] * 4 for _ in range(4)]
-        for i in range(3):
-            m[i][i] = coeff(v[i] ** 2)
-            for j in range(i + 1, 3):
-                m[i][j] = m[j][i] = coeff(v[i] * v[j]) / 2
-            m[i][3] = m[3][i] = coeff(v[i]) / 2
-        m[3][3] = coeff(1)
-        return cls._from_upper(tuple(m[i][j] for i, j in ENTRY_INDICES))
+        if isinstance(equation, str):
+            return cls._from_upper(parse_quadric_equation(equation))
+        return cls._from_upper(_sympy_equation_entries(equation))
 
     @classmethod
     def from_coefficients(cls, a: Any, b: Sequence[Any], c: Any) -> Quadric:
@@ -410,7 +386,12 @@ class Quadric:
 
     @classmethod
     def _standard_maker(cls, kind: QuadricKind | str) -> Any:
-        kind = QuadricKind(kind)
+        try:
+            kind = QuadricKind(kind)
+        except ValueError:
+            names = ", ".join(repr(k.value) for k in QuadricKind if k.in_table_1)
+            message = f"{kind!r} is not a kind of quadric; Table 1 has {names}"
+            raise QuadricContactError(message, kind) from None
         makers: dict[QuadricKind, Any] = {
             QuadricKind.ELLIPSOID: cls.ellipsoid,
             QuadricKind.HYPERBOLOID_ONE_SHEET: cls.hyperboloid_one_sheet,
@@ -761,47 +742,14 @@ def _rotation(rotation: Any) -> Any:
     return RigidMotion.from_matrix(rotation).rotation
 
 
-def _parse_equation(equation: Any, xyz: tuple[Any, Any, Any]) -> Any:
+def _sympy_equation_entries(equation: Any) -> tuple[Fraction, ...]:
+    """The upper entries of a quadric given as a sympy expression or equality
+    (a Python object built by the caller, not text: nothing is parsed)."""
     import sympy
-    from sympy.parsing.sympy_parser import (
-        convert_xor,
-        implicit_multiplication_application,
-        parse_expr,
-        rationalize,
-        standard_transformations,
-    )
 
-    if isinstance(equation, str):
-        text = equation.strip()
-        if not text:
-            raise EquationError("empty equation", equation)
-        if text.count("=") > 1 or "==" in text:
-            raise EquationError(f"{equation!r}: at most one '=' is allowed", equation)
-        sides = text.split("=")
-        names = {"x": xyz[0], "y": xyz[1], "z": xyz[2]}
-        allowed = {
-            name: getattr(sympy, name)
-            for name in ("Integer", "Rational", "Float", "Symbol", "Number", "sqrt", "Mul", "Add", "Pow")
-        }
-        transformations = (
-            *standard_transformations,
-            implicit_multiplication_application,
-            convert_xor,
-            rationalize,
-        )
-        try:
-            parts = [
-                parse_expr(
-                    side, local_dict=dict(names), global_dict=dict(allowed), transformations=transformations
-                )
-                for side in sides
-            ]
-        except Exception as exc:  # parse_expr raises many exception types
-            raise EquationError(
-                f"cannot read {equation!r} as an equation in x, y, z: {exc}", equation
-            ) from exc
-        expr = parts[0] - parts[1] if len(parts) == 2 else parts[0]
-    elif isinstance(equation, sympy.Equality):
+    from .parsing import quadric_entries
+
+    if isinstance(equation, sympy.Equality):
         expr = equation.lhs - equation.rhs
     elif isinstance(equation, sympy.Basic):
         expr = equation
@@ -811,6 +759,7 @@ def _parse_equation(equation: Any, xyz: tuple[Any, Any, Any]) -> Any:
         )
     if not isinstance(expr, sympy.Expr):
         raise EquationError(f"{equation!r} is not an algebraic expression", equation)
+    xyz = sympy.symbols("x y z")
     others = expr.free_symbols - set(xyz)
     if others:
         raise EquationError(
@@ -818,4 +767,21 @@ def _parse_equation(equation: Any, xyz: tuple[Any, Any, Any]) -> Any:
         )
     if expr.has(sympy.nan, sympy.oo, -sympy.oo, sympy.zoo):
         raise EquationError(f"{equation!r} has a non-finite coefficient", equation)
-    return expr
+    try:
+        poly = sympy.Poly(sympy.expand(expr), *xyz)
+    except sympy.PolynomialError as exc:
+        raise EquationError(f"{equation!r} is not a polynomial in x, y, z", equation) from exc
+    if poly.total_degree() > 2:
+        raise EquationError(
+            f"{equation!r} has degree {poly.total_degree()}; a quadric has degree <= 2", equation
+        )
+    if poly.free_symbols_in_domain:
+        others_d = sorted(map(str, poly.free_symbols_in_domain))
+        raise EquationError(f"{equation!r} has other symbols than x, y, z: {others_d}", equation)
+    terms: dict[tuple[int, ...], Fraction] = {}
+    for monomial, c in poly.terms():
+        try:
+            terms[tuple(int(e) for e in monomial)] = to_fraction(c)
+        except (NotRationalError, NotANumberError, NonFiniteError) as exc:
+            raise EquationError(f"coefficient {c} of {monomial} in {equation!r}: {exc}", equation) from exc
+    return quadric_entries(terms)

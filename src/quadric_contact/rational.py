@@ -3,7 +3,9 @@
 Every number that enters the package is turned into a :class:`fractions.Fraction`
 *exactly*: a float is the dyadic rational it stores (``0.1`` is
 ``3602879701896397/36028797018963968``), a decimal string is the decimal it
-spells (``"0.1"`` is ``1/10``), a sympy ``Rational`` is itself.  Nothing is
+spells (``"0.1"`` is ``1/10``; strings are read by the package's parser,
+:mod:`quadric_contact.parsing`, never evaluated), a sympy ``Rational`` is
+itself.  Nothing is
 rounded, so every answer the exact layer gives is exact *for the numbers the
 caller passed*.
 """
@@ -27,24 +29,14 @@ __all__ = [
 
 
 def _from_string(s: str) -> Fraction:
-    text = s.strip().replace("_", "")
-    if not text:
-        raise NotANumberError("empty string is not a number", s)
-    low = text.lower().lstrip("+-")
+    """A number written as text, read by the package's own parser
+    (:func:`~quadric_contact.parsing.parse_number`): never evaluated."""
+    from .parsing import parse_number
+
+    low = s.strip().lower().lstrip("+-")
     if low in {"nan", "inf", "infinity"}:
         raise NonFiniteError(f"{s!r} is not finite", s)
-    try:
-        return Fraction(text)
-    except (ValueError, ZeroDivisionError):
-        pass
-    # Last resort: a small exact expression such as "1/3 + 2/7" or "2**-3".
-    try:
-        import sympy
-
-        expr = sympy.sympify(text, rational=True)
-    except Exception as exc:  # sympify raises a zoo of exception types
-        raise NotANumberError(f"{s!r} is not a number", s) from exc
-    return _from_sympy(expr, original=s)
+    return parse_number(s)
 
 
 def _from_sympy(expr: Any, original: Any = None) -> Fraction:
@@ -76,8 +68,9 @@ def to_fraction(value: Any) -> Fraction:
     ----------
     value : int, Fraction, float, Decimal, str, numpy scalar, sympy number, mpmath mpf, flint fmpq
         Floats are taken as the exact dyadic rationals they store; strings are
-        parsed as exact decimals or fractions (``"8.36291"``, ``"1/3"``,
-        ``"1e-5"``).
+        read by :func:`~quadric_contact.parsing.parse_number` as exact
+        decimals, fractions or small exact expressions (``"8.36291"``,
+        ``"1/3"``, ``"1e-5"``, ``"1/3 + 2/7"``), never evaluated.
 
     Returns
     -------
@@ -86,7 +79,8 @@ def to_fraction(value: Any) -> Fraction:
     Raises
     ------
     NotANumberError
-        For booleans, complex numbers, unparsable strings and other objects.
+        For booleans, complex numbers, strings the parser refuses (the
+        message names the offending text and its position) and other objects.
     NonFiniteError
         For NaN and infinities.
     NotRationalError

@@ -1,7 +1,9 @@
 """Scenes: objects, moving ellipsoids, a time span and the effects wanted, read from TOML.
 
 A scene file (TOML; numbers are read *exactly*: ``5.5`` is ``11/2``, and a
-string such as ``"1/3"`` or ``"8.36291"`` is accepted wherever a number is)::
+string such as ``"1/3"`` or ``"8.36291"`` is accepted wherever a number is;
+every number and every equation is read by the package's own parser,
+:mod:`quadric_contact.parsing`, never evaluated)::
 
     [scene]
     name = "The bee and the tree (Example 17)"
@@ -16,21 +18,23 @@ string such as ``"1/3"`` or ``"8.36291"`` is accepted wherever a number is)::
 
     [[object.piece]]
     name = "crown"
-    equation = "x^2 + y^2 + 3(z - 8.36291)^2 = 20"
+    equation = "x^2 + y^2 + 3*(z - 8.36291)^2 = 20"
 
     [[object.piece]]
     name = "trunk"
-    equation = "x^2 + y^2 - 0.25(z - 3)^2 = 1"
+    equation = "x^2 + y^2 - 0.25*(z - 3)^2 = 1"
 
     [[ellipsoid]]
     name = "bee"
-    equation = "(x - 3)^2 + (y - 3)^2 + 3(z - 5.5)^2 = 0.1"
+    equation = "(x - 3)^2 + (y - 3)^2 + 3*(z - 5.5)^2 = 0.1"
     motion = { type = "keyframes", keys = [
         { t = 0, at = [3, 3, 5.5] },
         { t = 2, at = [1.2, 0, 5], rotation = [1, 0, 0, 0] } ] }
 
 Quadrics (pieces and ellipsoids) are given by exactly one of
-``equation = "..."`` (in ``x, y, z``; ``"lhs = rhs"`` allowed),
+``equation = "..."`` (in ``x, y, z``; ``"lhs = rhs"`` allowed, ``^`` is a
+power, products are written with ``*``: the grammar is in
+:mod:`quadric_contact.parsing`),
 ``matrix = [[...], ...]`` (symmetric 4x4), ``standard = "<type>"`` with
 ``a``, ``b``, ``c`` (the forms of Table 1, e.g. ``"hyperboloid of one
 sheet"``), ``standard = "ellipsoid"`` with ``semi_axes = [a, b, c]``,
@@ -56,7 +60,9 @@ Motions (``[ellipsoid.motion]``; the default is ``type = "still"``):
     ``translation = [[x0, x1, ...], [y0, ...], [z0, ...]]``: the centre's
     displacement ``sum x_k t^k``; optional ``quaternion = [[w0, w1, ...],
     [x...], [y...], [z...]]``: the rotation about the centre of the
-    quaternion with these polynomial components.
+    quaternion with these polynomial components.  A component may also be
+    written as a polynomial in ``t`` (``"2*t - 5*t^2"``, degree at most
+    :data:`~quadric_contact.parsing.MAX_DEGREE`).
 ``type = "keyframes"``
     ``keys = [{ t = ..., at = [x, y, z], rotation = [w, x, y, z] }, ...]``:
     the centre passes through ``at`` at time ``t`` (linear in between);
@@ -73,6 +79,9 @@ quadric piece is checked when the scene is loaded, if its effects rely on
 Theorem 2; ``on_not_small = "refuse"`` rejects a scene where it fails,
 ``"warn"`` keeps it, with a warning, and the contact where all roots are real
 is then reported as undecided.
+
+Names are unique: two pieces of one object, and two objects or
+ellipsoids of a scene (an object and an ellipsoid included), never share one.
 
 Every error names the file, the key and what was expected
 (:class:`~quadric_contact.errors.SceneError`).
@@ -93,6 +102,7 @@ from .classification import QuadricKind
 from .composite import Composite, Piece, Split
 from .errors import QuadricContactError, SceneError
 from .ledger import Ledger
+from .parsing import MAX_DEGREE, MAX_DIGITS, parse_number, parse_univariate
 from .quadric import Quadric
 from .rational import to_fraction
 from .results import Region
@@ -296,20 +306,26 @@ class Scene:
 
 
 class _BadFloat:
-    """A TOML float that is not a finite number (inf, nan), kept for the error message."""
+    """A TOML float that is not a finite number (inf, nan) or is beyond the number
+    parser's bounds, kept for the error message."""
 
-    def __init__(self, text: str) -> None:
+    def __init__(self, text: str, reason: str = "") -> None:
         self.text = text
+        self.reason = reason
 
     def __repr__(self) -> str:
         return self.text
 
 
 def _parse_float(text: str) -> Any:
+    """A TOML float, read exactly by the package's number parser (bounded:
+    ``1e99999999`` is refused, not computed)."""
+    if text.lstrip("+-") in ("inf", "nan"):
+        return _BadFloat(text, "not finite")
     try:
-        return Fraction(text)
-    except (ValueError, ZeroDivisionError):
-        return _BadFloat(text)
+        return parse_number(text)
+    except QuadricContactError as exc:
+        return _BadFloat(text, str(exc).splitlines()[0])
 
 
 _MISSING = object()
@@ -321,7 +337,11 @@ def _show(value: Any) -> str:
     if isinstance(value, dict):
         return "a table"
     if isinstance(value, list):
-        return "a list" if value else "an empty list"
+        if not value:
+            return "an empty list"
+        if len(value) <= 8 and all(isinstance(v, (int, Fraction, str, _BadFloat)) for v in value):
+            return "[" + ", ".join(_show(v) for v in value) + "]"
+        return "a list"
     if isinstance(value, str):
         return repr(value)
     if isinstance(value, bool):
@@ -381,11 +401,13 @@ class _Reader:
         if isinstance(value, (bool, dict, list)) or value is None:
             raise self.error(key, "a finite number", value)
         if isinstance(value, _BadFloat):
-            raise self.error(key, "a finite number", value)
+            raise self.error(key, "a finite number", value, value.reason)
         try:
             x = to_fraction(value)
         except QuadricContactError as exc:
             raise self.error(key, "a finite number", value, str(exc)) from exc
+        if max(abs(x.numerator), x.denominator) >= 10**MAX_DIGITS:
+            raise self.error(key, "a finite number", value, f"more than {MAX_DIGITS} digits (MAX_DIGITS)")
         if positive and x <= 0:
             raise self.error(key, "a positive number", value)
         return x
@@ -396,14 +418,28 @@ class _Reader:
         return tuple(self.number(v, f"{key}[{i}]") for i, v in enumerate(value))
 
     def poly_list(self, value: Any, key: str, n: int) -> tuple[tuple[Fraction, ...], ...]:
+        expected = f"a list of {n} polynomials in t (coefficient lists in ascending powers, or text)"
         if not isinstance(value, list) or len(value) != n:
-            raise self.error(key, f"a list of {n} coefficient lists (ascending powers of t)", value)
+            raise self.error(key, expected, value)
         out = []
         for i, comp in enumerate(value):
+            if isinstance(comp, str):
+                out.append(self.polynomial_in_t(comp, f"{key}[{i}]"))
+                continue
             if not isinstance(comp, list):
-                raise self.error(f"{key}[{i}]", "a list of coefficients (ascending powers of t)", comp)
+                raise self.error(
+                    f"{key}[{i}]", "a list of coefficients (ascending powers of t) or a polynomial in t", comp
+                )
             out.append(tuple(self.number(c, f"{key}[{i}][{j}]") for j, c in enumerate(comp)))
         return tuple(out)
+
+    def polynomial_in_t(self, text: str, key: str) -> tuple[Fraction, ...]:
+        """A polynomial in ``t`` written as text (``"3 - 2*t^2"``), as coefficients."""
+        expected = f"a polynomial in t of degree at most {MAX_DEGREE}"
+        try:
+            return parse_univariate(text, "t")
+        except QuadricContactError as exc:
+            raise self.error(key, expected, text, str(exc)) from exc
 
 
 _QUADRIC_KEYS = (
@@ -617,6 +653,20 @@ def _ellipsoid(
     return MovingEllipsoid(name, e, traj)
 
 
+def _distinct_names(r: _Reader, named: Sequence[tuple[str, str]]) -> None:
+    """Refuse a name given to two objects, two ellipsoids, or an object and an ellipsoid."""
+    seen: dict[str, str] = {}
+    for key, name in named:
+        if name in seen:
+            raise r.error(
+                f"{key}.name",
+                "a name not used by another object or ellipsoid",
+                name,
+                f"{seen[name]}.name is also {name!r}",
+            )
+        seen[name] = key
+
+
 def parse_scene(
     text: str, source: str = "<scene>", *, check_smallness: bool = True, on_not_small: str | None = None
 ) -> Scene:
@@ -666,7 +716,7 @@ def parse_scene(
     r = _Reader(source)
     try:
         data = tomllib.loads(text, parse_float=_parse_float)
-    except tomllib.TOMLDecodeError as exc:
+    except (tomllib.TOMLDecodeError, ValueError) as exc:  # ValueError: an integer beyond 4300 digits
         raise SceneError(f"{source}: not valid TOML: {exc}", text, file=source) from exc
     r.keys(data, "", ("scene", "object", "ellipsoid"))
     meta = r.table(data, "scene", "scene")
@@ -680,7 +730,13 @@ def parse_scene(
         raise r.error("scene.time", "[start, end]", cause="missing")
     span_v = r.vector(span_raw, "scene.time", 2)
     if not span_v[0] < span_v[1]:
-        raise r.error("scene.time", "[start, end] with start < end", span_raw)
+        raise r.error(
+            "scene.time",
+            "[start, end] with start < end",
+            span_raw,
+            f"the time span is {'empty' if span_v[0] == span_v[1] else 'reversed'}: "
+            f"the end {span_v[1]} is not after the start {span_v[0]}",
+        )
     span = (span_v[0], span_v[1])
     effects_raw = meta.get("effects", ["zone", "contact", "first_contact"])
     if (
@@ -701,16 +757,13 @@ def parse_scene(
     objects = tuple(
         _object(r, t, f"object[{i}]") for i, t in enumerate(r.array_of_tables(data, "object", "object"))
     )
-    names = [o.name for o in objects]
-    if len(set(names)) != len(names):
-        raise r.error("object", "objects with distinct names", names)
     ells = tuple(
         _ellipsoid(r, t, f"ellipsoid[{i}]", span)
         for i, t in enumerate(r.array_of_tables(data, "ellipsoid", "ellipsoid"))
     )
-    enames = [e.name for e in ells]
-    if len(set(enames)) != len(enames):
-        raise r.error("ellipsoid", "ellipsoids with distinct names", enames)
+    _distinct_names(r, [(f"object[{i}]", o.name) for i, o in enumerate(objects)] + [
+        (f"ellipsoid[{i}]", e.name) for i, e in enumerate(ells)
+    ])
     scene = Scene(
         name, objects, ells, span, tuple(dict.fromkeys(effects_raw)), description, source, policy, places_raw
     )

@@ -233,15 +233,28 @@ def _check_quaternion_nonzero(q: Sequence[Any], t0: Fraction, t1: Fraction, what
         )
 
 
+def _coefficients(component: Any) -> tuple[Fraction, ...]:
+    """Coefficients (ascending powers of ``t``) of a coefficient sequence or of
+    a polynomial in ``t`` written as text."""
+    if isinstance(component, str):
+        from .parsing import parse_univariate
+
+        return parse_univariate(component, "t")
+    return tuple(to_fraction(c) for c in component)
+
+
 class PolynomialMotion(Trajectory):
     """Centre and orientation polynomial in ``t``.
 
     Parameters
     ----------
-    translation : three sequences of numbers
+    translation : three sequences of numbers, or polynomials in ``t`` as text
         ``d_x, d_y, d_z``: coefficients (ascending powers of ``t``) of the
-        displacement of the centre from its initial position: ``p(t) = c0 + d(t)``.
-    quaternion : four sequences of numbers, optional
+        displacement of the centre from its initial position: ``p(t) = c0 + d(t)``;
+        a component may be text such as ``"2*t - 5*t^2"`` (read by
+        :func:`~quadric_contact.parsing.parse_polynomial`, degree at most
+        :data:`~quadric_contact.parsing.MAX_DEGREE`).
+    quaternion : four sequences of numbers, or polynomials in ``t`` as text, optional
         Components ``w, x, y, z`` of ``q(t)`` (ascending powers of ``t``); the
         ellipsoid is turned about its centre by the rotation of ``q(t)``
         relative to its initial orientation.  Must not vanish on the span.
@@ -257,6 +270,8 @@ class PolynomialMotion(Trajectory):
     >>> seg = PolynomialMotion(((0,), (0,), (0, 0, -5))).segments(Fraction(0), Fraction(1), (0, 0, 10))[0]
     >>> seg.center_at(1)[2]
     Fraction(5, 1)
+    >>> PolynomialMotion(("t", "0", "-5*t^2")).translation[2]
+    (Fraction(0, 1), Fraction(0, 1), Fraction(-5, 1))
     """
 
     def __init__(
@@ -264,12 +279,12 @@ class PolynomialMotion(Trajectory):
     ):
         if len(translation) != 3:
             raise ShapeError("translation needs three coefficient lists (x, y, z)", translation)
-        self.translation = tuple(tuple(to_fraction(c) for c in comp) for comp in translation)
+        self.translation = tuple(_coefficients(comp) for comp in translation)
         if quaternion is not None:
             if len(quaternion) != 4:
                 raise ShapeError("quaternion needs four coefficient lists (w, x, y, z)", quaternion)
             self.quaternion: tuple[tuple[Fraction, ...], ...] | None = tuple(
-                tuple(to_fraction(c) for c in comp) for comp in quaternion
+                _coefficients(comp) for comp in quaternion
             )
         else:
             self.quaternion = None

@@ -19,7 +19,13 @@ def register(sub: Any) -> None:
         "(defaults: the bee and the hyperboloid S2 of Example 17). Exit status: 0 decided, "
         "3 undecided by the theory, 2 bad input.",
     )
-    p.add_argument("E", nargs="?", default=DEFAULT_E, help="equation of the ellipsoid in x, y, z")
+    p.add_argument(
+        "E",
+        nargs="?",
+        default=DEFAULT_E,
+        help="equation of the ellipsoid in x, y, z (numbers, + - * / ** ^, parentheses, one =; "
+        "products written with *)",
+    )
     p.add_argument("Q", nargs="?", default=DEFAULT_Q, help="equation of the other quadric (or a plane)")
     p.add_argument("--json", action="store_true", help="print one JSON object instead of the report")
     p.add_argument(
