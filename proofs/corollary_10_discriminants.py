@@ -1,36 +1,60 @@
-"""Corollary 10: transversal contact from the signs of Delta_4 and Delta_3 (Yang 1999).
+"""Corollary 10: transversal contact from the signs of Delta_4 and Delta_3.
 
 Claim.  For ``E`` small with respect to ``Q``, transversal contact holds iff
 ``Delta_4 < 0``, or ``Delta_4 = 0`` and ``Delta_3 < 0``.  Proof: by Theorem 2 the
 transversal contacts are the Segre types ``[1111]_2`` and ``[(11)11]_1``, which
 by Yang's classification of the roots of a quartic are ``Delta_4 < 0`` and
-``Delta_4 = 0, Delta_3 < 0``.
+``Delta_4 = 0, Delta_3 < 0``.  The step the proof leaves implicit is that the
+pencil of an ellipsoid has at most one pair of non-real roots: a quartic with
+two non-real pairs has ``Delta_4 > 0`` (or ``Delta_4 = Delta_3 = 0`` for a double
+pair), and the test would miss its non-real roots.
 
-What is checked and how.  Yang's classification, by exhaustive case analysis:
-the discrimination sequence ``D_1 .. D_4`` (``D_1 = 4 c4^2 > 0``) is computed here
-from its definition; for each of the 27 sign patterns of ``(D_2, D_3, D_4)``
-Yang's revised sign list predicts the numbers of distinct real roots and of
-distinct non-real pairs; every root configuration of a real quartic (9 of
-them, with their multiplicities) is realised by many exact quartics (products
-of rational linear factors and irreducible rational quadratics), and for each
-the predicted counts equal the constructed ones.  On the sign patterns that
-occur, ``Delta_4 < 0 or (Delta_4 = 0 and Delta_3 < 0)`` holds exactly for the
-configurations with one simple non-real pair.  Then, over all 27 patterns
-with Yang's counts (his Theorem 1): the impossible ones are discarded, the
-test equals "a non-real root" on every pattern with at most one simple
-non-real pair, and it misses exactly the patterns of two non-real pairs
-(``D_4 > 0`` with ``D_2 <= 0`` or ``D_3 <= 0``) and of a double one
-(``D_4 = D_3 = 0 > D_2``).  The corollary is nonetheless right: the pencil of
-an ellipsoid has at most one pair of non-real roots.  Argument: if
-``(mu E + Q) v = 0`` and ``(nu E + Q) w = 0`` then ``(mu - conj nu) w^H E v = 0``,
-so two eigenvectors for eigenvalues in the upper half-plane (or a Jordan
-chain of one) span a 2-dimensional subspace on which the Hermitian form of
-``E`` vanishes, impossible for a form of inertia (3, 1); the identity is
-checked symbolically and the conclusion by evidence (300 hypothesis examples
-of ellipsoids against arbitrary symmetric matrices, 5000 in the slow profile,
-roots counted by FLINT).
-Evidence: 300 hypothesis examples of ellipsoids and Table 1 quadrics where
-Corollary 10's test equals "P has a non-real root".
+What is checked and how.  (1) Symbolic identities: for ``P = c4 (l - r1) ..
+(l - r4)``, ``Delta_4 = c4^6 prod_{i<j} (ri - rj)^2`` and ``Delta_3 = c4^4/2
+sum_{i<j<k} (ri - rj)^2 (ri - rk)^2 (rj - rk)^2`` (``Delta_4`` the discriminant,
+``Delta_3`` as printed; Section 3.2 proves both are the paper's), and for
+``z = a + ib``: ``(z - conj z)^2 = -4 b^2``, ``(r - z)^2 (r - conj z)^2 =
+((r - a)^2 + b^2)^2``, and the four factors between two conjugate pairs
+multiply to a positive square.  (2) Exhaustive case analysis over the 9 root
+configurations of a real quartic (four real roots with their multiplicities
+``1111, 211, 22, 31, 4``; two real roots and a pair ``11c, 2c``; two pairs ``cc``
+or a double pair ``c2``): grouping the factors of each term into those real
+factors gives the sign of ``Delta_4`` and, where ``Delta_4 = 0``, of ``Delta_3``;
+the test is true exactly for ``11c`` and ``2c``, so it equals "a non-real
+root" on every configuration except ``cc`` and ``c2``.  (3) Those two never
+occur for an ellipsoid, by an exhaustive case analysis over the 20 Segre types
+of real regular 4 x 4 pencils (enumerated from the partitions of the
+multiplicities): with ``E`` of signature (3, 1), ``nu(l)``, the number of
+positive eigenvalues of ``l E + Q``, goes from 1 at ``-inf`` to 3 at ``+inf``
+and jumps only at real roots, by at most the number of Jordan blocks there
+(see ``_real_pencils``: continuity of eigenvalues, and that the geometric
+multiplicity bounds the change), so the real roots carry at least two Jordan
+blocks.  Among the types with a non-real root only ``[1111]_2`` and
+``[(11)11]_1`` pass, each with exactly one simple non-real pair; ``[1111]_0``,
+``[(11)(11)]_0`` and ``[22]_0`` (two pairs, or a double one) and ``[211]_1`` (a
+pair and a real Jordan block of size 2) are impossible.  This rests only on
+those two facts.  (4) The sharper classification by the sign characteristic
+(Lancaster and Rodman 2005, the canonical form of real symmetric pencils with
+``E`` non-singular: real Jordan blocks ``s F_k`` with a sign ``s``, blocks of
+non-real pairs whose ``E``-part has signature (k, k)), case by case: for every
+type and every choice of signs the canonical block pencil is built exactly
+(eigenvalues 0, 1, 2, .. and 1 +- i, 2 +- i), its Segre type computed by the
+package (invariant factors) and the inertia of its ``E`` by Descartes' rule on
+the characteristic polynomial; 13 types admit signature (3, 1): ``[1111]_4,
+[211]_3, [(11)11]_3, [1111]_2, [31]_2, [(21)1]_2, [(111)1]_2, [2(11)]_2,
+[(11)(11)]_2, [(11)11]_1, [(31)]_1, [(211)]_1, [(1111)]_1``, and the two with
+non-real roots are those of (3).  Realisation, by exact construction: for each
+of the 13 a rational congruence ``T`` (a vector of negative ``E``-norm last,
+Gram-Schmidt for ``E`` on its complement) takes the canonical pencil to one
+whose ``E`` is the ellipsoid ``p1 x^2 + p2 y^2 + p3 z^2 = n`` (``p_i, n > 0``),
+and the package finds the same Segre type there.  (That the 7 other types are
+impossible needs the canonical form theorem; (3) does not.)
+
+Cross-checks of the package (full profile): its implementation of Yang's
+revised sign list against 5702 exact quartics of the 9 configurations, and
+hypothesis searches (ellipsoids against arbitrary symmetric matrices: never
+two non-real pairs; ellipsoids and Table 1 quadrics: the package's test equals
+"P has a non-real root", roots counted by FLINT).
 """
 
 from __future__ import annotations
@@ -41,18 +65,21 @@ from fractions import Fraction
 
 import flint
 import sympy as sp
-from hypothesis import given
-from hypothesis import strategies as st
 
-from quadric_contact import Quadric, characteristic_polynomial
+from quadric_contact import Quadric, characteristic_polynomial, paper
 from quadric_contact.discriminants import revised_sign_list
 from quadric_contact.proving import Finding, Method, Proof, agrees, ensure, search_settings
-from quadric_contact.strategies import ellipsoids, quadrics
 
-proof = Proof("Corollary 10", "Delta_4 < 0, or Delta_4 = 0 and Delta_3 < 0, is transversal contact")
+from ._real_pencils import canonical_pencil, ellipsoid_form, inertia, package_segre, segre_types
+
+proof = Proof(
+    "Corollary 10",
+    "Delta_4 < 0, or Delta_4 = 0 and Delta_3 < 0, is transversal contact",
+    relies_on=("Theorem 2", "Section 3.2"),
+)
 
 C = sp.symbols("c0:5")
-EXAMPLES = 300
+LAM = sp.Symbol("lambda")
 
 
 def _minors() -> list[sp.Expr]:
@@ -138,13 +165,217 @@ CONFIG_COUNTS = {  # (distinct real, distinct non-real pairs)
 }
 
 
+# -- (1) the discriminants in terms of the roots -------------------------------------------------
+
+
+def _delta3() -> sp.Expr:
+    return sp.sympify(paper.PRINTED["Delta3"], locals={str(c): c for c in C})
+
+
+@proof.check(
+    "Delta_4 and Delta_3 in terms of the roots; the factors of a conjugate pair",
+    method=Method.IDENTITY,
+)
+def delta_root_formulas() -> Finding:
+    r = sp.symbols("r1:5")
+    c4 = C[4]
+    P = sp.Poly(c4 * sp.Mul(*(LAM - ri for ri in r)), LAM)
+    sub = {C[k]: P.coeff_monomial(LAM**k) for k in range(4)}
+    gens = (*r, c4)
+    disc = sp.discriminant(sum(C[k] * LAM**k for k in range(5)), LAM)
+    d4 = sp.Poly(disc.subs(sub), *gens)
+    d3 = sp.Poly(_delta3().subs(sub), *gens)
+    pairs = itertools.combinations(r, 2)
+    ensure(d4 == sp.Poly(c4**6 * sp.Mul(*((a - b) ** 2 for a, b in pairs)), *gens), "Delta_4 = c4^6 prod")
+    triples = sp.Add(
+        *(
+            sp.Mul(*((a - b) ** 2 for a, b in itertools.combinations(t, 2)))
+            for t in itertools.combinations(r, 3)
+        )
+    )
+    ensure(2 * d3 == sp.Poly(c4**4 * triples, *gens), "Delta_3 = c4^4/2 sum over triples")
+    a, b, x, a2, b2 = sp.symbols("a b x a2 b2", real=True)
+    z, w = a + sp.I * b, a2 + sp.I * b2
+    ensure(sp.expand((z - z.conjugate()) ** 2 + 4 * b**2) == 0, "(z - conj z)^2 = -4 b^2")
+    ensure(
+        sp.expand((x - z) ** 2 * (x - z.conjugate()) ** 2 - ((x - a) ** 2 + b**2) ** 2) == 0,
+        "(r - z)^2 (r - conj z)^2 = ((r - a)^2 + b^2)^2",
+    )
+    four = (
+        (z - w) ** 2
+        * (z - w.conjugate()) ** 2
+        * (z.conjugate() - w) ** 2
+        * (z.conjugate() - w.conjugate()) ** 2
+    )
+    square = (((a - a2) ** 2 + (b - b2) ** 2) * ((a - a2) ** 2 + (b + b2) ** 2)) ** 2
+    ensure(sp.expand(four - square) == 0, "two conjugate pairs: a positive square")
+    return agrees(
+        "Delta_4 = c4^6 prod (ri - rj)^2 and Delta_3 = c4^4/2 sum over triples of prod (ri - rj)^2, "
+        "identically; within a conjugate pair the factor is -4 b^2 < 0, between a real root and a pair "
+        "((r - a)^2 + b^2)^2 > 0, between two distinct pairs a positive square"
+    )
+
+
+# -- (2) the test on each root configuration -----------------------------------------------------
+
+# A configuration: labels of the four roots, "r<k>" real, "z<k>"/"w<k>" the two members of pair k.
+CONFIGURATIONS = {
+    "1111": ("r1", "r2", "r3", "r4"),
+    "211": ("r1", "r1", "r2", "r3"),
+    "22": ("r1", "r1", "r2", "r2"),
+    "31": ("r1", "r1", "r1", "r2"),
+    "4": ("r1", "r1", "r1", "r1"),
+    "11c": ("r1", "r2", "z1", "w1"),
+    "2c": ("r1", "r1", "z1", "w1"),
+    "cc": ("z1", "w1", "z2", "w2"),
+    "c2": ("z1", "z1", "w1", "w1"),
+}
+
+
+def _conjugate(label: str) -> str:
+    return {"z": "w", "w": "z"}.get(label[0], label[0]) + label[1:]
+
+
+def _term_sign(labels: tuple[str, ...]) -> int:
+    """Sign of prod over the pairs of ``labels`` of (ri - rj)^2, for a set of roots closed under
+    conjugation: 0 with a repeated root; otherwise each conjugate pair inside contributes -4 b^2 < 0
+    and every other factor is grouped with its conjugate into a positive one (identities above)."""
+    if len(set(labels)) < len(labels):
+        return 0
+    ensure(all(_conjugate(x) in labels for x in labels), f"{labels} is closed under conjugation")
+    pairs_inside = sum(1 for x in labels if x[0] == "z")
+    return (-1) ** pairs_inside
+
+
+def configuration_signs(labels: tuple[str, ...]) -> tuple[int, int | None]:
+    """``(sign Delta_4, sign Delta_3)``; ``Delta_3``'s only where ``Delta_4 = 0`` (all that the test
+    reads), as a sum of terms of one sign over the triples with distinct roots."""
+    d4 = _term_sign(labels)
+    if d4 != 0:
+        return d4, None
+    signs = {_term_sign(tuple(labels[i] for i in t)) for t in itertools.combinations(range(4), 3)}
+    ensure(not (1 in signs and -1 in signs), f"{labels}: the non-zero terms of Delta_3 have one sign")
+    return 0, (1 if 1 in signs else -1 if -1 in signs else 0)
+
+
 def criterion(signs: tuple[int, ...]) -> bool:
     """Corollary 10: Delta_4 < 0, or Delta_4 = 0 and Delta_3 < 0 (signs of D_4, D_3)."""
     return signs[3] < 0 or (signs[3] == 0 and signs[2] < 0)
 
 
 @proof.check(
-    "Yang's classification of the roots of a quartic, over all 27 sign patterns", method=Method.CASES
+    "on each root configuration of a real quartic, the test against 'a non-real root'",
+    method=Method.CASES,
+)
+def criterion_by_configuration() -> Finding:
+    missed = []
+    for name, labels in CONFIGURATIONS.items():
+        d4, d3 = configuration_signs(labels)
+        test = d4 < 0 or (d4 == 0 and d3 is not None and d3 < 0)
+        nonreal = any(x[0] != "r" for x in labels)
+        if test != nonreal:
+            ensure(nonreal and not test and name in ("cc", "c2"), f"{name}: test {test}, non-real {nonreal}")
+            missed.append(name)
+    ensure(missed == ["cc", "c2"], f"the test misses {missed}")
+    return agrees(
+        "the test holds exactly on 11c (Delta_4 < 0) and 2c (Delta_4 = 0, Delta_3 < 0); it is false on the "
+        "real configurations and on cc (Delta_4 > 0) and c2 (Delta_4 = Delta_3 = 0): it equals 'a non-real "
+        "root' unless there are two non-real pairs"
+    )
+
+
+# -- (3), (4) Segre types of ellipsoid pencils ----------------------------------------------------
+
+
+@proof.check(
+    "an ellipsoid's pencil has at most one non-real pair, and a simple one (inertia count)",
+    method=Method.CASES,
+)
+def one_nonreal_pair() -> Finding:
+    types = segre_types()
+    ensure(len(types) == 20, f"{len(types)} Segre types")
+    nonreal = [t for t in types if t.nonreal_roots]
+    admissible = [t for t in nonreal if t.real_blocks >= 2]
+    for t in admissible:
+        ensure(t.pairs == ((1,),), f"{t.symbol}: one simple pair")
+    ensure({t.symbol for t in admissible} == {"[1111]_2", "[(11)11]_1"}, "the transversal rows of Table 3")
+    excluded = sorted(t.symbol for t in nonreal if t not in admissible)
+    return agrees(
+        f"of the {len(types)} Segre types of real regular 4 x 4 pencils, {len(nonreal)} have non-real roots; "
+        "nu jumps by 2 in all and at most by the number of Jordan blocks at each real root, so the real "
+        f"roots carry >= 2 blocks: this leaves [1111]_2 and [(11)11]_1 (one simple pair) and excludes "
+        f"{', '.join(excluded)}"
+    )
+
+
+def _realisable() -> dict[str, tuple[sp.Matrix, sp.Matrix] | None]:
+    out: dict[str, tuple[sp.Matrix, sp.Matrix] | None] = {}
+    for t in segre_types():
+        found = None
+        for signs in itertools.product((1, -1), repeat=t.real_blocks):
+            E, Q = canonical_pencil(t, signs)
+            computed = package_segre(E, Q)
+            ensure(computed == t.symbol, f"canonical pencil of {t.symbol} has Segre type {computed}")
+            if found is None and inertia(E) == (3, 1, 0):
+                found = (E, Q)
+        out[t.symbol] = found
+    return out
+
+
+ELLIPSOID_TYPES = (
+    "[1111]_4",
+    "[211]_3",
+    "[(11)11]_3",
+    "[1111]_2",
+    "[31]_2",
+    "[(21)1]_2",
+    "[(111)1]_2",
+    "[2(11)]_2",
+    "[(11)(11)]_2",
+    "[(11)11]_1",
+    "[(31)]_1",
+    "[(211)]_1",
+    "[(1111)]_1",
+)
+
+
+@proof.check(
+    "Segre types of ellipsoid pencils by the sign characteristic; each realised by an ellipsoid",
+    method=Method.CASES,
+)
+def segre_types_of_ellipsoid_pencils() -> Finding:
+    realisable = _realisable()
+    admitted = [s for s, pencil in realisable.items() if pencil is not None]
+    ensure(sorted(admitted) == sorted(ELLIPSOID_TYPES), f"signature (3, 1) is admitted by {admitted}")
+    types = {t.symbol: t for t in segre_types()}
+    ensure(
+        {s for s in admitted if types[s].nonreal_roots} == {"[1111]_2", "[(11)11]_1"},
+        "the same non-real types as the inertia count",
+    )
+    shown = []
+    for symbol in admitted:
+        E, Q = realisable[symbol]  # type: ignore[misc]
+        T = ellipsoid_form(E)
+        E2, Q2 = T.T * E * T, T.T * Q * T
+        ellipsoid = Quadric.from_matrix([[sp.Rational(v) for v in E2.row(i)] for i in range(4)])
+        ensure(ellipsoid.kind.value == "ellipsoid", f"{symbol}: E is an ellipsoid")
+        ensure(package_segre(E2, Q2) == symbol, f"{symbol}: kept by the congruence")
+        diag = ", ".join(str(E2[i, i]) for i in range(4))
+        shown.append(f"{symbol} (E = diag({diag}))")
+    return agrees(
+        f"{len(admitted)} of the 20 types admit signature (3, 1) and are realised by an ellipsoid: "
+        + "; ".join(shown)
+    )
+
+
+# -- cross-checks of the package (full profile) ---------------------------------------------------
+
+
+@proof.check(
+    "the package's revised sign list (Yang) against exact quartics of the 9 root configurations",
+    method=Method.CROSS_CHECK,
+    full=True,
+    size="5702 exact quartics of the 9 root configurations",
 )
 def yang_classification() -> Finding:
     seen: dict[tuple[int, ...], set[str]] = defaultdict(set)
@@ -154,70 +385,32 @@ def yang_classification() -> Finding:
             signs = discrimination(p)
             ensure(signs[0] == 1, "D_1 = 4 c4^2 > 0")
             ensure(yang_counts(signs) == CONFIG_COUNTS[config], f"{config}: {signs} -> {yang_counts(signs)}")
+            d4, d3 = configuration_signs(CONFIGURATIONS[config])
+            ensure(signs[3] == d4 and (d3 is None or signs[2] == d3), f"{config}: signs {signs}")
             seen[signs[1:]].add(config)
             total += 1
     ensure(set(CONFIG_COUNTS) == {c for cs in seen.values() for c in cs}, "every configuration realised")
-    occurring = sorted(seen)
+    ensure(total == 5702, f"the stated size: {total} quartics")
     return agrees(
-        f"{total} exact quartics of the 9 root configurations realise {len(occurring)} of the 27 sign "
-        "patterns of (D2, D3, D4); on each, Yang's revised sign list gives the constructed numbers of "
-        "distinct real roots and non-real pairs"
-    )
-
-
-@proof.check(
-    "Corollary 10's test is 'a non-real root' on every sign pattern with at most one simple non-real pair",
-    method=Method.CASES,
-)
-def criterion_cases() -> Finding:
-    allowed, excluded, impossible = [], [], []
-    for tail in itertools.product((-1, 0, 1), repeat=3):
-        signs = (1, *tail)
-        real, pairs = yang_counts(signs)
-        last = max(i + 1 for i, v in enumerate(signs) if v)
-        if real < 0 or real + 2 * pairs + (4 - last) != 4:
-            impossible.append(tail)  # Yang's counts are inconsistent with degree 4: no quartic has it
-        elif pairs >= 2 or (pairs == 1 and real == 0):
-            excluded.append(tail)  # two non-real pairs, or a double non-real pair
-            ensure(not criterion(signs), f"{tail}: the test fires on a pattern it does not cover")
-        else:
-            ensure(criterion(signs) == (pairs == 1), f"{tail}: test {criterion(signs)}, pairs {pairs}")
-            allowed.append(tail)
-    return agrees(
-        f"of the 27 patterns of (D2, D3, D4): {len(impossible)} are impossible for a quartic, on the "
-        f"{len(allowed)} with at most one simple non-real pair the test equals 'a non-real root', and it is "
-        f"false on the {len(excluded)} with two non-real pairs or a double one {excluded}, which an "
-        "ellipsoid's pencil cannot have"
-    )
-
-
-@proof.check("(mu - conj nu) w^H E v = 0 for eigenvectors of the pencil", method=Method.IDENTITY)
-def neutral_eigenvectors() -> Finding:
-    n = 4
-    e = sp.Matrix(n, n, lambda i, j: sp.Symbol(f"e{min(i, j)}{max(i, j)}", real=True))
-    q = sp.Matrix(n, n, lambda i, j: sp.Symbol(f"q{min(i, j)}{max(i, j)}", real=True))
-    mu, nu = sp.symbols("mu nu")
-    v = sp.Matrix(sp.symbols("v0:4"))
-    w = sp.Matrix(sp.symbols("w0:4"))
-    wh = w.conjugate().T
-    # w^H (mu E + Q) v - conj(v^H (nu E + Q) w) = (mu - conj nu) w^H E v, since E, Q are real symmetric.
-    lhs = (wh * (mu * e + q) * v)[0, 0] - sp.conjugate((v.conjugate().T * (nu * e + q) * w)[0, 0])
-    ensure(sp.expand(lhs - (mu - sp.conjugate(nu)) * (wh * e * v)[0, 0]) == 0, "identity")
-    return agrees(
-        "if (mu E + Q) v = 0 and (nu E + Q) w = 0 then (mu - conj nu) w^H E v = 0: eigenvectors of "
-        "eigenvalues in the upper half-plane are E-neutral and pairwise E-orthogonal; a form of inertia "
-        "(3, 1) has no 2-dimensional neutral subspace, so an ellipsoid's pencil has at most one (simple) "
-        "non-real pair"
+        f"{total} exact quartics of the 9 root configurations realise {len(seen)} of the 27 sign "
+        "patterns of (D2, D3, D4); on each, the package's revised sign list gives the constructed numbers "
+        "of distinct real roots and non-real pairs, and D4, D3 have the signs derived above"
     )
 
 
 @proof.search(
     "ellipsoids against arbitrary symmetric matrices: never two non-real pairs",
-    examples=EXAMPLES,
-    large=5000,
+    examples=0,
+    large=2000,
+    method=Method.CROSS_CHECK,
 )
-def one_pair_evidence(examples: int) -> Finding:
-    seen = defaultdict(int)
+def one_pair_cross_check(examples: int) -> Finding:
+    from hypothesis import given
+    from hypothesis import strategies as st
+
+    from quadric_contact.strategies import ellipsoids
+
+    seen: dict[int, int] = defaultdict(int)
     entry = st.integers(-9, 9)
 
     @search_settings(examples)
@@ -236,15 +429,20 @@ def one_pair_evidence(examples: int) -> Finding:
     return agrees(f"non-real roots per pencil: {dict(sorted(seen.items()))}; never more than 2")
 
 
-@proof.check(
-    "ellipsoids and Table 1 quadrics: the test equals 'P has a non-real root'",
-    method=Method.EVIDENCE,
-    size=f"{EXAMPLES} hypothesis examples",
+@proof.search(
+    "ellipsoids and Table 1 quadrics: the package's test equals 'P has a non-real root'",
+    examples=0,
+    large=1000,
+    method=Method.CROSS_CHECK,
 )
-def criterion_evidence() -> Finding:
-    seen = defaultdict(int)
+def criterion_cross_check(examples: int) -> Finding:
+    from hypothesis import given
 
-    @search_settings(EXAMPLES)
+    from quadric_contact.strategies import ellipsoids, quadrics
+
+    seen: dict[bool, int] = defaultdict(int)
+
+    @search_settings(examples)
     @given(e=ellipsoids(), q=quadrics())
     def search(e: Quadric, q: Quadric) -> None:
         P = characteristic_polynomial(e, q)
@@ -252,6 +450,8 @@ def criterion_evidence() -> Finding:
         f = flint.fmpq_poly([flint.fmpq(c.numerator, c.denominator) for c in P.coefficients])
         nonreal = any(not (r.imag.is_exact() and r.imag == 0) for r, _ in f.complex_roots())
         ensure(criterion(signs) == nonreal, f"{signs} vs non-real {nonreal}")
+        _, d3, d4 = P.deltas()
+        ensure((d4 < 0 or (d4 == 0 and d3 < 0)) == nonreal, "the package's Deltas")
         seen[nonreal] += 1
 
     search()

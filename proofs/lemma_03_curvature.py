@@ -21,6 +21,10 @@ constructions: an admissible ellipse with ``y^2 < 0`` and
 ``b^2 beta - a alpha^2 > 0`` (refuting an intermediate sentence of the proof),
 and a violating pair that meets in four points after a small shift (the
 mechanism of the proof), counted exactly by real root isolation.
+
+Not proven here: that the four points in a plane section make two curves
+of the surfaces, for every violating pair (a statement about all positions of
+all pairs, argued geometrically in the paper).
 """
 
 from __future__ import annotations
@@ -31,7 +35,13 @@ from quadric_contact import paper
 from quadric_contact.proving import Finding, Method, Proof, agrees, differs, ensure
 
 proof = Proof(
-    "Lemma 3", "kappa_max(Q) <= kappa_min(E) from tangent conics", covers=("eq. (3)", "eq. (4)", "eq. (5)")
+    "Lemma 3",
+    "kappa_max(Q) <= kappa_min(E) from tangent conics",
+    covers=("eq. (3)", "eq. (4)", "eq. (5)"),
+    not_proven="the step from the conics to the surfaces: that an ellipsoid violating kappa_max^Q <= "
+    "kappa_min^E can be placed to meet Q in two curves. The computations on the conics are proved; the step "
+    "is the paper's argument, supported by the construction of four points here and, for one pair of each "
+    "type of Table 1, by two intersection curves (Lemma 4's curvature_necessary).",
 )
 
 a, b, al, be = sp.symbols("a b alpha beta", positive=True)

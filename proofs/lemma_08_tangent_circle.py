@@ -20,6 +20,10 @@ radius ``R`` and polar semi-axes ``e`` (for ``E``) and ``q`` (for ``Q``): small
 only if ``e = q = R``.  The excluded case of a curve plus an isolated tangent
 point (Remark 9's construction, not small): translating the ellipsoid by
 1/100 turns the isolated point into a second curve, as the proof says.
+
+Not proven here: the lemma itself, for every small pair (a statement about
+all positions, argued in the paper with Lemma 7; tangency is a measure-zero
+event that no random search meets, so no search is run).
 """
 
 from __future__ import annotations
@@ -35,7 +39,14 @@ from quadric_contact.smallness import smallness
 
 from ._intersection import contact_type, intersection, segre, show_segre, tangent_points
 
-proof = Proof("Lemma 8", "tangency along a curve is tangency along a circle", covers=("Fig. 5",))
+proof = Proof(
+    "Lemma 8",
+    "tangency along a curve is tangency along a circle",
+    covers=("Fig. 5",),
+    not_proven="the general statement, for every small ellipsoid and quadric: the paper's argument (with "
+    "Lemma 7), supported by the constructions of Fig. 5, the case analysis of concentric spheroids and the "
+    "translated construction of Remark 9.",
+)
 
 Z_TO_X = RigidMotion.from_matrix([[0, 0, 1], [0, 1, 0], [-1, 0, 0]])
 ADMISSIBLE = {

@@ -1,9 +1,11 @@
-"""Every check of proofs/ runs here (slow ones under ``-m slow``); the report is current;
-the runner's status logic, discovery and command line behave as documented."""
+"""Every check of proofs/ runs here (those of the full profile under ``-m slow``); the report is
+current; verdicts follow the declared methods; the runner's status logic, discovery, packaging and
+command line behave as documented."""
 
 from __future__ import annotations
 
 import textwrap
+import tomllib
 from pathlib import Path
 
 import pytest
@@ -12,10 +14,12 @@ from quadric_contact import paper
 from quadric_contact.cli import main
 from quadric_contact.errors import ProofsNotFoundError, QuadricContactError
 from quadric_contact.proving import (
+    PACKAGE_NAME,
     REPORT_NAME,
     Method,
     Proof,
     Status,
+    Verdict,
     agrees,
     differs,
     ensure,
@@ -36,7 +40,7 @@ BY_NAME = {p.name: p for p in PROOFS}
 def _params():
     for p in PROOFS:
         for c in p.checks:
-            marks = [pytest.mark.slow] if c.slow else []
+            marks = [pytest.mark.slow] if c.full else []
             yield pytest.param(p.name, c.name, marks=marks, id=f"{p.name}::{c.name}")
 
 
@@ -68,7 +72,77 @@ def test_every_module_states_claim_method_and_how():
         assert p.doc.count("\n") >= 3 and "checked" in p.doc, p.name
         assert p.checks, p.name
         for c in p.checks:
-            assert c.method is not Method.EVIDENCE or c.size, (p.name, c.name)
+            assert c.method.proves or c.size, (p.name, c.name)
+
+
+def test_verdicts_follow_the_declarations():
+    for p in PROOFS:
+        evidence = [c for c in p.checks if c.method is Method.EVIDENCE]
+        assert not evidence or p.not_proven, p.name  # evidence supports a part named as not proven
+        if p.not_proven:
+            assert p.verdict is Verdict.EVIDENCE_ONLY and "Not proven here" in p.doc, p.name
+        elif p.errata:
+            assert p.verdict is Verdict.PROVEN_WITH_ERRATA, p.name
+        else:
+            assert p.verdict is Verdict.PROVEN, p.name
+        # every erratum is demonstrated by a check that proves
+        assert all(c.method.proves for c in p.checks if c.erratum), p.name
+        # cross-checks test the package; they are never needed by a proof, so they run in --full only
+        assert all(c.full for c in p.checks if c.method is Method.CROSS_CHECK), p.name
+        assert set(p.relies_on) <= set(paper.NUMBERED_RESULTS) - {p.result}, p.name
+
+
+def test_evidence_without_not_proven_is_refused():
+    proof = Proof("Remark 16", "test")
+    proof.check("a search", method=Method.EVIDENCE, size="3 examples")(lambda: agrees(""))
+    with pytest.raises(QuadricContactError, match="not_proven"):
+        proof.validate()
+    Proof("Remark 16", "test", not_proven="the rest").validate()
+
+
+def test_the_claims_that_moved_from_evidence_to_proof_are_proofs():
+    # Each of these was a search only; each is now proved by the named check.
+    proved = {
+        ("corollary_10_discriminants", "one_nonreal_pair"): Method.CASES,
+        ("corollary_10_discriminants", "criterion_by_configuration"): Method.CASES,
+        ("remark_09_non_small", "nonreal_means_crossing"): Method.IDENTITY,
+        ("remark_16_plane_center", "centre_side"): Method.IDENTITY,
+        ("lemma_12_two_sheets", "root_signs_any_position"): Method.CASES,
+        ("theorem_13_table_4", "root_signs_proof"): Method.CASES,
+    }
+    for (module, check), method in proved.items():
+        spec = next(c for c in BY_NAME[module].checks if c.name == check)
+        assert spec.method is method and not spec.full, (module, check)
+    for name in (
+        "corollary_10_discriminants",
+        "remark_09_non_small",
+        "remark_16_plane_center",
+        "lemma_12_two_sheets",
+        "theorem_13_table_4",
+        "theorem_05_table_2",
+    ):
+        assert BY_NAME[name].verdict is not Verdict.EVIDENCE_ONLY, name
+
+
+def test_the_default_profile_has_every_proof_and_no_cross_check():
+    for p in PROOFS:
+        for c in p.checks:
+            if c.method.proves:
+                assert not c.full, (p.name, c.name)
+
+
+def test_errata_state_their_confidence_where_the_extraction_may_be_at_fault():
+    by_key = {e.key: e for e in paper.ERRATA}
+    for key in (
+        "table-4-one-sheet-r-minus",
+        "table-4-sign-change-counts",
+        "lemma-3-curvature-exponent",
+        "table-3-tangent-curve-segre",
+    ):
+        assert by_key[key].confidence.startswith("low that the printed paper is wrong"), key
+        assert "extraction" in by_key[key].confidence, key
+    report = (PROOFS_DIR / REPORT_NAME).read_text()
+    assert report.count("- **Confidence:**") == sum(1 for e in paper.ERRATA if e.confidence)
 
 
 def test_module_names_follow_the_numbering():
@@ -123,17 +197,35 @@ def test_evidence_must_state_its_size():
         Proof("Lemma 99", "nothing")
 
 
-def test_slow_checks_are_skipped_on_request():
+def test_full_profile_checks_are_skipped_in_the_default_profile():
     proof = Proof("Remark 16", "test")
     proof.check("fast", method=Method.IDENTITY)(lambda: agrees("fast"))
 
-    @proof.check("slow", method=Method.IDENTITY, slow=True)
+    @proof.check("slow", method=Method.IDENTITY, full=True)
     def slow():
         raise AssertionError("must not run")
 
-    record = run_proof(proof, include_slow=False)
+    record = run_proof(proof, profile="default")
     assert [c.status for c in record.checks] == [Status.PASS, Status.SKIPPED]
-    assert record.ok and record.status is Status.PASS and "1 slow skipped" in record.line()
+    assert record.ok and record.status is Status.PASS and "1 of the full profile not run" in record.line()
+    assert run_proof(proof, profile="full").checks[1].status is Status.ERROR
+
+
+def test_a_check_whose_optional_dependency_is_missing_is_skipped_with_a_note(monkeypatch):
+    import quadric_contact.proving as proving
+
+    monkeypatch.setitem(proving.OPTIONAL_DEPENDENCIES, "no_such_package_for_the_proofs", "pip install it")
+    proof = Proof("Remark 16", "test")
+
+    @proof.check("needs it", method=Method.IDENTITY, requires=("no_such_package_for_the_proofs",))
+    def needs():
+        raise AssertionError("must not run")
+
+    record = run_proof(proof, profile="full")
+    assert record.checks[0].status is Status.SKIPPED and record.ok
+    assert "needs no_such_package_for_the_proofs (pip install it)" in record.line()
+    with pytest.raises(ValueError, match="undeclared optional"):
+        proof.check("t", method=Method.IDENTITY, requires=("numpy_is_not_optional",))
 
 
 # -- discovery and selection -------------------------------------------------------------
@@ -153,8 +245,42 @@ def test_no_proofs_dir_is_a_clear_error(tmp_path, monkeypatch):
     import quadric_contact.proving as proving
 
     monkeypatch.setattr(proving, "__file__", str(tmp_path / "a" / "b" / "proving.py"))
-    with pytest.raises(ProofsNotFoundError, match="--proofs DIR"):
+    monkeypatch.setattr(proving, "installed_proofs_dir", lambda: None)
+    with pytest.raises(ProofsNotFoundError, match="--proofs-dir DIR") as info:
         find_proofs_dir()
+    message = str(info.value)
+    assert str(tmp_path) in message and str(tmp_path / "proofs") in message  # where it looked
+    assert PACKAGE_NAME in message
+
+
+def test_the_installed_proofs_are_found_outside_a_checkout(tmp_path, monkeypatch):
+    # A wheel installs proofs/ as the package quadric_contact_proofs on sys.path.
+    site = tmp_path / "site-packages"
+    installed = site / PACKAGE_NAME
+    installed.mkdir(parents=True)
+    for f in PROOFS_DIR.glob("*.py"):
+        (installed / f.name).write_text(f.read_text())
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    monkeypatch.chdir(elsewhere)
+    import quadric_contact.proving as proving
+
+    monkeypatch.setattr(proving, "__file__", str(tmp_path / "a" / "b" / "proving.py"))
+    monkeypatch.syspath_prepend(str(site))
+    assert find_proofs_dir() == installed.resolve()
+    try:
+        assert [p.name for p in load_proofs()] == [p.name for p in PROOFS]
+    finally:
+        load_proofs(PROOFS_DIR)
+
+
+def test_the_wheel_ships_the_proofs_and_every_package():
+    config = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]
+    assert config["package-dir"][PACKAGE_NAME] == "proofs"
+    assert "REPORT.md" in config["package-data"][PACKAGE_NAME]
+    src = ROOT / "src"
+    packages = {".".join(init.parent.relative_to(src).parts) for init in src.rglob("__init__.py")}
+    assert set(config["packages"]) == packages | {PACKAGE_NAME}
 
 
 def test_select_by_module_prefix_and_label():
@@ -171,13 +297,14 @@ def test_select_by_module_prefix_and_label():
 
 
 def test_cli_prints_one_line_per_result(capsys):
-    code = main(["prove", "--proofs", str(PROOFS_DIR), "example_11", "remark_16"])
+    code = main(["prove", "--proofs-dir", str(PROOFS_DIR), "example_11", "remark_16"])
     out = capsys.readouterr().out.splitlines()
     assert code == 0
     assert out[0].startswith("DIFFERS  example_11_double_root")
     assert "printed Delta_3 = -400; true Delta_3 = -13790208" in out[0]
     assert out[1].startswith("PASS     remark_16_plane_center")
-    assert out[2].startswith("2 results")
+    assert out[2].startswith("2 results") and "(default profile; 1 not run)" in out[2]
+    assert "  proven: Remark 16" in out and "  proven, with recorded errata: Example 11" in out
 
 
 def _write_fake(tmp_path, body):
@@ -204,11 +331,11 @@ def test_cli_exit_1_on_an_unexplained_difference(tmp_path, capsys):
             return differs("1 = 2", "1 != 2")
         ''',
     )
-    assert main(["prove", "--proofs", str(d)]) == 1
+    assert main(["prove", "--proofs-dir", str(d)]) == 1
     out = capsys.readouterr().out
     assert out.startswith("FAIL     remark_16_fake") and "unexplained difference" in out
     # --report refuses to write a report the checks do not support.
-    assert main(["prove", "--proofs", str(d), "--report"]) == 1
+    assert main(["prove", "--proofs-dir", str(d), "--report"]) == 1
     assert not (d / REPORT_NAME).exists()
     load_proofs(PROOFS_DIR)  # restore the real package for the other tests
 
@@ -216,12 +343,12 @@ def test_cli_exit_1_on_an_unexplained_difference(tmp_path, capsys):
 def test_cli_bad_names_and_missing_dir_exit_2(tmp_path, capsys, monkeypatch):
     assert main(["prove", "--proofs", str(PROOFS_DIR), "no_such_result"]) == 2
     assert "matches nothing" in capsys.readouterr().err
-    assert main(["prove", "--proofs", str(tmp_path)]) == 2
+    assert main(["prove", "--proofs-dir", str(tmp_path)]) == 2
     assert "not a proofs directory" in capsys.readouterr().err
 
 
 def test_cli_list(capsys):
-    assert main(["prove", "--proofs", str(PROOFS_DIR), "--list", "section_3_2"]) == 0
+    assert main(["prove", "--proofs-dir", str(PROOFS_DIR), "--list", "section_3_2"]) == 0
     out = capsys.readouterr().out
     assert "delta4" in out and "[erratum delta4-term]" in out
 
@@ -249,19 +376,23 @@ def test_cli_report_writes_a_report_from_the_declarations(tmp_path, capsys):
         ''',
     )
     try:
-        assert main(["prove", "--proofs", str(d), "--report"]) == 0
+        assert main(["prove", "--proofs-dir", str(d), "--report"]) == 0
         report = (d / REPORT_NAME).read_text()
-        row = "| Remark 16 | `remark_16_fake` | DIFFERS (example-11-delta3) | exact computation | 2 |"
+        row = (
+            "| Remark 16 | `remark_16_fake` | proven, with recorded errata | example-11-delta3 | - "
+            "| exact computation | 2 |"
+        )
         assert row in report
+        assert "**Verdict:** proven, with recorded errata (example-11-delta3)." in report
         assert "Claim. One plus one is two." in report
         assert "- **Demonstrated by:** `remark_16_fake::printed`" in report
         assert "- **Demonstrated by:** no proof module" in report  # the other errata, in this fake directory
-        assert capsys.readouterr().out.rstrip().endswith(f"wrote {d / REPORT_NAME}")
+        assert capsys.readouterr().out.splitlines()[-1].startswith(f"wrote {d / REPORT_NAME} (")
     finally:
         load_proofs(PROOFS_DIR)
 
 
-def test_cli_fast_skips_slow_checks(tmp_path, capsys):
+def test_cli_default_profile_skips_full_checks(tmp_path, capsys):
     d = _write_fake(
         tmp_path,
         '''
@@ -276,16 +407,19 @@ def test_cli_fast_skips_slow_checks(tmp_path, capsys):
         def fast():
             return agrees("fast")
 
-        @proof.check("slow", method=Method.COMPUTATION, slow=True)
+        @proof.check("slow", method=Method.COMPUTATION, full=True)
         def slow():
-            raise AssertionError("not run with --fast")
+            raise AssertionError("not run in the default profile")
         ''',
     )
     try:
-        assert main(["prove", "--proofs", str(d), "--fast"]) == 0
-        assert "(1 check, 1 slow skipped)" in capsys.readouterr().out
-        assert main(["prove", "--proofs", str(d)]) == 1  # the slow check runs and raises
+        assert main(["prove", "--proofs-dir", str(d)]) == 0
+        assert "(1 check; 1 of the full profile not run)" in capsys.readouterr().out
+        assert main(["prove", "--proofs-dir", str(d), "--fast"]) == 0  # the old name of the default
+        capsys.readouterr()
+        assert main(["prove", "--proofs-dir", str(d), "--full"]) == 1  # the full check runs and raises
         assert "ERROR" in capsys.readouterr().out
+        assert main(["prove", "--proofs-dir", str(d), "--full", "--fast"]) == 2
     finally:
         load_proofs(PROOFS_DIR)
 
@@ -302,7 +436,7 @@ def test_a_missing_dependency_is_a_clear_error(tmp_path, capsys):
         ''',
     )
     try:
-        assert main(["prove", "--proofs", str(d)]) == 2
+        assert main(["prove", "--proofs-dir", str(d)]) == 2
         assert "no_such_package_for_the_proofs" in capsys.readouterr().err
     finally:
         load_proofs(PROOFS_DIR)
@@ -323,3 +457,15 @@ def test_intersection_helpers_on_known_configurations():
     )
     for text in ("[1111]_4", "[(11)11]_3", "[2(11)]_2", "[(21)1]_2", "[(211)]_1", "[(11)(11)]_2"):
         assert helpers.show_segre(helpers.parse_segre(text)) == text
+
+
+def test_the_report_is_written_into_a_checkout_only(tmp_path):
+    from quadric_contact.proving import write_report
+
+    installed = tmp_path / PACKAGE_NAME
+    installed.mkdir()
+    for f in PROOFS_DIR.glob("*.py"):
+        (installed / f.name).write_text(f.read_text())
+    with pytest.raises(QuadricContactError, match="installed with the package"):
+        write_report(installed)
+    assert not (installed / REPORT_NAME).exists()

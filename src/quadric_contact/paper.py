@@ -215,7 +215,14 @@ PRINTED: dict[str, str] = {
 
 @dataclass(frozen=True)
 class Erratum:
-    """One place where the printed paper differs from what is true."""
+    """One place where the printed paper differs from what is true.
+
+    ``printed`` is what the text of the paper used here reads (an extraction
+    from the PDF, which garbles some matrices and the layout of Tables 3 and 4).
+    ``confidence`` says, where the extraction may be at fault, how sure we are
+    that the printed paper itself, and not only its extraction, is wrong, and
+    why; the mathematics of ``corrected`` is certain either way.
+    """
 
     key: str
     location: str
@@ -223,6 +230,7 @@ class Erratum:
     corrected: str
     evidence: str
     consequence: str
+    confidence: str = ""
 
 
 ERRATA: tuple[Erratum, ...] = (
@@ -235,6 +243,8 @@ ERRATA: tuple[Erratum, ...] = (
         "printed one in exactly this term; the printed term is not even isobaric (weight 16, "
         "all others 12). tests/test_discriminants.py::test_printed_delta4_term_by_term",
         consequence="any code that copies the printed Delta_4 misclassifies pencils",
+        confidence="moderate that the printed paper is wrong: the extracted term certainly is, but it "
+        "differs from the true one in a single subscript (c4 for c3), which an extraction can misread",
     ),
     Erratum(
         key="example-11-delta3",
@@ -253,6 +263,8 @@ ERRATA: tuple[Erratum, ...] = (
         evidence="for a plane c1 = c0 = 0 (eq. (12)), so the printed condition never holds; "
         "Delta_3 with c0 = c1 = 0 is c2^2 (c3^2 - 4 c4 c2). tests/test_plane.py::test_corollary_15_misprint",
         consequence="the printed test would never detect contact with a plane",
+        confidence="high that the printed paper is wrong: the same '4 c1 c2' is extracted twice, in the "
+        "statement and in its proof, so a misreading would have had to repeat",
     ),
     Erratum(
         key="table-4-one-sheet-r-minus",
@@ -265,10 +277,13 @@ ERRATA: tuple[Erratum, ...] = (
         "forces c4 >= 0, so it never holds; exhaustive case analysis over the 49 realisable sign vectors of "
         "real-rooted quartics: every vector of root pattern ---+ has exactly 1 sign change and the corrected "
         "rule holds exactly for them among the patterns ---+ and -+++ "
-        "(proofs/theorem_13_table_4.py::row_03). The extraction garbles Table 4, so this may be a layout "
-        "artefact; the cell as it reads is wrong",
+        "(proofs/theorem_13_table_4.py::row_03)",
         consequence="a classifier coded from the printed row never reports R- for one-sheet hyperboloids "
         "and hyperbolic paraboloids",
+        confidence="low that the printed paper is wrong: the cell as extracted certainly cannot hold, but "
+        "the extraction garbles the layout of Table 4 (the quadric names are shifted against the rows "
+        "and each row's rule runs on into the next line), so the count and the rule read here may be a "
+        "layout artefact of the extraction rather than what the paper prints",
     ),
     Erratum(
         key="table-4-sign-change-counts",
@@ -278,10 +293,16 @@ ERRATA: tuple[Erratum, ...] = (
         corrected="-0++: 2 sign changes; 0+++: 3 sign changes (Descartes: one per positive root)",
         evidence="exhaustive case analysis over the realisable sign vectors of real-rooted quartics: every "
         "vector of pattern -0++ has 2 sign changes and every vector of pattern 0+++ has 3; the rules printed "
-        "beside them (c_i > 0 for some i; (-1)^i c_i <= 0) are right "
-        "(proofs/theorem_13_table_4.py::row_06, row_08)",
+        "beside them (c_i > 0 for some i; (-1)^i c_i <= 0) are right; the printed counts 1 and 0 are the "
+        "sign changes of (-1)^i c_i, i.e. of P(-l) (the numbers of negative roots), on every vector of "
+        "these patterns (proofs/theorem_13_table_4.py::row_06, row_08)",
         consequence="none if the rules are used; the counts as printed contradict the root signs in "
         "the same row",
+        confidence="low that the printed paper is wrong: the counts as extracted are certainly not the sign "
+        "changes of (c0, .., c4), but the extraction shifts the cells of Table 4 between rows, and both "
+        "printed counts equal the sign changes of P(-l), which the rule printed beside 0+++ uses, so they "
+        "may be a layout artefact or counts of P(-l) written in these two rows (the other rows, except the "
+        "one-sheet R- row, count the changes of P(l))",
     ),
     Erratum(
         key="lemma-3-sign-step",
@@ -301,8 +322,12 @@ ERRATA: tuple[Erratum, ...] = (
         corrected="kappa_1(t) = a b / (a^2 sin^2 t + b^2 cos^2 t)^(3/2)",
         evidence="the curvature |x'y'' - y'x''| / (x'^2 + y'^2)^(3/2) of (a cos t, b sin t), by sympy; "
         "the printed formula gives kappa_1(0) = a, not the maximum a/b^2 the proof uses next "
-        "(proofs/lemma_03_curvature.py::ellipse_curvature_formula). Possibly an exponent lost in typesetting",
+        "(proofs/lemma_03_curvature.py::ellipse_curvature_formula)",
         consequence="none: the extreme values a/b^2 and beta/alpha^2 the proof uses are right",
+        confidence="low that the printed paper is wrong: the extraction reads "
+        "\\frac{ab}{\\sqrt{a^2 \\sin^2 t + b^2 \\cos^2 t}}, where an exponent 3 on the root is easily "
+        "lost, and the next sentence of the proof uses the maximum a/b^2 of the correct formula; the "
+        "exponent is probably printed and lost in the extraction or typesetting",
     ),
     Erratum(
         key="table-1-h1-curvature",
@@ -354,6 +379,8 @@ ERRATA: tuple[Erratum, ...] = (
         "tests/test_smallness.py::test_parabolic_cylinder_printed_d_is_imaginary; "
         "tests/test_table_2_symbolic.py::test_table_2_reduces_to_table_1",
         consequence="the printed row cannot be evaluated (d' would be imaginary)",
+        confidence="moderate that the printed paper is wrong: the extracted formula certainly is, but it "
+        "differs from the true one by a minus sign, which an extraction can drop",
     ),
     Erratum(
         key="table-3-2-11-two-points",
@@ -370,6 +397,8 @@ ERRATA: tuple[Erratum, ...] = (
         "touching a spheroid's vertex from outside (small) is [2(11)]_2 with one tangent point "
         "(proofs/theorem_02_table_3.py::two_points_2_11)",
         consequence="none for Theorem 2 (real roots either way)",
+        confidence="high that the printed paper is wrong: the text of the proof of Theorem 2, item (2b), "
+        "lists [2(11)]_2 under two isolated tangent points too, so the table cell is not an artefact",
     ),
     Erratum(
         key="example-17-s2-label",
@@ -394,6 +423,8 @@ ERRATA: tuple[Erratum, ...] = (
         "Segre [(11)(11)]_2 and touches at 2 points; every pair built as above does. "
         "tests/test_contact_kind.py::test_two_double_roots_always_touch_twice",
         consequence="none for Theorem 2 or Corollary 10 (both kinds are 'no transversal contact')",
+        confidence="high that the printed paper is wrong: the text of the proof of Theorem 2, item (1), "
+        "lists [(11)(11)]_2 under no contact too",
     ),
     Erratum(
         key="table-3-subscript",
@@ -404,6 +435,8 @@ ERRATA: tuple[Erratum, ...] = (
         evidence="a sphere osculating the throat of a one-sheet hyperboloid from inside has Segre [(21)1]_2 "
         "and one tangent point. tests/test_contact_kind.py::test_the_subscript_of_21_1",
         consequence="none",
+        confidence="high that the printed paper is wrong: the text of the proof of Theorem 2, item (2)(a), "
+        "prints [(21)1]_3 too",
     ),
     Erratum(
         key="table-3-tangent-curve-segre",
@@ -414,5 +447,9 @@ ERRATA: tuple[Erratum, ...] = (
         "a curve of tangency needs a member of rank 1 (a double plane), i.e. a group of three blocks",
         evidence="tests/test_contact_kind.py::test_tangent_curves_need_a_rank_one_member",
         consequence="none for the contact tests (both are 'no transversal contact')",
+        confidence="low that the printed paper is wrong: the text of the proof, item (3)(b), gives "
+        "[(111)1]_2 alone, and the extra [(11)11]_3 duplicates a symbol of the rows 'no contact' and "
+        "'2 isolated tangent points' in the second column of symbols, where the extraction may have "
+        "displaced a cell; the table as extracted is certainly wrong",
     ),
 )
