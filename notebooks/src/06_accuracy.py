@@ -24,7 +24,7 @@ import numpy as np
 import quadric_contact as qc
 from quadric_contact.benchmark import EIG_TOL, GENERIC_KINDS, peer_numpy_eigvals, peer_numpy_roots
 from quadric_contact.hardcases import hard_cases
-from quadric_contact.modes import MODES, BallMode, CertifiedMode, ContactCode, FilterMode, MpmathMode
+from quadric_contact.modes import MODES, BallMode, CertifiedMode, CriterionCode, FilterMode, MpmathMode
 from quadric_contact.modes.float64 import filter_quantities
 from quadric_contact.samples import SAMPLE_KINDS, random_pairs
 
@@ -50,7 +50,12 @@ for name, cls in MODES.items():
 #   for what the ball left.  It always answers, and its answer is **the exact evaluation
 #   of the criterion on the matrices as given** (a float is the dyadic fraction it stores).
 #
-# On a stack $(\dots,4,4)$ the predicates return int8 codes (`ContactCode`): 1 non-real
+# This notebook studies what the numbers cost on the paper's criterion, the first stage of
+# every predicate: `qc.corollary_10` (does $P(\lambda)=\det(\lambda E+Q)$ have non-real
+# roots?).  The predicates themselves (`qc.transversal_contact`, ...) answer the geometric
+# question for every pair with the same modes; the last section shows their stages.
+#
+# On a stack $(\dots,4,4)$ `corollary_10` returns int8 codes (`CriterionCode`): 1 non-real
 # roots (transversal contact), 0 all roots real, 2 `UNCERTAIN` (never read as "no").
 # Example 11 (contact, decided by $\Delta_4=0$, $\Delta_3<0$) and Example 17's bee against
 # the trunk (no contact), stacked:
@@ -63,8 +68,8 @@ trunk = qc.Quadric.from_equation("x**2 + y**2 - 0.25*(z-3)**2 - 1")
 E2 = np.stack([ex11_E, bee.to_numpy()])
 Q2 = np.stack([ex11_Q, trunk.to_numpy()])
 for name in MODES:
-    print(f"{name:10s}", qc.transversal_contact(E2, Q2, mode=name))
-print([ContactCode(int(c)) for c in qc.transversal_contact(E2, Q2)])
+    print(f"{name:10s}", qc.corollary_10(E2, Q2, mode=name))
+print([CriterionCode(int(c)) for c in qc.corollary_10(E2, Q2)])
 
 # %% [markdown]
 # Batch shapes broadcast as in numpy: one ellipsoid against a stack of quadrics, or a
@@ -74,7 +79,7 @@ print([ContactCode(int(c)) for c in qc.transversal_contact(E2, Q2)])
 # %%
 crown = qc.Quadric.from_equation("x**2 + y**2 + 3*(z - 8.36291)**2 - 20")
 bees = np.stack([qc.Quadric.from_equation(f"(x-3)**2 + (y-3)**2 + 3*(z-{z})**2 - 0.1").to_numpy() for z in (5.5, 7, 9)])
-print(qc.transversal_contact(bees[:, None], np.stack([trunk.to_numpy(), crown.to_numpy()])))
+print(qc.corollary_10(bees[:, None], np.stack([trunk.to_numpy(), crown.to_numpy()])))
 
 # %% [markdown]
 # ## The hard-case ladder
@@ -114,7 +119,7 @@ E = np.stack([c.matrices()[0] for c in ladder])
 Q = np.stack([c.matrices()[1] for c in ladder])
 distance = np.array([c.distance for c in ladder])
 DISTANCES = [f"1e-{k}" for k in range(2, 17)]
-truth = qc.transversal_contact(E, Q, mode="exact")
+truth = qc.corollary_10(E, Q, mode="exact")
 intended = np.array([c.intended_contact for c in ladder])
 
 # %% [markdown]
@@ -141,13 +146,13 @@ for d in DISTANCES[-4:]:
 
 # %%
 methods = {
-    "float": lambda: qc.transversal_contact(E, Q, mode="float"),
-    "mpmath 15 digits": lambda: qc.transversal_contact(E, Q, mode=MpmathMode(15)),
-    "mpmath 30 digits": lambda: qc.transversal_contact(E, Q, mode=MpmathMode(30)),
-    "filter": lambda: qc.transversal_contact(E, Q, mode="filter"),
-    "ball 53 bits": lambda: qc.transversal_contact(E, Q, mode=BallMode(53)),
-    "ball 128 bits": lambda: qc.transversal_contact(E, Q, mode=BallMode(128)),
-    "certified": lambda: qc.transversal_contact(E, Q, mode="certified"),
+    "float": lambda: qc.corollary_10(E, Q, mode="float"),
+    "mpmath 15 digits": lambda: qc.corollary_10(E, Q, mode=MpmathMode(15)),
+    "mpmath 30 digits": lambda: qc.corollary_10(E, Q, mode=MpmathMode(30)),
+    "filter": lambda: qc.corollary_10(E, Q, mode="filter"),
+    "ball 53 bits": lambda: qc.corollary_10(E, Q, mode=BallMode(53)),
+    "ball 128 bits": lambda: qc.corollary_10(E, Q, mode=BallMode(128)),
+    "certified": lambda: qc.corollary_10(E, Q, mode="certified"),
     "numpy eigvals": lambda: peer_numpy_eigvals(E, Q),
     "numpy roots": lambda: peer_numpy_roots(E, Q),
 }
@@ -254,14 +259,14 @@ stages = {}
 for d in DISTANCES:
     mode = CertifiedMode()
     sel = distance == d
-    assert (qc.transversal_contact(E[sel], Q[sel], mode=mode) == truth[sel]).all()
+    assert (qc.corollary_10(E[sel], Q[sel], mode=mode) == truth[sel]).all()
     stages[d] = dict(mode.last.decided)
 print("d = 1e-2: ", stages["1e-2"], "\nd = 1e-16:", stages["1e-16"])
 
 fig, ax = plt.subplots(figsize=(8, 3.5))
 bottom = np.zeros(len(DISTANCES))
 for stage, colour in [("filter", "tab:blue"), ("ball", "tab:orange"), ("exact", "tab:red")]:
-    counts = np.array([stages[d].get(stage, 0) for d in DISTANCES])
+    counts = np.array([stages[d].get(f"criterion ({stage})", 0) for d in DISTANCES])
     ax.bar(DISTANCES, counts, bottom=bottom, color=colour, label=stage)
     bottom += counts
 ax.set_ylabel("ladder cases decided")
@@ -284,7 +289,7 @@ E_g, Q_g, _ = random_pairs(3000, np.random.default_rng(6), kinds=GENERIC_KINDS)
 E_r, Q_r, kinds = random_pairs(3000, np.random.default_rng(6))
 for label, (Ep, Qp) in {"generic types": (E_g, Q_g), "all ten types": (E_r, Q_r)}.items():
     mode = CertifiedMode()
-    qc.transversal_contact(Ep, Qp, mode=mode)
+    qc.corollary_10(Ep, Qp, mode=mode)
     print(f"3000 random pairs, {label}: {mode.last} | escalated past the filter: {mode.last.escalated}")
 
 # %% [markdown]
@@ -333,7 +338,7 @@ ax.grid(True, which="both", alpha=0.3)
 case = next(c for c in hard_cases(["dyadic-tangent"]) if c.id == "dyadic-tangent/elliptic_cylinder/R+/tangent/0")
 Ec, Qc = case.matrices()
 P = qc.characteristic_polynomial(*case.input_quadrics())
-print("exact: c0 =", P.coefficients[0], "|", P.structure.describe(), "| transversal contact:", bool(qc.transversal_contact(Ec, Qc)))
+print("exact: c0 =", P.coefficients[0], "|", P.structure.describe(), "| transversal contact:", bool(qc.corollary_10(Ec, Qc)))
 print("numpy: det Q =", np.linalg.det(Qc))
 print("numpy eigenvalues of -E^-1 Q:", np.linalg.eigvals(-np.linalg.solve(Ec, Qc)))
 print("peers say contact:", peer_numpy_eigvals(Ec[None], Qc[None])[0], peer_numpy_roots(Ec[None], Qc[None])[0])
@@ -344,8 +349,8 @@ print("peers say contact:", peer_numpy_eigvals(Ec[None], Qc[None])[0], peer_nump
 # pairs above, by type of $Q$:
 
 # %%
-flt_r = qc.transversal_contact(E_r, Q_r, mode="float")
-right_r = qc.transversal_contact(E_r, Q_r, mode="exact")
+flt_r = qc.corollary_10(E_r, Q_r, mode="float")
+right_r = qc.corollary_10(E_r, Q_r, mode="exact")
 for k, kind in enumerate(SAMPLE_KINDS):
     sel = kinds == k
     print(f"{kind.value:26s} float wrong on {np.count_nonzero(sel & (flt_r != right_r)):3d} of {sel.sum()}")
@@ -361,9 +366,9 @@ for c in bee_crown:
     P = qc.characteristic_polynomial(*c.input_quadrics())
     print(f"{c.id}: exact Delta4 = {P.deltas()[2]}, Delta3 > 0: {P.deltas()[1] > 0}")
     for name in ("float", "mpmath", "filter", "ball"):
-        print(f"   {name:7s} -> {ContactCode(int(qc.transversal_contact(Eb[None], Qb[None], mode=name)[0])).name}")
+        print(f"   {name:7s} -> {CriterionCode(int(qc.corollary_10(Eb[None], Qb[None], mode=name)[0])).name}")
     mode = CertifiedMode()
-    answer = ContactCode(int(qc.transversal_contact(Eb[None], Qb[None], mode=mode)[0]))
+    answer = CriterionCode(int(qc.corollary_10(Eb[None], Qb[None], mode=mode)[0]))
     print(f"   certified -> {answer.name}, decided by: {mode.last}")
 
 # %% [markdown]
@@ -387,9 +392,9 @@ exact_cases = [c for c in hard_cases(["ladder-exact"]) if c.direction != "tangen
 Ex = np.stack([c.matrices()[0] for c in exact_cases])
 Qx = np.stack([c.matrices()[1] for c in exact_cases])
 mode = CertifiedMode()
-got = qc.transversal_contact(Ex, Qx, mode=mode)
+got = qc.corollary_10(Ex, Qx, mode=mode)
 print(Ex.dtype, len(exact_cases), "cases; certified == intended:", bool((got == [c.intended_contact for c in exact_cases]).all()), "| stages:", mode.last)
-print("float on the same (rounded) matrices, wrong:", np.count_nonzero(qc.transversal_contact(Ex, Qx, mode="float") != got))
+print("float on the same (rounded) matrices, wrong:", np.count_nonzero(qc.corollary_10(Ex, Qx, mode="float") != got))
 
 # %% [markdown]
 # ## Accuracy against time
@@ -413,14 +418,14 @@ def best_time(fn, repeat):
 populations = {"generic random": (E_g, Q_g), "all types random": (E_r, Q_r), "ladder (hard)": (E, Q)}
 measured = []  # (population, method, seconds per test, fraction wrong, fraction undecided)
 for population, (Ep, Qp) in populations.items():
-    right = qc.transversal_contact(Ep, Qp, mode="exact")
+    right = qc.corollary_10(Ep, Qp, mode="exact")
     for name, run, n in [
-        ("float", lambda e, q: qc.transversal_contact(e, q, mode="float"), len(Ep)),
-        ("filter", lambda e, q: qc.transversal_contact(e, q, mode=FilterMode()), len(Ep)),
-        ("certified", lambda e, q: qc.transversal_contact(e, q, mode="certified"), len(Ep)),
-        ("ball 128", lambda e, q: qc.transversal_contact(e, q, mode="ball"), 300),
-        ("mpmath 50", lambda e, q: qc.transversal_contact(e, q, mode="mpmath"), 300),
-        ("exact", lambda e, q: qc.transversal_contact(e, q, mode="exact"), 300),
+        ("float", lambda e, q: qc.corollary_10(e, q, mode="float"), len(Ep)),
+        ("filter", lambda e, q: qc.corollary_10(e, q, mode=FilterMode()), len(Ep)),
+        ("certified", lambda e, q: qc.corollary_10(e, q, mode="certified"), len(Ep)),
+        ("ball 128", lambda e, q: qc.corollary_10(e, q, mode="ball"), 300),
+        ("mpmath 50", lambda e, q: qc.corollary_10(e, q, mode="mpmath"), 300),
+        ("exact", lambda e, q: qc.corollary_10(e, q, mode="exact"), 300),
         ("numpy eigvals", peer_numpy_eigvals, len(Ep)),
         ("numpy roots", peer_numpy_roots, 300),
     ]:
@@ -471,8 +476,8 @@ plt.tight_layout()
 # memory); the answer is the same:
 
 # %%
-lazy = qc.transversal_contact(da.from_array(E_r, chunks=(1000, 4, 4)), da.from_array(Q_r, chunks=(1000, 4, 4)))
-print(type(lazy).__name__, lazy.shape, "same as numpy:", bool((lazy == qc.transversal_contact(E_r, Q_r)).all()))
+lazy = qc.corollary_10(da.from_array(E_r, chunks=(1000, 4, 4)), da.from_array(Q_r, chunks=(1000, 4, 4)))
+print(type(lazy).__name__, lazy.shape, "same as numpy:", bool((lazy == qc.corollary_10(E_r, Q_r)).all()))
 
 # %% [markdown]
 # ## Exercises
@@ -483,12 +488,12 @@ print(type(lazy).__name__, lazy.shape, "same as numpy:", bool((lazy == qc.transv
 # %%
 sel = distance == "1e-12"
 mode = CertifiedMode()
-qc.transversal_contact(E[sel], Q[sel], mode=mode)
-answer_1 = mode.last.decided["ball"] + mode.last.decided["exact"]
+qc.corollary_10(E[sel], Q[sel], mode=mode)
+answer_1 = mode.last.decided["criterion (ball)"] + mode.last.decided["criterion (exact)"]
 
 # %%
 # Check: exactly the cases where the filter alone is UNCERTAIN.
-assert answer_1 == np.count_nonzero(qc.transversal_contact(E[sel], Q[sel], mode="filter") == ContactCode.UNCERTAIN) > 0, answer_1
+assert answer_1 == np.count_nonzero(qc.corollary_10(E[sel], Q[sel], mode="filter") == CriterionCode.UNCERTAIN) > 0, answer_1
 print("correct:", answer_1, "of", sel.sum())
 
 # %% [markdown]
@@ -496,7 +501,7 @@ print("correct:", answer_1, "of", sel.sum())
 # wrong answer?  Store it as a string like `"1e-7"` in `answer_2`.
 
 # %%
-flt = qc.transversal_contact(E, Q, mode="float")
+flt = qc.corollary_10(E, Q, mode="float")
 answer_2 = next(d for d in DISTANCES if np.any((distance == d) & (flt != truth)))
 
 # %%
@@ -517,14 +522,39 @@ print("correct: float is first wrong at d =", answer_2)
 sphere_case = next(c for c in hard_cases(["delta4-zero"]) if c.id == "delta4-zero/spheres/R-/away/1e-12")
 Es, Qs = sphere_case.matrices()
 mode = CertifiedMode()
-qc.transversal_contact(Es[None], Qs[None], mode=mode)
-answer_3 = next(stage for stage, n in mode.last.decided.items() if n)
+qc.corollary_10(Es[None], Qs[None], mode=mode)
+answer_3 = next(stage for stage, n in mode.last.decided.items() if n).split("(")[1].rstrip(")")
 
 # %%
 # Check: the stages before it are UNCERTAIN, the stage itself decides, and the answer is exact.
 order = ["filter", "ball", "exact"]
 singles = {"filter": FilterMode(), "ball": BallMode(128), "exact": "exact"}
-results = {s: int(qc.transversal_contact(Es[None], Qs[None], mode=singles[s])[0]) for s in order}
-assert all(results[s] == ContactCode.UNCERTAIN for s in order[: order.index(answer_3)]), results
-assert results[answer_3] == results["exact"] == ContactCode.NO_CONTACT, results
-print("correct: decided by", answer_3, {s: ContactCode(v).name for s, v in results.items()})
+results = {s: int(qc.corollary_10(Es[None], Qs[None], mode=singles[s])[0]) for s in order}
+assert all(results[s] == CriterionCode.UNCERTAIN for s in order[: order.index(answer_3)]), results
+assert results[answer_3] == results["exact"] == CriterionCode.ALL_REAL, results
+print("correct: decided by", answer_3, {s: CriterionCode(v).name for s, v in results.items()})
+
+# %% [markdown]
+# ## The predicates: the same modes, the geometric question
+#
+# The criterion alone says nothing for a pair that is not small and whose roots are all
+# real.  The predicates go on: smallness (Tables 1-2 on arrays), then the *separation
+# certificate* (a member $sE+Q$ of the pencil that is definite proves that $E$ lies strictly
+# on one side, by the S-lemma; four simple real roots without one prove a crossing), and
+# the exact scalar predicates for tangencies.  On random pairs of similar sizes, where most
+# pairs are not small, here is who settles what, and the criterion's error against the
+# geometry:
+
+# %%
+from quadric_contact.samples import random_ellipsoids
+
+rng = np.random.default_rng(5)
+Ea, _ = random_ellipsoids(2000, rng, axes=(0.5, 2.0), box=2.0)
+Qa, _ = random_ellipsoids(2000, rng, axes=(0.5, 2.0), box=2.0)
+mode = CertifiedMode()
+contact = qc.transversal_contact(Ea, Qa, mode=mode)
+print(mode.last)
+criterion = qc.corollary_10(Ea, Qa)
+crossing_missed = np.count_nonzero((contact == 1) & (criterion == CriterionCode.ALL_REAL))
+print(f"pairs that cross: {np.count_nonzero(contact == 1)}; of them the criterion alone calls "
+      f"'all roots real' (no contact under smallness): {crossing_missed}")
