@@ -6,13 +6,14 @@ of each event), and against closed forms where the geometry gives them."""
 from __future__ import annotations
 
 from fractions import Fraction as F
+from itertools import pairwise
 
 import pytest
+from tests.scene_oracle import check_timeline
 
 from quadric_contact.classification import QuadricKind
 from quadric_contact.scene import builtin_scene, builtin_scene_names
 from quadric_contact.simulate import simulate
-from tests.scene_oracle import check_timeline
 
 NEW_SCENES = ("probe_two_sheets", "parallel_walls", "trough_and_channel")
 
@@ -54,7 +55,7 @@ def _keyframe_crossing(keys, coord, level):
     """Times at which the piecewise-linear path of the keyframes has ``coord == level``
     strictly inside a leg (the closed forms of the scene files)."""
     out = []
-    for (ta, pa), (tb, pb) in zip(keys, keys[1:], strict=False):
+    for (ta, pa), (tb, pb) in pairwise(keys):
         a, b = F(pa[coord]), F(pb[coord])
         if a != b and min(a, b) < level < max(a, b):
             out.append(F(ta) + (F(tb) - F(ta)) * (level - a) / (b - a))
