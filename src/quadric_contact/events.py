@@ -124,6 +124,10 @@ class RealRoot:
         self.lo = lo
         self.hi = hi
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickle as the integer coefficients and the isolating interval (for worker processes)."""
+        return (_rebuild_root, (tuple(int(c) for c in self.poly.coeffs()), self.lo, self.hi))
+
     @classmethod
     def rational(cls, value: Fraction) -> RealRoot:
         poly = flint.fmpz_poly([-value.numerator, value.denominator])
@@ -299,6 +303,10 @@ class RealRoot:
 
     def __str__(self) -> str:
         return str(self.lo) if self.is_rational else self.decimal(12)
+
+
+def _rebuild_root(coeffs: tuple[int, ...], lo: Fraction, hi: Fraction) -> RealRoot:
+    return RealRoot(flint.fmpz_poly(list(coeffs)), lo, hi)
 
 
 def _ball_interval(ball: Any) -> tuple[Fraction, Fraction]:

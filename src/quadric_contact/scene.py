@@ -236,11 +236,33 @@ class Scene:
         from .smallness import smallness
 
         policy = on_not_small or self.on_not_small
-        for ell in self.ellipsoids:
+        # smallness depends on the ellipsoid's shape and size, not on where it is
+        # (Definition 1, Tables 1-2): congruent translates share one check
+        known: dict[tuple[Any, ...], SmallnessCheck] = {}
+        pieces = [(o, p) for o in self.objects for p in o.pieces if not p.is_plane]
+        todo = [
+            e
+            for e in self.ellipsoids
+            if any((e.name, o.name, p.name) not in self.smallness for o, p in pieces)
+        ]
+        if not todo:
+            return
+        centred = {e.name: _centred(e) for e in self.ellipsoids}
+        for (e_name, o_name, p_name), done in self.smallness.items():
+            if e_name in centred:
+                known.setdefault((centred[e_name], o_name, p_name), done)
+        for ell in todo:
             for obj in self.objects:
                 for piece in obj.pieces:
                     key = (ell.name, obj.name, piece.name)
                     if piece.is_plane or key in self.smallness:
+                        continue
+                    shape = (centred[ell.name], obj.name, piece.name)
+                    if shape in known:
+                        same = known[shape]
+                        self.smallness[key] = SmallnessCheck(
+                            ell.name, obj.name, piece.name, same.small, same.report, same.note
+                        )
                         continue
                     self.work.add("smallness_checks", target=f"{obj.name}/{piece.name}")
                     try:
@@ -248,6 +270,7 @@ class Scene:
                         check = SmallnessCheck(ell.name, obj.name, piece.name, bool(report.small), report)
                     except QuadricContactError as exc:
                         check = SmallnessCheck(ell.name, obj.name, piece.name, False, None, str(exc))
+                    known[shape] = check
                     if not check.small:
                         why = str(check.report) if check.report is not None else check.note
                         text = (
@@ -290,6 +313,11 @@ class Scene:
                 f"  ellipsoid {e.name}: {e.quadric.equation()} = 0; motion: {e.trajectory.describe()}"
             )
         return "\n".join(lines)
+
+
+def _centred(ell: MovingEllipsoid) -> tuple[Fraction, ...]:
+    """The ellipsoid moved to the origin: with the piece, what smallness depends on."""
+    return ell.quadric.translated(tuple(-v for v in ell.center)).upper
 
 
 # -- reading TOML ----------------------------------------------------------------------

@@ -509,7 +509,7 @@ class _SegmentRun:
             self.targets[_plane_label(obj, s)] = s
         for p in obj.pieces:
             self.targets[_piece_label(obj, p)] = p
-        self.tracks: dict[str, _Track] = {}
+        self.tracks: dict[str, Any] = {}
         self._samples: dict[tuple[Any, Any], Fraction] = {}
 
     def _sample(self, left: TimePoint, right: TimePoint) -> Fraction:
@@ -526,27 +526,27 @@ class _SegmentRun:
         return Quadric._from_upper(tuple(poly_eval(p, t) for p in self.E_upper))
 
     def make_track(self, label: str) -> None:
+        self.tracks[label] = self.build_track(label, self.seg.t0, self.seg.t1)
+
+    def build_track(self, label: str, t0: Fraction, t1: Fraction) -> _Track:
+        """The exact track of one target (plane or piece) on ``[t0, t1]`` of the segment."""
         target = self.targets[label]
-        seg = self.seg
         if isinstance(target, Split):
-            self.tracks[label] = PlaneTrack(
-                label, self.E_upper, target.plane, seg.t0, seg.t1, self.ledger, self.positive
-            )
-        else:
-            self.tracks[label] = PieceTrack(
-                label,
-                self.E_upper,
-                target.quadric,
-                seg.t0,
-                seg.t1,
-                self.ledger,
-                small=self.scene.small(self.ell.name, self.obj.name, target.name),
-                table_4=self.scene.table_4_applies(self.ell.name, self.obj.name, target.name),
-                region=self.plan.region,
-                kind=self.plan.kind,
-                E_at=self.E_at,
-                positive=self.positive,
-            )
+            return PlaneTrack(label, self.E_upper, target.plane, t0, t1, self.ledger, self.positive)
+        return PieceTrack(
+            label,
+            self.E_upper,
+            target.quadric,
+            t0,
+            t1,
+            self.ledger,
+            small=self.scene.small(self.ell.name, self.obj.name, target.name),
+            table_4=self.scene.table_4_applies(self.ell.name, self.obj.name, target.name),
+            region=self.plan.region,
+            kind=self.plan.kind,
+            E_at=self.E_at,
+            positive=self.positive,
+        )
 
     def descend(self, get: Callable[[str], Any]) -> ObjectState:
         obj = self.obj
@@ -733,6 +733,44 @@ def _progress(total: int, enabled: bool | None) -> Any:
     return tqdm(total=total, desc="simulating", unit="segment", file=sys.stderr, leave=False)
 
 
+def _simulate_pair(
+    scene: Scene,
+    plan: Plan,
+    e: MovingEllipsoid,
+    obj: Composite,
+    segs: Sequence[MotionSegment],
+    ledger: Ledger,
+    *,
+    bar: Any = None,
+    segment_run: Callable[..., _SegmentRun] | None = None,
+) -> PairResult:
+    """The timeline of one moving ellipsoid against one object, segment by segment."""
+    make_run = segment_run or _SegmentRun
+    entries: list[tuple[str, TimePoint, TimePoint, ObjectState, Fraction | None]] = []
+    first: tuple[RealRoot, list[str]] | None = None
+    done = 0
+    for seg in segs:
+        part = make_run(scene, plan, e, obj, seg, ledger).run()
+        done += 1
+        if bar is not None:
+            bar.update(1)
+        if entries:
+            part = part[1:]  # the joint instant was the previous segment's last entry
+        entries.extend(part)
+        if first is None:
+            first = _first_contact(part)
+        if plan.stop_at_first_contact and first is not None:
+            break
+    if bar is not None and done < len(segs):
+        bar.update(len(segs) - done)
+    complete = done == len(segs)
+    if plan.kind:
+        _tangent_boundaries(entries)
+    return PairResult(
+        e.name, obj, _episodes(entries), _events(entries) if complete else [], first, complete, done
+    )
+
+
 def simulate(
     scene: Scene,
     *,
@@ -740,6 +778,8 @@ def simulate(
     full: bool = False,
     progress: bool | None = None,
     on_not_small: str | None = None,
+    broad_phase: bool = False,
+    workers: int = 1,
 ) -> SimulationResult:
     """Run a scene and return its exact event timelines and work ledger.
 
@@ -755,6 +795,13 @@ def simulate(
         Show a progress bar on stderr (default: for long runs on a terminal).
     on_not_small : {"refuse", "warn"}, optional
         Override the scene's smallness policy.
+    broad_phase : bool
+        Prune, with certified bounds of each ellipsoid's swept volume, the
+        planes and pieces (and the stretches of time) where nothing can
+        happen, before any pencil is formed (:mod:`quadric_contact.broadphase`);
+        the timelines are the same.
+    workers : int
+        Processes to share the ellipsoids between (``0``: one per core).
 
     Returns
     -------
@@ -802,45 +849,21 @@ def simulate(
                     ledger.add_full("discriminants", 3 * nseg)
                     ledger.add_full("coefficient_signs", 3 * nseg)
                     ledger.add_full("smallness_checks", 1)
-    total = sum(len(seg_lists[e.name]) for e in scene.ellipsoids) * len(scene.objects)
-    bar = _progress(total, progress)
-    pairs: list[PairResult] = []
-    try:
-        for e in scene.ellipsoids:
-            for obj in scene.objects:
-                entries: list[tuple[str, TimePoint, TimePoint, ObjectState, Fraction | None]] = []
-                first: tuple[RealRoot, list[str]] | None = None
-                done = 0
-                segs = seg_lists[e.name]
-                for seg in segs:
-                    part = _SegmentRun(scene, plan, e, obj, seg, ledger).run()
-                    done += 1
-                    if bar is not None:
-                        bar.update(1)
-                    if entries:
-                        part = part[1:]  # the joint instant was the previous segment's last entry
-                    entries.extend(part)
-                    if first is None:
-                        first = _first_contact(part)
-                    if plan.stop_at_first_contact and first is not None:
-                        break
-                if bar is not None and done < len(segs):
-                    bar.update(len(segs) - done)
-                complete = done == len(segs)
-                if plan.kind:
-                    _tangent_boundaries(entries)
-                pairs.append(
-                    PairResult(
-                        e.name,
-                        obj,
-                        _episodes(entries),
-                        _events(entries) if complete else [],
-                        first,
-                        complete,
-                        done,
-                    )
-                )
-    finally:
-        if bar is not None:
-            bar.close()
+    if broad_phase or workers != 1:
+        from .manybody import run_pairs
+
+        pairs = run_pairs(
+            scene, plan, seg_lists, ledger, broad_phase=broad_phase, workers=workers, progress=progress
+        )
+    else:
+        total = sum(len(seg_lists[e.name]) for e in scene.ellipsoids) * len(scene.objects)
+        bar = _progress(total, progress)
+        pairs = []
+        try:
+            for e in scene.ellipsoids:
+                for obj in scene.objects:
+                    pairs.append(_simulate_pair(scene, plan, e, obj, seg_lists[e.name], ledger, bar=bar))
+        finally:
+            if bar is not None:
+                bar.close()
     return SimulationResult(scene, plan, pairs, ledger, time.perf_counter() - started, list(scene.warnings))
