@@ -144,8 +144,8 @@ class _BroadSegmentRun(_SegmentRun):
                 scratch,
                 small=self.scene.small(self.ell.name, self.obj.name, target.name),
                 table_4=self.scene.table_4_applies(self.ell.name, self.obj.name, target.name),
-                region=self.plan.region,
-                kind=self.plan.kind,
+                region=self.piece_plans[target.name].region,
+                kind=self.piece_plans[target.name].kind,
                 E_at=self.E_at,
                 positive=None,
             )

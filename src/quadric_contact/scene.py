@@ -68,6 +68,18 @@ Effects: ``zone`` (Algorithm 1), ``contact`` (Algorithm 2),
 ``first_contact``, ``smallness`` (report the smallness of every moving
 ellipsoid with respect to every piece).  Only what they need is computed.
 
+Only what the scene asks for, per object: an optional ``[effects]`` table
+narrows the effects for some ellipsoids and pieces::
+
+    [effects]
+    ellipsoids = { scout = ["zone", "contact", "relative_position"], worker = ["first_contact"] }
+    pieces = { "tree/crown" = ["contact", "first_contact"] }
+
+Each list replaces the scene's effects for that ellipsoid or piece; a pair
+(ellipsoid, piece) gets the effects that the scene, the ellipsoid and the
+piece all ask for, and the work ledger compares what was done with every
+effect computed everywhere.
+
 Smallness (Tables 1, 2) of each moving ellipsoid with respect to each
 quadric piece is checked when the scene is loaded, if its effects rely on
 Theorem 2; ``on_not_small = "refuse"`` rejects a scene where it fails,
@@ -205,6 +217,12 @@ class Scene:
     warnings: list[str] = field(default_factory=list)
     work: Ledger = field(default_factory=Ledger)
     """Work done on the scene itself (the smallness checks), whenever it was done."""
+    ellipsoid_effects: dict[str, tuple[str, ...]] = field(default_factory=dict)
+    """Ellipsoid name -> the effects it asks for (of the scene's; default: all of them)."""
+    piece_effects: dict[tuple[str, str], tuple[str, ...]] = field(default_factory=dict)
+    """(object, piece) -> the effects asked for on it (of the scene's; default: all of them).
+    A pair (ellipsoid, piece) gets the effects that the scene, the ellipsoid and the
+    piece all ask for."""
 
     def __post_init__(self) -> None:
         t0, t1 = (to_fraction(v) for v in self.span)
@@ -220,6 +238,12 @@ class Scene:
             raise SceneError(
                 f"{self.source}: scene.on_not_small: expected 'refuse' or 'warn'", self.on_not_small
             )
+        for who, asked in [*self.ellipsoid_effects.items(), *self.piece_effects.items()]:
+            bad = [e for e in asked if e not in EFFECTS]
+            if bad:
+                raise SceneError(
+                    f"{self.source}: effects of {who}: unknown effect(s) {bad}; expected some of {EFFECTS}"
+                )
 
     def needs_smallness(self, effects: Sequence[str] | None = None) -> bool:
         """Some effect (the scene's, or ``effects``) relies on Theorem 2, hence on smallness."""
@@ -306,6 +330,10 @@ class Scene:
         if self.description:
             lines.append(f"  {self.description}")
         lines.append(f"  time span: [{self.span[0]}, {self.span[1]}]; effects: {', '.join(self.effects)}")
+        for name, asked in self.ellipsoid_effects.items():
+            lines.append(f"  effects asked for by ellipsoid {name}: {', '.join(asked) or 'none'}")
+        for (o, p), asked in self.piece_effects.items():
+            lines.append(f"  effects asked for on piece {o}/{p}: {', '.join(asked) or 'none'}")
         for o in self.objects:
             lines.append(f"  object {o.describe()}")
         for e in self.ellipsoids:
@@ -645,6 +673,40 @@ def _ellipsoid(
     return MovingEllipsoid(name, e, traj)
 
 
+def _effect_list(r: _Reader, value: Any, key: str) -> tuple[str, ...]:
+    if not isinstance(value, list) or not all(isinstance(e, str) for e in value):
+        raise r.error(key, f"a list of effect names from {list(EFFECTS)}", value)
+    for i, e in enumerate(value):
+        if e not in EFFECTS:
+            raise r.error(f"{key}[{i}]", f"one of {list(EFFECTS)}", e)
+    return tuple(dict.fromkeys(value))
+
+
+def _object_effects(
+    r: _Reader, data: Mapping[str, Any], objects: Sequence[Composite], ells: Sequence[MovingEllipsoid]
+) -> tuple[dict[str, tuple[str, ...]], dict[tuple[str, str], tuple[str, ...]]]:
+    """The optional ``[effects]`` table: ``ellipsoids = { name = [...] }`` and
+    ``pieces = { "object/piece" = [...] }``, each list replacing the scene's effects for
+    that ellipsoid or piece (a pair gets what the scene, its ellipsoid and its piece all ask for)."""
+    table = r.table(data, "effects", "effects", required=False)
+    r.keys(table, "effects", ("ellipsoids", "pieces"))
+    names = {e.name for e in ells}
+    pieces = {f"{o.name}/{p.name}": (o.name, p.name) for o in objects for p in o.pieces}
+    per_ellipsoid: dict[str, tuple[str, ...]] = {}
+    for name, value in r.table(table, "ellipsoids", "effects.ellipsoids", required=False).items():
+        if name not in names:
+            raise r.error(
+                f"effects.ellipsoids.{name}", f"the name of an ellipsoid ({', '.join(sorted(names))})", name
+            )
+        per_ellipsoid[name] = _effect_list(r, value, f"effects.ellipsoids.{name}")
+    per_piece: dict[tuple[str, str], tuple[str, ...]] = {}
+    for name, value in r.table(table, "pieces", "effects.pieces", required=False).items():
+        if name not in pieces:
+            raise r.error(f"effects.pieces.{name}", f"'object/piece' of a piece ({', '.join(pieces)})", name)
+        per_piece[pieces[name]] = _effect_list(r, value, f"effects.pieces.{name}")
+    return per_ellipsoid, per_piece
+
+
 def parse_scene(
     text: str, source: str = "<scene>", *, check_smallness: bool = True, on_not_small: str | None = None
 ) -> Scene:
@@ -696,7 +758,7 @@ def parse_scene(
         data = tomllib.loads(text, parse_float=_parse_float)
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(f"{source}: not valid TOML: {exc}", text, file=source) from exc
-    r.keys(data, "", ("scene", "object", "ellipsoid"))
+    r.keys(data, "", ("scene", "object", "ellipsoid", "effects"))
     meta = r.table(data, "scene", "scene")
     r.keys(meta, "scene", ("name", "description", "time", "effects", "on_not_small", "places"))
     name = r.string(meta, "name", "scene.name")
@@ -739,8 +801,19 @@ def parse_scene(
     enames = [e.name for e in ells]
     if len(set(enames)) != len(enames):
         raise r.error("ellipsoid", "ellipsoids with distinct names", enames)
+    per_ellipsoid, per_piece = _object_effects(r, data, objects, ells)
     scene = Scene(
-        name, objects, ells, span, tuple(dict.fromkeys(effects_raw)), description, source, policy, places_raw
+        name,
+        objects,
+        ells,
+        span,
+        tuple(dict.fromkeys(effects_raw)),
+        description,
+        source,
+        policy,
+        places_raw,
+        ellipsoid_effects=per_ellipsoid,
+        piece_effects=per_piece,
     )
     if check_smallness and scene.needs_smallness():
         scene.check_smallness(on_not_small=on_not_small)

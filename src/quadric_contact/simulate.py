@@ -126,6 +126,25 @@ class Plan:
             full,
         )
 
+    def restricted(self, effects: Iterable[str] | None) -> Plan:
+        """The plan for one ellipsoid or one (ellipsoid, piece) pair that asks for
+        ``effects`` only (None: no restriction): the effects both ask for.
+
+        Examples
+        --------
+        >>> Plan.from_effects(["zone", "contact"]).restricted(["contact", "relative_position"]).effects
+        ('contact',)
+        >>> Plan.from_effects(["contact"]).restricted(["zone"]).pieces
+        False
+        """
+        if effects is None or self.full:
+            return self
+        wanted = set(effects)
+        kept = tuple(e for e in self.effects if e in wanted)
+        if not kept:
+            return Plan((), False, False, False, False)
+        return Plan.from_effects(kept)
+
     def describe(self) -> str:
         """The plan in one sentence (printed with the timeline)."""
         steps = ["Algorithm 1 (zones) on every separating plane the descent reaches"]
@@ -437,15 +456,14 @@ class SimulationResult:
             lines += [f"  {c}" for c in self.scene.smallness.values()]
         for w in self.warnings:
             lines.append(f"warning: {w}")
-        show_zones = "zone" in self.plan.effects
         lines.append(
             f"event times: exact real algebraic numbers, shown to {places} decimal places "
             "(--places N; --json gives each one's polynomial and isolating interval)"
         )
-        show_timeline = bool(
-            {"zone", "contact", "contact_kind", "relative_position"} & set(self.plan.effects)
-        )
         for p in self.pairs:
+            own = self.plan.restricted(self.scene.ellipsoid_effects.get(p.ellipsoid)).effects
+            show_zones = "zone" in own
+            show_timeline = bool({"zone", "contact", "contact_kind", "relative_position"} & set(own))
             lines.append("")
             lines.append(f"{p.ellipsoid} vs {p.object.name}")
             if p.complete and show_timeline:
@@ -462,7 +480,7 @@ class SimulationResult:
                     lines += [" " * len(head) + c for c in changes[1:]]
                 end = p.episodes[-1].state.summary(p.object, with_zones=show_zones)
                 lines.append(f"  t = {_fmt_time(self.scene.span[1], places)}: end: {end}")
-            if "first_contact" in self.plan.effects:
+            if "first_contact" in own:
                 if p.first_contact is None:
                     lines.append("  first contact: none in the time span")
                 else:
@@ -501,7 +519,12 @@ class _SegmentRun:
         seg: MotionSegment,
         ledger: Ledger,
     ) -> None:
-        self.scene, self.plan, self.ell, self.obj, self.seg, self.ledger = scene, plan, ell, obj, seg, ledger
+        self.scene, self.ell, self.obj, self.seg, self.ledger = scene, ell, obj, seg, ledger
+        # only what the scene asks for, per object: the ellipsoid's plan, then each piece's
+        self.plan = plan.restricted(scene.ellipsoid_effects.get(ell.name))
+        self.piece_plans = {
+            p.name: self.plan.restricted(scene.piece_effects.get((obj.name, p.name))) for p in obj.pieces
+        }
         self.E_upper = seg.moved_upper(ell.quadric, ell.center)
         self.positive = seg.norm_poly()  # |q(t)|^2 > 0: its powers carry no sign information
         self.targets: dict[str, Split | Piece] = {}
@@ -542,8 +565,8 @@ class _SegmentRun:
             self.ledger,
             small=self.scene.small(self.ell.name, self.obj.name, target.name),
             table_4=self.scene.table_4_applies(self.ell.name, self.obj.name, target.name),
-            region=self.plan.region,
-            kind=self.plan.kind,
+            region=self.piece_plans[target.name].region,
+            kind=self.piece_plans[target.name].kind,
             E_at=self.E_at,
             positive=self.positive,
         )
@@ -572,7 +595,7 @@ class _SegmentRun:
         visit(obj.root)
         pieces: list[tuple[str, PieceValue | None]] = []
         for p in active:
-            pieces.append((p.name, get(_piece_label(obj, p)) if self.plan.pieces else None))
+            pieces.append((p.name, get(_piece_label(obj, p)) if self.piece_plans[p.name].pieces else None))
         return ObjectState(tuple(zones), tuple(pieces))
 
     def run(self) -> list[tuple[str, TimePoint, TimePoint, ObjectState, Fraction | None]]:
@@ -746,6 +769,7 @@ def _simulate_pair(
 ) -> PairResult:
     """The timeline of one moving ellipsoid against one object, segment by segment."""
     make_run = segment_run or _SegmentRun
+    own = plan.restricted(scene.ellipsoid_effects.get(e.name))
     entries: list[tuple[str, TimePoint, TimePoint, ObjectState, Fraction | None]] = []
     first: tuple[RealRoot, list[str]] | None = None
     done = 0
@@ -759,12 +783,12 @@ def _simulate_pair(
         entries.extend(part)
         if first is None:
             first = _first_contact(part)
-        if plan.stop_at_first_contact and first is not None:
+        if own.stop_at_first_contact and first is not None:
             break
     if bar is not None and done < len(segs):
         bar.update(len(segs) - done)
     complete = done == len(segs)
-    if plan.kind:
+    if own.kind:
         _tangent_boundaries(entries)
     return PairResult(
         e.name, obj, _episodes(entries), _events(entries) if complete else [], first, complete, done
