@@ -332,8 +332,8 @@ class Scene:
         lines.append(f"  time span: [{self.span[0]}, {self.span[1]}]; effects: {', '.join(self.effects)}")
         for name, asked in self.ellipsoid_effects.items():
             lines.append(f"  effects asked for by ellipsoid {name}: {', '.join(asked) or 'none'}")
-        for (o, p), asked in self.piece_effects.items():
-            lines.append(f"  effects asked for on piece {o}/{p}: {', '.join(asked) or 'none'}")
+        for (obj_name, piece_name), asked in self.piece_effects.items():
+            lines.append(f"  effects asked for on piece {obj_name}/{piece_name}: {', '.join(asked) or 'none'}")
         for o in self.objects:
             lines.append(f"  object {o.describe()}")
         for e in self.ellipsoids:
