@@ -333,13 +333,17 @@ class Scene:
         for name, asked in self.ellipsoid_effects.items():
             lines.append(f"  effects asked for by ellipsoid {name}: {', '.join(asked) or 'none'}")
         for (obj_name, piece_name), asked in self.piece_effects.items():
-            lines.append(f"  effects asked for on piece {obj_name}/{piece_name}: {', '.join(asked) or 'none'}")
+            what = ", ".join(asked) or "none"
+            lines.append(f"  effects asked for on piece {obj_name}/{piece_name}: {what}")
         for o in self.objects:
             lines.append(f"  object {o.describe()}")
-        for e in self.ellipsoids:
+        shown = self.ellipsoids if len(self.ellipsoids) <= 12 else self.ellipsoids[:5]
+        for e in shown:
             lines.append(
                 f"  ellipsoid {e.name}: {e.quadric.equation()} = 0; motion: {e.trajectory.describe()}"
             )
+        if len(shown) < len(self.ellipsoids):
+            lines.append(f"  ... and {len(self.ellipsoids) - len(shown)} more ellipsoids")
         return "\n".join(lines)
 
 
