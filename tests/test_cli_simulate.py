@@ -101,3 +101,38 @@ def test_not_small_is_refused_with_the_failing_condition(tmp_path, capsys):
     assert main(["simulate", str(scene), "--effects", "contact", "--on-not-small", "warn"]) == 0
     out = capsys.readouterr().out
     assert "NOT small" in out and "contact undecided" in out
+
+
+def test_animate_writes_a_gif(tmp_path, capsys):
+    pytest.importorskip("matplotlib")
+    from PIL import Image
+
+    target = tmp_path / "walls.gif"
+    assert main(["simulate", "parallel_walls", "--animate", str(target), "--frames", "6"]) == 0
+    assert target.read_bytes()[:6] in (b"GIF87a", b"GIF89a")
+    assert Image.open(target).n_frames == 6
+    assert "animation written" in capsys.readouterr().out
+    assert [p.name for p in tmp_path.iterdir()] == ["walls.gif"]
+    assert main(["simulate", "parallel_walls", "--animate", str(target), "--frames", "1"]) == 2
+
+
+def test_many_bodies_from_the_command_line(capsys):
+    assert main(["simulate", "--list"]) == 0
+    assert "many_bodies" in capsys.readouterr().out
+    args = ["simulate", "many_bodies", "--bodies", "12", "--pieces", "4", "--seed", "2", "--json"]
+    assert main(args) == 0
+    broad = json.loads(capsys.readouterr().out)
+    assert len(broad["pairs"]) == 12 and broad["ledger"]["done"]["broad_phase_tests"] > 0
+    assert main([*args, "--workers", "2"]) == 0
+    two = json.loads(capsys.readouterr().out)
+    assert [p["events"] for p in two["pairs"]] == [p["events"] for p in broad["pairs"]]
+    assert main(["simulate", "many_bodies", "--bodies", "0"]) == 2
+
+
+def test_broad_phase_option_keeps_the_timeline(capsys):
+    assert main(["simulate", "drone_cooling_tower", "--json"]) == 0
+    plain = json.loads(capsys.readouterr().out)
+    assert main(["simulate", "drone_cooling_tower", "--json", "--broad-phase"]) == 0
+    broad = json.loads(capsys.readouterr().out)
+    assert [p["events"] for p in plain["pairs"]] == [p["events"] for p in broad["pairs"]]
+    assert "broad_phase_tests" in broad["ledger"]["done"]
