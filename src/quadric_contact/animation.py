@@ -185,13 +185,15 @@ def animate_result(result: Any, *, frames: int = 40, fps: int = 10, whole: int =
     return anim
 
 
-def render_gif(result: Any, **kwargs: Any) -> bytes:
+def render_gif(result: Any, *, dpi: int = 80, **kwargs: Any) -> bytes:
     """The animation of :func:`animate_result` as GIF bytes (pillow writer), so that a
     caller can write the file only once everything has succeeded.
 
     Parameters
     ----------
     result : SimulationResult
+    dpi : int
+        Resolution of the frames (the figure is 7 x 7.2 inches).
     **kwargs
         As for :func:`animate_result` (``frames``, ``fps``, ``whole``).
 
@@ -207,7 +209,7 @@ def render_gif(result: Any, **kwargs: Any) -> bytes:
     fd, tmp = tempfile.mkstemp(suffix=".gif")
     os.close(fd)
     try:
-        anim.save(tmp, writer=PillowWriter(fps=fps), dpi=80)
+        anim.save(tmp, writer=PillowWriter(fps=fps), dpi=dpi)
         return Path(tmp).read_bytes()
     finally:
         plt.close(anim._fig)
