@@ -24,6 +24,7 @@ def test_perturbations_are_small_reproducible_and_keep_smallness():
     assert a.smallness.keys() == bee.smallness.keys()
     for k0, k1 in zip(bee.ellipsoids[0].trajectory.keys, a.ellipsoids[0].trajectory.keys, strict=True):
         assert all(abs(u - v) <= F(1, 10) for u, v in zip(k0.position, k1.position, strict=True))
+
     def keys(scene):
         return scene.ellipsoids[0].trajectory.keys
 
