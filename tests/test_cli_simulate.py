@@ -136,3 +136,24 @@ def test_broad_phase_option_keeps_the_timeline(capsys):
     broad = json.loads(capsys.readouterr().out)
     assert [p["events"] for p in plain["pairs"]] == [p["events"] for p in broad["pairs"]]
     assert "broad_phase_tests" in broad["ledger"]["done"]
+
+
+def test_animate_many_bodies_as_points(tmp_path, capsys):
+    pytest.importorskip("matplotlib")
+    target = tmp_path / "many.gif"
+    args = [
+        "simulate",
+        "many_bodies",
+        "--bodies",
+        "14",
+        "--pieces",
+        "4",
+        "--animate",
+        str(target),
+        "--frames",
+        "3",
+    ]
+    assert main(args) == 0
+    out = capsys.readouterr().out
+    assert "events: " in out and "14 (ellipsoid, object) pair(s)" in out
+    assert target.read_bytes()[:3] == b"GIF"

@@ -490,6 +490,11 @@ class SimulationResult:
                         f"  first contact: t = {_fmt_time(t, places)} with {', '.join(names)}{extra}"
                     )
         lines.append("")
+        events = sum(len(p.events) for p in self.pairs)
+        touched = sum(1 for p in self.pairs if p.first_contact is not None)
+        lines.append(
+            f"events: {events} in {len(self.pairs)} (ellipsoid, object) pair(s); {touched} pair(s) in contact"
+        )
         lines.append("work ledger (full = every effect for every piece on every segment):")
         lines += ["  " + line for line in self.ledger.format().splitlines()]
         lines.append(f"time: {self.seconds:.3f} s")
@@ -823,7 +828,7 @@ def simulate(
         Prune, with certified bounds of each ellipsoid's swept volume, the
         planes and pieces (and the stretches of time) where nothing can
         happen, before any pencil is formed (:mod:`quadric_contact.broadphase`);
-        the timelines are the same.
+        the timelines are the same.  A full evaluation (``full``) does without it.
     workers : int
         Processes to share the ellipsoids between (``0``: one per core).
 
@@ -873,6 +878,8 @@ def simulate(
                     ledger.add_full("discriminants", 3 * nseg)
                     ledger.add_full("coefficient_signs", 3 * nseg)
                     ledger.add_full("smallness_checks", 1)
+    if full:
+        broad_phase = False  # a full evaluation forms every pencil
     if broad_phase or workers != 1:
         from .manybody import run_pairs
 
