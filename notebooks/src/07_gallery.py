@@ -134,9 +134,10 @@ print("\nevery effect of the scene for every bee and piece:\n" + everything.ledg
 swarm = many_body_scene(100, 16, seed=0)
 plain = simulate(swarm)
 broad = simulate(swarm, broad_phase=True)
-same = [[e.time.decimal(20) for e in p.events] for p in plain.pairs] == [
-    [e.time.decimal(20) for e in p.events] for p in broad.pairs
-]
+same = all(
+    len(p.events) == len(q.events) and all(e.time.compare(f.time) == 0 for e, f in zip(p.events, q.events, strict=True))
+    for p, q in zip(plain.pairs, broad.pairs, strict=True)
+)
 print(f"identical timelines: {same}; events: {sum(len(p.events) for p in broad.pairs)}")
 print(f"pencils in time: {plain.ledger.done['characteristic_polynomials']} without, "
       f"{broad.ledger.done['characteristic_polynomials']} with the broad phase")
