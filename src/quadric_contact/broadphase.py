@@ -57,11 +57,13 @@ __all__ = [
     "Box",
     "Coverage",
     "Part",
+    "cover",
     "ellipsoid_extents",
     "plane_sign_on_box",
     "poly_range",
     "quadric_sign_on_box",
     "swept_box",
+    "zone_of_sign",
 ]
 
 Box = tuple[tuple[Fraction, Fraction], tuple[Fraction, Fraction], tuple[Fraction, Fraction]]
@@ -359,6 +361,21 @@ def cover(
     Returns
     -------
     Coverage
+
+    Examples
+    --------
+    The bee of Example 17 resting below the plane ``z = 6``, beside the trunk: the
+    plane is certified (Zone 2), the crown is out of reach, the trunk is certified
+    outside (``R+``): no pencil in time is needed at all.
+
+    >>> from quadric_contact.scene import builtin_scene
+    >>> from quadric_contact.trajectory import Stationary
+    >>> scene = builtin_scene()
+    >>> (tree,), bee = scene.objects, scene.ellipsoids[0]
+    >>> (seg,) = Stationary().segments(Fraction(0), Fraction(1), bee.center)
+    >>> c = cover(tree, seg, *ellipsoid_extents(bee.quadric))
+    >>> c.pruned, [(p.tracked, p.sign) for p in c.parts["tree/trunk"]]
+    (['tree: plane z - 6', 'tree/crown', 'tree/trunk'], [(False, 1)])
     """
     labels = _labels(obj)
     targets: list[Split | Piece] = [*obj.splits(), *obj.pieces]
