@@ -124,6 +124,7 @@ def test_many_bodies_from_the_command_line(capsys):
     assert main(args) == 0
     broad = json.loads(capsys.readouterr().out)
     assert len(broad["pairs"]) == 12 and broad["ledger"]["done"]["broad_phase_tests"] > 0
+    assert broad["events"] == sum(len(p["events"]) for p in broad["pairs"])
     assert main([*args, "--workers", "2"]) == 0
     two = json.loads(capsys.readouterr().out)
     assert _same_events(two, broad)

@@ -428,6 +428,7 @@ class SimulationResult:
             "time_span": [str(self.scene.span[0]), str(self.scene.span[1])],
             "effects": list(self.plan.effects),
             "plan": self.plan.describe(),
+            "events": sum(len(p.events) for p in self.pairs),
             "pairs": [p.to_dict(places, self.plan.effects) for p in self.pairs],
             "ledger": self.ledger.to_dict(),
             "seconds": round(self.seconds, 6),
