@@ -27,6 +27,7 @@ __all__ = [
     "Pairs",
     "RegionCode",
     "Sign",
+    "SmallnessCode",
     "StageCounts",
 ]
 
@@ -73,6 +74,42 @@ class ContactCode(IntEnum):
     def transversal(self) -> bool | None:
         """True, False, or None for ``UNCERTAIN``."""
         return None if self is ContactCode.UNCERTAIN else self is ContactCode.CONTACT
+
+
+class SmallnessCode(IntEnum):
+    """Codes of the array smallness predicate (int8 arrays).
+
+    ``SMALL``: ``E`` is small with respect to ``Q`` in the direct sense (Table 1 row of
+    ``Q`` holds): Corollary 10 and Theorem 13 / Table 4 apply.  ``SMALL_ENCLOSING``:
+    two ellipsoids, small only because ``Q`` is small with respect to ``E``
+    (Definition 1 is symmetric): Corollary 10 holds, Table 4 does not (the
+    scalar report has ``small and not table_4_applies``).  ``EXCLUDED``: ``Q`` has no
+    row in Table 1 (a plane, a cone, intersecting or coincident planes, a quadric
+    without real points); the scalar :func:`~quadric_contact.smallness.smallness`
+    raises :class:`~quadric_contact.errors.ExcludedQuadricError` there.
+    ``UNCERTAIN`` only comes from the modes that abstain; it is non-zero, so a cast
+    to bool never reads it as "not small".
+    """
+
+    NOT_SMALL = 0
+    SMALL = 1
+    UNCERTAIN = 2
+    EXCLUDED = 3
+    SMALL_ENCLOSING = 4
+
+    @property
+    def small(self) -> bool | None:
+        """Definition 1: True for both small codes, False for ``NOT_SMALL``, None otherwise."""
+        if self in (SmallnessCode.SMALL, SmallnessCode.SMALL_ENCLOSING):
+            return True
+        return False if self is SmallnessCode.NOT_SMALL else None
+
+    @property
+    def table_4_applies(self) -> bool | None:
+        """True only for ``SMALL`` (Theorem 13 / Table 4 may be used), None when unknown."""
+        if self in (SmallnessCode.UNCERTAIN, SmallnessCode.EXCLUDED):
+            return None
+        return self is SmallnessCode.SMALL
 
 
 class RegionCode(IntEnum):
@@ -310,6 +347,11 @@ class NumberMode(ABC):
     @abstractmethod
     def region(self, pairs: Pairs) -> np.ndarray:
         """:class:`RegionCode` of every pair (int8, shape ``(pairs.n,)``)."""
+
+    def smallness(self, pairs: Pairs) -> np.ndarray:
+        """:class:`SmallnessCode` of every pair (int8, shape ``(pairs.n,)``): Definition 1,
+        Tables 1-2 as corrected (:mod:`quadric_contact.modes.smallness_arrays`)."""
+        raise NotImplementedError(f"{type(self).__name__} does not decide smallness")
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}()"

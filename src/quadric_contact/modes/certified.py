@@ -89,6 +89,9 @@ class CertifiedMode(NumberMode):
         # Each stage classifies the quadrics of the pairs it receives, with its own numbers.
         return self._cascade(pairs, lambda stage, p: stage.region(p))
 
+    def smallness(self, pairs: Pairs) -> np.ndarray:
+        return self._cascade(pairs, lambda stage, p: stage.smallness(p))
+
     def classify(self, Q: MatrixStack, rows: np.ndarray | None = None) -> np.ndarray:
         index = np.arange(len(Q)) if rows is None else np.asarray(rows)
         out = self.stages[0].classify(Q, index)

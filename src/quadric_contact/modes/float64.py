@@ -1541,6 +1541,11 @@ class FloatMode(NumberMode):
         masks[used] = self.classify(pairs.Q, used)
         return self._codes(pairs, (rows_from_masks(masks), masks))
 
+    def smallness(self, pairs: Pairs) -> np.ndarray:
+        from . import smallness_float
+
+        return smallness_float.run(self, pairs)
+
     def classify(self, Q: MatrixStack, rows: np.ndarray | None = None) -> np.ndarray:
         index = np.arange(len(Q)) if rows is None else np.asarray(rows, dtype=np.intp)
         validate_rows(Q, index)
