@@ -42,7 +42,9 @@ from .base import NumberMode, SmallnessCode
 __all__ = ["SmallnessCode", "smallness_codes"]
 
 
-def smallness_codes(E: Any, Q: Any, *, mode: str | NumberMode = "certified") -> Any:
+def smallness_codes(
+    E: Any, Q: Any, *, mode: str | NumberMode = "certified", client: Any = None, compute: bool = True
+) -> Any:
     """Is each ellipsoid ``E`` small with respect to its quadric ``Q`` (Definition 1)?
 
     Parameters
@@ -54,6 +56,10 @@ def smallness_codes(E: Any, Q: Any, *, mode: str | NumberMode = "certified") -> 
     mode : str or NumberMode
         ``"certified"`` (default, never wrong), ``"exact"``, ``"filter"``, ``"ball"``,
         ``"float"``, ``"mpmath"``, or a mode instance.
+    client : dask.distributed.Client, optional
+        For dask input: compute on this cluster (default: dask's local threads).
+    compute : bool
+        For dask input: the computed numpy array (default) or the lazy dask array.
 
     Returns
     -------
@@ -86,12 +92,54 @@ def smallness_codes(E: Any, Q: Any, *, mode: str | NumberMode = "certified") -> 
     >>> smallness_codes(Quadric.sphere(2), Quadric.sphere(1))
     <SmallnessCode.SMALL_ENCLOSING: 4>
     """
-    from ..batch import as_stack, make_pairs
+    from ..batch import _is_dask, as_stack, make_pairs
     from . import get_mode
 
     m = get_mode(mode)
+    if _is_dask(E) or _is_dask(Q):
+        return _dask_codes(E, Q, m, client, compute)
     pairs, shape = make_pairs(as_stack(E, "E"), as_stack(Q, "Q"))
     codes = m.smallness(pairs)
     if shape == ():
         return SmallnessCode(int(codes[0]))
     return np.asarray(codes, dtype=np.int8).reshape(shape)
+
+
+def _dask_codes(E: Any, Q: Any, mode: NumberMode, client: Any, compute: bool) -> Any:
+    """Chunk by chunk, as :func:`~quadric_contact.batch.transversal_contact_batch` does for dask input."""
+    import dask
+    import dask.array as da
+
+    from ..batch import _is_dask
+    from ..errors import ShapeError
+    from .float64 import single_threaded
+
+    arrays = []
+    for value, name in ((E, "E"), (Q, "Q")):
+        arr = value if _is_dask(value) else da.from_array(np.asarray(value), chunks=-1)
+        if arr.ndim < 2 or tuple(arr.shape[-2:]) != (4, 4):
+            raise ShapeError(f"{name} must have shape (..., 4, 4), got {arr.shape}", value)
+        arrays.append(arr.rechunk({arr.ndim - 2: 4, arr.ndim - 1: 4}))
+    try:
+        shape = np.broadcast_shapes(arrays[0].shape[:-2], arrays[1].shape[:-2])
+    except ValueError as exc:
+        raise ShapeError("batch shapes of E and Q do not broadcast", (E, Q)) from exc
+    Eb = da.broadcast_to(arrays[0], (*shape, 4, 4))
+    Qb = da.broadcast_to(arrays[1], (*shape, 4, 4))
+    if not shape:
+        Eb, Qb = Eb[None], Qb[None]
+    Eb, Qb = da.core.unify_chunks(Eb, tuple(range(Eb.ndim)), Qb, tuple(range(Qb.ndim)))[1]
+
+    def block(e: np.ndarray, q: np.ndarray) -> np.ndarray:
+        with single_threaded():
+            return np.asarray(smallness_codes(e, q, mode=mode), dtype=np.int8).reshape(e.shape[:-2])
+
+    out = da.map_blocks(block, Eb, Qb, drop_axis=[Eb.ndim - 2, Eb.ndim - 1], dtype=np.int8)
+    if not shape:
+        out = out[0]
+    if not compute:
+        return out
+    if client is not None:
+        return np.asarray(client.compute(out).result())
+    (result,) = dask.compute(out, scheduler="threads")
+    return np.asarray(result)

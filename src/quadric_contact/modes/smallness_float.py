@@ -986,12 +986,54 @@ def float_smallness(
     q_rows, qidx, qs = _row_map(pairs.q_index, len(pairs.Q), n)
     rows_q = np.arange(len(pairs.Q), dtype=np.intp) if q_rows is None else q_rows
     kinds, signs = table_kinds(classify(pairs.Q, rows_q))
+    if certify:
+        # The exact types, once per quadric (integer arithmetic), where the filter's are
+        # uncertain or untrustworthy (an exact entry rounded to zero looks like an exact zero).
+        unsure = np.flatnonzero((kinds == -2) | _guard(pairs.Q, rows_q))
+        if unsure.size:
+            from .float64 import exact_facts
+
+            kinds[unsure], signs[unsure] = table_kinds(exact_facts(pairs.Q, rows_q[unsure])[1])
     qst, qv = q_row_quantities(pairs.Q, rows_q, kinds, signs, certify=certify, backend=backend)
+    if certify:
+        _refine(pairs.Q, rows_q, qst, qv, kinds, signs)
     e_rows, eidx, es = _row_map(pairs.e_index, len(pairs.E), n)
     if e_rows is None and _use_numba(backend):
         return _fused_codes(pairs.E, qst, kinds, qv, qidx, qs, n, certify=certify, threads=threads)
     est, ev = e_row_quantities(pairs.E, e_rows, certify=certify, backend=backend, threads=threads)
+    if certify and e_rows is not None:
+        _refine(pairs.E, e_rows, est, ev, None, None)
     return pair_codes(est, ev, qst, kinds, qv, eidx, qidx, es, qs, n, backend=backend, threads=threads)
+
+
+_REFINE_MAX = 64
+"""At most this many matrices per call are refined with ball arithmetic (the other uncertain
+ones stay uncertain: the later stages decide their pairs)."""
+
+
+def _refine(
+    stack: MatrixStack, rows: np.ndarray, status: np.ndarray, values: np.ndarray, kinds: np.ndarray | None,
+    signs: np.ndarray | None,
+) -> None:  # fmt: skip
+    """The sides of the matrices the float stage could not certify (status 1), once per matrix
+    with ball arithmetic (exact invariants, isolated eigenvalues), rounded outward: a quadric
+    whose type is degenerate (its exact zero eigenvalue rounded off in binary64) or close to
+    it is used by every pair of its stack, and should not send them all to the next stage."""
+    from ..classification import TABLE_1_KINDS
+    from .smallness_objects import ball_sides
+
+    todo = np.flatnonzero(status == 1)
+    if kinds is not None:
+        todo = todo[kinds[todo] >= 0]
+    for k in todo[:_REFINE_MAX]:
+        upper = tuple(c[0] for c in stack.upper_exact(rows[k : k + 1]))
+        if kinds is None or signs is None:
+            sides = ball_sides(upper, 1 if upper[0] > 0 else -1, None)
+        else:
+            sides = ball_sides(upper, int(signs[k]), TABLE_1_KINDS[int(kinds[k])])
+        if sides is not None:
+            values[:, k] = sides
+            status[k] = 0
 
 
 def run(mode: Any, pairs: Pairs) -> np.ndarray:

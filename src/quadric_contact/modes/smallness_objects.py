@@ -98,6 +98,10 @@ class BallNumbers:
         return out
 
     @staticmethod
+    def sides(prim: list[Any], monomials: Any) -> list[Any]:
+        return [evaluate(prim, m) for m in monomials]
+
+    @staticmethod
     def compare(q: Any, e: Any, relation: int) -> int:
         d = q - e if relation == GE else e - q
         if d > 0 or d.is_zero():
@@ -138,8 +142,64 @@ class MpmathNumbers:
         return out
 
     @staticmethod
+    def sides(prim: list[Any], monomials: Any) -> list[Any]:
+        """The monomials; a zero denominator (an eigenvalue that came out as 0) gives infinity."""
+        import mpmath
+
+        out = []
+        for m in monomials:
+            try:
+                out.append(evaluate(prim, m))
+            except ZeroDivisionError:
+                out.append(mpmath.inf)
+        return out
+
+    @staticmethod
     def compare(q: Any, e: Any, relation: int) -> int:
         return int(q >= e) if relation == GE else int(q <= e)
+
+
+def used_signs(kind: Any | None) -> tuple[int, ...]:
+    """The primitives the sides of ``kind`` use, with the signs they have (``None``: the
+    ellipsoid ``E``); 0 for the unused ones."""
+    sides = E_SIDES if kind is None else Q_SIDES[kind]
+    signs = kind_signs(TABLE_1_KINDS[0] if kind is None else kind)
+    return tuple(int(any(m[j] for m in sides)) * signs[j] for j in range(NPRIM))
+
+
+def ball_sides(upper: tuple[Any, ...], sign: int, kind: Any | None, prec: int = 128) -> np.ndarray | None:
+    """The sides of one matrix (``kind`` None: an ellipsoid ``E``; else a Table 1 kind of ``Q``
+    with its canonical ``sign``) as binary64 intervals ``(lo_0, hi_0, lo_1, ...)`` (8 values,
+    unused slots 1), from ball arithmetic rounded outward; None when the balls cannot give the
+    signs the kind requires.  The float filter calls it, once per matrix, for the matrices
+    whose own quantities it cannot certify."""
+    numbers = BallNumbers(prec)
+    with numbers.context():
+        prim = numbers.primitives(upper, sign, used_signs(kind))
+        if prim is None:
+            return None
+        sides = [evaluate(prim, m) for m in (E_SIDES if kind is None else Q_SIDES[kind])]
+        out = np.ones(8)
+        for k, ball in enumerate(sides):
+            if not ball > 0:
+                return None
+            out[2 * k], out[2 * k + 1] = _outward(ball)
+        return out
+
+
+def _outward(ball: Any) -> tuple[float, float]:
+    """Binary64 numbers ``lo <= ball <= hi`` (rounded outward)."""
+    import math
+
+    import flint
+
+    lo, hi = ball.lower(), ball.upper()
+    f, g = float(lo.mid()), float(hi.mid())
+    while flint.arb(f) > lo:
+        f = math.nextafter(f, -math.inf)
+    while flint.arb(g) < hi:
+        g = math.nextafter(g, math.inf)
+    return f, g
 
 
 def _unique(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -185,14 +245,13 @@ def object_smallness(mode: NumberMode, pairs: Pairs, numbers: Any) -> np.ndarray
     validate_rows(pairs.Q, uq, "Q")
     ellipsoids = _check_ellipsoids(pairs, ue)
     kinds, signs = table_kinds(mode.classify(pairs.Q, uq))
-    e_signs = kind_signs(TABLE_1_KINDS[0])
-    e_used = tuple(int(any(m[j] for m in E_SIDES)) * e_signs[j] for j in range(NPRIM))
+    e_used = used_signs(None)
     with numbers.context():
         e_sides: list[list[Any] | None] = []
         for e in ellipsoids:
             sign = 1 if e.upper[0] > 0 else -1
             prim = numbers.primitives(e.upper, sign, e_used)
-            e_sides.append(None if prim is None else [evaluate(prim, m) for m in E_SIDES])
+            e_sides.append(None if prim is None else numbers.sides(prim, E_SIDES))
         q_sides: list[list[Any] | None] = []
         for k, r in enumerate(uq):
             if kinds[k] < 0:
@@ -200,10 +259,10 @@ def object_smallness(mode: NumberMode, pairs: Pairs, numbers: Any) -> np.ndarray
                 continue
             kind = TABLE_1_KINDS[kinds[k]]
             sides = Q_SIDES[kind]
-            used = tuple(int(any(m[j] for m in sides)) * kind_signs(kind)[j] for j in range(NPRIM))
+            used = used_signs(kind)
             prim = numbers.primitives(tuple(pairs.Q.upper_exact(np.array([r]))[t][0] for t in range(10)),
                                       int(signs[k]), used)  # fmt: skip
-            q_sides.append(None if prim is None else [evaluate(prim, m) for m in sides])
+            q_sides.append(None if prim is None else numbers.sides(prim, sides))
         combos, where = np.unique(np.stack([ie, iq], axis=1), axis=0, return_inverse=True)
         codes = np.empty(len(combos), dtype=np.int8)
         for c, (a, b) in enumerate(combos):
