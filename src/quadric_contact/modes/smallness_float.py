@@ -81,7 +81,14 @@ from .._generated import kernels
 from . import errorbounds as eb
 from ._jit import HAVE_NUMBA, numba
 from .base import INVALID, MatrixStack, Pairs
-from .smallness_tables import MAX_ALTERNATIVE, MAX_CONDITIONS, MAX_DEGREE, NPRIM, kind_arrays
+from .smallness_tables import (
+    E_SIDES,
+    MAX_ALTERNATIVE,
+    MAX_CONDITIONS,
+    MAX_DEGREE,
+    Q_SIDES,
+    kind_arrays,
+)
 
 __all__ = [
     "APPROX_DEGREE",
@@ -355,17 +362,40 @@ def _entries_ok(a00: Any, a01: Any, a02: Any, a03: Any, a11: Any, a12: Any, a13:
     )  # fmt: skip
 
 
+def _below_at_most(s1: Any, s2: Any, s3: Any, j: int) -> Any:
+    """Certainly at most ``j`` eigenvalues below ``t``, from the signs of ``(tr, J, det)`` of
+    ``A - t I`` (``j = 0``: all positive; ``j = 2``: not all negative; else every completion)."""
+    if j == 0:
+        return (s1 == 1) & (s2 == 1) & (s3 == 1)
+    if j == 2:
+        return (s1 == 1) | (s1 == 0) | (s2 == -1) | (s2 == 0) | (s3 == 1) | (s3 == 0)
+    _, most = _count_range(s1, s2, s3)
+    return most <= j
+
+
+def _below_at_least(s1: Any, s2: Any, s3: Any, j: int) -> Any:
+    """Certainly at least ``j`` eigenvalues below ``t`` (``j = 1``: one negative invariant of
+    ``A - t I`` certain; ``j = 3``: all negative; else every completion)."""
+    if j == 1:
+        return (s1 == -1) | (s2 == -1) | (s3 == -1)
+    if j == 3:
+        return (s1 == -1) & (s2 == 1) & (s3 == -1)
+    least, _ = _count_range(s1, s2, s3)
+    return least >= j
+
+
 def _enclose(a00: Any, a01: Any, a02: Any, a11: Any, a12: Any, a22: Any, lam: Any, i: int) -> Any:
-    """``(lo, hi, ok)``: the ``i``-th eigenvalue (1-based, increasing) lies in ``[lo, hi]`` where ``ok``."""
+    """``(lo, hi, ok)``: the ``i``-th eigenvalue (1-based, increasing) lies in ``[lo, hi]`` where
+    ``ok``: at most ``i - 1`` eigenvalues below ``lo``, at least ``i`` below ``hi``.  (Below
+    ``lo > 0`` none at all means ``A`` is positive definite: the ellipsoid test of ``E``.)"""
     w = np.abs(lam) * WIDTH
     lo = lam - w
     hi = lam + w
     s1, s2, s3 = _shift_signs(a00, a01, a02, a11, a12, a22, lo)
-    _, below_lo = _count_range(s1, s2, s3)
+    ok = _below_at_most(s1, s2, s3, i - 1)
     s1, s2, s3 = _shift_signs(a00, a01, a02, a11, a12, a22, hi)
-    below_hi, _ = _count_range(s1, s2, s3)
-    ok = (below_lo <= i - 1) & (below_hi >= i) & _in_range(lo) & _in_range(hi)
-    return lo, hi, ok
+    ok = ok & _below_at_least(s1, s2, s3, i)
+    return lo, hi, ok & _in_range(lo) & _in_range(hi)
 
 
 def _weyl(a00: Any, a01: Any, a02: Any, a11: Any, a12: Any, a22: Any) -> Any:
@@ -421,23 +451,10 @@ def _e_row(m: Any, certify: bool, rounded: bool, guard: Any) -> Any:
         phi = -v[6] + ep
         alo = v[2] - ea
         ahi = v[2] + ea
-        # lambda_1: every eigenvalue above lo1 (B positive definite), one at least below hi1.
-        w1 = np.abs(l1) * WIDTH
-        lo1 = l1 - w1
-        hi1 = l1 + w1
-        s1, s2, s3 = _shift_signs(a00, a01, a02, a11, a12, a22, lo1)
-        ok = (s1 == 1) & (s2 == 1) & (s3 == 1)
-        s1, s2, s3 = _shift_signs(a00, a01, a02, a11, a12, a22, hi1)
-        ok = ok & ((s1 == -1) | (s2 == -1) | (s3 == -1))
-        # lambda_3: not every eigenvalue below lo3, every one below hi3 (B negative definite).
-        w3 = np.abs(l3) * WIDTH
-        lo3 = l3 - w3
-        hi3 = l3 + w3
-        s1, s2, s3 = _shift_signs(a00, a01, a02, a11, a12, a22, lo3)
-        ok = ok & ((s1 == 1) | (s1 == 0) | (s2 == -1) | (s2 == 0) | (s3 == 1) | (s3 == 0))
-        s1, s2, s3 = _shift_signs(a00, a01, a02, a11, a12, a22, hi3)
-        ok = ok & (s1 == -1) & (s2 == 1) & (s3 == -1)
-        ok = ok & _in_range(lo1) & _in_range(hi1) & _in_range(lo3) & _in_range(hi3) & ~guard
+        # lambda_1 and lambda_3; every eigenvalue above lo1 > 0 certifies A positive definite
+        lo1, hi1, ok1 = _enclose(a00, a01, a02, a11, a12, a22, l1, 1)
+        lo3, hi3, ok3 = _enclose(a00, a01, a02, a11, a12, a22, l3, 3)
+        ok = ok1 & ok3 & ~guard
         ok = ok & _entries_ok(a00, a01, a02, a03, a11, a12, a13, a22, a23, a33)
         eps = select(rounded, _weyl(a00, a01, a02, a11, a12, a22), 0.0)
         lo1 = lo1 - eps
@@ -480,41 +497,97 @@ def _e_row(m: Any, certify: bool, rounded: bool, guard: Any) -> Any:
 
 _MAX_POWER = 3
 """The largest exponent of a primitive in a monomial."""
+assert max(abs(e) for m in (*E_SIDES, *(m for v in Q_SIDES.values() for m in v)) for e in m) <= _MAX_POWER
+
+
+def _power(x: Any, e: Any) -> Any:
+    """``x^e`` for ``e`` in ``0 .. 3`` by repeated multiplication (``e - 1`` roundings; 1 exactly for 0)."""
+    x2 = x * x
+    return select(e == 1, x, select(e == 2, x2, select(e == 3, x2 * x, 1.0)))
 
 
 def _monomial(lo: Any, hi: Any, kind: Any, slot: int) -> Any:
-    """``(lo, hi, k)`` of the monomial of ``Q_SIDES`` for ``kind`` and ``slot`` over primitive
-    intervals (before the final widening); ``k`` its number of factors."""
-    one = select(kind == kind, 1.0, 1.0)
-    num_lo = one
-    num_hi = one
-    den_lo = one
-    den_hi = one
-    k = select(kind == kind, 0, 0)
-    for j in range(NPRIM):
-        e = _EXPS[kind, slot, j]
-        for r in range(1, _MAX_POWER + 1):
-            pos = e >= r
-            neg = -e >= r
-            num_lo = select(pos, num_lo * lo[j], num_lo)
-            num_hi = select(pos, num_hi * hi[j], num_hi)
-            den_lo = select(neg, den_lo * lo[j], den_lo)
-            den_hi = select(neg, den_hi * hi[j], den_hi)
-            k = k + select(pos | neg, 1, 0)
+    """``(lo, hi, k)`` of the monomial of ``Q_SIDES`` for ``kind`` and ``slot`` over the
+    primitive intervals ``lo``, ``hi`` (9-tuples), before the final widening; ``k`` its number of
+    factors.  Numerator and denominator take ``k_num - 1`` and ``k_den - 1`` roundings (a
+    factor 1 is exact), the quotient one more: ``k - 1`` in all, as CHAIN_DOWN and CHAIN_UP
+    assume.  Unrolled over the primitives, so that the compiled loops vectorise."""
+    e0, e1, e2 = _EXPS[kind, slot, 0], _EXPS[kind, slot, 1], _EXPS[kind, slot, 2]
+    e3, e4, e5 = _EXPS[kind, slot, 3], _EXPS[kind, slot, 4], _EXPS[kind, slot, 5]
+    e6, e7, e8 = _EXPS[kind, slot, 6], _EXPS[kind, slot, 7], _EXPS[kind, slot, 8]
+    p0, p1, p2, p3, p4 = (
+        np.maximum(e0, 0),
+        np.maximum(e1, 0),
+        np.maximum(e2, 0),
+        np.maximum(e3, 0),
+        np.maximum(e4, 0),
+    )
+    p5, p6, p7, p8 = np.maximum(e5, 0), np.maximum(e6, 0), np.maximum(e7, 0), np.maximum(e8, 0)
+    n0, n1, n2, n3, n4 = (
+        np.maximum(-e0, 0),
+        np.maximum(-e1, 0),
+        np.maximum(-e2, 0),
+        np.maximum(-e3, 0),
+        np.maximum(-e4, 0),
+    )
+    n5, n6, n7, n8 = np.maximum(-e5, 0), np.maximum(-e6, 0), np.maximum(-e7, 0), np.maximum(-e8, 0)
+    num_lo = _power(lo[0], p0) * _power(lo[1], p1) * _power(lo[2], p2) * _power(lo[3], p3) * _power(lo[4], p4)
+    num_lo = num_lo * _power(lo[5], p5) * _power(lo[6], p6) * _power(lo[7], p7) * _power(lo[8], p8)
+    num_hi = _power(hi[0], p0) * _power(hi[1], p1) * _power(hi[2], p2) * _power(hi[3], p3) * _power(hi[4], p4)
+    num_hi = num_hi * _power(hi[5], p5) * _power(hi[6], p6) * _power(hi[7], p7) * _power(hi[8], p8)
+    den_lo = _power(lo[0], n0) * _power(lo[1], n1) * _power(lo[2], n2) * _power(lo[3], n3) * _power(lo[4], n4)
+    den_lo = den_lo * _power(lo[5], n5) * _power(lo[6], n6) * _power(lo[7], n7) * _power(lo[8], n8)
+    den_hi = _power(hi[0], n0) * _power(hi[1], n1) * _power(hi[2], n2) * _power(hi[3], n3) * _power(hi[4], n4)
+    den_hi = den_hi * _power(hi[5], n5) * _power(hi[6], n6) * _power(hi[7], n7) * _power(hi[8], n8)
+    k = p0 + p1 + p2 + p3 + p4 + p5 + p6 + p7 + p8 + n0 + n1 + n2 + n3 + n4 + n5 + n6 + n7 + n8
     return num_lo / den_hi, num_hi / den_lo, k
 
 
-def _q_row(m: Any, kind: Any, sign: Any, certify: bool, rounded: bool, guard: Any, los: Any, his: Any) -> Any:
+def _invariant_primitive(v: Any, mg: Any, j: int, kind: Any, certify: bool, rounded: bool) -> Any:
+    """``(lo, hi, ok)``: primitive ``j`` (``P .. T``) of ``kind``, the signed invariant with its
+    bound (1 for a primitive the kind does not use)."""
+    inv = _INVARIANT_OF_PRIMITIVE[j]
+    sg = _KSIGNS[kind, j]
+    val = sg * v[inv]
+    err = _KINV[int(certify), int(rounded), inv] * mg[inv]
+    lo = val - err
+    hi = val + err
+    need = sg != 0
+    ok = ~need | _factor_ok(lo, hi) | (not certify)
+    return select(need, lo, 1.0), select(need, hi, 1.0), ok
+
+
+def _eigen_primitive(
+    a00: Any, a01: Any, a02: Any, a11: Any, a12: Any, a22: Any, lam: Any, i: int, kind: Any, certify: bool,
+    eps: Any, bad: Any,
+) -> Any:  # fmt: skip
+    """``(lo, hi, ok)``: ``|lambda_i|`` (1-based, increasing) for ``kind`` (1 if unused)."""
+    sg = _KSIGNS[kind, 5 + i]
+    need = sg != 0
+    if certify:
+        lo, hi, good = _enclose(a00, a01, a02, a11, a12, a22, lam, i)
+        lo = lo - eps
+        hi = hi + eps
+    else:
+        lo = lam
+        hi = lam
+        good = ~bad | bad
+    alo = select(sg > 0, lo, -hi)
+    ahi = select(sg > 0, hi, -lo)
+    ok = ~need | (good & _factor_ok(alo, ahi)) | (not certify)
+    return select(need, alo, 1.0), select(need, ahi, 1.0), ok
+
+
+def _q_row(m: Any, kind: Any, sign: Any, certify: bool, rounded: bool, guard: Any) -> Any:
     """The squared sides of ``Q`` (:data:`~quadric_contact.modes.smallness_tables.Q_SIDES`,
     up to four slots, as intervals) for its Table 1 ``kind`` (index into TABLE_1_KINDS) with
-    canonical ``sign``, and a status (0 certain, 1 uncertain, INVALID for bad input).
-    ``los``, ``his``: scratch space for the NPRIM primitive intervals."""
+    canonical ``sign``, and a status (0 certain, 1 uncertain, INVALID for bad input)."""
     bad = _bad(m)
     s = sign * 1.0
     a00, a01, a02, a03 = s * m[0], s * m[1], s * m[2], s * m[3]
     a11, a12, a13, a22, a23, a33 = s * m[5], s * m[6], s * m[7], s * m[10], s * m[11], s * m[15]
     v = _inv(a00, a01, a02, a03, a11, a12, a13, a22, a23, a33)
-    lam = eigen_approx(a00, a01, a02, a11, a12, a22)
+    l1, l2, l3 = eigen_approx(a00, a01, a02, a11, a12, a22)
     if certify:
         mg = _inv_mag(
             np.abs(a00), np.abs(a01), np.abs(a02), np.abs(a03), np.abs(a11), np.abs(a12),
@@ -526,43 +599,28 @@ def _q_row(m: Any, kind: Any, sign: Any, certify: bool, rounded: bool, guard: An
         mg = v
         ok = ~bad | bad
         eps = 0.0 * a00
-    # P, A3, J2, K3, J1, T: the signed invariants with their bounds
-    for j in range(6):
-        inv = _INVARIANT_OF_PRIMITIVE[j]
-        sg = _KSIGNS[kind, j]
-        val = sg * v[inv]
-        err = _KINV[int(certify), int(rounded), inv] * mg[inv]
-        lo = val - err
-        hi = val + err
-        need = sg != 0
-        ok = ok & (~need | _factor_ok(lo, hi) | (not certify))
-        los[j] = select(need, lo, 1.0)
-        his[j] = select(need, hi, 1.0)
-    for i in range(3):
-        sg = _KSIGNS[kind, 6 + i]
-        need = sg != 0
-        if certify:
-            lo, hi, good = _enclose(a00, a01, a02, a11, a12, a22, lam[i], i + 1)
-            lo = lo - eps
-            hi = hi + eps
-        else:
-            lo = lam[i]
-            hi = lam[i]
-            good = ~bad | bad
-        alo = select(sg > 0, lo, -hi)
-        ahi = select(sg > 0, hi, -lo)
-        ok = ok & (~need | (good & _factor_ok(alo, ahi)) | (not certify))
-        los[6 + i] = select(need, alo, 1.0)
-        his[6 + i] = select(need, ahi, 1.0)
-    lo0, hi0, k0 = _monomial(los, his, kind, 0)
-    lo1, hi1, k1 = _monomial(los, his, kind, 1)
-    lo2, hi2, k2 = _monomial(los, his, kind, 2)
-    lo3, hi3, k3 = _monomial(los, his, kind, 3)
+    lo0, hi0, ok0 = _invariant_primitive(v, mg, 0, kind, certify, rounded)
+    lo1, hi1, ok1 = _invariant_primitive(v, mg, 1, kind, certify, rounded)
+    lo2, hi2, ok2 = _invariant_primitive(v, mg, 2, kind, certify, rounded)
+    lo3, hi3, ok3 = _invariant_primitive(v, mg, 3, kind, certify, rounded)
+    lo4, hi4, ok4 = _invariant_primitive(v, mg, 4, kind, certify, rounded)
+    lo5, hi5, ok5 = _invariant_primitive(v, mg, 5, kind, certify, rounded)
+    lo6, hi6, ok6 = _eigen_primitive(a00, a01, a02, a11, a12, a22, l1, 1, kind, certify, eps, bad)
+    lo7, hi7, ok7 = _eigen_primitive(a00, a01, a02, a11, a12, a22, l2, 2, kind, certify, eps, bad)
+    lo8, hi8, ok8 = _eigen_primitive(a00, a01, a02, a11, a12, a22, l3, 3, kind, certify, eps, bad)
+    ok = ok & ok0 & ok1 & ok2 & ok3 & ok4 & ok5 & ok6 & ok7 & ok8
+    los = (lo0, lo1, lo2, lo3, lo4, lo5, lo6, lo7, lo8)
+    his = (hi0, hi1, hi2, hi3, hi4, hi5, hi6, hi7, hi8)
+    s0lo, s0hi, k0 = _monomial(los, his, kind, 0)
+    s1lo, s1hi, k1 = _monomial(los, his, kind, 1)
+    s2lo, s2hi, k2 = _monomial(los, his, kind, 2)
+    s3lo, s3hi, k3 = _monomial(los, his, kind, 3)
     status = select(bad, INVALID, select(ok, 0, 1))
-    w = _WIDEN[int(certify)]
+    c = int(certify)
     return (
-        status, lo0 * w[0, k0], hi0 * w[1, k0], lo1 * w[0, k1], hi1 * w[1, k1],
-        lo2 * w[0, k2], hi2 * w[1, k2], lo3 * w[0, k3], hi3 * w[1, k3],
+        status, s0lo * _WIDEN[c, 0, k0], s0hi * _WIDEN[c, 1, k0], s1lo * _WIDEN[c, 0, k1],
+        s1hi * _WIDEN[c, 1, k1], s2lo * _WIDEN[c, 0, k2], s2hi * _WIDEN[c, 1, k2], s3lo * _WIDEN[c, 0, k3],
+        s3hi * _WIDEN[c, 1, k3],
     )  # fmt: skip
 
 
@@ -675,21 +733,43 @@ def _q_rows_loop(
     M: Any, rows: Any, kinds: Any, signs_: Any, lo: int, hi: int, certify: bool, rounded: bool, guard: Any,
     out_s: Any, out_v: Any,
 ) -> None:  # fmt: skip
-    los = np.empty(NPRIM)
-    his = np.empty(NPRIM)
-    for k in range(lo, hi):
-        st, v0, v1, v2, v3, v4, v5, v6, v7 = _q_row(
-            M[rows[k]], max(kinds[k], 0), signs_[k], certify, rounded, guard[k], los, his
-        )
-        out_s[k] = st
-        out_v[0, k] = v0
-        out_v[1, k] = v1
-        out_v[2, k] = v2
-        out_v[3, k] = v3
-        out_v[4, k] = v4
-        out_v[5, k] = v5
-        out_v[6, k] = v6
-        out_v[7, k] = v7
+    """The sides of the quadrics ``M[rows[k]]``, ``k`` in ``lo .. hi``, in blocks (as the
+    ellipsoids': gather, a straight-line loop, scatter)."""
+    qb = np.empty(16 * _NB)
+    kb_ = np.empty(_NB, dtype=np.int64)
+    sb = np.empty(_NB, dtype=np.int64)
+    gb = np.zeros(_NB, dtype=np.bool_)
+    ob = np.empty(9 * _NB)
+    for blo in range(lo, hi, _NB):
+        m = min(_NB, hi - blo)
+        for t in range(m):
+            r = rows[blo + t]
+            for k in range(16):
+                qb[k * _NB + t] = M[r, k]
+            kb_[t] = max(kinds[blo + t], 0)
+            sb[t] = signs_[blo + t]
+            gb[t] = guard[blo + t]
+        for i in range(m):
+            mm = (
+                qb[i], qb[_NB + i], qb[2 * _NB + i], qb[3 * _NB + i], qb[4 * _NB + i], qb[5 * _NB + i],
+                qb[6 * _NB + i], qb[7 * _NB + i], qb[8 * _NB + i], qb[9 * _NB + i], qb[10 * _NB + i],
+                qb[11 * _NB + i], qb[12 * _NB + i], qb[13 * _NB + i], qb[14 * _NB + i], qb[15 * _NB + i],
+            )  # fmt: skip
+            st, v0, v1, v2, v3, v4, v5, v6, v7 = _q_row(mm, kb_[i], sb[i], certify, rounded, gb[i])
+            ob[i] = st
+            ob[_NB + i] = v0
+            ob[2 * _NB + i] = v1
+            ob[3 * _NB + i] = v2
+            ob[4 * _NB + i] = v3
+            ob[5 * _NB + i] = v4
+            ob[6 * _NB + i] = v5
+            ob[7 * _NB + i] = v6
+            ob[8 * _NB + i] = v7
+        for t in range(m):
+            out_s[blo + t] = np.int8(ob[t])
+        for k in range(8):
+            for t in range(m):
+                out_v[k, blo + t] = ob[(k + 1) * _NB + t]
 
 
 def _pairs_loop(
@@ -748,12 +828,13 @@ def _fused_loop(
 _INLINED = (
     "_inv", "_inv_mag", "_horner", "eigen_approx", "shift_invariants", "shift_invariants_magnitude",
     "_sign", "_shift_signs", "_in_range", "_entry_ok", "_entries_ok", "_weyl", "_factor_ok", "_bad",
-    "_e_row", "_compare", "_and3", "_pick", "_conjunction", "_pair_code",
+    "_e_row", "_compare", "_and3", "_pick", "_conjunction", "_pair_code", "_variations", "_count_range",
+    "_below_at_most", "_below_at_least", "_enclose", "_power", "_monomial", "_invariant_primitive",
+    "_eigen_primitive", "_q_row",
 )  # fmt: skip
-"""Inlined by numba into the compiled loops, which LLVM then vectorises (the hot path: the
-ellipsoids' sides and the pairs' decisions)."""
-_CALLED = ("_variations", "_count_range", "_enclose", "_monomial", "_q_row")
-"""Compiled as functions of their own (per distinct quadric: not worth the compile time of inlining)."""
+"""Inlined by numba into the compiled loops, which LLVM then vectorises (every helper is
+straight-line: the loops over blocks of rows carry no branch and no call)."""
+_CALLED: tuple[str, ...] = ()
 _LOOPS = ("_e_rows_loop", "_e_block", "_q_rows_loop", "_pairs_loop", "_fused_loop")
 
 _twins: dict[str, Any] = {}
@@ -877,22 +958,17 @@ def q_row_quantities(
     out_s = np.empty(n, dtype=np.int8)
     out_v = np.empty((8, n))
     if _use_numba(backend):
-        _compiled("_q_rows_loop")(M, ridx, kinds, signs, 0, n, certify, stack.rounded, guard, out_s, out_v)
+        from .float64 import run_parallel
+
+        loop = _compiled("_q_rows_loop")
+        run_parallel(
+            lambda lo, hi: loop(M, ridx, kinds, signs, lo, hi, certify, stack.rounded, guard, out_s, out_v), n
+        )
         return out_s, out_v
     sub = M[ridx]
-    los: list[Any] = [None] * NPRIM
-    his: list[Any] = [None] * NPRIM
     with np.errstate(all="ignore"):
-        st, *vals = _q_row(
-            [sub[:, k] for k in range(16)],
-            np.maximum(kinds, 0),
-            signs,
-            certify,
-            stack.rounded,
-            guard,
-            los,
-            his,
-        )
+        columns = [sub[:, k] for k in range(16)]
+        st, *vals = _q_row(columns, np.maximum(kinds, 0), signs, certify, stack.rounded, guard)
     out_s[:] = st
     out_v[:] = np.stack(vals)
     return out_s, out_v
