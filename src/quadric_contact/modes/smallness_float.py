@@ -97,6 +97,7 @@ __all__ = [
     "FACTOR_MAX",
     "FACTOR_MIN",
     "SHIFT_ERRBOUND",
+    "TIGHT_WIDTH",
     "WIDTH",
     "e_row_quantities",
     "eigen_approx",
@@ -143,6 +144,10 @@ WIDTH = 2.0**-20
 """Half-width of the eigenvalue enclosures relative to the approximation.  Wide enough
 for a double eigenvalue (``det B`` is then about ``w^2`` times a gap, far above its
 rounding error), narrow enough that random pairs rarely straddle a boundary."""
+TIGHT_WIDTH = 2.0**-36
+"""The second try for the few ellipsoids whose pairs the first leaves uncertain: a Newton step
+polishes the approximations, and enclosures this narrow separate sides down to relative gaps
+of about ``1e-10`` (simple eigenvalues; a double one then fails and the pair escalates)."""
 
 # Weyl: ||A - A^||_2 <= ||A - A^||_F <= u/(1-u) sum_ij |a^_ij|; the sum takes 5 roundings
 # (every term non-negative: computed >= exact (1-u)^5) and the product one more.
@@ -384,11 +389,11 @@ def _below_at_least(s1: Any, s2: Any, s3: Any, j: int) -> Any:
     return least >= j
 
 
-def _enclose(a00: Any, a01: Any, a02: Any, a11: Any, a12: Any, a22: Any, lam: Any, i: int) -> Any:
+def _enclose(a00: Any, a01: Any, a02: Any, a11: Any, a12: Any, a22: Any, lam: Any, i: int, width: Any) -> Any:
     """``(lo, hi, ok)``: the ``i``-th eigenvalue (1-based, increasing) lies in ``[lo, hi]`` where
     ``ok``: at most ``i - 1`` eigenvalues below ``lo``, at least ``i`` below ``hi``.  (Below
     ``lo > 0`` none at all means ``A`` is positive definite: the ellipsoid test of ``E``.)"""
-    w = np.abs(lam) * WIDTH
+    w = np.abs(lam) * width
     lo = lam - w
     hi = lam + w
     s1, s2, s3 = _shift_signs(a00, a01, a02, a11, a12, a22, lo)
@@ -424,21 +429,34 @@ def _bad(m: Any) -> Any:
 # -- per matrix ------------------------------------------------------------------------------------
 
 
-def _e_row(m: Any, certify: bool, rounded: bool, guard: Any) -> Any:
+def _newton(v: Any, t: Any) -> Any:
+    """One Newton step towards an eigenvalue on ``t^3 - tr t^2 + J t - det`` (``v``: the
+    invariants ``(tr, J, det, ...)``); ``t`` unchanged where the derivative vanishes."""
+    p = ((t - v[0]) * t + v[1]) * t - v[2]
+    dp = (3.0 * t - 2.0 * v[0]) * t + v[1]
+    return select(dp != 0.0, t - p / select(dp != 0.0, dp, 1.0), t)
+
+
+def _e_row(m: Any, certify: bool, rounded: bool, guard: Any, width: Any, polish: bool) -> Any:
     """The four squared sides of ``E`` (:data:`~quadric_contact.modes.smallness_tables.E_SIDES`:
     ``alpha^2``, ``(gamma/alpha^2)^2``, ``gamma^2``, ``(alpha/gamma^2)^2``) as intervals
     ``lo, hi``, and a status: 0 certain, 1 uncertain, INVALID (bad input, or ``E`` not
     certified (plain: not seen) as an ellipsoid; the caller diagnoses it).
 
     ``m``: the 16 entries row-major; ``guard``: the row's inputs are exact rationals whose
-    rounding is no relative perturbation.  With ``certify`` the ellipsoid is certified on the
-    way: ``A - lo1 I`` positive definite with ``lo1 > 0`` and ``det E < 0``."""
+    rounding is no relative perturbation; ``width``: of the eigenvalue enclosures, relative
+    (WIDTH, or TIGHT_WIDTH with ``polish``: one Newton step on the approximations first).
+    With ``certify`` the ellipsoid is certified on the way: ``A - lo1 I`` positive definite
+    with ``lo1 > 0`` and ``det E < 0``."""
     bad = _bad(m)
     o = select(m[0] < 0.0, -1.0, 1.0)
     a00, a01, a02, a03 = o * m[0], o * m[1], o * m[2], o * m[3]
     a11, a12, a13, a22, a23, a33 = o * m[5], o * m[6], o * m[7], o * m[10], o * m[11], o * m[15]
     v = _inv(a00, a01, a02, a03, a11, a12, a13, a22, a23, a33)
     l1, _, l3 = eigen_approx(a00, a01, a02, a11, a12, a22)
+    if polish:
+        l1 = _newton(v, l1)
+        l3 = _newton(v, l3)
     if certify:
         mg = _inv_mag(
             np.abs(a00), np.abs(a01), np.abs(a02), np.abs(a03), np.abs(a11), np.abs(a12),
@@ -452,8 +470,8 @@ def _e_row(m: Any, certify: bool, rounded: bool, guard: Any) -> Any:
         alo = v[2] - ea
         ahi = v[2] + ea
         # lambda_1 and lambda_3; every eigenvalue above lo1 > 0 certifies A positive definite
-        lo1, hi1, ok1 = _enclose(a00, a01, a02, a11, a12, a22, l1, 1)
-        lo3, hi3, ok3 = _enclose(a00, a01, a02, a11, a12, a22, l3, 3)
+        lo1, hi1, ok1 = _enclose(a00, a01, a02, a11, a12, a22, l1, 1, width)
+        lo3, hi3, ok3 = _enclose(a00, a01, a02, a11, a12, a22, l3, 3, width)
         ok = ok1 & ok3 & ~guard
         ok = ok & _entries_ok(a00, a01, a02, a03, a11, a12, a13, a22, a23, a33)
         eps = select(rounded, _weyl(a00, a01, a02, a11, a12, a22), 0.0)
@@ -559,13 +577,13 @@ def _invariant_primitive(v: Any, mg: Any, j: int, kind: Any, certify: bool, roun
 
 def _eigen_primitive(
     a00: Any, a01: Any, a02: Any, a11: Any, a12: Any, a22: Any, lam: Any, i: int, kind: Any, certify: bool,
-    eps: Any, bad: Any,
+    eps: Any, bad: Any, width: Any,
 ) -> Any:  # fmt: skip
     """``(lo, hi, ok)``: ``|lambda_i|`` (1-based, increasing) for ``kind`` (1 if unused)."""
     sg = _KSIGNS[kind, 5 + i]
     need = sg != 0
     if certify:
-        lo, hi, good = _enclose(a00, a01, a02, a11, a12, a22, lam, i)
+        lo, hi, good = _enclose(a00, a01, a02, a11, a12, a22, lam, i, width)
         lo = lo - eps
         hi = hi + eps
     else:
@@ -578,7 +596,9 @@ def _eigen_primitive(
     return select(need, alo, 1.0), select(need, ahi, 1.0), ok
 
 
-def _q_row(m: Any, kind: Any, sign: Any, certify: bool, rounded: bool, guard: Any) -> Any:
+def _q_row(
+    m: Any, kind: Any, sign: Any, certify: bool, rounded: bool, guard: Any, width: Any, polish: bool
+) -> Any:  # fmt: skip
     """The squared sides of ``Q`` (:data:`~quadric_contact.modes.smallness_tables.Q_SIDES`,
     up to four slots, as intervals) for its Table 1 ``kind`` (index into TABLE_1_KINDS) with
     canonical ``sign``, and a status (0 certain, 1 uncertain, INVALID for bad input)."""
@@ -588,6 +608,10 @@ def _q_row(m: Any, kind: Any, sign: Any, certify: bool, rounded: bool, guard: An
     a11, a12, a13, a22, a23, a33 = s * m[5], s * m[6], s * m[7], s * m[10], s * m[11], s * m[15]
     v = _inv(a00, a01, a02, a03, a11, a12, a13, a22, a23, a33)
     l1, l2, l3 = eigen_approx(a00, a01, a02, a11, a12, a22)
+    if polish:
+        l1 = _newton(v, l1)
+        l2 = _newton(v, l2)
+        l3 = _newton(v, l3)
     if certify:
         mg = _inv_mag(
             np.abs(a00), np.abs(a01), np.abs(a02), np.abs(a03), np.abs(a11), np.abs(a12),
@@ -605,9 +629,9 @@ def _q_row(m: Any, kind: Any, sign: Any, certify: bool, rounded: bool, guard: An
     lo3, hi3, ok3 = _invariant_primitive(v, mg, 3, kind, certify, rounded)
     lo4, hi4, ok4 = _invariant_primitive(v, mg, 4, kind, certify, rounded)
     lo5, hi5, ok5 = _invariant_primitive(v, mg, 5, kind, certify, rounded)
-    lo6, hi6, ok6 = _eigen_primitive(a00, a01, a02, a11, a12, a22, l1, 1, kind, certify, eps, bad)
-    lo7, hi7, ok7 = _eigen_primitive(a00, a01, a02, a11, a12, a22, l2, 2, kind, certify, eps, bad)
-    lo8, hi8, ok8 = _eigen_primitive(a00, a01, a02, a11, a12, a22, l3, 3, kind, certify, eps, bad)
+    lo6, hi6, ok6 = _eigen_primitive(a00, a01, a02, a11, a12, a22, l1, 1, kind, certify, eps, bad, width)
+    lo7, hi7, ok7 = _eigen_primitive(a00, a01, a02, a11, a12, a22, l2, 2, kind, certify, eps, bad, width)
+    lo8, hi8, ok8 = _eigen_primitive(a00, a01, a02, a11, a12, a22, l3, 3, kind, certify, eps, bad, width)
     ok = ok & ok0 & ok1 & ok2 & ok3 & ok4 & ok5 & ok6 & ok7 & ok8
     los = (lo0, lo1, lo2, lo3, lo4, lo5, lo6, lo7, lo8)
     his = (hi0, hi1, hi2, hi3, hi4, hi5, hi6, hi7, hi8)
@@ -666,6 +690,11 @@ def _conjunction(qv: Any, ev: Any, conds: Any, n: Any, kind: Any, width: int) ->
     return acc
 
 
+def _verdict(inner: Any, outer: Any) -> Any:
+    """The code from the three-valued direct conditions and enclosing alternative."""
+    return select(inner == 1, 1, select(inner == 0, select(outer == 1, 4, select(outer == 0, 0, _UNC)), _UNC))
+
+
 def _pair_code(est: Any, ev: Any, qst: Any, qv: Any, qkind: Any) -> Any:
     """:class:`~quadric_contact.modes.base.SmallnessCode` of a pair from its rows' statuses and
     sides (8-tuples; ``qkind``: index into TABLE_1_KINDS, -1 excluded, -2 uncertain); INVALID
@@ -673,10 +702,64 @@ def _pair_code(est: Any, ev: Any, qst: Any, qv: Any, qkind: Any) -> Any:
     k = np.maximum(qkind, 0)
     inner = _conjunction(qv, ev, _COND, _NCOND[k], k, MAX_CONDITIONS)
     outer = select(_NALT[k] > 0, _conjunction(qv, ev, _ALT, _NALT[k], k, MAX_ALTERNATIVE), 0)
-    code = select(inner == 1, 1, select(inner == 0, select(outer == 1, 4, select(outer == 0, 0, _UNC)), _UNC))
+    code = _verdict(inner, outer)
     code = select((est == 1) | (qst == 1) | (qkind == -2), _UNC, code)
     code = select(qkind == -1, _EXCL, code)
     return select((est == INVALID) | (qst == INVALID), INVALID, code)
+
+
+_FIXED = MAX_CONDITIONS + MAX_ALTERNATIVE
+assert _FIXED == 5  # the fused loop unpacks five conditions
+
+
+def fixed_conditions(qst: int, qkind: int, qv: np.ndarray) -> tuple[np.ndarray, ...]:
+    """The decision against one quadric, resolved once: ``(code, offsets, q, relations, groups)``
+    with ``code`` the answer for every valid ellipsoid when it does not depend on it (-1
+    otherwise), and per condition the offset of the ellipsoid's side in the block buffer, the
+    quadric's side ``[lo, hi]``, the relation and the group (0 direct, 1 enclosing, 2 none)."""
+    offsets = np.zeros(_FIXED, dtype=np.int64)
+    q = np.ones((_FIXED, 2))
+    relations = np.zeros(_FIXED, dtype=np.int64)
+    groups = np.full(_FIXED, 2, dtype=np.int64)
+    if qst == INVALID:
+        code = INVALID
+    elif qkind == -1:
+        code = _EXCL
+    elif qst == 1 or qkind == -2:
+        code = _UNC
+    else:
+        code = -1
+        rows = [(c, 0) for c in _COND[qkind, : _NCOND[qkind]]] + [(c, 1) for c in _ALT[qkind, : _NALT[qkind]]]
+        for j, ((qs, es, rel), group) in enumerate(rows):
+            offsets[j] = (2 * es + 1) * _NB
+            q[j] = qv[2 * qs], qv[2 * qs + 1]
+            relations[j] = rel
+            groups[j] = group
+    return np.array([code], dtype=np.int64), offsets, q, relations, groups
+
+
+def _only(r: Any, group: Any, wanted: int) -> Any:
+    """A condition's value within its group; true (neutral for the conjunction) outside it."""
+    return select(group == wanted, r, 1)
+
+
+def _fixed_code(est: Any, e: Any, code: Any, q: Any, relations: Any, groups: Any) -> Any:
+    """:func:`_pair_code` against the one quadric of :func:`fixed_conditions`: ``e`` the
+    ellipsoid's side ``(lo, hi)`` of each condition, ``q`` the quadric's (flat tuples)."""
+    r0 = _compare(q[0], q[1], e[0], e[1], relations[0])
+    r1 = _compare(q[2], q[3], e[2], e[3], relations[1])
+    r2 = _compare(q[4], q[5], e[4], e[5], relations[2])
+    r3 = _compare(q[6], q[7], e[6], e[7], relations[3])
+    r4 = _compare(q[8], q[9], e[8], e[9], relations[4])
+    inner = _and3(_and3(_and3(_only(r0, groups[0], 0), _only(r1, groups[1], 0)), _only(r2, groups[2], 0)),
+                  _and3(_only(r3, groups[3], 0), _only(r4, groups[4], 0)))  # fmt: skip
+    outer = _and3(_and3(_and3(_only(r0, groups[0], 1), _only(r1, groups[1], 1)), _only(r2, groups[2], 1)),
+                  _and3(_only(r3, groups[3], 1), _only(r4, groups[4], 1)))  # fmt: skip
+    alt = (groups[0] == 1) | (groups[1] == 1) | (groups[2] == 1) | (groups[3] == 1) | (groups[4] == 1)
+    out = _verdict(inner, select(alt, outer, 0))
+    out = select(est == 1, _UNC, out)
+    out = select(code >= 0, code, out)
+    return select(est == INVALID, INVALID, out)
 
 
 # -- loops (run compiled: see _compiled) -----------------------------------------------------------
@@ -686,8 +769,9 @@ _NB = 256
 
 
 def _e_rows_loop(
-    M: Any, rows: Any, lo: int, hi: int, certify: bool, rounded: bool, guard: Any, out_s: Any, out_v: Any
-) -> None:
+    M: Any, rows: Any, lo: int, hi: int, certify: bool, rounded: bool, guard: Any, width: float, polish: bool,
+    out_s: Any, out_v: Any,
+) -> None:  # fmt: skip
     """The sides of the ellipsoids ``M[rows[k]]`` (``M[k]`` when ``rows`` is empty), ``k`` in
     ``lo .. hi``, in blocks: gather the entries into column buffers, compute in a
     straight-line (vectorised) loop, scatter."""
@@ -701,7 +785,7 @@ def _e_rows_loop(
             for k in range(16):
                 eb_[k * _NB + t] = M[r, k]
             gb[t] = guard[blo + t]
-        _e_block(eb_, gb, m, certify, rounded, ob)
+        _e_block(eb_, gb, m, certify, rounded, width, polish, ob)
         for t in range(m):
             out_s[blo + t] = np.int8(ob[t])
         for k in range(8):
@@ -709,7 +793,9 @@ def _e_rows_loop(
                 out_v[k, blo + t] = ob[(k + 1) * _NB + t]
 
 
-def _e_block(eb_: Any, gb: Any, m: int, certify: bool, rounded: bool, ob: Any) -> None:
+def _e_block(
+    eb_: Any, gb: Any, m: int, certify: bool, rounded: bool, width: float, polish: bool, ob: Any
+) -> None:  # fmt: skip
     """The straight-line loop over one gathered block of ellipsoids (status, then the 8 ends)."""
     for i in range(m):
         mm = (
@@ -717,7 +803,7 @@ def _e_block(eb_: Any, gb: Any, m: int, certify: bool, rounded: bool, ob: Any) -
             eb_[6 * _NB + i], eb_[7 * _NB + i], eb_[8 * _NB + i], eb_[9 * _NB + i], eb_[10 * _NB + i],
             eb_[11 * _NB + i], eb_[12 * _NB + i], eb_[13 * _NB + i], eb_[14 * _NB + i], eb_[15 * _NB + i],
         )  # fmt: skip
-        st, v0, v1, v2, v3, v4, v5, v6, v7 = _e_row(mm, certify, rounded, gb[i])
+        st, v0, v1, v2, v3, v4, v5, v6, v7 = _e_row(mm, certify, rounded, gb[i], width, polish)
         ob[i] = st
         ob[_NB + i] = v0
         ob[2 * _NB + i] = v1
@@ -731,7 +817,7 @@ def _e_block(eb_: Any, gb: Any, m: int, certify: bool, rounded: bool, ob: Any) -
 
 def _q_rows_loop(
     M: Any, rows: Any, kinds: Any, signs_: Any, lo: int, hi: int, certify: bool, rounded: bool, guard: Any,
-    out_s: Any, out_v: Any,
+    width: float, polish: bool, out_s: Any, out_v: Any,
 ) -> None:  # fmt: skip
     """The sides of the quadrics ``M[rows[k]]``, ``k`` in ``lo .. hi``, in blocks (as the
     ellipsoids': gather, a straight-line loop, scatter)."""
@@ -755,7 +841,8 @@ def _q_rows_loop(
                 qb[6 * _NB + i], qb[7 * _NB + i], qb[8 * _NB + i], qb[9 * _NB + i], qb[10 * _NB + i],
                 qb[11 * _NB + i], qb[12 * _NB + i], qb[13 * _NB + i], qb[14 * _NB + i], qb[15 * _NB + i],
             )  # fmt: skip
-            st, v0, v1, v2, v3, v4, v5, v6, v7 = _q_row(mm, kb_[i], sb[i], certify, rounded, gb[i])
+            row = _q_row(mm, kb_[i], sb[i], certify, rounded, gb[i], width, polish)
+            st, v0, v1, v2, v3, v4, v5, v6, v7 = row
             ob[i] = st
             ob[_NB + i] = v0
             ob[2 * _NB + i] = v1
@@ -786,7 +873,7 @@ def _pairs_loop(
 
 def _fused_loop(
     E: Any, lo: int, hi: int, certify: bool, rounded: bool, guard: Any, qidx: Any, qs: int, qst: Any,
-    qkind: Any, qv: Any, out: Any,
+    qkind: Any, qv: Any, fixed_code: Any, offsets: Any, fq: Any, relations: Any, groups: Any, out: Any,
 ) -> None:  # fmt: skip
     """Pairs ``lo .. hi`` whose ellipsoids are all distinct (pair ``p`` uses ``E[p]``: the
     paper's many ellipsoids against an environment): each block computes its ellipsoids'
@@ -796,21 +883,26 @@ def _fused_loop(
     gb = np.zeros(_NB, dtype=np.bool_)
     ob = np.empty(9 * _NB)
     single = qidx.shape[0] == 0 and qs == 0
-    q0 = (qv[0, 0], qv[1, 0], qv[2, 0], qv[3, 0], qv[4, 0], qv[5, 0], qv[6, 0], qv[7, 0])
+    # the one quadric's conditions, as scalars (arrays passed on would be reference-counted)
+    o0, o1, o2, o3, o4 = offsets[0], offsets[1], offsets[2], offsets[3], offsets[4]
+    fqt = (fq[0, 0], fq[0, 1], fq[1, 0], fq[1, 1], fq[2, 0], fq[2, 1], fq[3, 0], fq[3, 1], fq[4, 0], fq[4, 1])
+    rels = (relations[0], relations[1], relations[2], relations[3], relations[4])
+    grps = (groups[0], groups[1], groups[2], groups[3], groups[4])
+    code = fixed_code[0]
     for blo in range(lo, hi, _NB):
         m = min(_NB, hi - blo)
         for t in range(m):
             for k in range(16):
                 eb_[k * _NB + t] = E[blo + t, k]
             gb[t] = guard[blo + t] if guard.shape[0] > 0 else False
-        _e_block(eb_, gb, m, certify, rounded, ob)
-        if single:  # one quadric for every pair: a loop that vectorises
+        _e_block(eb_, gb, m, certify, rounded, WIDTH, False, ob)
+        if single:  # one quadric for every pair: a short loop that vectorises
             for t in range(m):
                 e = (
-                    ob[_NB + t], ob[2 * _NB + t], ob[3 * _NB + t], ob[4 * _NB + t], ob[5 * _NB + t],
-                    ob[6 * _NB + t], ob[7 * _NB + t], ob[8 * _NB + t],
+                    ob[o0 + t], ob[o0 + _NB + t], ob[o1 + t], ob[o1 + _NB + t], ob[o2 + t], ob[o2 + _NB + t],
+                    ob[o3 + t], ob[o3 + _NB + t], ob[o4 + t], ob[o4 + _NB + t],
                 )  # fmt: skip
-                out[blo + t] = _pair_code(ob[t], e, qst[0], q0, qkind[0])
+                out[blo + t] = _fixed_code(ob[t], e, code, fqt, rels, grps)
         else:
             for t in range(m):
                 p = blo + t
@@ -830,7 +922,7 @@ _INLINED = (
     "_sign", "_shift_signs", "_in_range", "_entry_ok", "_entries_ok", "_weyl", "_factor_ok", "_bad",
     "_e_row", "_compare", "_and3", "_pick", "_conjunction", "_pair_code", "_variations", "_count_range",
     "_below_at_most", "_below_at_least", "_enclose", "_power", "_monomial", "_invariant_primitive",
-    "_eigen_primitive", "_q_row",
+    "_eigen_primitive", "_q_row", "_verdict", "_only", "_fixed_code", "_newton",
 )  # fmt: skip
 """Inlined by numba into the compiled loops, which LLVM then vectorises (every helper is
 straight-line: the loops over blocks of rows carry no branch and no call)."""
@@ -914,11 +1006,12 @@ def _guard(stack: MatrixStack, rows: np.ndarray | None) -> np.ndarray:
 
 def e_row_quantities(
     stack: MatrixStack, rows: np.ndarray | None, *, certify: bool, backend: str = "numba",
-    threads: int | None = None,
+    threads: int | None = None, width: float = WIDTH, polish: bool = False,
 ) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
     """``(status, values)`` of the ellipsoids ``rows`` of ``stack`` (all when None): status 0
-    certain, 1 uncertain, INVALID; values ``(k, 8)``: ``[lo, hi]`` of the four squared sides of
-    :data:`~quadric_contact.modes.smallness_tables.E_SIDES`."""
+    certain, 1 uncertain, INVALID; values ``(8, k)``: ``[lo, hi]`` of the four squared sides of
+    :data:`~quadric_contact.modes.smallness_tables.E_SIDES`.  ``width``, ``polish``: see
+    :data:`TIGHT_WIDTH`."""
     from .float64 import run_parallel
 
     M = _flat(stack)
@@ -930,12 +1023,14 @@ def e_row_quantities(
     if _use_numba(backend):
         loop = _compiled("_e_rows_loop")
         run_parallel(
-            lambda lo, hi: loop(M, ridx, lo, hi, certify, stack.rounded, guard, out_s, out_v), n, threads
+            lambda lo, hi: loop(M, ridx, lo, hi, certify, stack.rounded, guard, width, polish, out_s, out_v),
+            n,
+            threads,
         )
         return out_s, out_v
     sub = M if rows is None else M[ridx]
     with np.errstate(all="ignore"):
-        st, *vals = _e_row([sub[:, k] for k in range(16)], certify, stack.rounded, guard)
+        st, *vals = _e_row([sub[:, k] for k in range(16)], certify, stack.rounded, guard, width, polish)
     out_s[:] = st
     out_v[:] = np.stack(vals)
     return out_s, out_v
@@ -943,7 +1038,7 @@ def e_row_quantities(
 
 def q_row_quantities(
     stack: MatrixStack, rows: np.ndarray, kinds: np.ndarray, signs: np.ndarray, *, certify: bool,
-    backend: str = "numba",
+    backend: str = "numba", width: float = WIDTH, polish: bool = False,
 ) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
     """``(status, values)`` of the quadrics ``rows`` of Table 1 types ``kinds`` (indices into
     TABLE_1_KINDS; the sides of a negative entry are meaningless) with canonical signs
@@ -962,13 +1057,16 @@ def q_row_quantities(
 
         loop = _compiled("_q_rows_loop")
         run_parallel(
-            lambda lo, hi: loop(M, ridx, kinds, signs, lo, hi, certify, stack.rounded, guard, out_s, out_v), n
+            lambda lo, hi: loop(
+                M, ridx, kinds, signs, lo, hi, certify, stack.rounded, guard, width, polish, out_s, out_v
+            ),
+            n,
         )
         return out_s, out_v
     sub = M[ridx]
     with np.errstate(all="ignore"):
         columns = [sub[:, k] for k in range(16)]
-        st, *vals = _q_row(columns, np.maximum(kinds, 0), signs, certify, stack.rounded, guard)
+        st, *vals = _q_row(columns, np.maximum(kinds, 0), signs, certify, stack.rounded, guard, width, polish)
     out_s[:] = st
     out_v[:] = np.stack(vals)
     return out_s, out_v
@@ -1044,8 +1142,11 @@ def _fused_codes(
     qkind = np.ascontiguousarray(qkind, dtype=np.int64)
     out = np.empty(n, dtype=np.int8)
     loop = _compiled("_fused_loop")
+    fixed = fixed_conditions(int(qst[0]), int(qkind[0]), qv[:, 0])
     run_parallel(
-        lambda lo, hi: loop(M, lo, hi, certify, E.rounded, guard, qidx, qs, qst, qkind, qv, out), n, threads
+        lambda lo, hi: loop(M, lo, hi, certify, E.rounded, guard, qidx, qs, qst, qkind, qv, *fixed, out),
+        n,
+        threads,
     )
     return out
 
@@ -1075,11 +1176,50 @@ def float_smallness(
         _refine(pairs.Q, rows_q, qst, qv, kinds, signs)
     e_rows, eidx, es = _row_map(pairs.e_index, len(pairs.E), n)
     if e_rows is None and _use_numba(backend):
-        return _fused_codes(pairs.E, qst, kinds, qv, qidx, qs, n, certify=certify, threads=threads)
-    est, ev = e_row_quantities(pairs.E, e_rows, certify=certify, backend=backend, threads=threads)
-    if certify and e_rows is not None:
-        _refine(pairs.E, e_rows, est, ev, None, None)
-    return pair_codes(est, ev, qst, kinds, qv, eidx, qidx, es, qs, n, backend=backend, threads=threads)
+        codes = _fused_codes(pairs.E, qst, kinds, qv, qidx, qs, n, certify=certify, threads=threads)
+    else:
+        est, ev = e_row_quantities(pairs.E, e_rows, certify=certify, backend=backend, threads=threads)
+        if certify and e_rows is not None:
+            _refine(pairs.E, e_rows, est, ev, None, None)
+        codes = pair_codes(est, ev, qst, kinds, qv, eidx, qidx, es, qs, n, backend=backend, threads=threads)
+    if certify:
+        _second_try(pairs, codes, qst, kinds, signs, qv, backend)
+    return codes
+
+
+def _second_try(
+    pairs: Pairs,
+    codes: np.ndarray,
+    qst: np.ndarray,
+    kinds: np.ndarray,
+    signs: np.ndarray,
+    qv: np.ndarray,
+    backend: str,
+) -> None:
+    """The pairs the filter left uncertain (or whose ellipsoid it could not certify), again with
+    TIGHT_WIDTH enclosures of their ellipsoids and quadrics (the quadric's wide ones where the
+    tight ones fail): a pair with sides within a relative ``1e-6`` of each other is decided here
+    rather than by the next stage."""
+    todo = np.flatnonzero((codes == _UNC) | (codes == INVALID))
+    if todo.size == 0:
+        return
+    sub = pairs.take(todo)
+    e_rows, eidx, es = _row_map(sub.e_index, len(sub.E), sub.n)
+    est, ev = e_row_quantities(sub.E, e_rows, certify=True, backend=backend, width=TIGHT_WIDTH, polish=True)
+    q_rows, qidx, qs = _row_map(pairs.q_index, len(pairs.Q), pairs.n)
+    iq = (qidx[todo] if qidx.size else todo * qs).astype(np.intp)
+    # the quadrics of these pairs with tight enclosures too, where they succeed
+    used = np.unique(iq)
+    rows_q = used if q_rows is None else q_rows[used]
+    tst, tqv = q_row_quantities(
+        pairs.Q, rows_q, kinds[used], signs[used], certify=True, backend=backend, width=TIGHT_WIDTH,
+        polish=True,
+    )  # fmt: skip
+    qv = qv.copy()
+    better = tst == 0
+    qv[:, used[better]] = tqv[:, better]
+    again = pair_codes(est, ev, qst, kinds, qv, eidx, iq, es, 0, sub.n, backend=backend)
+    codes[todo] = np.where(again == INVALID, codes[todo], again)
 
 
 _REFINE_MAX = 64
