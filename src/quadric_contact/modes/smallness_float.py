@@ -898,11 +898,11 @@ def _fused_loop(
         _e_block(eb_, gb, m, certify, rounded, WIDTH, False, ob)
         if single:  # one quadric for every pair: a short loop that vectorises
             for t in range(m):
-                e = (
+                sides = (
                     ob[o0 + t], ob[o0 + _NB + t], ob[o1 + t], ob[o1 + _NB + t], ob[o2 + t], ob[o2 + _NB + t],
                     ob[o3 + t], ob[o3 + _NB + t], ob[o4 + t], ob[o4 + _NB + t],
                 )  # fmt: skip
-                out[blo + t] = _fixed_code(ob[t], e, code, fqt, rels, grps)
+                out[blo + t] = _fixed_code(ob[t], sides, code, fqt, rels, grps)
         else:
             for t in range(m):
                 p = blo + t
