@@ -24,9 +24,10 @@ same invariant program run on ``B``, whose diagonal ``fl(a_ii - t)`` is a rounde
 input (relative error ``u``; Sterbenz makes it exact when ``t`` is near ``a_ii``),
 with the bound for rounded inputs.  Counting at ``t - w`` and ``t + w``
 (``w = WIDTH |t|``) encloses the ``i``-th eigenvalue in ``[t - w, t + w]`` whenever
-the counts are ``<= i - 1`` and ``>= i``; an uncertain sign is resolved by every
-completion (:func:`_count_range`) or the enclosure fails.  For rounded input the
-enclosures of the float matrix ``A^`` are widened by Weyl's inequality,
+the counts are ``<= i - 1`` and ``>= i``; an uncertain sign counts as any of -1, 0 and 1
+(:func:`_below_at_most`, :func:`_below_at_least`), and the enclosure fails if that
+matters.  For rounded input the enclosures of the float matrix ``A^`` are widened by
+Weyl's inequality,
 ``|lambda_i(A) - lambda_i(A^)| <= ||A - A^||_2 <= u/(1-u) sum |a^_ij|``.
 
 *Monomials.*  Each primitive enclosure ``[lo, hi]`` (positive, in
@@ -324,30 +325,6 @@ def _shift_signs(a00: Any, a01: Any, a02: Any, a11: Any, a12: Any, a22: Any, t: 
     )  # fmt: skip
 
 
-def _variations(x1: Any, x2: Any, x3: Any) -> Any:
-    """Sign variations of ``(1, x1, x2, x3)``, zeros skipped (Descartes)."""
-    count = select((x1 != 0) & (x1 != 1), 1, 0)
-    last = select(x1 != 0, x1, 1)
-    count = count + select((x2 != 0) & (x2 != last), 1, 0)
-    last = select(x2 != 0, x2, last)
-    return count + select((x3 != 0) & (x3 != last), 1, 0)
-
-
-def _count_range(s1: Any, s2: Any, s3: Any) -> Any:
-    """``(min, max)`` of the eigenvalue count over the completions of the uncertain signs
-    (an uncertain sign may be -1, 0 or 1; skipping a zero never leaves the range of -1 and 1)."""
-    lo = select(s1 == s1, 3, 3)
-    hi = select(s1 == s1, 0, 0)
-    for c in range(8):
-        x1 = select(s1 == _UNC, 1 - 2 * (c & 1), s1)
-        x2 = select(s2 == _UNC, 1 - 2 * ((c >> 1) & 1), s2)
-        x3 = select(s3 == _UNC, 1 - 2 * ((c >> 2) & 1), s3)
-        v = _variations(x1, x2, x3)
-        lo = np.minimum(lo, v)
-        hi = np.maximum(hi, v)
-    return lo, hi
-
-
 def _in_range(x: Any) -> Any:
     a = np.abs(x)
     return (a >= INPUT_MIN) & (a <= INPUT_MAX)
@@ -368,25 +345,33 @@ def _entries_ok(a00: Any, a01: Any, a02: Any, a03: Any, a11: Any, a12: Any, a13:
 
 
 def _below_at_most(s1: Any, s2: Any, s3: Any, j: int) -> Any:
-    """Certainly at most ``j`` eigenvalues below ``t``, from the signs of ``(tr, J, det)`` of
-    ``A - t I`` (``j = 0``: all positive; ``j = 2``: not all negative; else every completion)."""
+    """Certainly at most ``j`` eigenvalues below ``t``, from the three-valued signs of
+    ``(tr, J, det)`` of ``B = A - t I``.
+
+    The count is Descartes' number of sign variations of ``(1, s1, s2, s3)`` (zeros skipped;
+    exact, the characteristic polynomial being real-rooted).  An uncertain sign may be -1, 0 or
+    1, independently: the count is certainly at most 0 when no sign can be negative, at most 1
+    when no sign that can be negative comes before one that can be positive (two variations
+    need a ``-`` followed by a ``+``), at most 2 unless the signs can be ``-, +, -``."""
+    n1, n2, n3 = (s1 == -1) | (s1 == _UNC), (s2 == -1) | (s2 == _UNC), (s3 == -1) | (s3 == _UNC)
+    p2, p3 = (s2 == 1) | (s2 == _UNC), (s3 == 1) | (s3 == _UNC)
     if j == 0:
-        return (s1 == 1) & (s2 == 1) & (s3 == 1)
-    if j == 2:
-        return (s1 == 1) | (s1 == 0) | (s2 == -1) | (s2 == 0) | (s3 == 1) | (s3 == 0)
-    _, most = _count_range(s1, s2, s3)
-    return most <= j
+        return ~(n1 | n2 | n3)
+    if j == 1:
+        return ~((n1 & (p2 | p3)) | (n2 & p3))
+    return ~(n1 & p2 & n3)
 
 
 def _below_at_least(s1: Any, s2: Any, s3: Any, j: int) -> Any:
-    """Certainly at least ``j`` eigenvalues below ``t`` (``j = 1``: one negative invariant of
-    ``A - t I`` certain; ``j = 3``: all negative; else every completion)."""
+    """Certainly at least ``j`` eigenvalues below ``t``: the certain signs alone have ``j``
+    variations (an adversary sets every uncertain sign to 0, which removes it)."""
+    n1, n2, n3 = s1 == -1, s2 == -1, s3 == -1
+    p2, p3 = s2 == 1, s3 == 1
     if j == 1:
-        return (s1 == -1) | (s2 == -1) | (s3 == -1)
-    if j == 3:
-        return (s1 == -1) & (s2 == 1) & (s3 == -1)
-    least, _ = _count_range(s1, s2, s3)
-    return least >= j
+        return n1 | n2 | n3
+    if j == 2:
+        return (n1 & (p2 | p3)) | (n2 & p3)
+    return n1 & p2 & n3
 
 
 def _enclose(a00: Any, a01: Any, a02: Any, a11: Any, a12: Any, a22: Any, lam: Any, i: int, width: Any) -> Any:
@@ -920,7 +905,7 @@ def _fused_loop(
 _INLINED = (
     "_inv", "_inv_mag", "_horner", "eigen_approx", "shift_invariants", "shift_invariants_magnitude",
     "_sign", "_shift_signs", "_in_range", "_entry_ok", "_entries_ok", "_weyl", "_factor_ok", "_bad",
-    "_e_row", "_compare", "_and3", "_pick", "_conjunction", "_pair_code", "_variations", "_count_range",
+    "_e_row", "_compare", "_and3", "_pick", "_conjunction", "_pair_code",
     "_below_at_most", "_below_at_least", "_enclose", "_power", "_monomial", "_invariant_primitive",
     "_eigen_primitive", "_q_row", "_verdict", "_only", "_fixed_code", "_newton",
 )  # fmt: skip
