@@ -4,8 +4,10 @@ Every condition of Tables 1-2 (corrected) compares two monomials in positive
 primitives of one matrix each (:mod:`~quadric_contact.modes.smallness_tables`):
 invariants (``det``, ``det M00``, ``J``, ``E3``, ``E2``, ``tr M00``) and the
 eigenvalues of the quadratic part.  Whatever depends on one matrix is computed once
-per distinct matrix of the stack (:func:`row_quantities`), and a pair only compares
-two intervals per condition (:func:`pair_codes`).
+per distinct matrix (:func:`e_row_quantities`, :func:`q_row_quantities`), and a pair
+only compares two intervals per condition (:func:`pair_codes`).  When every pair has
+its own ellipsoid (many ellipsoids against an environment) the ellipsoids' sides are
+computed block by block inside the pair loop and never stored (:func:`_fused_loop`).
 
 How the filter is certified
 ---------------------------
@@ -20,15 +22,17 @@ the number of negative eigenvalues of ``B = A - t I``, that is Descartes' count 
 sign variations of ``(1, tr B, J(B), det B)`` (exact: the characteristic polynomial
 of a symmetric matrix is real-rooted; multiple eigenvalues, as for spheres and
 spheroids, are counted with their multiplicity).  The three signs come from the
-same invariant program run on ``B``, whose diagonal ``fl(a_ii - t)`` is a rounded
-input (relative error ``u``; Sterbenz makes it exact when ``t`` is near ``a_ii``),
-with the bound for rounded inputs.  Counting at ``t - w`` and ``t + w``
-(``w = WIDTH |t|``) encloses the ``i``-th eigenvalue in ``[t - w, t + w]`` whenever
-the counts are ``<= i - 1`` and ``>= i``; an uncertain sign counts as any of -1, 0 and 1
-(:func:`_below_at_most`, :func:`_below_at_least`), and the enclosure fails if that
-matters.  For rounded input the enclosures of the float matrix ``A^`` are widened by
-Weyl's inequality,
-``|lambda_i(A) - lambda_i(A^)| <= ||A - A^||_2 <= u/(1-u) sum |a^_ij|``.
+straight-line program :func:`shift_invariants` with its magnitude companion; the
+diagonal ``fl(a_ii - t)`` of ``B`` is a rounded input (relative error ``u``; Sterbenz
+makes it exact when ``t`` is near ``a_ii``), and :data:`SHIFT_ERRBOUND` is derived from
+the rounding counts read off the program's text, as for the generated programs.
+Counting at ``t - w`` and ``t + w`` (``w = WIDTH |t|``) encloses the ``i``-th eigenvalue
+in ``[t - w, t + w]`` whenever the counts are ``<= i - 1`` and ``>= i``; an uncertain
+sign counts as any of -1, 0 and 1 (:func:`_below_at_most`, :func:`_below_at_least`),
+and the enclosure fails if that matters.  For rounded input the enclosures of the
+float matrix ``A^`` are widened by Weyl's inequality,
+``|lambda_i(A) - lambda_i(A^)| <= ||A - A^||_2 <= u/(1-u) sum |a^_ij|``; a row with an
+exact non-zero entry that rounds to zero (no relative perturbation) is not trusted.
 
 *Monomials.*  Each primitive enclosure ``[lo, hi]`` (positive, in
 ``[FACTOR_MIN, FACTOR_MAX]``) carries at most one rounding of its own (``fl(v -+ e)``,
@@ -45,8 +49,18 @@ a size condition), fails when they are strictly ordered the other way, and is
 ``u = 1`` of Table 1) are left to the next stage, as are pairs whose matrices fail a
 guard.
 
+*Per matrix, once.*  The type of a quadric comes from the mode's
+:meth:`~quadric_contact.modes.base.NumberMode.classify`, and where that is uncertain
+(or the row is not trusted) from exact integer arithmetic
+(:func:`~quadric_contact.modes.float64.exact_facts`); a quadric whose sides the float
+code cannot certify (a degenerate type rounded off its exact zero eigenvalue, or close
+to it) gets them from ball arithmetic, rounded outward (:func:`_refine`).  Pairs still
+uncertain get a second try with Newton-polished approximations and much narrower
+enclosures (:data:`TIGHT_WIDTH`).  All of it is counted as the filter's.
+
 The plain ``float`` stage runs the same code with no bounds: zero-width intervals at
-the approximations, so it always answers and may be wrong near the boundary.
+the approximations, so it always answers and may be wrong near the boundary (and for a
+degenerate type rounded off its zero eigenvalue, which plain numbers take for another).
 
 Eigenvalue approximations without ``acos``/``cos``
 ---------------------------------------------------
@@ -63,8 +77,9 @@ The row and pair arithmetic is written once as plain functions of scalars or num
 arrays (``select`` is ``numpy.where``; no Python branch depends on the data).  The
 numpy backend calls them on whole columns; the numba kernels are *compiled twins*
 (:func:`_compiled`) of the same functions, whose helper names resolve to compiled
-twins of the helpers (``select`` to an LLVM ``select``), so that LLVM inlines them
-and vectorises the loops over blocks of rows.
+twins of the helpers (``select`` to an LLVM ``select``), inlined into loops over
+blocks of rows that LLVM vectorises.  The first call compiles them (about a minute;
+numba caches the result on disk).
 """
 
 from __future__ import annotations
@@ -72,6 +87,7 @@ from __future__ import annotations
 import ast
 import inspect
 import math
+import threading
 import types
 from fractions import Fraction
 from typing import Any
@@ -915,13 +931,16 @@ _CALLED: tuple[str, ...] = ()
 _LOOPS = ("_e_rows_loop", "_e_block", "_q_rows_loop", "_pairs_loop", "_fused_loop")
 
 _twins: dict[str, Any] = {}
+_twins_lock = threading.Lock()
 
 
 def _compiled(name: str) -> Any:
     """The compiled twin of the function ``name`` of this module: the same code, with the
     names of the helpers bound to their compiled twins (``select`` to an LLVM ``select``)."""
     if not _twins:
-        _make_twins()
+        with _twins_lock:
+            if not _twins:
+                _make_twins()
     return _twins[name]
 
 
