@@ -616,12 +616,13 @@ def test_filter_is_never_wrong_near_the_boundary(kind):
     point (smallness depends on its semi-axes only) against the standard quadric: the filter
     answers only where it is right, the cascade always right."""
     rng = np.random.default_rng(100 + TABLE_1_KINDS.index(kind))
-    Es, Qs = [], []
+    Es, Qs, distinct = [], [], []
     for d in (1e-4, -1e-4, 1e-7, -1e-7, 1e-10, -1e-10, 1e-13, 0.0):
         ps = [Fraction(int(rng.integers(4, 40)), 8) for _ in Quadric.standard_parameters(kind)]
         n = ORDERED.get(kind, 0)
         p = dict(zip("abc", sorted(ps[:n], reverse=True) + ps[n:], strict=False))
         shape = tuple(sorted((Fraction(int(rng.integers(2, 24)), 8) for _ in range(3)), reverse=True))
+        distinct.append(len(set(shape)) == 3)
         s = max_scale(kind, p, shape)
         axes = np.array([float(s * v) for v in shape]) * (1 + d)
         R = quaternion_matrix(_unit(rng.normal(size=4)))
@@ -643,6 +644,9 @@ def test_filter_is_never_wrong_near_the_boundary(kind):
     assert np.array_equal(got[sure], ref[sure]), (got, ref)
     assert np.array_equal(smallness_codes(Es, Qs), ref)
     assert sure[:2].all()  # 1e-4 is far from the boundary for the filter
+    # 1e-7 is within the first enclosures' width; the second, tight try separates it when the
+    # ellipsoid's eigenvalues are simple
+    assert all(sure[k] for k in (2, 3) if distinct[k])
 
 
 def test_shifted_signs_are_exact_where_certain():
