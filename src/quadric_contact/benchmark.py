@@ -692,7 +692,7 @@ def _complete(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> 
         transversal_contact(E[:100], Q if Q.ndim == 2 else Q[:100])  # compile / load the kernels
         criterion_stack(E[:100], Q if Q.ndim == 2 else Q[:100])
         mode = CertifiedMode()
-        seconds, truth = _best_of(lambda m=mode, E=E, Q=Q: transversal_contact(E, Q, mode=m), 3)
+        seconds, truth = _best_of(functools.partial(transversal_contact, E, Q, mode=mode), 3)
         report.complete.append(
             {
                 "population": population,
@@ -704,7 +704,7 @@ def _complete(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> 
                 "exact_pairs": mode.last.decided.get("exact pair", 0),
             }
         )
-        seconds, crit = _best_of(lambda E=E, Q=Q: criterion_stack(E, Q), 3)
+        seconds, crit = _best_of(functools.partial(criterion_stack, E, Q), 3)
         report.complete.append(
             {
                 "population": population,
@@ -718,7 +718,7 @@ def _complete(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> 
         if geometry is None:
             continue
         m = min(n, 200_000)
-        seconds, eig = _best_of(lambda E=E, Q=Q, m=m: peer_numpy_eigvals(E[:m], Q[:m]), 1)
+        seconds, eig = _best_of(functools.partial(peer_numpy_eigvals, E[:m], Q[:m]), 1)
         report.complete.append(
             {
                 "population": population,
