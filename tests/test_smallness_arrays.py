@@ -155,7 +155,7 @@ def test_random_small_ellipsoids_against_one_environment():
         got = smallness_codes(Es, q, mode=mode)
         ref = np.array([scalar_code(Quadric.from_matrix(e), Quadric.from_matrix(q)) for e in Es])
         assert np.array_equal(got, ref), kind
-        assert mode.last.decided["filter"] >= n - 2, (kind, mode.last)
+        assert mode.last.decided["smallness (filter)"] >= n - 2, (kind, mode.last)
         filt = smallness_codes(Es, q, mode="filter")
         sure = filt != UNC
         assert np.array_equal(filt[sure], ref[sure])
@@ -301,7 +301,7 @@ def test_two_equal_spheres(exact):
     assert smallness_codes(E, Q, mode="filter") is C.UNCERTAIN
     mode = CertifiedMode()
     assert smallness_codes(E, Q, mode=mode) is C.SMALL
-    assert mode.last.decided["filter"] == 0
+    assert mode.last.decided["smallness (filter)"] == 0
     for name in ("exact", "ball"):
         assert smallness_codes(E, Q, mode=name) in (C.SMALL, C.UNCERTAIN)
 
@@ -448,7 +448,7 @@ def test_stage_counts_add_up():
     mode = CertifiedMode()
     smallness_codes(Es, sphere.to_numpy(float), mode=mode)
     assert mode.last.total == 50 and mode.last.undecided == 0
-    assert mode.last.decided["filter"] <= 47 and mode.last.escalated >= 3
+    assert mode.last.decided["smallness (filter)"] <= 47 and mode.last.escalated >= 3
     smallness_codes(Es[:10], sphere.to_numpy(float), mode=mode)
     assert mode.counts.total == 60
     for name in ("filter", "ball", "float", "mpmath", "exact"):
