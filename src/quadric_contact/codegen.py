@@ -599,7 +599,8 @@ def rounding_counts(fdef: ast.FunctionDef, input_roundings: int = 0) -> list[tup
         if isinstance(node, ast.Name):
             return env[node.id]
         if isinstance(node, ast.Constant):
-            return (0 if abs(node.value) <= EXACT_INTEGER_MAX else 1, 0)
+            big = isinstance(node.value, int) and abs(node.value) > EXACT_INTEGER_MAX
+            return (1 if big else 0, 0)
         if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
             return walk(node.operand)
         if isinstance(node, ast.BinOp):
@@ -645,15 +646,15 @@ def horner_form(terms: dict[tuple[int, ...], int], symbols: Sequence[sp.Symbol])
         return sp.Integer(sum(terms.values()))
     x, rest = symbols[0], symbols[1:]
     groups: dict[int, dict[tuple[int, ...], int]] = {}
-    for e, c in terms.items():
+    for mono, c in terms.items():
         if c:
-            groups.setdefault(e[0], {})[e[1:]] = c
+            groups.setdefault(mono[0], {})[mono[1:]] = c
     if not groups:
         return sp.Integer(0)
     exponents = sorted(groups, reverse=True)
     acc = horner_form(groups[exponents[0]], rest)
-    for prev, e in zip(exponents, exponents[1:], strict=False):
-        acc = acc * x ** (prev - e) + horner_form(groups[e], rest)
+    for prev, nxt in itertools.pairwise(exponents):
+        acc = acc * x ** (prev - nxt) + horner_form(groups[nxt], rest)
     return acc * x ** exponents[-1]
 
 
