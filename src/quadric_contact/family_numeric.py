@@ -18,19 +18,23 @@ the float filter's error bounds are derived from.  The same program runs in ever
     magnitude companion in binary64 (numba when it is installed), the rigorous bound
     ``|fl(p) - p| <= K M`` of :func:`quadric_contact.modes.errorbounds.program_errbound`
     for each of numerator and denominator; ``-1, 0, 1`` where the bound decides it and
-    ``2`` (``UNCERTAIN``) where it does not, at a pole, or outside the guarded range
-    (below) -- an int8 array;
+    ``2`` (``UNCERTAIN``) where it does not, at a pole, where an input is not finite or
+    where a product underflowed (below) -- an int8 array;
 ``"exact"``
     the exact value (:class:`~fractions.Fraction`) at each point, point by point with
     python-flint (the reference the others are measured against).
 
-The certified backend's guards follow :mod:`quadric_contact.modes.errorbounds`: a non-zero
-input at least ``2^e_min`` in magnitude is a multiple of ``2^(e_min - 52)``, so every
-non-zero intermediate of a degree-``D`` program is at least ``2^(D (e_min - 52))``, chosen
-normal with room for the bound ``K M``; inputs at most ``2^e_max`` keep every intermediate
-below ``path_bound * 2^(D e_max) < 2^1021``.  A point with an input outside (or NaN) is
-``UNCERTAIN``.  Large integer constants of the program (beyond ``2^53``) count as rounded
-operands in the rounding counts.
+The error model (Higham's, as in :mod:`quadric_contact.modes.errorbounds`) needs every
+operation to be rounded with relative error at most ``u``.  Sums and differences always are
+(a result in the subnormal range is exact); a product is when its result is at least
+``2^-1021`` in magnitude or an operand is zero.  The certified programs are run one
+operation per line with that check after every product, in the value program and in its
+magnitude companion, and a point where one fails is ``UNCERTAIN`` (the static input guards
+of the pair filter would exclude most inputs below 1 for the degrees of a family's
+quantities).  Overflow needs no check: every computed value is at most the computed
+magnitude in absolute value (rounding is monotone), so an infinite or NaN intermediate
+makes the magnitude infinite or NaN and the point uncertain.  Integer constants beyond
+``2^53`` count as rounded operands in the rounding counts.
 
 The generated text is compiled only after it has been checked to be in the grammar of the
 generated modules (assignments of ``+ - *`` over names and integer literals): the names are
@@ -42,7 +46,7 @@ from __future__ import annotations
 
 import ast
 import math
-import re
+import sys
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import TYPE_CHECKING, Any
@@ -90,8 +94,7 @@ class CompiledQuantity:
     scale: Fraction
     has_denominator: bool
     error_bounds: tuple[float, ...]
-    input_min: float
-    input_max: float
+    checked_source: str
     functions: dict[str, Any]
 
     @property
@@ -99,20 +102,75 @@ class CompiledQuantity:
         return self.program.source
 
 
-def _guards(program: Program, bounds: tuple[float, ...]) -> tuple[float, float]:
-    """``(input_min, input_max)`` for the certified backend (see the module docstring)."""
-    D = max(program.degree, default=0)
-    if D == 0:
-        return 0.0, math.inf
-    positive = [b for b in bounds if b > 0]  # K = 0: no rounding at all (a single input, say)
-    k_exp = math.floor(math.log2(min(positive))) if positive else 0
-    q = math.ceil((-1022 - k_exp + 2) / D)  # D q + log2(K) >= -1020: intermediates and K M normal
-    e_min = min(q + 52, 0)
-    room = 1020 - math.log2(max(program.path_bound, 1)) - 1  # (1 + u)^N < 2 for the roundings
-    if room <= 0:
-        raise OverflowError("the program's coefficients are too large for binary64")
-    e_max = math.floor(room / D)
-    return 2.0**e_min, 2.0**e_max
+TINY = 2.0**-1021
+"""A product of two non-zero binary64 numbers at least this large in magnitude was rounded
+with relative error at most ``u`` (it did not underflow)."""
+
+_MAX = sys.float_info.max
+
+
+def _literal(value: int) -> str:
+    # numba types integer literals as int64: a constant beyond 2^53 is written as its binary64
+    # rounding (which the rounding counts charge; numpy rounds it the same way).
+    return repr(float(value)) if abs(value) > EXACT_INTEGER_MAX else str(value)
+
+
+def _ssa(
+    fdef: ast.FunctionDef, inputs: dict[str, str], prefix: str, checks: bool = True
+) -> tuple[list[str], list[str]]:
+    """A straight-line function of the generated grammar as single assignments, one operation
+    each, with (``checks``) a check after every product that it did not underflow (``ok``
+    becomes false where a product of two non-zero numbers is below :data:`TINY`).  Returns the
+    lines and the names (or literals) of the outputs."""
+    args, assignments, returned = _straight_line(fdef)
+    env = {a: inputs[a] for a in args}
+    lines: list[str] = []
+    count = 0
+
+    def fresh() -> str:
+        nonlocal count
+        count += 1
+        return f"{prefix}{count}"
+
+    def walk(node: ast.expr) -> str:
+        if isinstance(node, ast.Name):
+            return env[node.id]
+        if isinstance(node, ast.Constant) and isinstance(node.value, int):
+            return _literal(node.value)
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
+            t = fresh()
+            lines.append(f"    {t} = -{walk(node.operand)}")
+            return t
+        if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub, ast.Mult)):
+            left, right = walk(node.left), walk(node.right)
+            op = {ast.Add: "+", ast.Sub: "-", ast.Mult: "*"}[type(node.op)]
+            t = fresh()
+            lines.append(f"    {t} = {left} {op} {right}")
+            if op == "*" and checks:
+                lines.append(f"    ok = ok & ((abs({t}) >= {TINY!r}) | ({left} == 0.0) | ({right} == 0.0))")
+            return t
+        raise AssertionError(f"unexpected syntax: {ast.dump(node)}")
+
+    for target, expr in assignments:
+        env[target] = walk(expr)
+    return lines, [env[r] for r in returned]
+
+
+def _checked_source(program: Program) -> str:
+    """``checked(p0, ..)``: the value program at the inputs and its magnitude companion at their
+    absolute values, one operation per line, with the underflow checks of :func:`_ssa` and a
+    check that the inputs are finite; returns ``(values..., magnitudes..., ok)``."""
+    fns = _functions(program.source)
+    args = list(program.args)
+    lines = [f"def checked({', '.join(args)}):"]
+    lines.append("    ok = " + (" & ".join(f"(abs({a}) <= {_MAX!r})" for a in args) if args else "True"))
+    for a in args:
+        lines.append(f"    a_{a} = abs({a})")
+    v_lines, v_out = _ssa(fns["quantity"], {a: a for a in args}, "v")
+    m_lines, m_out = _ssa(fns["quantity_magnitude"], {a: f"a_{a}" for a in args}, "m")
+    lines += v_lines + m_lines
+    lines.append(f"    return ({', '.join([*v_out, *m_out, 'ok'])},)")
+    return "\n".join(lines) + "\n"
 
 
 def _checked(source: str) -> None:
@@ -154,18 +212,10 @@ def compile_quantity(name: str, value: RationalFunction, nparams: int) -> Compil
         program_errbound(nv, nm, d)
         for nv, nm, d in zip(program.value_counts, program.magnitude_counts, program.degree, strict=True)
     )
-    lo, hi = _guards(program, bounds)
-    functions = _compile_source(program.source, {"__builtins__": {}})
-    return CompiledQuantity(
-        name,
-        program,
-        scale,
-        has_den,
-        bounds,
-        lo,
-        hi,
-        {k: v for k, v in functions.items() if k != "__builtins__"},
-    )
+    checked = _checked_source(program)
+    functions = _compile_source(program.source + "\n\n" + checked, {"__builtins__": {"abs": abs}})
+    functions = {k: v for k, v in functions.items() if k != "__builtins__"}
+    return CompiledQuantity(name, program, scale, has_den, bounds, checked, functions)
 
 
 # -- numba kernels (fixed templates; the only names are the program's) ---------------------------
@@ -182,26 +232,25 @@ def _value_kernel_source(nparams: int, has_den: bool, scale: float) -> str:
     )
 
 
-def _sign_kernel_source(nparams: int, bounds: tuple[float, ...], lo: float, hi: float) -> str:
-    lines = ["def kernel(P, out):", "    for i in range(out.shape[0]):", "        ok = True"]
-    for k in range(nparams):
-        lines += [
-            f"        a{k} = abs(P[{k}, i])",
-            f"        if not (a{k} == 0.0 or ({lo!r} <= a{k} and a{k} <= {hi!r})):",
-            "            ok = False",
-        ]
-    lines += ["        if not ok:", f"            out[i] = {UNCERTAIN}", "            continue"]
+def _sign_kernel_source(nparams: int, bounds: tuple[float, ...]) -> str:
     xs = ", ".join(f"P[{k}, i]" for k in range(nparams))
-    axs = ", ".join(f"a{k}" for k in range(nparams))
-    lines += [f"        r = quantity({xs})", f"        m = quantity_magnitude({axs})", "        s = 1"]
+    n = len(bounds)
+    lines = [
+        "def kernel(P, out):",
+        "    for i in range(out.shape[0]):",
+        f"        r = checked({xs})",
+        f"        if not r[{2 * n}]:",
+        f"            out[i] = {UNCERTAIN}",
+        "            continue",
+    ]
     for j, K in enumerate(bounds):
         lines += [
-            f"        b = {K!r} * m[{j}]",
+            f"        b = {K!r} * r[{n + j}]",
             f"        if r[{j}] > b:",
             "            sj = 1",
             f"        elif r[{j}] < -b:",
             "            sj = -1",
-            f"        elif m[{j}] == 0.0:",
+            f"        elif r[{n + j}] == 0.0:",
             "            sj = 0",
             "        else:",
             f"            sj = {UNCERTAIN}",
@@ -219,18 +268,11 @@ def _sign_kernel_source(nparams: int, bounds: tuple[float, ...], lo: float, hi: 
     return "\n".join(lines) + "\n"
 
 
-_BIG_LITERAL = re.compile(r"(?<![A-Za-z_0-9.])([0-9]{16,})(?![0-9.])")
-
-
-def _float_literals(source: str) -> str:
-    """The program with every integer literal beyond ``EXACT_INTEGER_MAX`` written as the
-    binary64 number nearest to it."""
-
-    def repl(m: re.Match[str]) -> str:
-        k = int(m.group(1))
-        return repr(float(k)) if k > EXACT_INTEGER_MAX else m.group(1)
-
-    return _BIG_LITERAL.sub(repl, source)
+def _values_source(program: Program) -> str:
+    """``values(p0, ..)``: the value program, one operation per line, without checks (for numba)."""
+    args = list(program.args)
+    lines, out = _ssa(_functions(program.source)["quantity"], {a: a for a in args}, "v", checks=False)
+    return "\n".join([f"def values({', '.join(args)}):", *lines, f"    return ({', '.join(out)},)"]) + "\n"
 
 
 def _numba_kernel(cq: CompiledQuantity, kind: str) -> Any:
@@ -239,18 +281,16 @@ def _numba_kernel(cq: CompiledQuantity, kind: str) -> Any:
         return cq.functions[key]
     import numba
 
-    # numba types integer literals as int64: a constant beyond 2^53 becomes its binary64
-    # rounding (which the rounding counts already charge; numpy rounds it the same way).
-    program = _compile_source(_float_literals(cq.program.source), {"__builtins__": {}})
-    ns: dict[str, Any] = {
-        "quantity": numba.njit(program["quantity"]),
-        "quantity_magnitude": numba.njit(program["quantity_magnitude"]),
-    }
+    program = _compile_source(
+        _values_source(cq.program) + "\n\n" + cq.checked_source, {"__builtins__": {"abs": abs}}
+    )
     nparams = len(cq.program.args)
     if kind == "value":
+        ns: dict[str, Any] = {"quantity": numba.njit(program["values"])}
         source = _value_kernel_source(nparams, cq.has_denominator, float(cq.scale))
     else:
-        source = _sign_kernel_source(nparams, cq.error_bounds, cq.input_min, cq.input_max)
+        ns = {"checked": numba.njit(program["checked"])}
+        source = _sign_kernel_source(nparams, cq.error_bounds)
     kernel = numba.njit(_compile_source(source, ns)["kernel"])
     cq.functions[key] = kernel
     return kernel
@@ -268,31 +308,26 @@ def _numpy_values(cq: CompiledQuantity, xs: list[np.ndarray]) -> np.ndarray:
 
 def _numpy_signs(cq: CompiledQuantity, xs: list[np.ndarray]) -> np.ndarray:
     shape = np.shape(xs[0]) if xs else ()
-    ok = np.ones(shape, dtype=bool)
-    for x in xs:
-        a = np.abs(x)
-        ok &= (a == 0.0) | ((a >= cq.input_min) & (a <= cq.input_max))
-    safe = [np.where(ok, x, 0.0) for x in xs]
-    r = cq.functions["quantity"](*safe)
-    m = cq.functions["quantity_magnitude"](*[np.abs(x) for x in safe])
-    out = np.full(shape, UNCERTAIN, dtype=np.int8)
+    with np.errstate(all="ignore"):
+        r = cq.functions["checked"](*xs)
+    n = len(cq.error_bounds)
+    ok = np.broadcast_to(np.asarray(r[2 * n], dtype=bool), shape)
     signs = []
     for j, K in enumerate(cq.error_bounds):
-        v = np.asarray(r[j] * np.ones(shape))
-        mj = np.asarray(m[j] * np.ones(shape))
-        b = K * mj
+        v = np.broadcast_to(np.asarray(r[j], dtype=np.float64), shape)
+        m = np.broadcast_to(np.asarray(r[n + j], dtype=np.float64), shape)
+        b = K * m
         sj = np.full(shape, UNCERTAIN, dtype=np.int8)
-        sj[mj == 0.0] = 0
+        sj[m == 0.0] = 0
         sj[v > b] = 1
         sj[v < -b] = -1
         signs.append(sj)
     s = signs[0]
-    if len(signs) == 2:
+    if n == 2:
         d = signs[1]
         bad = (d == 0) | (d == UNCERTAIN) | (s == UNCERTAIN)
         s = np.where(bad, UNCERTAIN, s * d).astype(np.int8)
-    out[ok] = s[ok]
-    return out
+    return np.where(ok, s, UNCERTAIN).astype(np.int8)
 
 
 def _mpmath_values(cq: CompiledQuantity, xs: list[np.ndarray], dps: int) -> np.ndarray:
