@@ -374,7 +374,10 @@ class ContactMap:
                         ax, f, (float(a), float(b)), (float(c), float(d)), colour, style, points
                     )
                 if drawn:
-                    handles.append(Line2D([], [], color=colour, linestyle=style, label=f"{name} = 0"))
+                    label = f"{name} = 0"
+                    if "=" in name:  # a smallness condition: where its two sides are equal
+                        label = name.replace(" <= ", " = ").replace(" >= ", " = ")
+                    handles.append(Line2D([], [], color=colour, linestyle=style, label=label))
         ax.set_xlim(float(a), float(b))
         ax.set_ylim(float(c), float(d))
         ax.set_xlabel(self.names[0])
