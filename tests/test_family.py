@@ -183,7 +183,7 @@ def test_the_deltas_are_those_of_the_coefficients():
 
     for fam in FAMILIES.values():
         assert all(
-            sp.simplify(a - b) == 0 for a, b in zip(paper_deltas(fam.coefficients), fam.deltas, strict=True)
+            sp.cancel(a - b) == 0 for a, b in zip(paper_deltas(fam.coefficients), fam.deltas, strict=True)
         )
 
 

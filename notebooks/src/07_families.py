@@ -75,7 +75,7 @@ for b in fam.boundaries:
 # %%
 print(fam.smallness)
 print(fam.smallness.report)
-for region, rule in fam.table_4.items():
+for rule in fam.table_4.values():
     print(rule)
 # Corollary 10 as a sympy Boolean in u, w: Delta4 < 0, or Delta4 = 0 and Delta3 < 0
 for point in [{u: 1, w: 3}, {u: 3, w: sp.Rational(11, 2)}]:
@@ -107,9 +107,9 @@ for name, fn in [
     fn()
     timings[name] = U.size / (time.perf_counter() - t)
 print({k: f"{v:,.0f} evaluations/s" for k, v in timings.items()})
-print("certified signs:", dict(zip(*np.unique(signs, return_counts=True))))
+print("certified signs:", dict(zip(*np.unique(signs, return_counts=True), strict=True)))
 exact = fam.lambdify("Delta4", "exact")(U[::40, ::40], W[::40, ::40])
-assert all((s == 2) or (s == (e > 0) - (e < 0)) for s, e in zip(signs[::40, ::40].ravel(), exact.ravel()))
+assert all(s in (2, (e > 0) - (e < 0)) for s, e in zip(signs[::40, ::40].ravel(), exact.ravel(), strict=True))
 
 # %% [markdown]
 # A path: the bee flies along $x$ at the height $w=4$ (`fix` sets a parameter exactly).  The

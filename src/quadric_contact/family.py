@@ -57,7 +57,7 @@ import sympy as sp
 from ._generated.formulas import paper_deltas, pencil_coefficients
 from .classification import QuadricKind, principal_minor_sums_3
 from .entries import ENTRY_INDICES
-from .errors import EquationError, NotAnEllipsoidError, NotANumberError, ShapeError
+from .errors import EquationError, NotAnEllipsoidError, NotANumberError, NotSymmetricError, ShapeError
 from .parsing import MAX_DEGREE, MAX_DIGITS, Refusal, evaluate, parse_expression
 from .quadric import Quadric
 from .rational import to_fraction
@@ -559,8 +559,6 @@ def _read_matrix(value: Any, parameters: tuple[str, ...], pctx: Any, name: str) 
     for i in range(4):
         for j in range(i + 1, 4):
             if m[i][j] != m[j][i]:
-                from .errors import NotSymmetricError
-
                 raise NotSymmetricError(
                     f"{name} is not symmetric: entry ({i}, {j}) is {m[i][j]}, entry ({j}, {i}) is {m[j][i]}",
                     value,
@@ -1020,10 +1018,8 @@ class Family:
         return self.Q_reference.kind
 
     @cached_property
-    def quantities(self) -> dict[str, Quantity]:
-        """Every named exact quantity: the coefficients, the Deltas, the leading minors of
-        ``E``'s quadratic part, the plane discriminant (planes) and the squared smallness
-        conditions (where they are rational)."""
+    def _pencil_quantities(self) -> dict[str, Quantity]:
+        """The quantities of the pencil and of ``E`` (no smallness: it is computed on demand)."""
         out: dict[str, Quantity] = {}
         sym = self.symbols
 
@@ -1048,22 +1044,23 @@ class Family:
                 "c3^2 - 4 c4 c2: transversal contact with the plane iff < 0 "
                 "(Corollary 15, erratum corollary-15-c1)",
             )
+        return out
+
+    @cached_property
+    def quantities(self) -> dict[str, Quantity]:
+        """Every named exact quantity: the coefficients, the Deltas, the leading minors of
+        ``E``'s quadratic part, the plane discriminant (planes) and the squared smallness
+        conditions (where they are rational)."""
+        out = dict(self._pencil_quantities)
         for cond in (*self.smallness.conditions, *self.smallness.alternative):
-            add(
-                cond.name,
-                cond.value,
-                f"lhs^2 - rhs^2 of {cond.name} (Tables 1-2): holds iff {cond.relation} 0",
-            )
+            description = f"lhs^2 - rhs^2 of {cond.name} (Tables 1-2): holds iff {cond.relation} 0"
+            out[cond.name] = Quantity(cond.name, cond.value, description, self.symbols)
         return out
 
     def quantity(self, name: str) -> Quantity:
         """The exact quantity ``name`` (see :attr:`quantities`)."""
-        if name in ("c0", "c1", "c2", "c3", "c4", "Delta2", "Delta3", "Delta4"):
-            k = ("c0", "c1", "c2", "c3", "c4").index(name) if name[0] == "c" else None
-            if k is not None:
-                return Quantity(name, self._coefficients[k], f"coefficient of lambda^{k}", self.symbols)
-            j = int(name[-1])
-            return Quantity(name, self._deltas[j - 2], f"the paper's Delta_{j}", self.symbols)
+        if name in self._pencil_quantities:
+            return self._pencil_quantities[name]
         try:
             return self.quantities[name]
         except KeyError:
