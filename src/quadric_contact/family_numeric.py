@@ -33,8 +33,9 @@ magnitude companion, and a point where one fails is ``UNCERTAIN`` (the static in
 of the pair filter would exclude most inputs below 1 for the degrees of a family's
 quantities).  Overflow needs no check: every computed value is at most the computed
 magnitude in absolute value (rounding is monotone), so an infinite or NaN intermediate
-makes the magnitude infinite or NaN and the point uncertain.  Integer constants beyond
-``2^53`` count as rounded operands in the rounding counts.
+makes the magnitude infinite or NaN and the point uncertain.  The bound itself is
+``fl(K M) + 2^-1074``, which stays an upper bound if the product underflows.  Integer
+constants beyond ``2^53`` count as rounded operands in the rounding counts.
 
 The generated text is compiled only after it has been checked to be in the grammar of the
 generated modules (assignments of ``+ - *`` over names and integer literals): the names are
@@ -107,6 +108,10 @@ TINY = 2.0**-1021
 with relative error at most ``u`` (it did not underflow)."""
 
 _MAX = sys.float_info.max
+_SMALLEST = 5e-324
+"""``2^-1074``, added to the computed bound ``fl(K M)``: if that product underflows it is
+rounded with an absolute error below ``2^-1075``, and the sum is then exact; otherwise the
+addition changes nothing and the relative rounding of the product is in ``K``."""
 
 
 def _literal(value: int) -> str:
@@ -246,7 +251,7 @@ def _sign_kernel_source(nparams: int, bounds: tuple[float, ...]) -> str:
     ]
     for j, K in enumerate(bounds):
         lines += [
-            f"        b = {K!r} * r[{n + j}]",
+            f"        b = {K!r} * r[{n + j}] + {_SMALLEST!r}",
             f"        if r[{j}] > b:",
             "            sj = 1",
             f"        elif r[{j}] < -b:",
@@ -317,7 +322,7 @@ def _numpy_signs(cq: CompiledQuantity, xs: list[np.ndarray]) -> np.ndarray:
     for j, K in enumerate(cq.error_bounds):
         v = np.broadcast_to(np.asarray(r[j], dtype=np.float64), shape)
         m = np.broadcast_to(np.asarray(r[n + j], dtype=np.float64), shape)
-        b = K * m
+        b = K * m + _SMALLEST
         sj = np.full(shape, UNCERTAIN, dtype=np.int8)
         sj[m == 0.0] = 0
         sj[v > b] = 1
