@@ -1,5 +1,5 @@
 # %% [markdown]
-# # 7. Families: the pencil over Q(parameters), numeric lambdas and contact maps
+# # 8. Families: the pencil over Q(parameters), numeric lambdas and contact maps
 #
 # The other notebooks decide one pair at a time.  Here the pair depends on **parameters**:
 # where may the bee's centre be so that it touches the trunk?  For which length does a
