@@ -78,3 +78,14 @@ def criterion_contact(E, Q, *, mode="certified"):
 def criterion_region(E, Q, *, mode="certified"):
     """The criterion and Table 4's reading of the root signs, no smallness (:class:`RegionCode`)."""
     return _criterion("region", E, Q, mode)
+
+
+def smallness_codes(E, Q, *, mode="certified", client=None, compute=True):
+    """Smallness codes of a stack (as :func:`quadric_contact.smallness` gives them), and for a
+    single pair its :class:`SmallnessCode` (the scalar predicate gives the report)."""
+    from quadric_contact.batch import is_stack, run_stack
+    from quadric_contact.modes import SmallnessCode
+
+    if is_stack(E) or is_stack(Q):
+        return run_stack("smallness", E, Q, mode, client, compute)
+    return SmallnessCode(int(run_stack("smallness", [E], [Q], mode)[0]))

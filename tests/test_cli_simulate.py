@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from fractions import Fraction as F
 
 import pytest
 
@@ -101,3 +102,76 @@ def test_not_small_is_refused_with_the_failing_condition(tmp_path, capsys):
     assert main(["simulate", str(scene), "--effects", "contact", "--on-not-small", "warn"]) == 0
     out = capsys.readouterr().out
     assert "NOT small" in out and "contact undecided" in out
+
+
+def test_animate_writes_a_gif(tmp_path, capsys):
+    pytest.importorskip("matplotlib")
+    from PIL import Image
+
+    target = tmp_path / "walls.gif"
+    assert main(["simulate", "parallel_walls", "--animate", str(target), "--frames", "6"]) == 0
+    assert target.read_bytes()[:6] in (b"GIF87a", b"GIF89a")
+    assert Image.open(target).n_frames == 6
+    assert "animation written" in capsys.readouterr().out
+    assert [p.name for p in tmp_path.iterdir()] == ["walls.gif"]
+    assert main(["simulate", "parallel_walls", "--animate", str(target), "--frames", "1"]) == 2
+
+
+def test_many_bodies_from_the_command_line(capsys):
+    assert main(["simulate", "--list"]) == 0
+    assert "many_bodies" in capsys.readouterr().out
+    args = ["simulate", "many_bodies", "--bodies", "12", "--pieces", "4", "--seed", "2", "--json"]
+    assert main(args) == 0
+    broad = json.loads(capsys.readouterr().out)
+    assert len(broad["pairs"]) == 12 and broad["ledger"]["done"]["broad_phase_tests"] > 0
+    assert broad["events"] == sum(len(p["events"]) for p in broad["pairs"])
+    assert main([*args, "--workers", "2"]) == 0
+    two = json.loads(capsys.readouterr().out)
+    assert _same_events(two, broad)
+    assert main(["simulate", "many_bodies", "--bodies", "0"]) == 2
+
+
+def test_broad_phase_option_keeps_the_timeline(capsys):
+    assert main(["simulate", "drone_cooling_tower", "--json"]) == 0
+    plain = json.loads(capsys.readouterr().out)
+    assert main(["simulate", "drone_cooling_tower", "--json", "--broad-phase"]) == 0
+    broad = json.loads(capsys.readouterr().out)
+    assert _same_events(plain, broad)
+    assert "broad_phase_tests" in broad["ledger"]["done"]
+
+
+def _same_events(a, b):
+    """The same events: same changes, the same polynomial (or rational) and overlapping
+    isolating intervals for each time (the intervals themselves may differ)."""
+    for pa, pb in zip(a["pairs"], b["pairs"], strict=True):
+        assert len(pa["events"]) == len(pb["events"])
+        for ea, eb in zip(pa["events"], pb["events"], strict=True):
+            assert ea["changes"] == eb["changes"]
+            ta, tb = ea["time"], eb["time"]
+            assert ta.get("exact") == tb.get("exact") and ta.get("root_of") == tb.get("root_of")
+            if "interval" in ta:
+                lo = max(F(ta["interval"][0]), F(tb["interval"][0]))
+                hi = min(F(ta["interval"][1]), F(tb["interval"][1]))
+                assert lo < hi
+    return True
+
+
+def test_animate_many_bodies_as_points(tmp_path, capsys):
+    pytest.importorskip("matplotlib")
+    target = tmp_path / "many.gif"
+    args = [
+        "simulate",
+        "many_bodies",
+        "--bodies",
+        "14",
+        "--pieces",
+        "4",
+        "--animate",
+        str(target),
+        "--frames",
+        "3",
+    ]
+    assert main(args) == 0
+    out = capsys.readouterr().out
+    assert "events: " in out and "14 (ellipsoid, object) pair(s)" in out
+    assert target.read_bytes()[:3] == b"GIF"

@@ -78,7 +78,7 @@ PAIRS = {
     "bee and the plane z = 6": (BEE, Quadric.from_equation("z - 6"), False),
     "sphere touching a plane": (Quadric.sphere(1, (0, 0, 1)), Quadric.from_equation("z"), True),
     "sphere inside a paraboloid, negated": (
-        -Quadric.sphere(F(1, 2), (0, 0, 3)),
+        -Quadric.sphere(F(1, 4), (0, 0, 3)),
         -Quadric.elliptic_paraboloid(1, 1),
         False,
     ),
@@ -233,6 +233,8 @@ def test_every_form_gives_the_exact_answer(pair, question, mode):
     if not _applicable(question, Q0):
         return
     name = _name(mode)
+    if question == "smallness" and "unit spheres" in pair:
+        near = True  # two equal spheres sit on the boundary of Table 1 (c = alpha): rounding decides
     predicate = PREDICATES[question]
     ref_q = "region" if question == "plane" else question
     for form, make in SCALAR_FORMS.items():

@@ -97,6 +97,13 @@ def test_full_evaluation_matches_the_structural_estimate():
         ]
 
 
+def piece_plan(result, pair, piece):
+    """What was asked for on one (ellipsoid, piece) pair (per-object effects)."""
+    scene = result.scene
+    own = result.plan.restricted(scene.ellipsoid_effects.get(pair.ellipsoid))
+    return own.restricted(scene.piece_effects.get((pair.object.name, piece)))
+
+
 def check_against_static(result, samples=80):
     scene = result.scene
     t0, t1 = scene.span
@@ -116,8 +123,10 @@ def check_against_static(result, samples=80):
             }, t
             assert sorted(n for n, _ in state.pieces) == sorted(p.name for p in static.zone.pieces), t
             for name, value in state.pieces:
+                if value is None:
+                    continue
                 assert value.contact == static.contacts[name].transversal, (pair.ellipsoid, t, name)
-                if result.plan.region:
+                if piece_plan(result, pair, name).region:
                     assert value.region == static.regions[name].region, (pair.ellipsoid, t, name)
 
 
@@ -215,3 +224,57 @@ motion = { type = "linear", velocity = [0, 0, 1] }
     assert pair.events == []
     value = dict(pair.initial.pieces)["bore"]
     assert value.contact is False and value.kind == "tangent_curve"
+
+
+def _without_per_object_effects(scene):
+    from dataclasses import replace
+
+    return replace(scene, ellipsoid_effects={}, piece_effects={}, smallness=dict(scene.smallness))
+
+
+def test_per_object_effects_compute_only_what_each_asks_for():
+    scene = builtin_scene("bees_with_interests")
+    assert scene.ellipsoid_effects["worker"] == ("first_contact",)
+    assert scene.piece_effects["tree", "crown"] == ("zone", "contact", "first_contact")
+    r = simulate(scene)
+    everything = simulate(_without_per_object_effects(scene))
+    # the worker stops at its first contact; the drone keeps no regions; nobody has the crown's region
+    worker, drone, scout = r.pair("worker", "tree"), r.pair("drone", "tree"), r.pair("scout", "tree")
+    assert not worker.complete and worker.first_contact is not None
+    assert worker.first_contact[0].compare(everything.pair("worker", "tree").first_contact[0]) == 0
+    assert all(v.region is None for ep in drone.episodes for _, v in ep.state.pieces if v is not None)
+    for ep in scout.episodes:
+        pieces = dict(ep.state.pieces)
+        if pieces.get("crown") is not None:
+            assert pieces["crown"].region is None
+        if pieces.get("trunk") is not None and pieces["trunk"].contact is False:
+            assert pieces["trunk"].region is not None
+
+    # the contact timelines are the ones of the run that computes everything
+    def contact_changes(pair):
+        def flags(state):
+            return {n: v.contact for n, v in state.pieces if v is not None}
+
+        return [e.time.decimal(20) for e in pair.events if flags(e.before) != flags(e.after)]
+
+    for name in ("scout", "drone"):
+        mine = contact_changes(r.pair(name, "tree"))
+        assert mine and mine == contact_changes(everything.pair(name, "tree"))
+    # and the ledger shows the work saved against every effect everywhere
+    for item in ("characteristic_polynomials", "coefficient_signs"):
+        assert r.ledger.done[item] < everything.ledger.done[item] <= r.ledger.full[item]
+    text = r.format_text()
+    assert "effects asked for by ellipsoid worker: first_contact" in text
+    assert "worker vs tree\n  first contact:" in text
+
+
+def test_per_object_effects_are_validated():
+    bad = STAYS_IN_ZONE_2 + '\n[effects]\nellipsoids = { wasp = ["zone"] }\n'
+    with pytest.raises(SceneError, match=r"effects\.ellipsoids\.wasp"):
+        parse_scene(bad, "bad.toml")
+    bad = STAYS_IN_ZONE_2 + '\n[effects]\npieces = { "tree/crown" = ["colour"] }\n'
+    with pytest.raises(SceneError, match=r"effects\.pieces\.tree/crown\[0\]"):
+        parse_scene(bad, "bad.toml")
+    ok = parse_scene(STAYS_IN_ZONE_2 + '\n[effects]\npieces = { "tree/trunk" = [] }\n', "ok.toml")
+    r = simulate(ok)
+    assert r.ledger.cost("tree/trunk") == dict(r.ledger.by_target["tree/trunk"]).get("smallness_checks", 0)

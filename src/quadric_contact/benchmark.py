@@ -83,6 +83,8 @@ PROFILES: dict[str, dict[str, Any]] = {
         "escalation_pairs": 10**4,
         "exact_timing_pairs": 200,
         "hard_families": ("example-11", "delta4-zero", "dyadic-tangent", "ladder"),
+        "complete_pairs": 5_000,
+        "fcl_complete_pairs": 200,
     },
     "quick": {
         "pairs": 20_000,  # fast modes on the random populations
@@ -92,6 +94,8 @@ PROFILES: dict[str, dict[str, Any]] = {
         "sizes": (10**3, 10**4, 10**5, 10**6),
         "escalation_pairs": 10**6,
         "exact_timing_pairs": 5_000,
+        "complete_pairs": 10**6,
+        "fcl_complete_pairs": 5_000,
     },
     "full": {
         "pairs": 200_000,
@@ -101,6 +105,8 @@ PROFILES: dict[str, dict[str, Any]] = {
         "sizes": (10**3, 10**4, 10**5, 10**6, 10**7),
         "escalation_pairs": 10**7,
         "exact_timing_pairs": 20_000,
+        "complete_pairs": 4 * 10**6,
+        "fcl_complete_pairs": 20_000,
     },
 }
 
@@ -159,6 +165,7 @@ class Report:
     targets: list[Target] = field(default_factory=list)
     huge: dict[str, Any] | None = None
     missing: list[str] = field(default_factory=list)
+    complete: list[dict[str, Any]] = field(default_factory=list)
 
     def to_json(self) -> str:
         data = asdict(self)
@@ -212,6 +219,21 @@ class Report:
             for pop, e in self.escalation.items():
                 lines.append(
                     f"- {pop}: {e['escalated']} of {e['pairs']} ({e['rate']:.2e}); stages {e['stages']}"
+                )
+        if self.complete:
+            lines += [
+                "",
+                "## The complete decision (transversal contact, every pair) against the criterion alone",
+                "",
+                "| population | method | pairs | time per pair | pairs/s | wrong | settled by |",
+                "|---|---|---:|---:|---:|---:|---|",
+            ]
+            for row in self.complete:
+                wrong = "" if row.get("wrong") is None else f"{row['wrong']} ({row['wrong'] / row['n']:.2%})"
+                lines.append(
+                    f"| {row['population']} | {row['method']} | {row['n']} | "
+                    f"{_fmt_time(row['seconds'] / row['n'])} "
+                    f"| {row['n'] / row['seconds']:.3g} | {wrong} | {row.get('stages', '')} |"
                 )
         if self.huge:
             h = self.huge
@@ -637,6 +659,100 @@ def _escalation(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -
         }
 
 
+def _stage_fractions(counts: Any) -> str:
+    total = max(counts.total, 1)
+    parts = [f"{stage} {n / total:.3g}" for stage, n in counts.decided.items() if n]
+    if counts.undecided:
+        parts.append(f"undecided {counts.undecided / total:.3g}")
+    return ", ".join(parts)
+
+
+def complete_populations(n: int, rng: np.random.Generator) -> dict[str, tuple[np.ndarray, np.ndarray, Any]]:
+    """The two populations of the complete-decision measurement: ``environment`` (``n`` small
+    ellipsoids, semi-axes 0.1-0.5, centres in [-6, 6]^3, against one ellipsoid of semi-axes 3,
+    4, 5: the paper's use case, nearly all pairs small) and ``similar sizes`` (``n`` pairs of
+    ellipsoids with semi-axes 0.5-2 and centres in [-2, 2]^3: many pairs not small), with the
+    geometry of the second for peers that take shapes."""
+    from .samples import random_ellipsoids
+
+    small, _ = random_ellipsoids(n, rng, axes=(0.1, 0.5), box=6.0)
+    env, _ = random_ellipsoids(1, rng, axes=(3.0, 5.0), box=0.0)
+    E, geo_e = random_ellipsoids(n, rng, axes=(0.5, 2.0), box=2.0)
+    Q, geo_q = random_ellipsoids(n, rng, axes=(0.5, 2.0), box=2.0)
+    return {"environment": (small, env[0], None), "similar sizes": (E, Q, (geo_e, geo_q))}
+
+
+def _complete(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> None:
+    """Item by item: the complete decision (certified) and the criterion alone on the same
+    pairs, the fraction each stage settles, and the peers' errors against the certified answer."""
+    from .predicates import relative_position, transversal_contact
+
+    n = cfg["complete_pairs"]
+    for population, (E, Q, geometry) in complete_populations(n, rng).items():
+        transversal_contact(E[:100], Q if Q.ndim == 2 else Q[:100])  # compile / load the kernels
+        criterion_stack(E[:100], Q if Q.ndim == 2 else Q[:100])
+        mode = CertifiedMode()
+        seconds, truth = _best_of(functools.partial(transversal_contact, E, Q, mode=mode), 3)
+        report.complete.append(
+            {
+                "population": population,
+                "method": "certified, complete",
+                "n": n,
+                "seconds": seconds,
+                "wrong": None,
+                "stages": _stage_fractions(mode.last),
+                "exact_pairs": mode.last.decided.get("exact pair", 0),
+            }
+        )
+        seconds, crit = _best_of(functools.partial(criterion_stack, E, Q), 3)
+        report.complete.append(
+            {
+                "population": population,
+                "method": "certified, criterion alone",
+                "n": n,
+                "seconds": seconds,
+                "wrong": int(np.count_nonzero(crit != truth)),
+                "stages": "Corollary 10 without smallness",
+            }
+        )
+        if geometry is None:
+            continue
+        m = min(n, 200_000)
+        seconds, eig = _best_of(functools.partial(peer_numpy_eigvals, E[:m], Q[:m]), 1)
+        report.complete.append(
+            {
+                "population": population,
+                "method": "numpy batch eigvals (peer)",
+                "n": m,
+                "seconds": seconds,
+                "wrong": int(np.count_nonzero(eig != truth[:m])),
+                "stages": "non-real eigenvalues of -Q E^-1 (tolerance 1e-9)",
+            }
+        )
+        try:
+            import fcl  # noqa: F401
+        except ImportError:
+            continue
+        k = min(n, cfg["fcl_complete_pairs"])
+        which = range(k)
+        t0 = time.perf_counter()
+        got = peer_fcl(geometry[0], geometry[1], which)
+        seconds = time.perf_counter() - t0
+        inside = relative_position(E[:k], Q[:k]) == -1
+        around = relative_position(Q[:k], E[:k]) == -1
+        overlap = (truth[:k] == 1) | inside | around
+        report.complete.append(
+            {
+                "population": population,
+                "method": "python-fcl GJK, solid overlap (peer)",
+                "n": k,
+                "seconds": seconds,
+                "wrong": int(np.count_nonzero(got != overlap)),
+                "stages": "against the certified overlap (contact, or one inside the other)",
+            }
+        )
+
+
 def _exact_timing(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> dict[str, float]:
     n = cfg["exact_timing_pairs"]
     E, Q, _ = random_pairs(n, rng)
@@ -733,6 +849,44 @@ def _targets(report: Report, exact_per_pair: dict[str, float]) -> None:
                 e["rate"] < 1e-5,
                 f"({e['escalated']} of {e['pairs']} generic pairs; all types: "
                 f"{report.escalation.get('random', {}).get('rate', float('nan')):.2e})",
+            )
+        )
+    rows = {(r["population"], r["method"]): r for r in report.complete}
+    if rows:
+        env_c = rows[("environment", "certified, complete")]
+        env_k = rows[("environment", "certified, criterion alone")]
+        ratio = env_c["seconds"] / env_k["seconds"]
+        report.targets.append(
+            Target(
+                "complete decision, small ellipsoids vs one environment",
+                "<= 1.5x the criterion alone",
+                ratio,
+                "x",
+                ratio <= 1.5,
+                f"({env_c['stages']})",
+            )
+        )
+        sim = rows[("similar sizes", "certified, complete")]
+        rate_ = sim["n"] / sim["seconds"]
+        report.targets.append(
+            Target(
+                "complete decision, pairs of similar sizes",
+                ">= 1e6 pairs/s",
+                rate_,
+                "pairs/s",
+                rate_ >= 1e6,
+                f"({sim['stages']})",
+            )
+        )
+        frac = sim["exact_pairs"] / sim["n"]
+        report.targets.append(
+            Target(
+                "pairs of similar sizes reaching the exact pair stage",
+                "<= 1e-4",
+                frac,
+                "",
+                frac <= 1e-4,
+                f"({sim['exact_pairs']} of {sim['n']})",
             )
         )
     if report.huge:
@@ -845,6 +999,8 @@ def run(
     _escalation(report, cfg, rng)
     log("exact mode per pair ...")
     exact = _exact_timing(report, cfg, rng)
+    log(f"the complete decision on {cfg['complete_pairs']} pairs per population ...")
+    _complete(report, cfg, rng)
     if huge:
         log(f"chunked run of {huge_pairs:.3g} pairs (in a subprocess) ...")
         report.huge = huge_run_subprocess(huge_pairs, 250_000)

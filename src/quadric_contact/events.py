@@ -124,6 +124,10 @@ class RealRoot:
         self.lo = lo
         self.hi = hi
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickle as the integer coefficients and the isolating interval (for worker processes)."""
+        return (_rebuild_root, (tuple(int(c) for c in self.poly.coeffs()), self.lo, self.hi))
+
     @classmethod
     def rational(cls, value: Fraction) -> RealRoot:
         poly = flint.fmpz_poly([-value.numerator, value.denominator])
@@ -167,8 +171,13 @@ class RealRoot:
                 return self.compare(other.lo)
             if self.is_rational:
                 return -other.compare(self.lo)
-            if self.poly == other.poly and self.lo <= other.hi and other.lo <= self.hi:
-                return 0  # same irreducible polynomial, overlapping isolating intervals
+            if self.poly == other.poly:
+                # same irreducible polynomial: each interval holds exactly one of its roots, so
+                # they are the same root iff the common part of the intervals holds a root,
+                # i.e. the polynomial changes sign across it (its ends are rational: no roots)
+                lo, hi = max(self.lo, other.lo), min(self.hi, other.hi)
+                if lo < hi and _eval_sign(self._qpoly, lo) != _eval_sign(self._qpoly, hi):
+                    return 0
             while True:  # distinct algebraic numbers: separate the intervals
                 if self.hi < other.lo:
                     return -1
@@ -301,6 +310,10 @@ class RealRoot:
         return str(self.lo) if self.is_rational else self.decimal(12)
 
 
+def _rebuild_root(coeffs: tuple[int, ...], lo: Fraction, hi: Fraction) -> RealRoot:
+    return RealRoot(flint.fmpz_poly(list(coeffs)), lo, hi)
+
+
 def _ball_interval(ball: Any) -> tuple[Fraction, Fraction]:
     m, e = ball.mid().man_exp()
     rm, re = ball.rad().man_exp()
@@ -339,6 +352,27 @@ def _descartes_bound(f: Any, a: Fraction, b: Fraction) -> int:
     g = rev(flint.fmpq_poly([1, 1]))  # roots of h in (0, 1) <-> positive roots of g
     signs = [1 if c > 0 else -1 for c in g.coeffs() if c != 0]
     return sum(1 for x, y in pairwise(signs) if x != y)
+
+
+def _isolate_between(f: Any, a: Fraction, b: Fraction) -> list[RealRoot]:
+    """The real roots in ``(a, b)`` of an irreducible integer polynomial of degree > 1,
+    isolated by bisection with Descartes' rule (the Vincent-Collins-Akritas method):
+    a piece with no sign variation holds no root, one with one variation exactly one
+    (then ``f`` changes sign across it).  Roots are simple, none is rational, so every
+    bisection point is a non-root and the bisection ends."""
+    out: list[RealRoot] = []
+    todo = [(a, b)]
+    while todo:
+        lo, hi = todo.pop()
+        v = _descartes_bound(f, lo, hi)
+        if v == 0:
+            continue
+        if v == 1:
+            out.append(RealRoot(f, lo, hi))
+            continue
+        mid = (lo + hi) / 2
+        todo += [(mid, hi), (lo, mid)]
+    return out
 
 
 def _primitive(p: Any) -> Any:
@@ -401,8 +435,10 @@ def real_roots(
     for f in irreducible_factors(p):
         if ledger is not None:
             ledger.add("root_isolations", target=target)
-        if f.degree() > 1 and a < b and _descartes_bound(f, a, b) == 0:
-            # no root inside; an irreducible f of degree > 1 has no rational root at a or b
+        if f.degree() > 1 and a < b:
+            # an irreducible f of degree > 1 has simple roots and none at the rational a, b:
+            # bisect (a, b) with Descartes' rule until each piece holds at most one root
+            roots.extend(_isolate_between(f, a, b))
             continue
         for lo, hi in _isolate_irreducible(tuple(int(c) for c in f.coeffs())):
             r = RealRoot(f, lo, hi)

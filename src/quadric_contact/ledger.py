@@ -32,6 +32,19 @@ Counted items
     exact (algebraic) event times.
 ``smallness_checks``
     Smallness of a moving ellipsoid with respect to a piece (Tables 1, 2).
+``broad_phase_tests``
+    Certified box tests of the broad phase (:mod:`quadric_contact.broadphase`):
+    a plane or a piece against the box swept by an ellipsoid on a time interval.
+``pruned_pairs``
+    (Ellipsoid, motion segment, plane or piece) pairs whose pencil in time the
+    broad phase proved unnecessary: the target is out of reach or certified
+    on one side for the whole segment.
+``pruned_stretches``
+    Stretches of a segment certified by the broad phase for a target whose
+    pencil in time is still formed, on the other stretches only.
+``static_pencils``
+    Pencils of one frozen placement, formed to state a certified stretch
+    exactly as the pencil in time would (one per target and side).
 """
 
 from __future__ import annotations
@@ -51,8 +64,17 @@ ITEMS: tuple[str, ...] = (
     "samples",
     "instants",
     "smallness_checks",
+    "broad_phase_tests",
+    "pruned_pairs",
+    "pruned_stretches",
+    "static_pencils",
 )
 """The counted items, in report order."""
+
+OPTIONAL_ITEMS: frozenset[str] = frozenset(
+    {"broad_phase_tests", "pruned_pairs", "pruned_stretches", "static_pencils"}
+)
+"""Items printed only when something was counted (the broad phase's)."""
 
 FULL_ITEMS: tuple[str, ...] = (
     "characteristic_polynomials",
@@ -133,6 +155,8 @@ class Ledger:
         lines = [f"{'work item':<{width}}  {'done':>8}  {'full':>8}  saved"]
         for k in ITEMS:
             done = self.done.get(k, 0)
+            if k in OPTIONAL_ITEMS and not done:
+                continue
             if k in FULL_ITEMS and self.full.get(k, 0):
                 full = self.full[k]
                 saved = f"{100 * (full - done) / full:5.1f}%" if full else ""

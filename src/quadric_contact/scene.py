@@ -74,6 +74,18 @@ Effects: ``zone`` (Algorithm 1), ``contact`` (Algorithm 2),
 ``first_contact``, ``smallness`` (report the smallness of every moving
 ellipsoid with respect to every piece).  Only what they need is computed.
 
+Only what the scene asks for, per object: an optional ``[effects]`` table
+narrows the effects for some ellipsoids and pieces::
+
+    [effects]
+    ellipsoids = { scout = ["zone", "contact", "relative_position"], worker = ["first_contact"] }
+    pieces = { "tree/crown" = ["contact", "first_contact"] }
+
+Each list replaces the scene's effects for that ellipsoid or piece; a pair
+(ellipsoid, piece) gets the effects that the scene, the ellipsoid and the
+piece all ask for, and the work ledger compares what was done with every
+effect computed everywhere.
+
 Smallness (Tables 1, 2) of each moving ellipsoid with respect to each
 quadric piece is checked when the scene is loaded, if its effects rely on
 Theorem 2; ``on_not_small = "refuse"`` rejects a scene where it fails,
@@ -215,6 +227,12 @@ class Scene:
     warnings: list[str] = field(default_factory=list)
     work: Ledger = field(default_factory=Ledger)
     """Work done on the scene itself (the smallness checks), whenever it was done."""
+    ellipsoid_effects: dict[str, tuple[str, ...]] = field(default_factory=dict)
+    """Ellipsoid name -> the effects it asks for (of the scene's; default: all of them)."""
+    piece_effects: dict[tuple[str, str], tuple[str, ...]] = field(default_factory=dict)
+    """(object, piece) -> the effects asked for on it (of the scene's; default: all of them).
+    A pair (ellipsoid, piece) gets the effects that the scene, the ellipsoid and the
+    piece all ask for."""
 
     def __post_init__(self) -> None:
         t0, t1 = (to_fraction(v) for v in self.span)
@@ -230,6 +248,12 @@ class Scene:
             raise SceneError(
                 f"{self.source}: scene.on_not_small: expected 'refuse' or 'warn'", self.on_not_small
             )
+        for who, asked in [*self.ellipsoid_effects.items(), *self.piece_effects.items()]:
+            bad = [e for e in asked if e not in EFFECTS]
+            if bad:
+                raise SceneError(
+                    f"{self.source}: effects of {who}: unknown effect(s) {bad}; expected some of {EFFECTS}"
+                )
 
     def needs_smallness(self, effects: Sequence[str] | None = None) -> bool:
         """Some effect (the scene's, or ``effects``) relies on Theorem 2, hence on smallness."""
@@ -246,11 +270,33 @@ class Scene:
         from .smallness import smallness
 
         policy = on_not_small or self.on_not_small
-        for ell in self.ellipsoids:
+        # smallness depends on the ellipsoid's shape and size, not on where it is
+        # (Definition 1, Tables 1-2): congruent translates share one check
+        known: dict[tuple[Any, ...], SmallnessCheck] = {}
+        pieces = [(o, p) for o in self.objects for p in o.pieces if not p.is_plane]
+        todo = [
+            e
+            for e in self.ellipsoids
+            if any((e.name, o.name, p.name) not in self.smallness for o, p in pieces)
+        ]
+        if not todo:
+            return
+        centred = {e.name: _centred(e) for e in self.ellipsoids}
+        for (e_name, o_name, p_name), done in self.smallness.items():
+            if e_name in centred:
+                known.setdefault((centred[e_name], o_name, p_name), done)
+        for ell in todo:
             for obj in self.objects:
                 for piece in obj.pieces:
                     key = (ell.name, obj.name, piece.name)
                     if piece.is_plane or key in self.smallness:
+                        continue
+                    shape = (centred[ell.name], obj.name, piece.name)
+                    if shape in known:
+                        same = known[shape]
+                        self.smallness[key] = SmallnessCheck(
+                            ell.name, obj.name, piece.name, same.small, same.report, same.note
+                        )
                         continue
                     self.work.add("smallness_checks", target=f"{obj.name}/{piece.name}")
                     try:
@@ -258,6 +304,7 @@ class Scene:
                         check = SmallnessCheck(ell.name, obj.name, piece.name, bool(report.small), report)
                     except QuadricContactError as exc:
                         check = SmallnessCheck(ell.name, obj.name, piece.name, False, None, str(exc))
+                    known[shape] = check
                     if not check.small:
                         why = str(check.report) if check.report is not None else check.note
                         text = (
@@ -293,13 +340,26 @@ class Scene:
         if self.description:
             lines.append(f"  {self.description}")
         lines.append(f"  time span: [{self.span[0]}, {self.span[1]}]; effects: {', '.join(self.effects)}")
+        for name, asked in self.ellipsoid_effects.items():
+            lines.append(f"  effects asked for by ellipsoid {name}: {', '.join(asked) or 'none'}")
+        for (obj_name, piece_name), asked in self.piece_effects.items():
+            what = ", ".join(asked) or "none"
+            lines.append(f"  effects asked for on piece {obj_name}/{piece_name}: {what}")
         for o in self.objects:
             lines.append(f"  object {o.describe()}")
-        for e in self.ellipsoids:
+        shown = self.ellipsoids if len(self.ellipsoids) <= 12 else self.ellipsoids[:5]
+        for e in shown:
             lines.append(
                 f"  ellipsoid {e.name}: {e.quadric.equation()} = 0; motion: {e.trajectory.describe()}"
             )
+        if len(shown) < len(self.ellipsoids):
+            lines.append(f"  ... and {len(self.ellipsoids) - len(shown)} more ellipsoids")
         return "\n".join(lines)
+
+
+def _centred(ell: MovingEllipsoid) -> tuple[Fraction, ...]:
+    """The ellipsoid moved to the origin: with the piece, what smallness depends on."""
+    return ell.quadric.translated(tuple(-v for v in ell.center)).upper
 
 
 # -- reading TOML ----------------------------------------------------------------------
@@ -667,6 +727,40 @@ def _distinct_names(r: _Reader, named: Sequence[tuple[str, str]]) -> None:
         seen[name] = key
 
 
+def _effect_list(r: _Reader, value: Any, key: str) -> tuple[str, ...]:
+    if not isinstance(value, list) or not all(isinstance(e, str) for e in value):
+        raise r.error(key, f"a list of effect names from {list(EFFECTS)}", value)
+    for i, e in enumerate(value):
+        if e not in EFFECTS:
+            raise r.error(f"{key}[{i}]", f"one of {list(EFFECTS)}", e)
+    return tuple(dict.fromkeys(value))
+
+
+def _object_effects(
+    r: _Reader, data: Mapping[str, Any], objects: Sequence[Composite], ells: Sequence[MovingEllipsoid]
+) -> tuple[dict[str, tuple[str, ...]], dict[tuple[str, str], tuple[str, ...]]]:
+    """The optional ``[effects]`` table: ``ellipsoids = { name = [...] }`` and
+    ``pieces = { "object/piece" = [...] }``, each list replacing the scene's effects for
+    that ellipsoid or piece (a pair gets what the scene, its ellipsoid and its piece all ask for)."""
+    table = r.table(data, "effects", "effects", required=False)
+    r.keys(table, "effects", ("ellipsoids", "pieces"))
+    names = {e.name for e in ells}
+    pieces = {f"{o.name}/{p.name}": (o.name, p.name) for o in objects for p in o.pieces}
+    per_ellipsoid: dict[str, tuple[str, ...]] = {}
+    for name, value in r.table(table, "ellipsoids", "effects.ellipsoids", required=False).items():
+        if name not in names:
+            raise r.error(
+                f"effects.ellipsoids.{name}", f"the name of an ellipsoid ({', '.join(sorted(names))})", name
+            )
+        per_ellipsoid[name] = _effect_list(r, value, f"effects.ellipsoids.{name}")
+    per_piece: dict[tuple[str, str], tuple[str, ...]] = {}
+    for name, value in r.table(table, "pieces", "effects.pieces", required=False).items():
+        if name not in pieces:
+            raise r.error(f"effects.pieces.{name}", f"'object/piece' of a piece ({', '.join(pieces)})", name)
+        per_piece[pieces[name]] = _effect_list(r, value, f"effects.pieces.{name}")
+    return per_ellipsoid, per_piece
+
+
 def parse_scene(
     text: str, source: str = "<scene>", *, check_smallness: bool = True, on_not_small: str | None = None
 ) -> Scene:
@@ -718,7 +812,7 @@ def parse_scene(
         data = tomllib.loads(text, parse_float=_parse_float)
     except (tomllib.TOMLDecodeError, ValueError) as exc:  # ValueError: an integer beyond 4300 digits
         raise SceneError(f"{source}: not valid TOML: {exc}", text, file=source) from exc
-    r.keys(data, "", ("scene", "object", "ellipsoid"))
+    r.keys(data, "", ("scene", "object", "ellipsoid", "effects"))
     meta = r.table(data, "scene", "scene")
     r.keys(meta, "scene", ("name", "description", "time", "effects", "on_not_small", "places"))
     name = r.string(meta, "name", "scene.name")
@@ -764,8 +858,19 @@ def parse_scene(
     _distinct_names(r, [(f"object[{i}]", o.name) for i, o in enumerate(objects)] + [
         (f"ellipsoid[{i}]", e.name) for i, e in enumerate(ells)
     ])
+    per_ellipsoid, per_piece = _object_effects(r, data, objects, ells)
     scene = Scene(
-        name, objects, ells, span, tuple(dict.fromkeys(effects_raw)), description, source, policy, places_raw
+        name,
+        objects,
+        ells,
+        span,
+        tuple(dict.fromkeys(effects_raw)),
+        description,
+        source,
+        policy,
+        places_raw,
+        ellipsoid_effects=per_ellipsoid,
+        piece_effects=per_piece,
     )
     if check_smallness and scene.needs_smallness():
         scene.check_smallness(on_not_small=on_not_small)

@@ -126,6 +126,25 @@ class Plan:
             full,
         )
 
+    def restricted(self, effects: Iterable[str] | None) -> Plan:
+        """The plan for one ellipsoid or one (ellipsoid, piece) pair that asks for
+        ``effects`` only (None: no restriction): the effects both ask for.
+
+        Examples
+        --------
+        >>> Plan.from_effects(["zone", "contact"]).restricted(["contact", "relative_position"]).effects
+        ('contact',)
+        >>> Plan.from_effects(["contact"]).restricted(["zone"]).pieces
+        False
+        """
+        if effects is None or self.full:
+            return self
+        wanted = set(effects)
+        kept = tuple(e for e in self.effects if e in wanted)
+        if not kept:
+            return Plan((), False, False, False, False)
+        return Plan.from_effects(kept)
+
     def describe(self) -> str:
         """The plan in one sentence (printed with the timeline)."""
         steps = ["Algorithm 1 (zones) on every separating plane the descent reaches"]
@@ -409,6 +428,7 @@ class SimulationResult:
             "time_span": [str(self.scene.span[0]), str(self.scene.span[1])],
             "effects": list(self.plan.effects),
             "plan": self.plan.describe(),
+            "events": sum(len(p.events) for p in self.pairs),
             "pairs": [p.to_dict(places, self.plan.effects) for p in self.pairs],
             "ledger": self.ledger.to_dict(),
             "seconds": round(self.seconds, 6),
@@ -437,15 +457,14 @@ class SimulationResult:
             lines += [f"  {c}" for c in self.scene.smallness.values()]
         for w in self.warnings:
             lines.append(f"warning: {w}")
-        show_zones = "zone" in self.plan.effects
         lines.append(
             f"event times: exact real algebraic numbers, shown to {places} decimal places "
             "(--places N; --json gives each one's polynomial and isolating interval)"
         )
-        show_timeline = bool(
-            {"zone", "contact", "contact_kind", "relative_position"} & set(self.plan.effects)
-        )
         for p in self.pairs:
+            own = self.plan.restricted(self.scene.ellipsoid_effects.get(p.ellipsoid)).effects
+            show_zones = "zone" in own
+            show_timeline = bool({"zone", "contact", "contact_kind", "relative_position"} & set(own))
             lines.append("")
             lines.append(f"{p.ellipsoid} vs {p.object.name}")
             if p.complete and show_timeline:
@@ -462,7 +481,7 @@ class SimulationResult:
                     lines += [" " * len(head) + c for c in changes[1:]]
                 end = p.episodes[-1].state.summary(p.object, with_zones=show_zones)
                 lines.append(f"  t = {_fmt_time(self.scene.span[1], places)}: end: {end}")
-            if "first_contact" in self.plan.effects:
+            if "first_contact" in own:
                 if p.first_contact is None:
                     lines.append("  first contact: none in the time span")
                 else:
@@ -472,6 +491,11 @@ class SimulationResult:
                         f"  first contact: t = {_fmt_time(t, places)} with {', '.join(names)}{extra}"
                     )
         lines.append("")
+        events = sum(len(p.events) for p in self.pairs)
+        touched = sum(1 for p in self.pairs if p.first_contact is not None)
+        lines.append(
+            f"events: {events} in {len(self.pairs)} (ellipsoid, object) pair(s); {touched} pair(s) in contact"
+        )
         lines.append("work ledger (full = every effect for every piece on every segment):")
         lines += ["  " + line for line in self.ledger.format().splitlines()]
         lines.append(f"time: {self.seconds:.3f} s")
@@ -501,7 +525,12 @@ class _SegmentRun:
         seg: MotionSegment,
         ledger: Ledger,
     ) -> None:
-        self.scene, self.plan, self.ell, self.obj, self.seg, self.ledger = scene, plan, ell, obj, seg, ledger
+        self.scene, self.ell, self.obj, self.seg, self.ledger = scene, ell, obj, seg, ledger
+        # only what the scene asks for, per object: the ellipsoid's plan, then each piece's
+        self.plan = plan.restricted(scene.ellipsoid_effects.get(ell.name))
+        self.piece_plans = {
+            p.name: self.plan.restricted(scene.piece_effects.get((obj.name, p.name))) for p in obj.pieces
+        }
         self.E_upper = seg.moved_upper(ell.quadric, ell.center)
         self.positive = seg.norm_poly()  # |q(t)|^2 > 0: its powers carry no sign information
         self.targets: dict[str, Split | Piece] = {}
@@ -509,7 +538,7 @@ class _SegmentRun:
             self.targets[_plane_label(obj, s)] = s
         for p in obj.pieces:
             self.targets[_piece_label(obj, p)] = p
-        self.tracks: dict[str, _Track] = {}
+        self.tracks: dict[str, Any] = {}
         self._samples: dict[tuple[Any, Any], Fraction] = {}
 
     def _sample(self, left: TimePoint, right: TimePoint) -> Fraction:
@@ -526,27 +555,27 @@ class _SegmentRun:
         return Quadric._from_upper(tuple(poly_eval(p, t) for p in self.E_upper))
 
     def make_track(self, label: str) -> None:
+        self.tracks[label] = self.build_track(label, self.seg.t0, self.seg.t1)
+
+    def build_track(self, label: str, t0: Fraction, t1: Fraction) -> _Track:
+        """The exact track of one target (plane or piece) on ``[t0, t1]`` of the segment."""
         target = self.targets[label]
-        seg = self.seg
         if isinstance(target, Split):
-            self.tracks[label] = PlaneTrack(
-                label, self.E_upper, target.plane, seg.t0, seg.t1, self.ledger, self.positive
-            )
-        else:
-            self.tracks[label] = PieceTrack(
-                label,
-                self.E_upper,
-                target.quadric,
-                seg.t0,
-                seg.t1,
-                self.ledger,
-                small=self.scene.small(self.ell.name, self.obj.name, target.name),
-                table_4=self.scene.table_4_applies(self.ell.name, self.obj.name, target.name),
-                region=self.plan.region,
-                kind=self.plan.kind,
-                E_at=self.E_at,
-                positive=self.positive,
-            )
+            return PlaneTrack(label, self.E_upper, target.plane, t0, t1, self.ledger, self.positive)
+        return PieceTrack(
+            label,
+            self.E_upper,
+            target.quadric,
+            t0,
+            t1,
+            self.ledger,
+            small=self.scene.small(self.ell.name, self.obj.name, target.name),
+            table_4=self.scene.table_4_applies(self.ell.name, self.obj.name, target.name),
+            region=self.piece_plans[target.name].region,
+            kind=self.piece_plans[target.name].kind,
+            E_at=self.E_at,
+            positive=self.positive,
+        )
 
     def descend(self, get: Callable[[str], Any]) -> ObjectState:
         obj = self.obj
@@ -572,7 +601,7 @@ class _SegmentRun:
         visit(obj.root)
         pieces: list[tuple[str, PieceValue | None]] = []
         for p in active:
-            pieces.append((p.name, get(_piece_label(obj, p)) if self.plan.pieces else None))
+            pieces.append((p.name, get(_piece_label(obj, p)) if self.piece_plans[p.name].pieces else None))
         return ObjectState(tuple(zones), tuple(pieces))
 
     def run(self) -> list[tuple[str, TimePoint, TimePoint, ObjectState, Fraction | None]]:
@@ -733,6 +762,45 @@ def _progress(total: int, enabled: bool | None) -> Any:
     return tqdm(total=total, desc="simulating", unit="segment", file=sys.stderr, leave=False)
 
 
+def _simulate_pair(
+    scene: Scene,
+    plan: Plan,
+    e: MovingEllipsoid,
+    obj: Composite,
+    segs: Sequence[MotionSegment],
+    ledger: Ledger,
+    *,
+    bar: Any = None,
+    segment_run: Callable[..., _SegmentRun] | None = None,
+) -> PairResult:
+    """The timeline of one moving ellipsoid against one object, segment by segment."""
+    make_run = segment_run or _SegmentRun
+    own = plan.restricted(scene.ellipsoid_effects.get(e.name))
+    entries: list[tuple[str, TimePoint, TimePoint, ObjectState, Fraction | None]] = []
+    first: tuple[RealRoot, list[str]] | None = None
+    done = 0
+    for seg in segs:
+        part = make_run(scene, plan, e, obj, seg, ledger).run()
+        done += 1
+        if bar is not None:
+            bar.update(1)
+        if entries:
+            part = part[1:]  # the joint instant was the previous segment's last entry
+        entries.extend(part)
+        if first is None:
+            first = _first_contact(part)
+        if own.stop_at_first_contact and first is not None:
+            break
+    if bar is not None and done < len(segs):
+        bar.update(len(segs) - done)
+    complete = done == len(segs)
+    if own.kind:
+        _tangent_boundaries(entries)
+    return PairResult(
+        e.name, obj, _episodes(entries), _events(entries) if complete else [], first, complete, done
+    )
+
+
 def simulate(
     scene: Scene,
     *,
@@ -740,6 +808,8 @@ def simulate(
     full: bool = False,
     progress: bool | None = None,
     on_not_small: str | None = None,
+    broad_phase: bool = False,
+    workers: int = 1,
 ) -> SimulationResult:
     """Run a scene and return its exact event timelines and work ledger.
 
@@ -755,6 +825,13 @@ def simulate(
         Show a progress bar on stderr (default: for long runs on a terminal).
     on_not_small : {"refuse", "warn"}, optional
         Override the scene's smallness policy.
+    broad_phase : bool
+        Prune, with certified bounds of each ellipsoid's swept volume, the
+        planes and pieces (and the stretches of time) where nothing can
+        happen, before any pencil is formed (:mod:`quadric_contact.broadphase`);
+        the timelines are the same.  A full evaluation (``full``) does without it.
+    workers : int
+        Processes to share the ellipsoids between (``0``: one per core).
 
     Returns
     -------
@@ -802,45 +879,23 @@ def simulate(
                     ledger.add_full("discriminants", 3 * nseg)
                     ledger.add_full("coefficient_signs", 3 * nseg)
                     ledger.add_full("smallness_checks", 1)
-    total = sum(len(seg_lists[e.name]) for e in scene.ellipsoids) * len(scene.objects)
-    bar = _progress(total, progress)
-    pairs: list[PairResult] = []
-    try:
-        for e in scene.ellipsoids:
-            for obj in scene.objects:
-                entries: list[tuple[str, TimePoint, TimePoint, ObjectState, Fraction | None]] = []
-                first: tuple[RealRoot, list[str]] | None = None
-                done = 0
-                segs = seg_lists[e.name]
-                for seg in segs:
-                    part = _SegmentRun(scene, plan, e, obj, seg, ledger).run()
-                    done += 1
-                    if bar is not None:
-                        bar.update(1)
-                    if entries:
-                        part = part[1:]  # the joint instant was the previous segment's last entry
-                    entries.extend(part)
-                    if first is None:
-                        first = _first_contact(part)
-                    if plan.stop_at_first_contact and first is not None:
-                        break
-                if bar is not None and done < len(segs):
-                    bar.update(len(segs) - done)
-                complete = done == len(segs)
-                if plan.kind:
-                    _tangent_boundaries(entries)
-                pairs.append(
-                    PairResult(
-                        e.name,
-                        obj,
-                        _episodes(entries),
-                        _events(entries) if complete else [],
-                        first,
-                        complete,
-                        done,
-                    )
-                )
-    finally:
-        if bar is not None:
-            bar.close()
+    if full:
+        broad_phase = False  # a full evaluation forms every pencil
+    if broad_phase or workers != 1:
+        from .manybody import run_pairs
+
+        pairs = run_pairs(
+            scene, plan, seg_lists, ledger, broad_phase=broad_phase, workers=workers, progress=progress
+        )
+    else:
+        total = sum(len(seg_lists[e.name]) for e in scene.ellipsoids) * len(scene.objects)
+        bar = _progress(total, progress)
+        pairs = []
+        try:
+            for e in scene.ellipsoids:
+                for obj in scene.objects:
+                    pairs.append(_simulate_pair(scene, plan, e, obj, seg_lists[e.name], ledger, bar=bar))
+        finally:
+            if bar is not None:
+                bar.close()
     return SimulationResult(scene, plan, pairs, ledger, time.perf_counter() - started, list(scene.warnings))

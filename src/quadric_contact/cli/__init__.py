@@ -14,7 +14,7 @@ from collections.abc import Sequence
 
 from ..errors import QuadricContactError
 
-SUBCOMMANDS: tuple[str, ...] = ("check", "codegen", "simulate", "prove", "bench")
+SUBCOMMANDS: tuple[str, ...] = ("check", "codegen", "simulate", "sweep", "prove", "bench")
 """Modules of this package that provide subcommands, in help order."""
 
 EXIT_OK = 0

@@ -119,15 +119,18 @@ class ContactKindCode(IntEnum):
 
 
 class SmallnessCode(IntEnum):
-    """Codes of the array predicate :func:`~quadric_contact.smallness` (Definition 1).
+    """Codes of the array smallness predicate (int8 arrays).
 
-    ``SMALL``: ``E`` is small with respect to ``Q`` and Table 4 applies;
-    ``SMALL_ENCLOSING``: two ellipsoids, ``E`` small only because ``Q`` is small with
-    respect to ``E`` (Corollary 10 holds, Table 4 does not; erratum
-    ``table-1-ellipsoid-enclosing``); ``NOT_SMALL``; ``EXCLUDED``: ``Q`` has no row in
-    Table 1 (a plane, a cone, intersecting or coincident planes, no real points), where
-    the scalar :func:`~quadric_contact.smallness.smallness` raises
-    :class:`~quadric_contact.errors.ExcludedQuadricError`; ``UNCERTAIN`` (abstaining modes).
+    ``SMALL``: ``E`` is small with respect to ``Q`` in the direct sense (Table 1 row of
+    ``Q`` holds): Corollary 10 and Theorem 13 / Table 4 apply.  ``SMALL_ENCLOSING``:
+    two ellipsoids, small only because ``Q`` is small with respect to ``E``
+    (Definition 1 is symmetric): Corollary 10 holds, Table 4 does not (the
+    scalar report has ``small and not table_4_applies``).  ``EXCLUDED``: ``Q`` has no
+    row in Table 1 (a plane, a cone, intersecting or coincident planes, a quadric
+    without real points); the scalar :func:`~quadric_contact.smallness.smallness`
+    raises :class:`~quadric_contact.errors.ExcludedQuadricError` there.
+    ``UNCERTAIN`` only comes from the modes that abstain; it is non-zero, so a cast
+    to bool never reads it as "not small".
     """
 
     NOT_SMALL = 0
@@ -138,10 +141,17 @@ class SmallnessCode(IntEnum):
 
     @property
     def small(self) -> bool | None:
-        """True, False, or None (uncertain, excluded)."""
+        """Definition 1: True for both small codes, False for ``NOT_SMALL``, None otherwise."""
+        if self in (SmallnessCode.SMALL, SmallnessCode.SMALL_ENCLOSING):
+            return True
+        return False if self is SmallnessCode.NOT_SMALL else None
+
+    @property
+    def table_4_applies(self) -> bool | None:
+        """True only for ``SMALL`` (Theorem 13 / Table 4 may be used), None when unknown."""
         if self in (SmallnessCode.UNCERTAIN, SmallnessCode.EXCLUDED):
             return None
-        return self is not SmallnessCode.NOT_SMALL
+        return self is SmallnessCode.SMALL
 
 
 class RegionCode(IntEnum):

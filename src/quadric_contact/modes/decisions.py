@@ -233,12 +233,18 @@ def masks_from_invariant_signs(signs: np.ndarray) -> np.ndarray:
     out = np.zeros(signs.shape[0], dtype=np.int64)
     if signs.shape[0] == 0:
         return out
-    combos, inverse = np.unique(signs, axis=0, return_inverse=True)
-    masks = np.empty(len(combos), dtype=np.int64)
-    for k, combo in enumerate(combos):
-        rows = {row_of(*kind_from_invariant_signs(c)) for c in _completions(tuple(int(v) for v in combo))}
+    # Each sign (-1, 0, 1, UNCERTAIN) is two bits of a 16-bit key: the distinct combinations
+    # are found by counting, not by sorting the rows (np.unique(axis=0) sorts them).
+    key = np.zeros(signs.shape[0], dtype=np.int64)
+    for j in range(8):
+        key |= (signs[:, j].astype(np.int64) + 1) << (2 * j)
+    present = np.flatnonzero(np.bincount(key, minlength=1 << 16))
+    masks = np.zeros(1 << 16, dtype=np.int64)
+    for k in present:
+        combo = tuple(int((k >> (2 * j)) & 3) - 1 for j in range(8))
+        rows = {row_of(*kind_from_invariant_signs(c)) for c in _completions(combo)}
         masks[k] = sum(1 << r for r in rows)
-    out[:] = masks[np.asarray(inverse).reshape(-1)]
+    out[:] = masks[key]
     return out
 
 

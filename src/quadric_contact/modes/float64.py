@@ -1684,6 +1684,11 @@ class FloatMode(NumberMode):
 
         return separation_float(pairs, certified=self.filtered, backend=self.backend, threads=self.threads)
 
+    def smallness(self, pairs: Pairs) -> np.ndarray:
+        from . import smallness_float
+
+        return smallness_float.run(self, pairs)
+
     def classify(self, Q: MatrixStack, rows: np.ndarray | None = None) -> np.ndarray:
         """The type of each quadric: binary64 with the filter's bounds; plain ``float`` takes
         the exact type where binary64 cannot tell (once per quadric), so that a structural

@@ -273,6 +273,11 @@ class ExactMode(ObjectMode):
             codes[todo] = separation_isolated(pairs.take(todo))
         return codes
 
+    def smallness(self, pairs: Pairs) -> np.ndarray:
+        from .smallness_objects import exact_smallness
+
+        return exact_smallness(self, pairs)
+
     def __repr__(self) -> str:
         return f"ExactMode(backend={self.backend!r})"
 
@@ -332,6 +337,11 @@ class BallMode(ObjectMode):
         zero = np.frompyfunc(lambda x: x.is_zero(), 1, 1)(values).astype(bool)
         return np.where(pos, 1, np.where(neg, -1, np.where(zero, 0, _UNC))).astype(np.int8)
 
+    def smallness(self, pairs: Pairs) -> np.ndarray:
+        from .smallness_objects import BallNumbers, object_smallness
+
+        return object_smallness(self, pairs, BallNumbers(self.prec))
+
     def __repr__(self) -> str:
         return f"BallMode(prec={self.prec})"
 
@@ -386,6 +396,11 @@ class MpmathMode(ObjectMode):
 
     def signs(self, values: np.ndarray) -> np.ndarray:
         return _exact_sign(values)
+
+    def smallness(self, pairs: Pairs) -> np.ndarray:
+        from .smallness_objects import MpmathNumbers, object_smallness
+
+        return object_smallness(self, pairs, MpmathNumbers(self.dps))
 
     def __repr__(self) -> str:
         return f"MpmathMode(dps={self.dps})"

@@ -55,44 +55,50 @@ QUESTIONS = ("contact", "region", "kind")
 _CLASS_TABLE, _CLASS_PLANE, _CLASS_NO_SURFACE, _CLASS_OTHER, _CLASS_UNCERTAIN = 0, 1, 2, 3, 4
 
 
-def _classes(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, np.ndarray]:
-    """Per pair: the class of ``Q`` (Table 1 type, plane, no surface, other, uncertain) and
-    its canonical sign (+1/-1; 0 when uncertain).  Raises for a refused type."""
-    used, where = np.unique(pairs.q_rows(), return_inverse=True)
-    rows = rows_from_masks(mode.classify(pairs.Q, used))
-    klass = np.full(used.size, _CLASS_UNCERTAIN, dtype=np.int8)
-    sign = np.zeros(used.size, dtype=np.int8)
-    for k, row in enumerate(rows):
-        kind = None if row == UNCERTAIN_ROW else KINDS[int(row) // 2]
-        if kind is None or kind in REFUSED_KINDS:
-            # Refusing input is not the mode's business: where the mode cannot rule a
-            # refused type out, the exact type decides (once per quadric).
-            from .validation import exact_matrix
+def _class_of_kind(kind: QuadricKind) -> int:
+    if kind in TABLE_1_KINDS:
+        return _CLASS_TABLE
+    if kind is QuadricKind.PLANE:
+        return _CLASS_PLANE
+    if kind in NO_REAL_POINTS:
+        return _CLASS_NO_SURFACE
+    return _CLASS_OTHER
 
-            q = exact_matrix(pairs.Q, int(used[k]))
-            if q.kind not in REFUSED_KINDS:  # type: ignore[attr-defined]
-                continue  # leave it uncertain
-            kind = q.kind  # type: ignore[attr-defined]
-            raise ExcludedQuadricError(
-                f"{pairs.Q.where(int(used[k]))} is {kind.value}: "
-                + (
-                    "a plane counted twice; pass the plane itself"
-                    if kind is QuadricKind.COINCIDENT_PLANES
-                    else "the zero matrix is not a surface"
-                ),
-                q,
-                kind=kind,
-                index=int(used[k]),
-            )
-        sign[k] = -1 if int(row) % 2 else 1
-        if kind in TABLE_1_KINDS:
-            klass[k] = _CLASS_TABLE
-        elif kind is QuadricKind.PLANE:
-            klass[k] = _CLASS_PLANE
-        elif kind in NO_REAL_POINTS:
-            klass[k] = _CLASS_NO_SURFACE
-        else:
-            klass[k] = _CLASS_OTHER
+
+# Per row of decisions.ROWS: the class, the canonical sign, whether the type is refused.
+_ROW_CLASS = np.array([_class_of_kind(k) for k in KINDS for _ in (1, -1)] + [_CLASS_UNCERTAIN], dtype=np.int8)
+_ROW_SIGN = np.array([s for _ in KINDS for s in (1, -1)] + [0], dtype=np.int8)
+_ROW_REFUSED = np.array([k in REFUSED_KINDS for k in KINDS for _ in (1, -1)] + [False], dtype=bool)
+
+
+def _classes(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, np.ndarray]:
+    """Per pair: the class of ``Q`` (Table 1 type, plane, no real points, other, uncertain)
+    and its canonical sign (+1/-1; 0 when uncertain).  Raises for a refused type."""
+    used, where = np.unique(pairs.q_rows(), return_inverse=True)
+    rows = rows_from_masks(mode.classify(pairs.Q, used)).astype(np.intp)
+    klass = _ROW_CLASS[rows]
+    sign = _ROW_SIGN[rows]
+    suspect = np.flatnonzero(_ROW_REFUSED[rows] | (rows == UNCERTAIN_ROW))
+    for k in suspect:
+        # Refusing input is not the mode's business: where the mode cannot rule a refused
+        # type out, the exact type decides (once per quadric).
+        from .validation import exact_matrix
+
+        q = exact_matrix(pairs.Q, int(used[k]))
+        kind = q.kind  # type: ignore[attr-defined]
+        if kind not in REFUSED_KINDS:
+            continue  # leave it as the mode says (uncertain)
+        raise ExcludedQuadricError(
+            f"{pairs.Q.where(int(used[k]))} is {kind.value}: "
+            + (
+                "a plane counted twice; pass the plane itself"
+                if kind is QuadricKind.COINCIDENT_PLANES
+                else "the zero matrix is not a surface"
+            ),
+            q,
+            kind=kind,
+            index=int(used[k]),
+        )
     where = np.asarray(where).reshape(-1)
     return klass[where], sign[where]
 
