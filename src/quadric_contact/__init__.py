@@ -28,13 +28,15 @@ from .errors import (
 from .family import Family, family
 from .geometric import GeometricDecision, decide_geometrically
 from .invariants import QuadricInvariants, invariants
-from .modes import ContactCode, ContactKindCode, CriterionCode, RegionCode, SmallnessCode
+from .modes import ContactCode, ContactKindCode, CriterionCode, OverlapCode, RegionCode, SmallnessCode
 from .motions import RigidMotion, rotation_from_quaternion
+from .overlap import OverlapResult, TouchingError
 from .pencil import CharacteristicPolynomial, characteristic_polynomial
 from .predicates import (
     CriterionResult,
     contact_kind,
     corollary_10,
+    overlap,
     plane_side,
     relative_position,
     smallness,
@@ -69,6 +71,8 @@ __all__ = [
     "NotAnEllipsoidError",
     "NotRationalError",
     "NotSymmetricError",
+    "OverlapCode",
+    "OverlapResult",
     "PlaneSideResult",
     "Quadric",
     "QuadricContactError",
@@ -85,6 +89,7 @@ __all__ = [
     "ShapeError",
     "SmallnessCode",
     "SmallnessReport",
+    "TouchingError",
     "UndecidedError",
     "__version__",
     "analyze_contact",
@@ -95,6 +100,7 @@ __all__ = [
     "discrimination_sequence",
     "family",
     "invariants",
+    "overlap",
     "paper_deltas",
     "plane_side",
     "printed_table_2",
