@@ -114,7 +114,9 @@ def matrices(p: dict[str, np.ndarray]) -> np.ndarray:
 
 
 def exact_ellipsoid(axes: tuple[Any, ...], quat: tuple[Any, ...], pos: tuple[Any, ...]) -> Quadric:
-    return Quadric.ellipsoid(*(F(a) for a in axes), center=tuple(F(x) for x in pos), rotation=tuple(F(t) for t in quat))
+    return Quadric.ellipsoid(
+        *(F(a) for a in axes), center=tuple(F(x) for x in pos), rotation=tuple(F(t) for t in quat)
+    )
 
 
 def ladder() -> list[tuple[str, Any, Quadric, Quadric]]:
@@ -169,7 +171,18 @@ def _quaternion(R: np.ndarray) -> np.ndarray:
 
 def _hoomd10(M: np.ndarray) -> list[np.ndarray]:
     """HOOMD's packed layout ``[M00, M10, M11, M20, M21, M22, M30, M31, M32, M33]``."""
-    return [M[:, 0, 0], M[:, 1, 0], M[:, 1, 1], M[:, 2, 0], M[:, 2, 1], M[:, 2, 2], M[:, 3, 0], M[:, 3, 1], M[:, 3, 2], M[:, 3, 3]]
+    return [
+        M[:, 0, 0],
+        M[:, 1, 0],
+        M[:, 1, 1],
+        M[:, 2, 0],
+        M[:, 2, 1],
+        M[:, 2, 2],
+        M[:, 3, 0],
+        M[:, 3, 1],
+        M[:, 3, 2],
+        M[:, 3, 3],
+    ]
 
 
 def hoomd_matrices(p: dict[str, np.ndarray]) -> list[np.ndarray]:
@@ -237,9 +250,36 @@ def _hoomd_codes(M1: list[np.ndarray], M2: list[np.ndarray]) -> np.ndarray:
     t2 = minor3(1, 2, 7, s13, s03, s01)
     t3 = minor3(1, 2, 4, s12, s02, s01)
     a4 = M1[0] * t0[0] - M1[1] * t1[0] + M1[3] * t2[0] - M1[6] * t3[0]
-    a3 = M1[0] * t0[1] - M1[1] * t1[1] + M1[3] * t2[1] - M1[6] * t3[1] + M2[0] * t0[0] - M2[1] * t1[0] + M2[3] * t2[0] - M2[6] * t3[0]
-    a2 = M1[0] * t0[2] - M1[1] * t1[2] + M1[3] * t2[2] - M1[6] * t3[2] + M2[0] * t0[1] - M2[1] * t1[1] + M2[3] * t2[1] - M2[6] * t3[1]
-    a1 = M1[0] * t0[3] - M1[1] * t1[3] + M1[3] * t2[3] - M1[6] * t3[3] + M2[0] * t0[2] - M2[1] * t1[2] + M2[3] * t2[2] - M2[6] * t3[2]
+    a3 = (
+        M1[0] * t0[1]
+        - M1[1] * t1[1]
+        + M1[3] * t2[1]
+        - M1[6] * t3[1]
+        + M2[0] * t0[0]
+        - M2[1] * t1[0]
+        + M2[3] * t2[0]
+        - M2[6] * t3[0]
+    )
+    a2 = (
+        M1[0] * t0[2]
+        - M1[1] * t1[2]
+        + M1[3] * t2[2]
+        - M1[6] * t3[2]
+        + M2[0] * t0[1]
+        - M2[1] * t1[1]
+        + M2[3] * t2[1]
+        - M2[6] * t3[1]
+    )
+    a1 = (
+        M1[0] * t0[3]
+        - M1[1] * t1[3]
+        + M1[3] * t2[3]
+        - M1[6] * t3[3]
+        + M2[0] * t0[2]
+        - M2[1] * t1[2]
+        + M2[3] * t2[2]
+        - M2[6] * t3[2]
+    )
     a0 = M2[0] * t0[3] - M2[1] * t1[3] + M2[3] * t2[3] - M2[6] * t3[3]
 
     n = len(a0)
@@ -280,7 +320,9 @@ def fcl_overlap(pa: dict[str, np.ndarray], pb: dict[str, np.ndarray], solver: st
     out = np.empty(len(pa["pos"]), dtype=bool)
     for k in range(len(out)):
         objs = [
-            fcl.CollisionObject(fcl.Ellipsoid(*map(float, p["axes"][k])), fcl.Transform(p["quat"][k], p["pos"][k]))
+            fcl.CollisionObject(
+                fcl.Ellipsoid(*map(float, p["axes"][k])), fcl.Transform(p["quat"][k], p["pos"][k])
+            )
             for p in (pa, pb)
         ]
         request = fcl.CollisionRequest(gjk_solver_type=kind)
@@ -340,7 +382,14 @@ def main(argv: list[str] | None = None) -> None:
     for mode in ("float", "filter"):
         t, codes = timed(lambda mode=mode: overlap_codes(E, Q, mode), args.repeat)
         decided = codes != OverlapCode.UNCERTAIN
-        rows.append((f"overlap {mode}", t, int(np.count_nonzero((codes[decided] == OverlapCode.OVERLAPPING) != truth[decided])), len(truth)))
+        rows.append(
+            (
+                f"overlap {mode}",
+                t,
+                int(np.count_nonzero((codes[decided] == OverlapCode.OVERLAPPING) != truth[decided])),
+                len(truth),
+            )
+        )
     t, (hoomd, _) = timed(lambda: hoomd_overlap(pa, pb), args.repeat)
     rows.append(("HOOMD-blue (numpy)", t, int(np.count_nonzero(hoomd != truth)), len(truth)))
     t, eig = timed(lambda: eig_overlap(E, Q), args.repeat)
@@ -357,7 +406,9 @@ def main(argv: list[str] | None = None) -> None:
     qc.overlap(E, Q, mode=filt)
     mode = qc.modes.CertifiedMode()
     qc.overlap(E, Q, mode=mode)
-    print("stages of the certified cascade: " + ", ".join(f"{k} {v}" for k, v in mode.last.decided.items() if v))
+    print(
+        "stages of the certified cascade: " + ", ".join(f"{k} {v}" for k, v in mode.last.decided.items() if v)
+    )
     print(f"filter left undecided: {filt.last.undecided}")
 
     # 2. the hard-case ladder
@@ -387,9 +438,23 @@ def main(argv: list[str] | None = None) -> None:
         results.append((label, got, unc, codes == OverlapCode.TOUCHING))
     hoomd, err = hoomd_overlap(la, lb)
     results.append(("HOOMD-blue (numpy)", hoomd, np.zeros_like(hoomd), np.zeros_like(hoomd)))
-    results.append(("numpy eig (WWK in binary64)", eig_overlap(Ef, Qf), np.zeros(len(pairs), bool), np.zeros(len(pairs), bool)))
+    results.append(
+        (
+            "numpy eig (WWK in binary64)",
+            eig_overlap(Ef, Qf),
+            np.zeros(len(pairs), bool),
+            np.zeros(len(pairs), bool),
+        )
+    )
     for solver in ("libccd", "GJK"):
-        results.append((f"FCL ({solver})", fcl_overlap(la, lb, solver), np.zeros(len(pairs), bool), np.zeros(len(pairs), bool)))
+        results.append(
+            (
+                f"FCL ({solver})",
+                fcl_overlap(la, lb, solver),
+                np.zeros(len(pairs), bool),
+                np.zeros(len(pairs), bool),
+            )
+        )
     offsets = [off for _, off, _, _ in pairs]
     for label, got, unc, touch in results:
         wrong = (got != want) & ~unc

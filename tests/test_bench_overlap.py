@@ -47,7 +47,9 @@ def test_hoomd_reimplementation_gives_hoomds_expected_answers(bench):
     exact = qc.Quadric.ellipsoid(2, 3, 1, center=(4.9, 0, 0))
     assert np.allclose(M, exact.to_numpy(), rtol=1e-15, atol=1e-15)
     packed = np.array([v[0] for v in bench.hoomd_matrices(_params((2, 3, 1), near[:1]))])
-    assert np.allclose(packed, [M[0, 0], M[1, 0], M[1, 1], M[2, 0], M[2, 1], M[2, 2], M[3, 0], M[3, 1], M[3, 2], M[3, 3]])
+    assert np.allclose(
+        packed, [M[0, 0], M[1, 0], M[1, 1], M[2, 0], M[2, 1], M[2, 2], M[3, 0], M[3, 1], M[3, 2], M[3, 3]]
+    )
 
 
 def test_the_script_runs(bench, capsys):

@@ -21,7 +21,7 @@ from quadric_contact.overlap import apply_touching, overlap_exact, solid_of
 from quadric_contact.strategies import ellipsoids, quadrics, rigid_motions, tangent_pairs
 
 K = QuadricKind
-S, O, U, T = OverlapCode.SEPARATE, OverlapCode.OVERLAPPING, OverlapCode.UNCERTAIN, OverlapCode.TOUCHING
+S, O, U, T = OverlapCode.SEPARATE, OverlapCode.OVERLAPPING, OverlapCode.UNCERTAIN, OverlapCode.TOUCHING  # noqa: E741
 MOTION = _motion(TRANSLATION)
 
 
@@ -97,9 +97,10 @@ def test_every_case_of_every_type(kind, side, shift, negated):
     # -E is the same ellipsoid; the stack and the other certified modes agree
     assert qc.overlap(-E, Q).code is want
     assert int(qc.overlap([E], Q)[0]) == want
-    assert int(qc.overlap(E.to_numpy()[None], Q.to_numpy(), mode="exact")[0]) == overlap_exact(
-        Quadric.from_matrix(E.to_numpy()), Quadric.from_matrix(Q.to_numpy())
-    ).code
+    assert (
+        int(qc.overlap(E.to_numpy()[None], Q.to_numpy(), mode="exact")[0])
+        == overlap_exact(Quadric.from_matrix(E.to_numpy()), Quadric.from_matrix(Q.to_numpy())).code
+    )
 
 
 def test_two_ellipsoids_containment_both_ways_and_touching_from_inside():
@@ -122,7 +123,13 @@ def test_two_ellipsoids_containment_both_ways_and_touching_from_inside():
             assert int(qc.overlap([e], [q])[0]) == want, name
     # the WWK reading of the root signs: no positive root, two distinct, a double one
     roots = {
-        name: sorted(r.sign() for r, m in qc.algebraic.real_roots(list(qc.overlap(E, Q).polynomial.coefficients), multiplicities=True) for _ in range(m))
+        name: sorted(
+            r.sign()
+            for r, m in qc.algebraic.real_roots(
+                list(qc.overlap(E, Q).polynomial.coefficients), multiplicities=True
+            )
+            for _ in range(m)
+        )
         for name, (E, Q, _) in cases.items()
         if name != "the same ellipsoid"
     }
@@ -175,11 +182,23 @@ def test_hoomd_unit_test_configurations():
 def test_hoomd_mystery_configurations():
     """HOOMD-blue's regression cases (``overlap_ellipsoid_mystery``, ``_mystery_2``), the printed
     quaternions taken exactly (a quaternion is normalised exactly by the rational rotation)."""
-    a = _hoomd((0.5, 0.5, 0.25), (-0.5508406838001192, -0.5799554923140041, 0.4835456040882306, -0.3555415823393748), (0, 0, 0))
+    a = _hoomd(
+        (0.5, 0.5, 0.25),
+        (-0.5508406838001192, -0.5799554923140041, 0.4835456040882306, -0.3555415823393748),
+        (0, 0, 0),
+    )
     b = _hoomd((0.1, 0.1, 0.1), (1, 0, 0, 0), (-0.0498649748800466, -0.3447528941432312, -0.0521417988793118))
     assert qc.overlap(a, b).code is S and qc.overlap(b, a).code is S
-    a = _hoomd((0.5, 0.5, 0.25), (-0.7852640377890254, 0.3024125779495512, 0.0043495675322003, -0.5402666979515444), (0, 0, 0))
-    b = _hoomd((0.5, 0.5, 0.25), (-0.4082065233536581, -0.1532432383675237, -0.4917815736020184, 0.7536808529156596), (0.0389568514454071, -0.5427436433641971, 0.4444722354577015))
+    a = _hoomd(
+        (0.5, 0.5, 0.25),
+        (-0.7852640377890254, 0.3024125779495512, 0.0043495675322003, -0.5402666979515444),
+        (0, 0, 0),
+    )
+    b = _hoomd(
+        (0.5, 0.5, 0.25),
+        (-0.4082065233536581, -0.1532432383675237, -0.4917815736020184, 0.7536808529156596),
+        (0.0389568514454071, -0.5427436433641971, 0.4444722354577015),
+    )
     assert qc.overlap(a, b).code is O and qc.overlap(b, a).code is O
 
 
@@ -213,11 +232,19 @@ PAIRS = {
     "Q inside E": (Quadric.sphere(8), Quadric.ellipsoid(4, 2, 1, rotation=(1, 2, 3, 4)), O, False),
     "Q inside E, touching": (Quadric.sphere(4), Quadric.ellipsoid(4, 2, 1), O, True),
     "inside a cylinder": (Quadric.sphere(F(1, 2)), Quadric.elliptic_cylinder(2, 1), O, False),
-    "outside a negated cylinder": (Quadric.sphere(F(1, 2), (5, 0, 0)), -Quadric.elliptic_cylinder(2, 1), S, False),
-    "in a cup of a two-sheet hyperboloid": (Quadric.sphere(F(1, 2), (0, 0, 5)), Quadric.hyperboloid_two_sheets(1, 1, 1), O, False),
+    "outside a negated cylinder": (
+        Quadric.sphere(F(1, 2), (5, 0, 0)), -Quadric.elliptic_cylinder(2, 1), S, False
+    ),
+    "in a cup of a two-sheet hyperboloid": (
+        Quadric.sphere(F(1, 2), (0, 0, 5)), Quadric.hyperboloid_two_sheets(1, 1, 1), O, False
+    ),
     "between the cups": (Quadric.sphere(F(1, 2)), Quadric.hyperboloid_two_sheets(1, 1, 1), S, False),
-    "touching the half-space z <= 0 from above": (Quadric.sphere(1, (0, 0, 1)), Quadric.plane((0, 0, 1), 0), T, True),
-    "in the half-space z >= 0, touching its plane": (Quadric.sphere(1, (0, 0, 1)), -Quadric.plane((0, 0, 1), 0), O, True),
+    "touching the half-space z <= 0 from above": (
+        Quadric.sphere(1, (0, 0, 1)), Quadric.plane((0, 0, 1), 0), T, True
+    ),
+    "in the half-space z >= 0, touching its plane": (
+        Quadric.sphere(1, (0, 0, 1)), -Quadric.plane((0, 0, 1), 0), O, True
+    ),
     "in the half-space": (Quadric.sphere(1, (0, 0, -2)), Quadric.plane((0, 0, 1), 0), O, False),
     "disc in a throat (surfaces cross, not small)": (
         Quadric.ellipsoid(F(1, 10), 1, 1, center=(F(17, 20), 0, 0)),
@@ -313,7 +340,9 @@ def test_dask_arrays_give_the_same_answer():
     Qs = np.stack([p[1].to_numpy() for p in PAIRS.values()])
     for touching in CONVENTIONS:
         want = qc.overlap(Es, Qs, touching=touching)
-        got = qc.overlap(da.from_array(Es, chunks=(4, 4, 4)), da.from_array(Qs, chunks=(4, 4, 4)), touching=touching)
+        got = qc.overlap(
+            da.from_array(Es, chunks=(4, 4, 4)), da.from_array(Qs, chunks=(4, 4, 4)), touching=touching
+        )
         assert (got == want).all()
         lazy = qc.overlap(da.from_array(Es, chunks=(4, 4, 4)), Qs, touching=touching, compute=False)
         assert (np.asarray(lazy.compute()) == want).all()
@@ -370,7 +399,7 @@ def test_bad_conventions_and_quadrics_without_a_solid_are_refused_in_every_mode(
         "coincident planes": "(x - 1)**2",
     }
     for mode in MODES:
-        for name, eq in refused.items():
+        for eq in refused.values():
             with pytest.raises(qc.ExcludedQuadricError):
                 qc.overlap(Quadric.sphere(1), eq, mode=mode)
             with pytest.raises(qc.ExcludedQuadricError):
@@ -411,7 +440,9 @@ def test_the_stack_equals_the_exact_scalar_answer(pairs):
 
 @settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
-    st.tuples(ellipsoids(), quadrics() | ellipsoids(max_axis=6)) | tangent_pairs() | tangent_pairs(inside=True),
+    st.tuples(ellipsoids(), quadrics() | ellipsoids(max_axis=6))
+    | tangent_pairs()
+    | tangent_pairs(inside=True),
     rigid_motions(),
 )
 def test_agreement_with_the_independent_decision(pair, motion):

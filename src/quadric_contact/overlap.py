@@ -377,10 +377,7 @@ def overlap_exact(E: Any, Q: Any, *, touching: str | None = None) -> OverlapResu
     e = as_quadric(E, "E").as_ellipsoid()
     q = solid_of(Q)
     P = characteristic_polynomial(e, q)
-    if q.kind is QuadricKind.ELLIPSOID:
-        result = _two_ellipsoids(P)
-    else:
-        result = _other(P, e, q)
+    result = _two_ellipsoids(P) if q.kind is QuadricKind.ELLIPSOID else _other(P, e, q)
     if result.touching and convention is not None:
         from dataclasses import replace
 
@@ -441,7 +438,13 @@ def _other(P: CharacteristicPolynomial, e: Quadric, q: Quadric) -> OverlapResult
         )
     if cert.region is Region.R_MINUS:
         return OverlapResult(
-            OverlapCode.OVERLAPPING, False, by, f"{cert}: E is strictly inside the solid", P, cert.region, cert
+            OverlapCode.OVERLAPPING,
+            False,
+            by,
+            f"{cert}: E is strictly inside the solid",
+            P,
+            cert.region,
+            cert,
         )
     if cert.region is Region.CONTACT:
         return OverlapResult(

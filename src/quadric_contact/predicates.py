@@ -10,9 +10,9 @@ stack by the *type of the input*, never by the mode:
   Fractions) gives one result object in every mode, with its explanation at hand
   (:class:`~quadric_contact.ContactResult`, :class:`~quadric_contact.RegionResult`,
   :class:`~quadric_contact.PlaneSideResult`, :class:`~quadric_contact.ContactKind`,
-  :class:`~quadric_contact.SmallnessReport`, :class:`~quadric_contact.OverlapResult`); in the ``certified`` and ``exact``
-  modes it is decided by the exact scalar path, in the others by the mode's stages
-  on a stack of one (the exact characteristic polynomial is attached for audit);
+  :class:`~quadric_contact.SmallnessReport`, :class:`~quadric_contact.OverlapResult`); in
+  the ``certified`` and ``exact`` modes it is decided by the exact scalar path, in the
+  others by the mode's stages on a stack of one (the exact characteristic polynomial is attached for audit);
 * a stack (an array ``(..., 4, 4)``, a list or object array of matrices,
   Quadrics or equations, a dask array) gives an int8 array of codes
   (:class:`~quadric_contact.modes.ContactCode`, :class:`~quadric_contact.modes.RegionCode`,
@@ -550,8 +550,9 @@ def overlap(
         hyperbolic paraboloid, whose sign picks the side).
     touching : {None, "separate", "no-overlap", "overlap"}
         How to read a touch: reported as ``TOUCHING`` (default); ``"separate"`` (synonym
-        ``"no-overlap"``), no overlap (HOOMD-blue's ellipsoid test, FCL's libccd solver); ``"overlap"``, an overlap (FCL's
-        GJK solver).  Applied after the decision, in every mode and input form.
+        ``"no-overlap"``), no overlap (HOOMD-blue's ellipsoid test, FCL's libccd solver);
+        ``"overlap"``, an overlap (FCL's GJK solver).  Applied after the decision, in every
+        mode and input form.
     mode, client, compute
         As for :func:`transversal_contact`.
 

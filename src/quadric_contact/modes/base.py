@@ -363,8 +363,8 @@ class NumberMode(ABC):
 
     The public array predicates ask a mode four questions, :meth:`contact`,
     :meth:`region`, :meth:`kind` and :meth:`overlap`, and always mean the geometry (do the
-    surfaces cross, where is ``E``, how do they touch, do the solids overlap), for every pair.  They are answered by
-    one pipeline (:mod:`quadric_contact.modes.pipeline`) from the *stages* a mode
+    surfaces cross, where is ``E``, how do they touch, do the solids overlap), for every
+    pair.  They are answered by one pipeline (:mod:`quadric_contact.modes.pipeline`) from the *stages* a mode
     implements with its numbers:
 
     * :meth:`criterion_contact`, :meth:`criterion_region`: the paper's criterion (the
