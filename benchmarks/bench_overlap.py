@@ -424,7 +424,8 @@ def main(argv: list[str] | None = None) -> None:
     Qo = np.array([q.matrix for _, _, _, q in pairs], dtype=object)
     print()
     print(f"hard-case ladder: {len(pairs)} pairs, offsets 0 and +-1e-1 .. +-1e-16 from a touch, 3 families")
-    print(f"{'method':34s} {'wrong':>8s} {'uncertain':>10s} {'touching':>9s}  wrong at offsets")
+    head = f"{'method':34s} {'wrong':>8s} {'uncertain':>10s} {'touching':>9s}"
+    print(head + "  wrong at offsets (overlapping < 0 < apart)")
     results: list[tuple[str, np.ndarray, np.ndarray, np.ndarray]] = []
     for label, E_in, Q_in, mode in (
         ("overlap exact input", Eo, Qo, "certified"),
@@ -458,8 +459,11 @@ def main(argv: list[str] | None = None) -> None:
     offsets = [off for _, off, _, _ in pairs]
     for label, got, unc, touch in results:
         wrong = (got != want) & ~unc
-        where = sorted({f"{float(o):.0e}" for o, w in zip(offsets, wrong, strict=True) if w}, key=float)
-        shown = ", ".join(where[:6]) + (" ..." if len(where) > 6 else "")
+        bad = sorted({o for o, w in zip(offsets, wrong, strict=True) if w})
+        neg, pos = [o for o in bad if o < 0], [o for o in bad if o > 0]
+        parts = [f"{float(min(neg)):.0e}..{float(max(neg)):.0e}" if neg else ""]
+        parts += ["0" if 0 in bad else "", f"{float(min(pos)):.0e}..{float(max(pos)):.0e}" if pos else ""]
+        shown = ", ".join(p for p in parts if p)
         print(f"{label:34s} {int(wrong.sum()):8d} {int(unc.sum()):10d} {int(touch.sum()):9d}  {shown}")
     print(f"HOOMD-blue error returns (counted as no overlap, as HOOMD does): {int(err.sum())}")
 
