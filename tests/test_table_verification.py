@@ -145,7 +145,7 @@ def _not_small_test(kind, examples, thorough):
             # whose two-curve placements put Q's vertex inside E's: search with the
             # roles exchanged.
             found = first_two_curve_placement(
-                kind, dict(zip("abc", axes)), (p["a"], p["b"], p["c"]), thorough=thorough
+                kind, dict(zip("abc", axes, strict=True)), (p["a"], p["b"], p["c"]), thorough=thorough
             )
         assert found is not None, (p, axes)
         assert found.corollary_10_wrong  # Remark 9: two curves have real roots only
