@@ -37,9 +37,9 @@ import flint
 
 from quadric_contact import Quadric, QuadricKind, paper
 from quadric_contact._generated.formulas import det_symmetric_4
-from quadric_contact.algebraic import workprec
 from quadric_contact.classification import principal_minor_sums_3
 from quadric_contact.invariants import invariants
+from quadric_contact.precision import working_precision
 from quadric_contact.proving import Finding, Method, Proof, agrees, ensure
 from quadric_contact.smallness import printed_table_2, smallness
 
@@ -132,7 +132,7 @@ def inside(printed: str, ball: flint.arb) -> bool:
     method=Method.COMPUTATION,
 )
 def e_numbers_and_conclusion() -> Finding:
-    with workprec(200):
+    with working_precision(200):
         q, e = box("Example 6 Q"), box("Example 6 E")
         n1, n2, n3 = e["eig"]  # type: ignore[misc]
         alpha, beta, gamma = 1 / n1.sqrt(), 1 / n2.sqrt(), 1 / n3.sqrt()

@@ -38,16 +38,15 @@ from dataclasses import dataclass, field, replace
 from fractions import Fraction
 from typing import Any
 
+from .algebraic import RealAlgebraic, rational_between
 from .composite import Composite, Piece, Split
 from .errors import SceneError
 from .events import (
     PieceTrack,
     PieceValue,
     PlaneTrack,
-    RealRoot,
     ZoneValue,
     _Track,
-    sample_between,
 )
 from .ledger import Ledger
 from .quadric import Quadric
@@ -65,7 +64,7 @@ __all__ = [
     "simulate",
 ]
 
-TimePoint = Any  # Fraction or RealRoot
+TimePoint = Any  # Fraction or RealAlgebraic
 
 
 @dataclass(frozen=True)
@@ -265,7 +264,7 @@ class Event:
     """The state changes at an exact time: ``before`` (on the interval just
     before), ``at`` (at the instant), ``after`` (just after)."""
 
-    time: RealRoot
+    time: RealAlgebraic
     before: ObjectState | None
     at: ObjectState
     after: ObjectState | None
@@ -314,7 +313,7 @@ class PairResult:
     object: Composite
     episodes: list[Episode]
     events: list[Event]
-    first_contact: tuple[RealRoot, list[str]] | None
+    first_contact: tuple[RealAlgebraic, list[str]] | None
     complete: bool = True
     segments_done: int = 0
 
@@ -384,8 +383,8 @@ def _piece_text(d: dict[str, PieceValue | None], name: str, inside: Region | Non
     return "in zone" if v is None else v.describe(inside)
 
 
-def _as_root(t: TimePoint) -> RealRoot:
-    return t if isinstance(t, RealRoot) else RealRoot.rational(Fraction(t))
+def _as_root(t: TimePoint) -> RealAlgebraic:
+    return t if isinstance(t, RealAlgebraic) else RealAlgebraic(Fraction(t))
 
 
 def _time_dict(t: TimePoint, places: int) -> dict[str, Any]:
@@ -544,11 +543,11 @@ class _SegmentRun:
     def _sample(self, left: TimePoint, right: TimePoint) -> Fraction:
         """A rational time strictly between two points (cached across passes)."""
         key = (
-            id(left) if isinstance(left, RealRoot) else left,
-            id(right) if isinstance(right, RealRoot) else right,
+            id(left) if isinstance(left, RealAlgebraic) else left,
+            id(right) if isinstance(right, RealAlgebraic) else right,
         )
         if key not in self._samples:
-            self._samples[key] = sample_between(left, right)
+            self._samples[key] = rational_between(left, right)
         return self._samples[key]
 
     def E_at(self, t: Fraction) -> Quadric:
@@ -625,11 +624,11 @@ class _SegmentRun:
         # merge the roots of every track computed so far
         tagged = [(r, label, j) for label, tr in self.tracks.items() for j, r in enumerate(tr.roots)]
 
-        def cmp(a: tuple[RealRoot, str, int], b: tuple[RealRoot, str, int]) -> int:
+        def cmp(a: tuple[RealAlgebraic, str, int], b: tuple[RealAlgebraic, str, int]) -> int:
             return a[0].compare(b[0])
 
         tagged.sort(key=functools.cmp_to_key(cmp))
-        merged: list[RealRoot] = []
+        merged: list[RealAlgebraic] = []
         owners: list[dict[str, int]] = []
         for r, label, j in tagged:
             if merged and merged[-1].compare(r) == 0:
@@ -691,7 +690,7 @@ class _SegmentRun:
 
 def _first_contact(
     entries: Sequence[tuple[str, TimePoint, TimePoint, ObjectState, Fraction | None]],
-) -> tuple[RealRoot, list[str]] | None:
+) -> tuple[RealAlgebraic, list[str]] | None:
     for _kind, start, _end, state, _ in entries:
         if state.contact:
             return _as_root(start), state.touching
@@ -777,7 +776,7 @@ def _simulate_pair(
     make_run = segment_run or _SegmentRun
     own = plan.restricted(scene.ellipsoid_effects.get(e.name))
     entries: list[tuple[str, TimePoint, TimePoint, ObjectState, Fraction | None]] = []
-    first: tuple[RealRoot, list[str]] | None = None
+    first: tuple[RealAlgebraic, list[str]] | None = None
     done = 0
     for seg in segs:
         part = make_run(scene, plan, e, obj, seg, ledger).run()

@@ -57,12 +57,14 @@ from typing import Any
 
 import flint
 
-from .algebraic import RealAlgebraic, _fmpq, algebraic_value, workprec
+from .algebraic import RealAlgebraic, algebraic_value
 from .classification import TABLE_1_KINDS, QuadricKind
 from .errors import ExcludedQuadricError, NotANumberError, ShapeError, UndecidedError
 from .invariants import QuadricInvariants, invariants
 from .pencil import as_quadric
+from .precision import working_precision
 from .quadric import Quadric
+from .rational import fmpq_of
 
 __all__ = [
     "Condition",
@@ -162,9 +164,9 @@ class _Quantity:
     # -- evaluation ---------------------------------------------------------------
 
     def ball(self, bits: int) -> Any:
-        with workprec(bits):
+        with working_precision(bits):
             vals = [a.enclosure(bits) for a in self.args]
-            return self.fn(vals, lambda q: flint.arb(_fmpq(q)))
+            return self.fn(vals, lambda q: flint.arb(fmpq_of(q)))
 
     def exact(self) -> RealAlgebraic:
         if self._exact is None:
@@ -267,7 +269,7 @@ class Condition:
         """``side`` (``"lhs"`` or ``"rhs"``) to ``digits`` significant digits (certified ball arithmetic)."""
         q = self.lhs_squared if side == "lhs" else self.rhs_squared
         bits = int(digits * 3.33) + 32
-        with workprec(bits):
+        with working_precision(bits):
             v = q.ball(bits)
             return v.sqrt().str(digits, radius=False)
 
@@ -367,7 +369,7 @@ class SmallnessReport:
         """Decimal value of a parameter (``"a"``, ``"alpha"``, ...)."""
         q = self.parameters[name]
         bits = int(digits * 3.33) + 32
-        with workprec(bits):
+        with working_precision(bits):
             return q.ball(bits).sqrt().str(digits, radius=False)
 
     def to_dict(self) -> dict[str, Any]:
@@ -834,7 +836,7 @@ class PrintedTable2:
     def value(self, name: str, digits: int = 17) -> str:
         """Decimal value of a quantity (the square root of its stored square)."""
         bits = int(digits * 3.33) + 32
-        with workprec(bits):
+        with working_precision(bits):
             return self.quantities[name].ball(bits).sqrt().str(digits, radius=False)
 
     def squared(self, name: str) -> RealAlgebraic:
