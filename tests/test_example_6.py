@@ -24,8 +24,9 @@ from quadric_contact._generated.formulas import det_symmetric_4
 from quadric_contact.classification import principal_minor_sums_3
 from quadric_contact.invariants import invariants
 from quadric_contact.precision import working_precision
+from quadric_contact.printed_tables import printed_table_2
 from quadric_contact.rational import fmpq_of
-from quadric_contact.smallness import printed_table_2, smallness
+from quadric_contact.smallness import smallness
 
 P = paper.PRINTED
 UPPER = [(i, j) for i in range(4) for j in range(i, 4)]

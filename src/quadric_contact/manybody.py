@@ -41,8 +41,9 @@ from .events import PieceTrack, ZoneValue
 from .ledger import Ledger
 from .quadric import Quadric
 from .rational import fmpq_of
-from .scene import MovingEllipsoid, Scene
-from .simulate import PairResult, Plan, _progress, _SegmentRun, _simulate_pair
+from .scene_model import MovingEllipsoid, Scene
+from .simulate import _progress, _SegmentRun, _simulate_pair
+from .simulation_reports import PairResult, Plan
 from .trajectory import MotionSegment, PolynomialMotion, poly_eval
 
 __all__ = ["GENERATED_SCENES", "PiecewiseTrack", "many_body_scene", "run_pairs", "totem"]
