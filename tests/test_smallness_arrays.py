@@ -273,9 +273,8 @@ def test_numba_and_numpy_backends_agree():
         assert np.array_equal(a, b)
 
 
-@pytest.mark.skipif(pytest.importorskip("dask") is None, reason="dask")
 def test_dask_input():
-    import dask.array as da
+    da = pytest.importorskip("dask.array")  # the [dask] extra
 
     rng = np.random.default_rng(11)
     Es = random_ellipsoids(rng, 40, 0.5, 2, 3)

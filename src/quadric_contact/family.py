@@ -56,6 +56,7 @@ import sympy as sp
 
 from ._generated.formulas import paper_deltas, pencil_coefficients
 from .classification import QuadricKind, principal_minor_sums_3
+from .descartes import sign_variations
 from .entries import ENTRY_INDICES
 from .errors import EquationError, NotAnEllipsoidError, NotANumberError, NotSymmetricError, ShapeError
 from .parsing import MAX_DEGREE, MAX_DIGITS, Refusal, evaluate, parse_expression
@@ -645,8 +646,6 @@ class SignRule:
 
     @staticmethod
     def derive(region: Region, pattern: str) -> SignRule:
-        from .classification import sign_variations
-
         neg, zero, pos = pattern.count("-"), pattern.count("0"), pattern.count("+")
         vectors = []
         for s in itertools.product((-1, 0, 1), repeat=4):

@@ -11,11 +11,9 @@ which holds one process-wide re-entrant lock for the whole ``with`` block: code
 that depends on a precision runs with the precision it asked for, and the old
 values are restored before another thread may set its own.  Blocks of one
 thread nest freely (the lock is re-entrant); blocks of different threads are
-serialised.  The choice favours correctness over parallel speed: the exact
-layer uses balls only to *decide* signs (a wrong precision would not give a
-wrong answer, only a slower or failed one), while the float and ball number
-modes of :mod:`quadric_contact.modes` keep their own work outside these blocks
-where they can.
+serialised (a forked worker process starts with a fresh lock).  The choice
+favours correctness over parallel speed: a ball computed at another thread's
+precision would not give a wrong sign, but a slower or an undecided one.
 
 Examples
 --------
@@ -31,6 +29,7 @@ True
 from __future__ import annotations
 
 import contextlib
+import os
 import threading
 from collections.abc import Iterator
 
@@ -40,6 +39,15 @@ import mpmath
 __all__ = ["working_precision"]
 
 _LOCK = threading.RLock()
+
+
+def _fresh_lock_in_child() -> None:
+    """A process forked while another thread held the lock would inherit it held forever."""
+    global _LOCK
+    _LOCK = threading.RLock()
+
+
+os.register_at_fork(after_in_child=_fresh_lock_in_child)
 
 
 @contextlib.contextmanager
