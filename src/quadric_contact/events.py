@@ -47,6 +47,7 @@ import flint
 from ._generated.formulas import paper_deltas, pencil_coefficients
 from .algebraic import RealAlgebraic, irreducible_factors, real_roots, sign_at, sort_roots
 from .classification import NO_REAL_POINTS, QuadricKind
+from .contact_kind import contact_kind_exact
 from .descartes import sign_variations
 from .discriminants import revised_sign_list
 from .ledger import Ledger
@@ -291,19 +292,6 @@ class PlaneTrack(_Track):
         return ZoneValue(Region.R_PLUS if s3 > 0 else Region.R_MINUS, tangent=d == 0)
 
 
-def _external_contact_kind() -> Callable[..., Any] | None:
-    """``contact_kind(E, Q, small=...)`` (Table 3 via the Segre characteristic) when the
-    package provides it (module :mod:`quadric_contact.contact_kind`)."""
-    import importlib
-
-    try:
-        module = importlib.import_module(f"{__package__ or 'quadric_contact'}.contact_kind")
-    except ImportError:
-        return None
-    fn = getattr(module, "contact_kind_exact", None)
-    return fn if callable(fn) else None
-
-
 class PieceTrack(_Track):
     """Contact, region and contact kind of a moving ellipsoid against one quadric piece.
 
@@ -364,7 +352,7 @@ class PieceTrack(_Track):
                 # c0 = det Q is constant and c4 = det E(t) < 0: only c1..c3 can change sign
                 ledger.add("coefficient_signs", 3, target=label)
                 self.critical += [c[1], c[2], c[3]]
-        self._kind_fn = _external_contact_kind() if kind else None
+        self._kind_fn: Callable[..., Any] | None = contact_kind_exact if kind else None
         self._find_roots()
 
     def decide(self, sign: Callable[[Any], int], t: TimePoint) -> PieceValue:
