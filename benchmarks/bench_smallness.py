@@ -111,7 +111,7 @@ class Counter:
     def __init__(self) -> None:
         self.calls = 0
         self.exact = 0
-        self._orig = smallness_module._compare
+        self._orig = smallness_module.compare_quantities
 
     def __enter__(self) -> Counter:
         def wrapped(x, y):  # type: ignore[no-untyped-def]
@@ -125,11 +125,11 @@ class Counter:
                     self.exact += 1
             return self._orig(x, y)
 
-        smallness_module._compare = wrapped
+        smallness_module.compare_quantities = wrapped
         return self
 
     def __exit__(self, *exc: object) -> None:
-        smallness_module._compare = self._orig
+        smallness_module.compare_quantities = self._orig
 
 
 def float_smallness(e: Quadric, q: Quadric) -> bool:

@@ -12,7 +12,7 @@ not small whichever reading is used.
 
 What is checked and how (exact computation with the package's public API:
 :func:`~quadric_contact.invariants.invariants`,
-:func:`~quadric_contact.smallness.printed_table_2`,
+:func:`~quadric_contact.printed_tables.printed_table_2`,
 :func:`~quadric_contact.smallness.smallness`).  The printed matrices are read
 as exact decimals.  The type of ``Q`` is decided exactly (the small eigenvalue
 is exactly positive: a one-sheet hyperboloid).  The ``Q`` side of the printed
@@ -37,11 +37,12 @@ import flint
 
 from quadric_contact import Quadric, QuadricKind, paper
 from quadric_contact._generated.formulas import det_symmetric_4
-from quadric_contact.algebraic import workprec
 from quadric_contact.classification import principal_minor_sums_3
 from quadric_contact.invariants import invariants
+from quadric_contact.precision import working_precision
+from quadric_contact.printed_tables import printed_table_2
 from quadric_contact.proving import Finding, Method, Proof, agrees, ensure
-from quadric_contact.smallness import printed_table_2, smallness
+from quadric_contact.smallness import smallness
 
 proof = Proof("Example 6", "Table 2 on a numerically ambiguous quadric: not small either way")
 
@@ -132,7 +133,7 @@ def inside(printed: str, ball: flint.arb) -> bool:
     method=Method.COMPUTATION,
 )
 def e_numbers_and_conclusion() -> Finding:
-    with workprec(200):
+    with working_precision(200):
         q, e = box("Example 6 Q"), box("Example 6 E")
         n1, n2, n3 = e["eig"]  # type: ignore[misc]
         alpha, beta, gamma = 1 / n1.sqrt(), 1 / n2.sqrt(), 1 / n3.sqrt()

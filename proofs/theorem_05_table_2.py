@@ -38,8 +38,9 @@ import sympy as sp
 
 from quadric_contact import Quadric, QuadricKind, paper
 from quadric_contact.classification import TABLE_1_KINDS
+from quadric_contact.printed_tables import printed_table_2
 from quadric_contact.proving import Finding, Method, Proof, agrees, differs, ensure, search_settings
-from quadric_contact.smallness import printed_table_2, smallness
+from quadric_contact.smallness import smallness
 
 from ._intersection import contact_type
 

@@ -15,6 +15,7 @@ import numpy as np
 
 from quadric_contact import ExcludedQuadricError, characteristic_polynomial
 from quadric_contact.modes import ContactCode, RegionCode
+from quadric_contact.precision import working_precision
 from quadric_contact.regions import decide_region
 
 
@@ -31,7 +32,7 @@ def scalar_codes(e, q):
 
 def mpmath_nonreal(P, digits=50):
     """Non-real roots of ``P`` by mpmath polyroots at ``digits``, or None if too close to call."""
-    with mpmath.workdps(digits):
+    with working_precision(dps=digits):
         coeffs = [mpmath.mpf(c.numerator) / c.denominator for c in reversed(P.coefficients)]
         roots = mpmath.polyroots(coeffs, maxsteps=400, extraprec=4 * digits)
         scale = max(1, max(abs(r) for r in roots))

@@ -122,7 +122,7 @@ def _events(result):
 
 
 class _Exact:
-    """An event time compared exactly (RealRoot.compare), not by its printed digits."""
+    """An event time compared exactly (RealAlgebraic.compare), not by its printed digits."""
 
     def __init__(self, root):
         self.root = root

@@ -6,6 +6,7 @@ from hypothesis import strategies as st
 
 from quadric_contact.descartes import root_signs, sign_variations
 from quadric_contact.discriminants import root_structure
+from quadric_contact.precision import working_precision
 
 
 def test_sign_variations_ignore_zeros():
@@ -15,9 +16,7 @@ def test_sign_variations_ignore_zeros():
 
 def _isolated(coeffs):
     f = flint.fmpq_poly([flint.fmpq(c.numerator, c.denominator) for c in coeffs])
-    old = flint.ctx.prec
-    flint.ctx.prec = 200
-    try:
+    with working_precision(200):
         neg = zero = pos = 0
         for r, m in f.complex_roots():
             if r.imag.is_exact() and r.imag == 0:
@@ -29,8 +28,6 @@ def _isolated(coeffs):
                     assert r.real < 0
                     neg += m
         return neg, zero, pos
-    finally:
-        flint.ctx.prec = old
 
 
 @given(st.lists(st.fractions(-5, 5, max_denominator=4), min_size=5, max_size=5).filter(lambda c: c[-1] != 0))

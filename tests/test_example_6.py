@@ -21,10 +21,12 @@ import pytest
 
 from quadric_contact import Quadric, QuadricKind, paper
 from quadric_contact._generated.formulas import det_symmetric_4
-from quadric_contact.algebraic import _fmpq, workprec
 from quadric_contact.classification import principal_minor_sums_3
 from quadric_contact.invariants import invariants
-from quadric_contact.smallness import printed_table_2, smallness
+from quadric_contact.precision import working_precision
+from quadric_contact.printed_tables import printed_table_2
+from quadric_contact.rational import fmpq_of
+from quadric_contact.smallness import smallness
 
 P = paper.PRINTED
 UPPER = [(i, j) for i in range(4) for j in range(i, 4)]
@@ -48,23 +50,23 @@ def _half_unit(text: str) -> Fraction:
 def _box(name):
     """Balls for the entries, det, J and the eigenvalue radius over the rounding box."""
     rows = _rows(name)
-    balls = [flint.arb(_fmpq(Fraction(rows[i][j])), _fmpq(_half_unit(rows[i][j]))) for i, j in UPPER]
+    balls = [flint.arb(fmpq_of(Fraction(rows[i][j])), fmpq_of(_half_unit(rows[i][j]))) for i, j in UPPER]
     det = det_symmetric_4(*balls)
     a = (balls[0], balls[1], balls[2], balls[4], balls[5], balls[7])
     _, J, det00 = principal_minor_sums_3(a)
     frob2 = sum(_half_unit(rows[i][j]) ** 2 * (1 if i == j else 2) for i, j in UPPER if j < 3)
-    radius = flint.arb(_fmpq(frob2)).sqrt()
+    radius = flint.arb(fmpq_of(frob2)).sqrt()
     eig = [m.enclosure(200) + flint.arb(0, radius.upper()) for m in invariants(_matrix(name)).eigenvalues]
     return {"det": det, "J": J, "det00": det00, "eig": eig}
 
 
 def _inside(printed: str, ball) -> bool:
-    return ball.contains(flint.arb(_fmpq(Fraction(printed))))
+    return ball.contains(flint.arb(fmpq_of(Fraction(printed))))
 
 
 @pytest.fixture(scope="module")
 def boxes():
-    with workprec(200):
+    with working_precision(200):
         return _box("Example 6 Q"), _box("Example 6 E")
 
 
@@ -126,7 +128,7 @@ def test_q_values_are_those_of_the_printed_matrix():
 
 def test_curvature_estimates_to_the_printed_digits(boxes):
     q, e = boxes
-    with workprec(200):
+    with working_precision(200):
         mu2, mu3 = q["eig"][2], -q["eig"][0]
         # hyperbolic paraboloid reading: b' = |mu3|^(-1/2), L^2 = -4 det/J, curvature 2/(L b'^2)
         L = (-4 * q["det"] / q["J"]).sqrt()

@@ -300,11 +300,8 @@ def test_boundaries_are_the_factors_of_the_discriminant():
 
 
 def _divides(f, g) -> bool:
-    try:
-        g / f
-    except Exception:
-        return False
-    return True
+    _, r = divmod(g, f)
+    return r == 0
 
 
 # -- the numeric lambdas -----------------------------------------------------------------------------

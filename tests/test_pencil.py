@@ -2,12 +2,14 @@
 
 from fractions import Fraction
 
+import flint
 import numpy as np
 import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from quadric_contact import Quadric, characteristic_polynomial
+from quadric_contact.precision import working_precision
 from quadric_contact.strategies import ellipsoids, quadrics, rigid_motions
 
 
@@ -93,20 +95,14 @@ def test_certified_roots_enclose_true_roots():
 
 @given(e=ellipsoids(), q=quadrics())
 def test_pencil_root_signs_equal_certified_isolation(e, q):
-    import flint
-
     P = characteristic_polynomial(e, q)
     f = flint.fmpq_poly([flint.fmpq(c.numerator, c.denominator) for c in P.coefficients])
-    old = flint.ctx.prec
-    flint.ctx.prec = 300
-    try:
+    with working_precision(300):
         counts = {"-": 0, "0": 0, "+": 0}
         for r, m in f.complex_roots():
             if r.imag.is_exact() and r.imag == 0:
                 key = "0" if (r.real.is_exact() and r.real == 0) else ("+" if r.real > 0 else "-")
                 assert key == "0" or not r.real.contains(0)
                 counts[key] += m
-    finally:
-        flint.ctx.prec = old
     s = P.signs
     assert (s.negative, s.zero, s.positive) == (counts["-"], counts["0"], counts["+"])

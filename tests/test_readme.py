@@ -7,8 +7,6 @@ import doctest
 import re
 from pathlib import Path
 
-import pytest
-
 ROOT = Path(__file__).resolve().parents[1]
 README = (ROOT / "README.md").read_text()
 BLOCKS = re.findall(r"^```python\n(.*?)^```", README, flags=re.S | re.M)
@@ -20,7 +18,6 @@ def test_the_readme_has_a_tour():
 
 def test_the_tour_runs_as_written():
     """Every python block, in order, in one namespace; outputs compared as doctests."""
-    pytest.importorskip("numpy")
     parser = doctest.DocTestParser()
     runner = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
     globs: dict = {}

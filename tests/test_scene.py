@@ -6,6 +6,7 @@ from __future__ import annotations
 from fractions import Fraction as F
 
 import pytest
+from tests.bee_and_tree import bee_and_tree
 
 from quadric_contact import Quadric
 from quadric_contact.classification import QuadricKind
@@ -13,29 +14,12 @@ from quadric_contact.errors import SceneError
 from quadric_contact.scene import builtin_scene, builtin_scene_names, load_scene, parse_scene
 from quadric_contact.trajectory import Keyframes, PolynomialMotion, Stationary
 
-GOOD = """
-[scene]
-name = "t"
-time = [0, 2]
-effects = ["zone", "contact"]
-
-[[object]]
-name = "tree"
-tree = { plane = "z = 6", plus = "crown", minus = "trunk" }
-
-[[object.piece]]
-name = "crown"
-equation = "x^2 + y^2 + 3*(z - 8.36291)^2 = 20"
-
-[[object.piece]]
-name = "trunk"
-equation = "x^2 + y^2 - 0.25*(z - 3)^2 = 1"
-
-[[ellipsoid]]
-name = "bee"
-equation = "(x - 3)^2 + (y - 3)^2 + 3*(z - 5.5)^2 = 0.1"
-motion = { type = "keyframes", keys = [{ t = 0, at = [3, 3, 5.5] }, { t = 2, at = [1.5, 0.5, 6.5] }] }
-"""
+GOOD = bee_and_tree(
+    name="t",
+    time="[0, 2]",
+    effects='["zone", "contact"]',
+    motion='{ type = "keyframes", keys = [{ t = 0, at = [3, 3, 5.5] }, { t = 2, at = [1.5, 0.5, 6.5] }] }',
+)
 
 
 def test_builtin_scenes_load_and_cover_several_quadric_types():

@@ -14,29 +14,16 @@ from quadric_contact.ledger import FULL_ITEMS, Ledger
 from quadric_contact.scene import builtin_scene, builtin_scene_names, parse_scene
 from quadric_contact.simulate import Plan, simulate
 
-STAYS_IN_ZONE_2 = """
-[scene]
-name = "low bee"
-time = [0, 4]
-effects = ["contact", "relative_position"]
 
-[[object]]
-name = "tree"
-tree = { plane = "z = 6", plus = "crown", minus = "trunk" }
-
-[[object.piece]]
-name = "crown"
-equation = "x^2 + y^2 + 3*(z - 8.36291)^2 = 20"
-
-[[object.piece]]
-name = "trunk"
-equation = "x^2 + y^2 - 0.25*(z - 3)^2 = 1"
-
-[[ellipsoid]]
-name = "bee"
-equation = "(x - 3)^2 + (y - 3)^2 + 3*(z - 5.5)^2 = 0.1"
-motion = { type = "linear", velocity = [-0.5, -0.6, -0.2] }
-"""
+@pytest.fixture
+def stays_in_zone_2(bee_and_tree):
+    """The bee flying low, below the tree's plane (zone 2: only the trunk matters)."""
+    return bee_and_tree(
+        name="low bee",
+        time="[0, 4]",
+        effects='["contact", "relative_position"]',
+        motion='{ type = "linear", velocity = [-0.5, -0.6, -0.2] }',
+    )
 
 
 def test_zone_only_never_touches_a_piece():
@@ -48,8 +35,8 @@ def test_zone_only_never_touches_a_piece():
     assert all(v is None for ep in pair.episodes for _, v in ep.state.pieces)
 
 
-def test_a_piece_outside_the_zone_costs_nothing():
-    r = simulate(parse_scene(STAYS_IN_ZONE_2, "low.toml"))
+def test_a_piece_outside_the_zone_costs_nothing(stays_in_zone_2):
+    r = simulate(parse_scene(stays_in_zone_2, "low.toml"))
     # the crown's smallness is checked when the scene is loaded; nothing else is done for it
     assert dict(r.ledger.by_target["tree/crown"]) == {"smallness_checks": 1}
     assert r.ledger.cost("tree/trunk") > 0
@@ -200,7 +187,6 @@ def test_contact_kind_between_events_uses_the_segre_analysis():
     """A unit sphere sliding along the axis inside a cylinder of radius 1 touches it along
     a circle all the time (Table 3: curve of tangency), with all roots real and a
     persistent multiple root; the kind needs the singular members of the pencil."""
-    pytest.importorskip("quadric_contact.contact_kind")
     text = """
 [scene]
 name = "piston"
@@ -268,13 +254,13 @@ def test_per_object_effects_compute_only_what_each_asks_for():
     assert "worker vs tree\n  first contact:" in text
 
 
-def test_per_object_effects_are_validated():
-    bad = STAYS_IN_ZONE_2 + '\n[effects]\nellipsoids = { wasp = ["zone"] }\n'
+def test_per_object_effects_are_validated(stays_in_zone_2):
+    bad = stays_in_zone_2 + '\n[effects]\nellipsoids = { wasp = ["zone"] }\n'
     with pytest.raises(SceneError, match=r"effects\.ellipsoids\.wasp"):
         parse_scene(bad, "bad.toml")
-    bad = STAYS_IN_ZONE_2 + '\n[effects]\npieces = { "tree/crown" = ["colour"] }\n'
+    bad = stays_in_zone_2 + '\n[effects]\npieces = { "tree/crown" = ["colour"] }\n'
     with pytest.raises(SceneError, match=r"effects\.pieces\.tree/crown\[0\]"):
         parse_scene(bad, "bad.toml")
-    ok = parse_scene(STAYS_IN_ZONE_2 + '\n[effects]\npieces = { "tree/trunk" = [] }\n', "ok.toml")
+    ok = parse_scene(stays_in_zone_2 + '\n[effects]\npieces = { "tree/trunk" = [] }\n', "ok.toml")
     r = simulate(ok)
     assert r.ledger.cost("tree/trunk") == dict(r.ledger.by_target["tree/trunk"]).get("smallness_checks", 0)

@@ -19,7 +19,8 @@ from quadric_contact import (
     paper,
 )
 from quadric_contact.classification import TABLE_1_KINDS
-from quadric_contact.smallness import printed_table_2, smallness, table_1
+from quadric_contact.printed_tables import printed_table_2
+from quadric_contact.smallness import smallness, table_1
 from quadric_contact.strategies import rigid_motions
 
 K = QuadricKind

@@ -36,7 +36,8 @@ from quadric_contact.modes.smallness_tables import (
     evaluate,
     kind_signs,
 )
-from quadric_contact.smallness import _compare, _Quantity, smallness
+from quadric_contact.quantity import Quantity, compare_quantities
+from quadric_contact.smallness import smallness
 from quadric_contact.strategies import ellipsoids, quadrics
 
 K = QuadricKind
@@ -272,9 +273,8 @@ def test_numba_and_numpy_backends_agree():
         assert np.array_equal(a, b)
 
 
-@pytest.mark.skipif(pytest.importorskip("dask") is None, reason="dask")
 def test_dask_input():
-    import dask.array as da
+    da = pytest.importorskip("dask.array")  # the [dask] extra
 
     rng = np.random.default_rng(11)
     Es = random_ellipsoids(rng, 40, 0.5, 2, 3)
@@ -463,7 +463,7 @@ def test_stage_counts_add_up():
 
 def exact_primitives(M, kind):
     """The primitives of smallness_tables of a matrix with its canonical sign, exactly (as
-    smallness._Quantity: eigenvalues are real algebraic numbers)."""
+    quantity.Quantity: eigenvalues are real algebraic numbers)."""
     q = Quadric.from_matrix(M) if isinstance(M, np.ndarray) else M
     if kind is K.ELLIPSOID and q.kind is K.ELLIPSOID:
         q = q if q.canonical_sign > 0 else -q
@@ -473,14 +473,15 @@ def exact_primitives(M, kind):
     _, E2, E3, E4 = principal_minor_sums_4(q.upper)
     values = [E4, inv.det00, inv.J, E3, E2, inv.trace]
     signs = kind_signs(kind)
-    out = [_Quantity.of(abs(Fraction(v))) for v in values]
+    out = [Quantity.of(abs(Fraction(v))) for v in values]
     for i, m in enumerate(inv.eigenvalues):
-        out.append(_Quantity.of(m) * signs[6 + i] if signs[6 + i] else _Quantity.of(1))
+        out.append(Quantity.of(m) * signs[6 + i] if signs[6 + i] else Quantity.of(1))
     return out
 
 
-def inside(lo, hi, x: _Quantity) -> bool:
-    return _compare(_Quantity.of(Fraction(lo)), x) <= 0 <= _compare(_Quantity.of(Fraction(hi)), x)
+def inside(lo, hi, x: Quantity) -> bool:
+    below = compare_quantities(Quantity.of(Fraction(lo)), x)
+    return below <= 0 <= compare_quantities(Quantity.of(Fraction(hi)), x)
 
 
 @pytest.mark.parametrize("seed", range(3))
@@ -551,15 +552,16 @@ def test_tables_are_the_scalar_conditions(kind, data):
         (q0, e0, rel0), (q1, e1, rel1) = inner
         assert e0 == e1 and rel0 == rel1 == 1 and c.relation == "<="
         v0, v1 = (evaluate(qp, Q_SIDES[kind][s]) for s in (q0, q1))
-        assert _compare(v0 if _compare(v0, v1) >= 0 else v1, c.lhs_squared) == 0
-        assert _compare(evaluate(ep, E_SIDES[e0]), c.rhs_squared) == 0
+        assert compare_quantities(v0 if compare_quantities(v0, v1) >= 0 else v1, c.lhs_squared) == 0
+        assert compare_quantities(evaluate(ep, E_SIDES[e0]), c.rhs_squared) == 0
         return
     for conds, reported in ((inner, r.conditions), (outer, r.alternative)):
         assert len(conds) == len(reported)
         for (qs, es, rel), c in zip(conds, reported, strict=True):
             qv, ev = evaluate(qp, Q_SIDES[kind][qs]), evaluate(ep, E_SIDES[es])
             sides = (qv, ev) if c.source != "enclosing" else (ev, qv)
-            assert _compare(sides[0], c.lhs_squared) == 0 and _compare(sides[1], c.rhs_squared) == 0
+            assert compare_quantities(sides[0], c.lhs_squared) == 0
+            assert compare_quantities(sides[1], c.rhs_squared) == 0
             assert (rel == 0) == (c.relation == (">=" if c.source != "enclosing" else "<="))
     assert len(qp) == NPRIM
 

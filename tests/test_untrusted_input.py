@@ -18,6 +18,7 @@ from typing import Any
 
 import numpy as np
 import pytest
+from tests.bee_and_tree import CROWN
 from tests.untrusted import HOSTILE, PAYLOAD, untrusted
 
 import quadric_contact as qc
@@ -145,7 +146,7 @@ SCENE_FIELDS = {
 GOOD_FIELDS = {
     "time": "2",
     "plane": _toml("z = 6"),
-    "crown": _toml("x^2 + y^2 + 3*(z - 8.36291)^2 = 20"),
+    "crown": _toml(CROWN),
     "entry": "-3.25",
     "bee": _toml(BEE),
     "t": "2",

@@ -124,7 +124,7 @@ fig = plot_result(run)
 pair = run.pair("bee", "tree")
 t_first, pieces = pair.first_contact
 print("first contact with", pieces, "at t =", t_first.decimal(30))
-print("t is the root of", t_first.polynomial_str())
+print("t is the root of", t_first.poly_str("t", integer=True))
 print(f"isolated in [lo, hi] with rational ends, width {float(t_first.hi - t_first.lo):.1e}")
 
 # %% [markdown]
@@ -134,7 +134,7 @@ print(f"isolated in [lo, hi] with rational ends, width {float(t_first.hi - t_fir
 # %%
 t0, t1 = scene.span
 traj = bee.trajectory
-t_mid = t_first.approx(15)
+t_mid = t_first.rational_near(15)
 for dt in (F(-1, 10**9), F(1, 10**9)):
     placed = traj.placed(E0, t_mid + dt, t0, t1)
     print(f"t = {float(t_mid + dt):.10f}: contact with the trunk: {bool(qc.transversal_contact(placed, trunk))}")

@@ -42,11 +42,12 @@ from .predicates import (
     smallness,
     transversal_contact,
 )
+from .printed_tables import printed_table_2
 from .quadric import Quadric
 from .regions import ROOT_SIGN_TABLE
 from .results import ContactResult, PlaneSideResult, Region, RegionResult
 from .segre import SegreSymbol, segre_symbol
-from .smallness import SmallnessReport, printed_table_2, table_1
+from .smallness import SmallnessReport, table_1
 
 __version__ = "0.1.0"
 

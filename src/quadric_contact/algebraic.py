@@ -1,16 +1,24 @@
-"""Exact real algebraic numbers: isolation, comparison, arithmetic.
+"""Exact real algebraic numbers: isolation, comparison, signs, arithmetic.
 
 The invariants of Section 2.4 (eigenvalues of ``Q00``, the semi-axes and
-curvatures built from them) and the critical values of the geometric
-decision are real algebraic numbers.  They are compared here *exactly*:
+curvatures built from them), the critical values of the geometric decision
+and the event times of a moving ellipsoid are real algebraic numbers.  They
+are all held by the one type of this module and compared *exactly*:
 
-* A :class:`RealAlgebraic` is the unique root of a monic polynomial
-  irreducible over Q (its minimal polynomial) inside a rational isolating
-  interval, together with its index among the real roots of that
-  polynomial.  Two of them are equal exactly when they have the same minimal
-  polynomial and the same index; otherwise their isolating intervals are
-  refined (exact bisection on rational endpoints) until they are disjoint.
-  No tolerance is involved anywhere.
+* A :class:`RealAlgebraic` is the only root of its minimal polynomial (monic,
+  irreducible over Q) inside an isolating interval with rational ends; a
+  rational number is held as itself (``lo == hi``).  Refinement is exact
+  bisection; two numbers with the same minimal polynomial are equal exactly
+  when the polynomial changes sign across the common part of their intervals,
+  otherwise the intervals are refined until they are disjoint.  No tolerance
+  is involved anywhere.
+* :func:`real_roots` isolates the real roots of a polynomial over Q, on the
+  whole line or in an interval, with one isolator: the polynomial is factored
+  over Q and the roots of each irreducible factor are separated by bisection
+  with Descartes' rule of signs (the Vincent-Collins-Akritas method).
+* :func:`sign_at` is the one exact-sign routine: the sign of a polynomial at a
+  rational or algebraic number (a divisibility test, then an exact Taylor
+  bound on a shrinking isolating interval).
 * :func:`algebraic_value` evaluates a rational expression at algebraic
   numbers and returns the result as a :class:`RealAlgebraic`: the
   expression is evaluated on the multiplication matrices of the tensor
@@ -21,25 +29,23 @@ decision are real algebraic numbers.  They are compared here *exactly*:
 * :class:`QuadraticNumber` is exact arithmetic in ``Q(sqrt(d))``, enough for
   the singular members of a pencil at a multiple root (a multiple root of a
   quartic over Q is rational or a quadratic irrational).
-
-Isolation uses FLINT's certified complex root finder (real roots are
-returned with an exactly zero imaginary part, each ball isolating one root);
-refinement is exact bisection.
 """
 
 from __future__ import annotations
 
-import contextlib
+import functools
 import math
-from collections.abc import Callable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from fractions import Fraction
 from functools import lru_cache
 from itertools import pairwise
-from typing import Any
+from typing import Any, Protocol
 
 import flint
 
 from .errors import EquationError
+from .precision import working_precision
+from .rational import dyadic_between, fmpq_of, fmpq_poly_of, fraction_of, near_midpoint, sign
 
 __all__ = [
     "QuadraticNumber",
@@ -48,45 +54,21 @@ __all__ = [
     "algebraic_value",
     "as_real_algebraic",
     "compile_expression",
+    "irreducible_factors",
+    "rational_between",
     "real_roots",
     "sign_at",
-    "workprec",
+    "sort_roots",
 ]
 
 
+class Counter(Protocol):
+    """Where the exact layer counts its work (a :class:`~quadric_contact.ledger.Ledger`)."""
+
+    def add(self, name: str, n: int = 1, *, target: str | None = None) -> None: ...
+
+
 # -- flint helpers ---------------------------------------------------------------------
-
-
-@contextlib.contextmanager
-def workprec(bits: int) -> Iterator[None]:
-    """Scoped working precision (bits) for flint ball arithmetic."""
-    old = flint.ctx.prec
-    flint.ctx.prec = bits
-    try:
-        yield
-    finally:
-        flint.ctx.prec = old
-
-
-def _fmpq(x: Fraction | int) -> Any:
-    x = Fraction(x)
-    return flint.fmpq(x.numerator, x.denominator)
-
-
-def _frac(x: Any) -> Fraction:
-    """An exact flint number (fmpq, fmpz, or an exact arb/arf) as a Fraction."""
-    if isinstance(x, flint.fmpq):
-        return Fraction(int(x.p), int(x.q))
-    if isinstance(x, flint.fmpz):
-        return Fraction(int(x))
-    man, exp = x.man_exp()
-    man, exp = int(man), int(exp)
-    return Fraction(man * 2**exp) if exp >= 0 else Fraction(man, 2**-exp)
-
-
-def _poly(coeffs: Sequence[Any]) -> Any:
-    """``fmpq_poly`` from coefficients ``c0, c1, ...`` (ints, Fractions or fmpq)."""
-    return flint.fmpq_poly([c if isinstance(c, (flint.fmpq, flint.fmpz)) else _fmpq(c) for c in coeffs])
 
 
 def _monic(p: Any) -> Any:
@@ -94,11 +76,15 @@ def _monic(p: Any) -> Any:
 
 
 def _key(p: Any) -> tuple[Fraction, ...]:
-    return tuple(_frac(c) for c in p.coeffs())
+    """The coefficients of the monic multiple of ``p`` (the identity of a minimal polynomial)."""
+    return tuple(fraction_of(c) for c in _monic(flint.fmpq_poly(p)).coeffs())
 
 
-def _eval_frac(p: Any, x: Fraction) -> Fraction:
-    return _frac(p(_fmpq(x)))
+def _sign_rational(p: Any, x: Fraction) -> int:
+    """Exact sign of an ``fmpq_poly`` at a rational."""
+    if p.is_zero():
+        return 0
+    return sign(fraction_of(p(fmpq_of(x))))
 
 
 def _arb_interval(lo: Fraction, hi: Fraction) -> Any:
@@ -106,81 +92,132 @@ def _arb_interval(lo: Fraction, hi: Fraction) -> Any:
     mid = (lo + hi) / 2
     rad = (hi - lo) / 2
     # arb(mid, rad) rounds mid; widen the radius by the rounding error bound.
-    m = flint.arb(_fmpq(mid))
-    r = flint.arb(_fmpq(rad))
+    m = flint.arb(fmpq_of(mid))
+    r = flint.arb(fmpq_of(rad))
     return flint.arb(m.mid(), (r + m.rad()).upper())
 
 
-def _arb_eval(p: Any, x: Any) -> Any:
-    acc = flint.arb(0)
-    for c in reversed(p.coeffs()):
-        acc = acc * x + flint.arb(c)
-    return acc
+# -- the root isolator -----------------------------------------------------------------
 
 
-# -- isolation -------------------------------------------------------------------------
+def _primitive(p: Any) -> Any:
+    """The primitive integer polynomial with positive leading coefficient of an fmpq_poly/fmpz_poly."""
+    z = flint.fmpz_poly(flint.fmpq_poly(p).numer())
+    c = z.content()
+    if c != 1 and c != 0:
+        z = flint.fmpz_poly([int(a) // int(c) for a in z.coeffs()])
+    if z.degree() >= 0 and z.leading_coefficient() < 0:
+        z = -z
+    return z
 
 
-@lru_cache(maxsize=4096)
-def _isolate(key: tuple[Fraction, ...]) -> tuple[tuple[Fraction, Fraction], ...]:
-    """Disjoint rational isolating intervals of the real roots of the squarefree
-    (here: irreducible) polynomial with coefficients ``key``, in increasing order.
-
-    For degree 1 the interval is the root itself (``lo == hi``)."""
-    p = _poly(key)
-    if p.degree() == 1:
-        c0, c1 = key
-        r = -c0 / c1
-        return ((r, r),)
-    out: list[tuple[Fraction, Fraction]] = []
-    for ball, mult in p.complex_roots():
-        assert mult == 1
-        if not ball.imag.is_zero():
-            continue
-        re = ball.real
-        mid, rad = _frac(re.mid()), _frac(re.rad())
-        out.append((mid - rad, mid + rad))
-    out.sort()
-    # Make the intervals pairwise disjoint with exact sign changes at the ends
-    # (the root finder's balls isolate, but may touch after the conversion).
-    fixed: list[tuple[Fraction, Fraction]] = []
-    for lo, hi in out:
-        lo, hi = _shrink(p, lo, hi)
-        fixed.append((lo, hi))
-    for (_, h1), (l2, _) in pairwise(fixed):
-        assert h1 < l2
-    return tuple(fixed)
-
-
-def _shrink(p: Any, lo: Fraction, hi: Fraction) -> tuple[Fraction, Fraction]:
-    """Bisect an isolating interval of a simple irrational root until it is
-    short relative to its position (at most 1/4 of its width, three steps)."""
-    slo = _sgn(_eval_frac(p, lo))
-    shi = _sgn(_eval_frac(p, hi))
-    assert slo * shi < 0, "isolating interval without a sign change"
-    for _ in range(3):
-        mid = (lo + hi) / 2
-        s = _sgn(_eval_frac(p, mid))
-        assert s != 0
-        if s == slo:
-            lo = mid
-        else:
-            hi = mid
-    return lo, hi
-
-
-def _sgn(x: Any) -> int:
-    return (x > 0) - (x < 0)
-
-
-def real_roots(poly: Any, *, multiplicities: bool = False) -> list[Any]:
-    """The distinct real roots of a nonzero polynomial over Q, in increasing order.
+def irreducible_factors(p: Any, *, multiplicities: bool = False) -> list[Any]:
+    """The distinct irreducible factors (of positive degree) of a nonzero polynomial over Q.
 
     Parameters
     ----------
-    poly : fmpq_poly, or a sequence of coefficients ``c0, c1, ...``
+    p : fmpq_poly, fmpz_poly or a sequence of coefficients ``c0, c1, ...``
+    multiplicities : bool
+        Return ``(factor, multiplicity)`` pairs.
+
+    Returns
+    -------
+    list of fmpz_poly
+        Primitive, with positive leading coefficient.
+
+    Examples
+    --------
+    >>> irreducible_factors([0, 0, -2, 0, 1], multiplicities=True)
+    [(x, 2), (x^2 + (-2), 1)]
+    """
+    if not isinstance(p, (flint.fmpq_poly, flint.fmpz_poly)):
+        p = fmpq_poly_of(p)
+    z = _primitive(p)
+    if z.degree() <= 0:
+        return []
+    _, facs = z.factor()
+    out = []
+    for f, m in facs:
+        if f.degree() >= 1:
+            f = -f if f.leading_coefficient() < 0 else f
+            out.append((f, int(m)) if multiplicities else f)
+    return out
+
+
+def _descartes_bound(f: Any, a: Fraction, b: Fraction) -> int:
+    """An upper bound (exact parity) on the number of roots of ``f`` in ``(a, b)``:
+    the sign variations of ``(1 + u)^n f((a + b u) / (1 + u))`` (Descartes' rule
+    after the Moebius map of ``(0, oo)`` onto ``(a, b)``).  0 means no root."""
+    h = flint.fmpq_poly(f)(flint.fmpq_poly([fmpq_of(a), fmpq_of(b - a)]))  # f on (a, b) <-> h on (0, 1)
+    rev = flint.fmpq_poly(list(reversed(h.coeffs())))  # y^n h(1/y)
+    g = rev(flint.fmpq_poly([1, 1]))  # roots of h in (0, 1) <-> positive roots of g
+    signs = [1 if c > 0 else -1 for c in g.coeffs() if c != 0]
+    return sum(1 for x, y in pairwise(signs) if x != y)
+
+
+def _root_bound(f: Any) -> Fraction:
+    """A power of two above the absolute value of every root (Cauchy's bound)."""
+    cs = [fraction_of(c) for c in flint.fmpq_poly(f).coeffs()]
+    bound = 1 + max(abs(c / cs[-1]) for c in cs[:-1])
+    return Fraction(2) ** max(0, math.ceil(bound).bit_length())
+
+
+def _isolate(f: Any, a: Fraction, b: Fraction) -> list[tuple[Fraction, Fraction]]:
+    """Isolating intervals, in increasing order, of the roots in ``(a, b)`` of an irreducible
+    polynomial ``f`` of degree > 1 (the package's one root isolator).
+
+    Bisection with Descartes' rule (Vincent-Collins-Akritas): a piece with no sign
+    variation holds no root, one with one variation exactly one (then ``f`` changes sign
+    across it).  The roots are simple and irrational, so no bisection point is a root and
+    the bisection ends."""
+    out: list[tuple[Fraction, Fraction]] = []
+    todo = [(a, b)]
+    while todo:
+        lo, hi = todo.pop()
+        v = _descartes_bound(f, lo, hi)
+        if v == 0:
+            continue
+        if v == 1:
+            out.append((lo, hi))
+            continue
+        mid = (lo + hi) / 2
+        todo += [(mid, hi), (lo, mid)]
+    return sorted(out)
+
+
+@lru_cache(maxsize=4096)
+def _isolate_all(key: tuple[Fraction, ...]) -> tuple[tuple[Fraction, Fraction], ...]:
+    """All real roots of the irreducible monic polynomial with coefficients ``key``."""
+    if len(key) == 2:
+        return ((-key[0], -key[0]),)
+    f = fmpq_poly_of(key)
+    B = _root_bound(f)
+    return tuple(_isolate(f, -B, B))
+
+
+def real_roots(
+    poly: Any,
+    lo: Fraction | None = None,
+    hi: Fraction | None = None,
+    *,
+    closed: bool = False,
+    multiplicities: bool = False,
+    ledger: Counter | None = None,
+    target: str | None = None,
+) -> list[Any]:
+    """The distinct real roots of a nonzero polynomial over Q, in increasing order, exactly.
+
+    Parameters
+    ----------
+    poly : fmpq_poly, fmpz_poly, or a sequence of coefficients ``c0, c1, ...``
+    lo, hi : Fraction, optional
+        Only the roots in the open interval ``(lo, hi)`` (both or neither).
+    closed : bool
+        With ``lo, hi``: include roots equal to ``lo`` or ``hi``.
     multiplicities : bool
         Return ``(root, multiplicity)`` pairs.
+    ledger, target
+        Where to count the isolations (``root_isolations``, one per irreducible factor).
 
     Returns
     -------
@@ -192,29 +229,47 @@ def real_roots(poly: Any, *, multiplicities: bool = False) -> list[Any]:
     ['-1.41421356237310 (root 1 of x**2 - 2)', '1.41421356237310 (root 2 of x**2 - 2)']
     >>> real_roots([6, -5, 1])
     [RealAlgebraic(2), RealAlgebraic(3)]
+    >>> [r.decimal(6) for r in real_roots([-2, 0, 1], Fraction(0), Fraction(10))]
+    ['1.414214']
     """
-    p = poly if isinstance(poly, flint.fmpq_poly) else _poly(poly)
+    p = poly if isinstance(poly, (flint.fmpq_poly, flint.fmpz_poly)) else fmpq_poly_of(poly)
     if p.is_zero():
         raise ValueError("the zero polynomial has every number as a root")
+    if (lo is None) != (hi is None):
+        raise ValueError("give both ends of the interval or neither")
     found: list[tuple[RealAlgebraic, int]] = []
-    _, factors = p.factor()
-    for f, m in factors:
-        f = _monic(flint.fmpq_poly(f))
+    for f, m in irreducible_factors(p, multiplicities=True):
+        if ledger is not None:
+            ledger.add("root_isolations", target=target)
         key = _key(f)
-        for i in range(len(_isolate(key))):
-            found.append((RealAlgebraic._make(key, i), m))
-    found.sort(key=_SortKey)
+        if lo is None or hi is None:
+            found += [(RealAlgebraic._make(key, i), m) for i in range(len(_isolate_all(key)))]
+        elif f.degree() == 1:
+            r = -key[0]
+            if lo < r < hi or (closed and lo <= r <= hi):
+                found.append((RealAlgebraic(r), m))
+        elif lo < hi:
+            found += [(RealAlgebraic._from_interval(key, a, b), m) for a, b in _isolate(f, lo, hi)]
+
+    def by_root(u: tuple[RealAlgebraic, int], v: tuple[RealAlgebraic, int]) -> int:
+        return u[0].compare(v[0])
+
+    found.sort(key=functools.cmp_to_key(by_root))
     return found if multiplicities else [r for r, _ in found]
 
 
-class _SortKey:
-    __slots__ = ("r",)
+def sort_roots(roots: Sequence[RealAlgebraic]) -> list[RealAlgebraic]:
+    """Sort exactly, dropping duplicates."""
 
-    def __init__(self, pair: tuple[RealAlgebraic, int]) -> None:
-        self.r = pair[0]
+    def by_value(u: RealAlgebraic, v: RealAlgebraic) -> int:
+        return u.compare(v)
 
-    def __lt__(self, other: _SortKey) -> bool:
-        return self.r < other.r
+    ordered = sorted(roots, key=functools.cmp_to_key(by_value))
+    out: list[RealAlgebraic] = []
+    for r in ordered:
+        if not out or out[-1].compare(r) != 0:
+            out.append(r)
+    return out
 
 
 # -- real algebraic numbers ------------------------------------------------------------
@@ -227,39 +282,82 @@ class RealAlgebraic:
     ----------
     minpoly : tuple of Fraction
         Coefficients ``c0, c1, .., 1`` of the monic minimal polynomial over Q.
+    lo, hi : Fraction
+        The current isolating interval: the number is the only root of
+        ``minpoly`` in ``[lo, hi]`` (``lo == hi`` for a rational).
     index : int
         Position among the real roots of ``minpoly`` in increasing order
-        (sympy's ``CRootOf`` index).
+        (sympy's ``CRootOf`` index), found when first asked for.
 
     Examples
     --------
     >>> r = RealAlgebraic.sqrt(2)
     >>> r * r == 2, r > Fraction(141, 100), r.approx(20)
     (True, True, '1.4142135623730950488')
+    >>> r.decimal(20), r.compare(Fraction(1414, 1000)), sign_at([-2, 0, 1], r)
+    ('1.41421356237309504880', 1, 0)
     """
 
-    __slots__ = ("_hi", "_lo", "index", "minpoly")
+    __slots__ = ("_hi", "_index", "_lo", "minpoly")
     minpoly: tuple[Fraction, ...]
-    index: int
+    _index: int | None
     _lo: Fraction
     _hi: Fraction
 
     def __init__(self, value: Any) -> None:
         if isinstance(value, RealAlgebraic):
-            self.minpoly, self.index, self._lo, self._hi = value.minpoly, value.index, value._lo, value._hi
+            self.minpoly, self._index, self._lo, self._hi = value.minpoly, value._index, value._lo, value._hi
             return
         v = Fraction(value)
         self.minpoly = (-v, Fraction(1))
-        self.index = 0
+        self._index = 0
         self._lo = self._hi = v
 
     @classmethod
     def _make(cls, key: tuple[Fraction, ...], index: int) -> RealAlgebraic:
         obj = cls.__new__(cls)
         obj.minpoly = key
-        obj.index = index
-        obj._lo, obj._hi = _isolate(key)[index]
+        obj._index = index
+        obj._lo, obj._hi = _isolate_all(key)[index]
         return obj
+
+    @classmethod
+    def _from_interval(
+        cls, key: tuple[Fraction, ...], lo: Fraction, hi: Fraction, index: int | None = None
+    ) -> RealAlgebraic:
+        obj = cls.__new__(cls)
+        obj.minpoly = key
+        obj._index = index
+        obj._lo, obj._hi = lo, hi
+        return obj
+
+    @classmethod
+    def root_in(cls, poly: Any, lo: Fraction, hi: Fraction) -> RealAlgebraic:
+        """The root of the irreducible polynomial ``poly`` in ``[lo, hi]``.
+
+        Parameters
+        ----------
+        poly : fmpq_poly, fmpz_poly or coefficients ``c0, c1, ...``
+            Irreducible over Q, with exactly one root in ``[lo, hi]`` (checked:
+            a sign change for degree > 1).
+
+        Examples
+        --------
+        >>> RealAlgebraic.root_in([-2, 0, 1], Fraction(1), Fraction(2)).decimal(5)
+        '1.41421'
+        """
+        p = poly if isinstance(poly, (flint.fmpq_poly, flint.fmpz_poly)) else fmpq_poly_of(poly)
+        key = _key(p)
+        if len(key) == 2:
+            return cls(-key[0])
+        q = fmpq_poly_of(key)
+        if not (lo < hi and _sign_rational(q, lo) * _sign_rational(q, hi) < 0):
+            raise ValueError(f"[{lo}, {hi}] does not isolate a root of {p}")
+        return cls._from_interval(key, Fraction(lo), Fraction(hi))
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickle as the minimal polynomial and the isolating interval (for worker processes)."""
+        return (RealAlgebraic._from_interval, (self.minpoly, self._lo, self._hi, self._index))
 
     @classmethod
     def sqrt(cls, value: Any) -> RealAlgebraic:
@@ -283,6 +381,11 @@ class RealAlgebraic:
     def is_rational(self) -> bool:
         return self.degree == 1
 
+    @property
+    def value(self) -> Fraction | None:
+        """The exact value when rational, else None."""
+        return self._lo if self.is_rational else None
+
     def as_fraction(self) -> Fraction:
         """The value if rational, else ValueError."""
         if not self.is_rational:
@@ -292,14 +395,53 @@ class RealAlgebraic:
     @property
     def poly(self) -> Any:
         """The minimal polynomial as an ``fmpq_poly``."""
-        return _poly(self.minpoly)
+        return fmpq_poly_of(self.minpoly)
+
+    @property
+    def integer_poly(self) -> Any:
+        """The minimal polynomial made primitive over Z (``fmpz_poly``, positive leading coefficient)."""
+        return _primitive(self.poly)
 
     @property
     def interval(self) -> tuple[Fraction, Fraction]:
         """The current isolating interval (``lo == hi`` for a rational)."""
         return self._lo, self._hi
 
+    @property
+    def lo(self) -> Fraction:
+        return self._lo
+
+    @property
+    def hi(self) -> Fraction:
+        return self._hi
+
+    @property
+    def index(self) -> int:
+        if self._index is None:
+            q = self.poly
+            for i, (a, b) in enumerate(_isolate_all(self.minpoly)):
+                lo, hi = max(a, self._lo), min(b, self._hi)
+                if lo < hi and _sign_rational(q, lo) != _sign_rational(q, hi):
+                    self._index = i
+                    break
+            else:  # pragma: no cover - would mean a wrong isolating interval
+                raise AssertionError("root lost")
+        return self._index
+
     # -- refinement and approximation -------------------------------------------------
+
+    def bisect(self) -> None:
+        """Halve the isolating interval (exactly; near the middle, at a short rational)."""
+        if self.is_rational:
+            return
+        p = self.poly
+        mid = near_midpoint(self._lo, self._hi)
+        s = _sign_rational(p, mid)
+        assert s != 0, "an irreducible polynomial of degree >= 2 has no rational root"
+        if s == _sign_rational(p, self._lo):
+            self._lo = mid
+        else:
+            self._hi = mid
 
     def refine(self, width: Fraction) -> None:
         """Bisect the isolating interval until it is shorter than ``width``."""
@@ -307,12 +449,10 @@ class RealAlgebraic:
             return
         p = self.poly
         lo, hi = self._lo, self._hi
-        slo = _sgn(_eval_frac(p, lo))
+        slo = _sign_rational(p, lo)
         while hi - lo >= width:
-            # Bisect at a short dyadic-ish point near the middle to keep sizes small.
-            mid = _simple_between(lo, hi)
-            s = _sgn(_eval_frac(p, mid))
-            if s == slo:
+            mid = near_midpoint(lo, hi)
+            if _sign_rational(p, mid) == slo:
                 lo = mid
             else:
                 hi = mid
@@ -322,7 +462,7 @@ class RealAlgebraic:
         """An ``arb`` ball containing the number, about ``bits`` bits wide
         (default: the current flint precision)."""
         if self.is_rational:
-            return flint.arb(_fmpq(self._lo))
+            return flint.arb(fmpq_of(self._lo))
         bits = bits or flint.ctx.prec
         self.sign()  # the interval no longer contains 0: refine to relative precision
         self.refine(min(abs(self._lo), abs(self._hi)) / 2**bits)
@@ -333,62 +473,108 @@ class RealAlgebraic:
         if self.is_rational and self._lo == 0:
             return "0"
         bits = int(digits * 3.33) + 16
-        with workprec(bits):
+        with working_precision(bits):
             x = self.enclosure(bits)
-            return x.str(digits, radius=False)
+            return str(x.str(digits, radius=False))
+
+    def rational_near(self, places: int) -> Fraction:
+        """A rational within ``10**-places`` of this number (exact refinement)."""
+        if self.is_rational:
+            return self._lo
+        self.refine(Fraction(1, 10**places))
+        return (self._lo + self._hi) / 2
+
+    def decimal(self, places: int = 12) -> str:
+        """This number rounded to ``places`` decimal places (correctly rounded: error at most half a unit)."""
+        if self.is_rational:
+            scaled = round(self._lo * 10**places)
+        else:  # correctly rounded: refine until both ends round alike (never at a tie: irrational)
+            scale, half = 10**places, Fraction(1, 2)
+            while math.floor(self._lo * scale + half) != math.floor(self._hi * scale + half):
+                self.bisect()
+            scaled = math.floor(self._lo * scale + half)
+        minus = "-" if scaled < 0 else ""
+        s = str(abs(scaled)).rjust(places + 1, "0")
+        return f"{minus}{s[:-places]}.{s[-places:]}" if places else f"{minus}{s}"
 
     def __float__(self) -> float:
-        with workprec(64):
-            return float(self.enclosure(64).mid())
+        if self.is_rational:
+            return float(self._lo)
+        self.refine(Fraction(1, 1 << 60) * max(Fraction(1), abs(self._lo)))
+        return float((self._lo + self._hi) / 2)
 
     # -- exact sign and comparison --------------------------------------------------
 
     def sign(self) -> int:
         """-1, 0 or +1, exactly."""
         if self.is_rational:
-            return _sgn(self._lo)
+            return sign(self._lo)
         # An irreducible polynomial of degree >= 2 does not vanish at 0; the
         # isolating interval shrinks until it does not contain 0.
         while self._lo <= 0 <= self._hi:
-            self.refine((self._hi - self._lo) / 2)
+            self.bisect()
         return 1 if self._lo > 0 else -1
 
-    def _cmp(self, other: Any) -> int:
-        o = other if isinstance(other, RealAlgebraic) else RealAlgebraic(other)
-        if self.minpoly == o.minpoly:
-            return _sgn(self.index - o.index)
-        if self.is_rational and o.is_rational:
-            return _sgn(self._lo - o._lo)
-        # Different irreducible polynomials have no common root: refine until disjoint.
-        while True:
-            if self._hi < o._lo:
-                return -1
-            if o._hi < self._lo:
+    def compare(self, other: Any) -> int:
+        """-1, 0 or 1 as this number is below, equal to or above ``other`` (exact)."""
+        if not isinstance(other, RealAlgebraic):
+            x = Fraction(other)
+            if self.is_rational:
+                return sign(self._lo - x)
+            if x <= self._lo:
                 return 1
-            self.refine((self._hi - self._lo) / 2 if not self.is_rational else Fraction(1))
-            o.refine((o._hi - o._lo) / 2 if not o.is_rational else Fraction(1))
+            if x >= self._hi:
+                return -1
+            p = self.poly
+            s = _sign_rational(p, x)
+            # the root lies where the sign changes: in (lo, x) if sign(x) != sign(lo)
+            if s == _sign_rational(p, self._lo):
+                self._lo = x
+                return 1
+            self._hi = x
+            return -1
+        if other.is_rational:
+            return self.compare(other._lo)
+        if self.is_rational:
+            return -other.compare(self._lo)
+        if self.minpoly == other.minpoly:
+            if self._index is not None and other._index is not None:
+                return sign(self._index - other._index)
+            # each interval holds exactly one root of the polynomial, so they hold the same
+            # root iff their common part does, i.e. the polynomial changes sign across it
+            lo, hi = max(self._lo, other._lo), min(self._hi, other._hi)
+            p = self.poly
+            if lo < hi and _sign_rational(p, lo) != _sign_rational(p, hi):
+                return 0
+        while True:  # distinct numbers: separate the intervals
+            if self._hi < other._lo:
+                return -1
+            if other._hi < self._lo:
+                return 1
+            if self._hi - self._lo >= other._hi - other._lo:
+                self.bisect()
+            else:
+                other.bisect()
 
     def __eq__(self, other: object) -> bool:
         if isinstance(other, (RealAlgebraic, int, Fraction)):
-            return self._cmp(other) == 0
+            return self.compare(other) == 0
         return NotImplemented
 
     def __hash__(self) -> int:
-        if self.is_rational:
-            return hash(self._lo)
-        return hash((self.minpoly, self.index))
+        return hash(self._lo) if self.is_rational else hash(self.minpoly)
 
     def __lt__(self, other: Any) -> bool:
-        return self._cmp(other) < 0
+        return self.compare(other) < 0
 
     def __le__(self, other: Any) -> bool:
-        return self._cmp(other) <= 0
+        return self.compare(other) <= 0
 
     def __gt__(self, other: Any) -> bool:
-        return self._cmp(other) > 0
+        return self.compare(other) > 0
 
     def __ge__(self, other: Any) -> bool:
-        return self._cmp(other) >= 0
+        return self.compare(other) >= 0
 
     # -- arithmetic (exact, through algebraic_value) -----------------------------------
 
@@ -426,13 +612,26 @@ class RealAlgebraic:
 
     # -- presentation ----------------------------------------------------------------
 
-    def poly_str(self, var: str = "x") -> str:
+    def poly_str(self, var: str = "x", *, integer: bool = False) -> str:
+        """The minimal polynomial in ``var``: monic, or primitive over Z with ``integer``."""
         import sympy
 
         x = sympy.Symbol(var)
+        if integer:
+            return str(sympy.Poly([int(c) for c in reversed(self.integer_poly.coeffs())], x).as_expr())
         return str(
             sum((sympy.Rational(c.numerator, c.denominator) * x**k for k, c in enumerate(self.minpoly)))
         )
+
+    def to_dict(self, places: int = 20) -> dict[str, Any]:
+        """The number for a report: decimals, and the exact value or its polynomial and interval."""
+        out: dict[str, Any] = {"decimal": self.decimal(places)}
+        if self.is_rational:
+            out["exact"] = str(self._lo)
+        else:
+            out["root_of"] = self.poly_str("t", integer=True)
+            out["interval"] = [str(self._lo), str(self._hi)]
+        return out
 
     def to_sympy(self) -> Any:
         """``Rational`` or ``CRootOf`` (same root index convention)."""
@@ -457,36 +656,52 @@ class RealAlgebraic:
         return f"{self.approx(15)} (root {self.index + 1} of {self.poly_str()})"
 
 
-def _simple_between(lo: Fraction, hi: Fraction) -> Fraction:
-    """A rational with a small denominator strictly inside ``(lo, hi)``, near the middle."""
-    w = hi - lo
-    # a power-of-two grid finer than a quarter of the width (floor(log2 w) from the bit
-    # lengths: w may be far below the smallest float)
-    if w > 0:
-        e = w.numerator.bit_length() - w.denominator.bit_length()
-        if Fraction(2) ** e > w:
-            e -= 1
-        k = max(0, -e + 2)
+def rational_between(left: Any, right: Any) -> Fraction:
+    """A short dyadic rational strictly between two numbers (rationals or :class:`RealAlgebraic`).
+
+    Examples
+    --------
+    >>> x = rational_between(RealAlgebraic.sqrt(2), RealAlgebraic.sqrt(3))
+    >>> RealAlgebraic.sqrt(2) < x < RealAlgebraic.sqrt(3), x.denominator & (x.denominator - 1) == 0
+    (True, True)
+    """
+    if isinstance(left, RealAlgebraic) and left.is_rational:
+        left = left.as_fraction()
+    if isinstance(right, RealAlgebraic) and right.is_rational:
+        right = right.as_fraction()
+    if isinstance(left, RealAlgebraic):
+        if isinstance(right, RealAlgebraic):
+            while left.compare(right) < 0 and not left.hi < right.lo:
+                (left if left.hi - left.lo >= right.hi - right.lo else right).bisect()
+        else:
+            while not left.hi < right:
+                left.bisect()
+        lo = left.hi
     else:
-        k = 0
-    den = 2**k
-    mid = (lo + hi) / 2
-    cand = Fraction(round(mid * den), den)
-    if lo < cand < hi:
-        return cand
-    return mid
+        lo = Fraction(left)
+    if isinstance(right, RealAlgebraic):
+        while not lo < right.lo:
+            right.bisect()
+        hi = right.lo
+    else:
+        hi = Fraction(right)
+    return dyadic_between(lo, hi)
 
 
-def sign_at(poly: Any, alpha: RealAlgebraic) -> int:
-    """The exact sign of a polynomial over Q at a real algebraic number.
+def sign_at(poly: Any, x: Any, ledger: Counter | None = None) -> int:
+    """The exact sign of a polynomial over Q at a rational or real algebraic number.
 
-    Zero exactly when the minimal polynomial divides ``poly``; otherwise the
-    isolating interval is refined until a ball evaluation excludes 0.
+    Zero exactly when the minimal polynomial of ``x`` divides ``poly``;
+    otherwise an exact Taylor bound at the middle of the isolating interval
+    decides, the interval being bisected (each time counted as an
+    ``escalations`` in ``ledger``) until the bound excludes 0.
 
     Parameters
     ----------
-    poly : fmpq_poly or sequence of rationals ``c0, c1, ...``
-    alpha : RealAlgebraic
+    poly : fmpq_poly, fmpz_poly or sequence of rationals ``c0, c1, ...``
+    x : Fraction, int or RealAlgebraic
+    ledger : optional
+        Where to count the refinements.
 
     Returns
     -------
@@ -497,25 +712,42 @@ def sign_at(poly: Any, alpha: RealAlgebraic) -> int:
     --------
     >>> from fractions import Fraction
     >>> r = algebraic_sqrt(Fraction(1, 10))
-    >>> sign_at([Fraction(-1, 10), 0, 1], r), sign_at([Fraction(-1, 3), 1], r)
-    (0, -1)
+    >>> sign_at([Fraction(-1, 10), 0, 1], r), sign_at([Fraction(-1, 3), 1], r), sign_at([-1, 1], 2)
+    (0, -1, 1)
     """
-    p = poly if isinstance(poly, flint.fmpq_poly) else _poly(poly)
-    if p.is_zero():
+    g = flint.fmpq_poly(poly) if isinstance(poly, (flint.fmpq_poly, flint.fmpz_poly)) else fmpq_poly_of(poly)
+    if g.is_zero():
         return 0
-    if alpha.is_rational:
-        return _sgn(_eval_frac(p, alpha.as_fraction()))
-    if (p % alpha.poly).is_zero():
+    if not isinstance(x, RealAlgebraic):
+        return _sign_rational(g, Fraction(x))
+    if x.is_rational:
+        return _sign_rational(g, x.as_fraction())
+    r = g % x.poly
+    if r.is_zero():
         return 0
-    bits = 64
+    if r.degree() == 0:
+        return sign(fraction_of(r[0]))
+    # g(x) != 0.  Taylor expansion at the midpoint m, exact in rationals:
+    # g(m + s) = a0 + a1 s + ..., so |g(x) - a0| <= sum_{k>=1} |a_k| h^k with h the
+    # half-width.  (Not done on the remainder r: reducing modulo the minimal polynomial
+    # can put a root of r next to x; nor with interval Horner, which loses the
+    # cancellation between large coefficients.)
+    first = True
     while True:
-        with workprec(bits):
-            v = _arb_eval(p, alpha.enclosure(bits))
-            if v > 0:
-                return 1
-            if v < 0:
-                return -1
-        bits *= 2
+        lo, hi = x.interval
+        mid, h = (lo + hi) / 2, (hi - lo) / 2
+        cs = g(flint.fmpq_poly([fmpq_of(mid), 1])).coeffs()
+        a0 = fraction_of(cs[0]) if cs else Fraction(0)
+        tail = fraction_of(flint.fmpq_poly([abs(c) for c in cs])(fmpq_of(h))) - abs(a0)
+        if a0 != 0 and abs(a0) > tail:
+            return sign(a0)
+        if first and ledger is not None:
+            ledger.add("escalations")
+        first = False
+        ratio = tail / abs(a0) if a0 != 0 else Fraction(256)
+        steps = max(1, ratio.numerator.bit_length() - ratio.denominator.bit_length() + 2)
+        for _ in range(steps):
+            x.bisect()
 
 
 # -- expressions ---------------------------------------------------------------------
@@ -595,7 +827,8 @@ class _Elem:
 
     @staticmethod
     def scalar(q: Fraction, n: int) -> _Elem:
-        return _Elem(flint.fmpq_mat(n, n, [(_fmpq(q) if i == j else 0) for i in range(n) for j in range(n)]))
+        entries = [(fmpq_of(q) if i == j else 0) for i in range(n) for j in range(n)]
+        return _Elem(flint.fmpq_mat(n, n, entries))
 
     def _lift(self, o: Any) -> _Elem:
         if isinstance(o, _Elem):
@@ -651,7 +884,7 @@ class _Ball:
         if isinstance(o, _Ball):
             return o.x
         if isinstance(o, (int, Fraction)):
-            return flint.arb(_fmpq(o))
+            return flint.arb(fmpq_of(o))
         return o
 
     def __add__(self, o: Any) -> _Ball:
@@ -715,7 +948,7 @@ def _kron_generators(keys: Sequence[tuple[Fraction, ...]]) -> list[Any]:
                     for a in range(after):
                         row = (b * dj + r) * after + a
                         col = (b * dj + c) * after + a
-                        entries[row * n + col] = _fmpq(v)
+                        entries[row * n + col] = fmpq_of(v)
         gens.append(flint.fmpq_mat(n, n, entries))
     return gens
 
@@ -777,17 +1010,17 @@ def algebraic_value(fn: Callable[..., Any], args: Sequence[Any]) -> RealAlgebrai
     mp = M.m.minpoly() if isinstance(M, _Elem) else None
 
     def enclose(bits: int) -> Any:
-        with workprec(bits):
+        with working_precision(bits):
             ballargs = [v.enclosure(bits) for v in vals]
 
             def const_arb(q: Fraction) -> Any:
-                return flint.arb(_fmpq(q))
+                return flint.arb(fmpq_of(q))
 
             try:
                 if takes_const:
                     return fn(*ballargs, const=const_arb)
                 out = fn(*(_Ball(b) for b in ballargs))
-                return out.x if isinstance(out, _Ball) else flint.arb(_fmpq(out))
+                return out.x if isinstance(out, _Ball) else flint.arb(fmpq_of(out))
             except ZeroDivisionError:
                 return flint.arb("0 +/- inf")
 
@@ -809,7 +1042,7 @@ def algebraic_value(fn: Callable[..., Any], args: Sequence[Any]) -> RealAlgebrai
             if not hits:  # pragma: no cover - would mean a wrong enclosure
                 raise AssertionError("value lost during algebraic evaluation")
             for c in hits:
-                c.refine((c._hi - c._lo) / 4 if not c.is_rational else Fraction(1))
+                c.refine((c.hi - c.lo) / 4 if not c.is_rational else Fraction(1))
         bits *= 2
 
 
@@ -849,27 +1082,27 @@ def algebraic_sqrt(x: Any) -> RealAlgebraic:
     candidates = [r for r in real_roots(coeffs[:-1]) if r.sign() > 0]
     bits = 64
     while True:
-        with workprec(bits):
+        with working_precision(bits):
             enc = v.enclosure(bits).sqrt()
         hits = [c for c in candidates if _overlaps(c, enc)]
         if len(hits) == 1:
             return hits[0]
         for c in hits:
-            c.refine((c._hi - c._lo) / 4 if not c.is_rational else Fraction(1))
+            c.refine((c.hi - c.lo) / 4 if not c.is_rational else Fraction(1))
         bits *= 2
 
 
 def _overlaps(c: RealAlgebraic, ball: Any) -> bool:
-    lo = _frac(ball.lower())
-    hi = _frac(ball.upper())
+    lo = fraction_of(ball.lower())
+    hi = fraction_of(ball.upper())
     return not (c._hi < lo or hi < c._lo)
 
 
 def evaluate_arb(fn: Callable[..., Any], args: Sequence[RealAlgebraic], bits: int) -> Any:
     """A certified ball for ``fn(args)`` at ``bits`` bits (diagnostics, decimals)."""
-    with workprec(bits):
+    with working_precision(bits):
         balls = [a.enclosure(bits) for a in args]
-        return fn(*balls, const=lambda q: flint.arb(_fmpq(q)))
+        return fn(*balls, const=lambda q: flint.arb(fmpq_of(q)))
 
 
 # -- Q(sqrt d) ------------------------------------------------------------------------
@@ -983,7 +1216,7 @@ class QuadraticNumber:
 
     def sign(self) -> int:
         """Exact sign (compare ``a^2`` with ``b^2 d`` when the signs differ)."""
-        sa, sb = _sgn(self.a), _sgn(self.b)
+        sa, sb = sign(self.a), sign(self.b)
         if sb == 0:
             return sa
         if sa == 0 or sa == sb:

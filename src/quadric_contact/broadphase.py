@@ -50,6 +50,7 @@ import flint
 from .composite import Composite, Piece, Split
 from .ledger import Ledger
 from .quadric import Quadric
+from .rational import fmpq_of, fraction_of
 from .results import Region
 from .trajectory import MotionSegment
 
@@ -145,14 +146,6 @@ def ellipsoid_extents(E: Quadric) -> tuple[tuple[Fraction, Fraction, Fraction], 
     return (half[0], half[1], half[2]), rho
 
 
-def _fmpq(x: Fraction) -> Any:
-    return flint.fmpq(x.numerator, x.denominator)
-
-
-def _frac(q: Any) -> Fraction:
-    return Fraction(int(q.p), int(q.q))
-
-
 def _poly_range_q(p: Any, a: Any, b: Any) -> tuple[Any, Any]:
     """:func:`poly_range` on ``fmpq`` values (the broad phase's arithmetic: exact, in C)."""
     deg = p.degree()
@@ -184,8 +177,8 @@ def poly_range(p: Any, a: Fraction, b: Fraction) -> tuple[Fraction, Fraction]:
     >>> poly_range(flint.fmpq_poly([0, 0, 1]), Fraction(-1), Fraction(2))   # t^2 on [-1, 2]
     (Fraction(-7, 2), Fraction(4, 1))
     """
-    lo, hi = _poly_range_q(flint.fmpq_poly(p), _fmpq(a), _fmpq(b))
-    return _frac(lo), _frac(hi)
+    lo, hi = _poly_range_q(flint.fmpq_poly(p), fmpq_of(a), fmpq_of(b))
+    return fraction_of(lo), fraction_of(hi)
 
 
 def _swept_box_q(seg: MotionSegment, r: Sequence[Any], a: Any, b: Any) -> list[tuple[Any, Any]]:
@@ -202,17 +195,17 @@ def swept_box(
     """A box containing every placement of the ellipsoid on ``[a, b]``: the
     enclosure of the centre's path widened by the half-extents (by the largest
     semi-axis in every direction when the segment turns the ellipsoid)."""
-    r = [_fmpq(v) for v in (half if seg.quaternion is None else (rho, rho, rho))]
-    box = _swept_box_q(seg, r, _fmpq(a), _fmpq(b))
+    r = [fmpq_of(v) for v in (half if seg.quaternion is None else (rho, rho, rho))]
+    box = _swept_box_q(seg, r, fmpq_of(a), fmpq_of(b))
     return (
-        (_frac(box[0][0]), _frac(box[0][1])),
-        (_frac(box[1][0]), _frac(box[1][1])),
-        (_frac(box[2][0]), _frac(box[2][1])),
+        (fraction_of(box[0][0]), fraction_of(box[0][1])),
+        (fraction_of(box[1][0]), fraction_of(box[1][1])),
+        (fraction_of(box[2][0]), fraction_of(box[2][1])),
     )
 
 
 def _entries(Q: Quadric) -> tuple[Any, ...]:
-    return tuple(_fmpq(v) for v in Q.upper)
+    return tuple(fmpq_of(v) for v in Q.upper)
 
 
 def _plane_sign_q(u: Sequence[Any], box: Sequence[tuple[Any, Any]]) -> int:
@@ -239,7 +232,7 @@ def plane_sign_on_box(plane: Quadric, box: Box) -> int:
     >>> plane_sign_on_box(Quadric.plane((0, 0, 1), 6), ((F(0), F(1)), (F(0), F(1)), (F(6, 5), F(7, 5))))
     -1
     """
-    return _plane_sign_q(_entries(plane), [(_fmpq(lo), _fmpq(hi)) for lo, hi in box])
+    return _plane_sign_q(_entries(plane), [(fmpq_of(lo), fmpq_of(hi)) for lo, hi in box])
 
 
 _IDX = ((0, 1, 2), (1, 4, 5), (2, 5, 7))  # upper index of the 3x3 block's entry (i, j)
@@ -288,7 +281,7 @@ def quadric_sign_on_box(Q: Quadric, box: Box) -> int:
     >>> quadric_sign_on_box(unit, ((F(-1, 4), F(1, 4)),) * 3), quadric_sign_on_box(unit, ((F(0), F(2)),) * 3)
     (-1, 0)
     """
-    return _quadric_sign_q(_entries(Q), [(_fmpq(lo), _fmpq(hi)) for lo, hi in box])
+    return _quadric_sign_q(_entries(Q), [(fmpq_of(lo), fmpq_of(hi)) for lo, hi in box])
 
 
 @dataclass(frozen=True)
@@ -380,12 +373,12 @@ def cover(
     labels = _labels(obj)
     targets: list[Split | Piece] = [*obj.splits(), *obj.pieces]
     entries = {id(n): _entries(n.plane if isinstance(n, Split) else n.quadric) for n in targets}
-    radii = [_fmpq(v) for v in (half if seg.quaternion is None else (rho, rho, rho))]
+    radii = [fmpq_of(v) for v in (half if seg.quaternion is None else (rho, rho, rho))]
     leaves: list[tuple[Fraction, Fraction, dict[str, Any]]] = []
     tests = 0
 
     def walk(a: Fraction, b: Fraction, known: dict[str, int]) -> dict[str, Any]:
-        box = _swept_box_q(seg, radii, _fmpq(a), _fmpq(b))
+        box = _swept_box_q(seg, radii, fmpq_of(a), fmpq_of(b))
         status: dict[str, Any] = {}
 
         def visit(node: Split | Piece | None) -> None:

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 from itertools import pairwise
 
-from .algebraic import _simple_between, real_roots
+from .algebraic import rational_between, real_roots
 from .classification import Inertia, inertia_from_minor_sums, principal_minor_sums_4
 from .pencil import CharacteristicPolynomial
 from .results import Region
@@ -103,14 +103,7 @@ def separation_certificate(P: CharacteristicPolynomial) -> SeparationCertificate
     values = [r for r, _ in roots]
     samples: list[tuple[Fraction, Inertia]] = []
     for a, b in pairwise(values):
-        while True:
-            lo_a, hi_a = a.interval
-            lo_b, hi_b = b.interval
-            if hi_a < lo_b:
-                s = _simple_between(hi_a, lo_b)
-                break
-            a.refine((hi_a - lo_a) / 2)
-            b.refine((hi_b - lo_b) / 2)
+        s = rational_between(a, b)
         member = tuple(s * x + y for x, y in zip(e, q, strict=True))
         samples.append((s, inertia_from_minor_sums(principal_minor_sums_4(member))))
     simple = len(roots) == 4 and all(m == 1 for _, m in roots)

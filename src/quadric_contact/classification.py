@@ -36,6 +36,8 @@ from dataclasses import dataclass
 from enum import StrEnum
 from typing import Any
 
+from .descartes import sign_variations
+
 __all__ = [
     "NO_REAL_POINTS",
     "REFUSED_KINDS",
@@ -46,7 +48,6 @@ __all__ = [
     "inertia_from_minor_sums",
     "principal_minor_sums_3",
     "principal_minor_sums_4",
-    "sign_variations",
 ]
 
 
@@ -199,38 +200,6 @@ class Inertia:
     def flipped(self) -> Inertia:
         """The inertia of the negated matrix."""
         return Inertia(self.negative, self.positive, self.zero)
-
-
-def sign_variations(values: Sequence[Any]) -> int:
-    """Number of sign changes in a sequence, zeros ignored (Descartes' rule of signs).
-
-    Parameters
-    ----------
-    values : sequence of real numbers
-
-    Returns
-    -------
-    int
-        For the coefficients ``c0, c1, ...`` of a real-rooted polynomial: its
-        number of positive roots (Theorem 13, Table 4).
-
-    Examples
-    --------
-    Example 17: ``P2`` has coefficients ``0.25, -11.6625, 34.125, 45.7375, -0.3``:
-    three positive roots, the bee is outside the trunk.
-
-    >>> sign_variations([0.25, -11.6625, 34.125, 45.7375, -0.3])
-    3
-    """
-    count = 0
-    last = 0
-    for v in values:
-        s = (v > 0) - (v < 0)
-        if s:
-            if last and s != last:
-                count += 1
-            last = s
-    return count
 
 
 def principal_minor_sums_3(a: Sequence[Any]) -> tuple[Any, Any, Any]:

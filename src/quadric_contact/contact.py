@@ -30,7 +30,7 @@ from .pencil import CharacteristicPolynomial, characteristic_polynomial
 from .quadric import Quadric
 from .results import ContactResult, Region
 
-__all__ = ["NO_REAL_POINTS", "decide_transversal", "refuse", "transversal_contact_exact"]
+__all__ = ["decide_transversal", "refuse", "transversal_contact_exact"]
 
 
 

@@ -33,10 +33,11 @@ from typing import Any
 
 import flint
 
-from .algebraic import QuadraticNumber, _frac, _monic, _poly
-from .classification import QuadricKind
+from .algebraic import QuadraticNumber
+from .classification import NO_REAL_POINTS, QuadricKind
 from .linalg import nullspace
 from .pencil import CharacteristicPolynomial, characteristic_polynomial
+from .rational import fmpq_poly_of, fraction_of, monic
 from .segre import SegreSymbol, segre_symbol
 
 __all__ = ["ContactAnalysis", "ContactKind", "SingularMember", "analyze_contact", "contact_kind_exact"]
@@ -264,15 +265,15 @@ def _member(lam: QuadraticNumber, E: Any, Q: Any) -> tuple[SingularMember, bool]
 
 def _multiple_roots(P: CharacteristicPolynomial) -> list[QuadraticNumber]:
     """The distinct real multiple roots of P, as elements of Q or Q(sqrt d)."""
-    p = _poly(P.coefficients)
+    p = fmpq_poly_of(P.coefficients)
     g = p.gcd(p.derivative())
     if g.degree() <= 0:
         return []
     out: list[QuadraticNumber] = []
     _, factors = g.factor()
     for f, _m in factors:
-        f = _monic(flint.fmpq_poly(f))
-        c = [_frac(x) for x in f.coeffs()]
+        f = monic(flint.fmpq_poly(f))
+        c = [fraction_of(x) for x in f.coeffs()]
         if f.degree() == 1:
             out.append(QuadraticNumber(-c[0]))
         elif f.degree() == 2:
@@ -317,7 +318,7 @@ def analyze_contact(E: Any, Q: Any, *, small: bool | None = None) -> ContactAnal
     >>> [[str(c.to_sympy()) for c in p] for m in a.members for p in m.points]
     [['1', '0', '0'], ['-1', '0', '0']]
     """
-    from .contact import NO_REAL_POINTS, decide_transversal, refuse
+    from .contact import decide_transversal, refuse
 
     P = characteristic_polynomial(E, Q)
     e, q = P.E, P.Q

@@ -15,10 +15,42 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from .classification import sign_variations
-from .discriminants import RootStructure, _to_int_poly, root_structure, strip
+from .algebraic import real_roots
+from .discriminants import RootStructure, root_structure, strip
 
 __all__ = ["RootSigns", "root_signs", "sign_variations"]
+
+
+def sign_variations(values: Sequence[Any]) -> int:
+    """Number of sign changes in a sequence, zeros ignored (Descartes' rule of signs).
+
+    Parameters
+    ----------
+    values : sequence of real numbers
+
+    Returns
+    -------
+    int
+        For the coefficients ``c0, c1, ...`` of a real-rooted polynomial: its
+        number of positive roots (Theorem 13, Table 4).
+
+    Examples
+    --------
+    Example 17: ``P2`` has coefficients ``0.25, -11.6625, 34.125, 45.7375, -0.3``:
+    three positive roots, the bee is outside the trunk.
+
+    >>> sign_variations([0.25, -11.6625, 34.125, 45.7375, -0.3])
+    3
+    """
+    count = 0
+    last = 0
+    for v in values:
+        s = (v > 0) - (v < 0)
+        if s:
+            if last and s != last:
+                count += 1
+            last = s
+    return count
 
 
 @dataclass(frozen=True)
@@ -104,33 +136,10 @@ def root_signs(coeffs: Sequence[Any], structure: RootStructure | None = None) ->
         positive = sign_variations(c)
         negative = sign_variations([v if k % 2 == 0 else -v for k, v in enumerate(c)])
         return RootSigns(negative, zero, positive, 0, "descartes")
-    negative, positive = _isolate(c[zero:])
+    negative = positive = 0
+    for r, m in real_roots(c[zero:], multiplicities=True):
+        if r.sign() > 0:
+            positive += m
+        else:
+            negative += m
     return RootSigns(negative, zero, positive, 2 * structure.nonreal_pairs, "isolation")
-
-
-def _isolate(c: Sequence[Any]) -> tuple[int, int]:
-    """(negative, positive) real roots with multiplicity of a polynomial with ``c[0] != 0``."""
-    import flint
-
-    f = flint.fmpz_poly(_to_int_poly(c))
-    old = flint.ctx.prec
-    try:
-        prec = max(old, 64)
-        while True:
-            flint.ctx.prec = prec
-            negative = positive = 0
-            undecided = False
-            for root, mult in f.complex_roots():
-                if not (root.imag.is_exact() and root.imag == 0):
-                    continue
-                if root.real > 0:
-                    positive += mult
-                elif root.real < 0:
-                    negative += mult
-                else:
-                    undecided = True
-            if not undecided:
-                return negative, positive
-            prec *= 2
-    finally:
-        flint.ctx.prec = old

@@ -30,6 +30,7 @@ from typing import Any
 
 from ._generated import formulas
 from .errors import DegeneratePencilError
+from .rational import sign
 
 __all__ = [
     "RootStructure",
@@ -158,10 +159,6 @@ def paper_deltas(coeffs: Sequence[Any]) -> tuple[Any, Any, Any]:
     """
     c = list(coeffs) + [0] * (5 - len(coeffs))
     return formulas.paper_deltas(*c[:5])
-
-
-def _sign(x: Any) -> int:
-    return (x > 0) - (x < 0)
 
 
 def revised_sign_list(signs: Sequence[int]) -> list[int]:
@@ -293,9 +290,9 @@ def _counts(c: Sequence[Any]) -> tuple[int, int, int, tuple[int, ...]]:
     if n == 4:
         # D_1 = 4 c4^2 > 0 and D_k = (positive) * Delta_k for k = 2, 3, 4: the
         # paper's normalisation has the same signs and much smaller numbers.
-        signs = (1, *(_sign(d) for d in formulas.quartic_sign_forms(*c)))
+        signs = (1, *(sign(d) for d in formulas.quartic_sign_forms(*c)))
     else:
-        signs = tuple(_sign(d) for d in discrimination_sequence(c))
+        signs = tuple(sign(d) for d in discrimination_sequence(c))
     rev = revised_sign_list(list(signs))
     nonzero = [s for s in rev if s]
     v = sum(1 for a, b in pairwise(nonzero) if a != b)

@@ -56,11 +56,12 @@ import sympy as sp
 
 from ._generated.formulas import paper_deltas, pencil_coefficients
 from .classification import QuadricKind, principal_minor_sums_3
+from .descartes import sign_variations
 from .entries import ENTRY_INDICES
 from .errors import EquationError, NotAnEllipsoidError, NotANumberError, NotSymmetricError, ShapeError
 from .parsing import MAX_DEGREE, MAX_DIGITS, Refusal, evaluate, parse_expression
 from .quadric import Quadric
-from .rational import to_fraction
+from .rational import fmpq_of, to_fraction
 from .regions import region_patterns
 from .results import Region
 
@@ -216,7 +217,7 @@ class RationalFunction:
         ZeroDivisionError
             At a pole.
         """
-        args = [_fmpq(v) for v in values]
+        args = [_exact_fmpq(v) for v in values]
         d = self.den(*args) if args else self.den.leading_coefficient()
         if d == 0:
             raise ZeroDivisionError("the point is a pole of the rational function")
@@ -229,7 +230,7 @@ class RationalFunction:
         if not values:
             return self
         names = self.context.names()
-        subs = {names[i]: _fmpq(v) for i, v in values.items()}
+        subs = {names[i]: _exact_fmpq(v) for i, v in values.items()}
         return RationalFunction(self.num.subs(subs), self.den.subs(subs))
 
     def to_sympy(self, symbols: Sequence[sp.Symbol]) -> sp.Expr:
@@ -242,11 +243,9 @@ class RationalFunction:
         return f"({self.num})/({self.den})"
 
 
-def _fmpq(value: Any) -> Any:
-    if isinstance(value, flint.fmpq):
-        return value
-    f = to_fraction(value)
-    return flint.fmpq(f.numerator, f.denominator)
+def _exact_fmpq(value: Any) -> Any:
+    """A user number (anything :func:`~quadric_contact.rational.to_fraction` takes) or an ``fmpq``."""
+    return value if isinstance(value, flint.fmpq) else fmpq_of(to_fraction(value))
 
 
 def _poly_to_sympy(p: Any, symbols: Sequence[sp.Symbol]) -> sp.Expr:
@@ -647,8 +646,6 @@ class SignRule:
 
     @staticmethod
     def derive(region: Region, pattern: str) -> SignRule:
-        from .classification import sign_variations
-
         neg, zero, pos = pattern.count("-"), pattern.count("0"), pattern.count("+")
         vectors = []
         for s in itertools.product((-1, 0, 1), repeat=4):
@@ -1212,7 +1209,7 @@ def _distinct_eigenvalues(m: Sequence[Sequence[Fraction]]) -> int:
     """The number of distinct eigenvalues of the quadratic part of ``m`` (exact)."""
     a = [m[i][j] for i, j in ENTRY_INDICES if i < 3 and j < 3]
     tr, J, det00 = principal_minor_sums_3(a)
-    f = flint.fmpq_poly([_fmpq(-det00), _fmpq(J), _fmpq(-tr), 1])
+    f = flint.fmpq_poly([_exact_fmpq(-det00), _exact_fmpq(J), _exact_fmpq(-tr), 1])
     return int(f.degree() - f.gcd(f.derivative()).degree())
 
 

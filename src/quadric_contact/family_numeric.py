@@ -56,6 +56,7 @@ import numpy as np
 
 from .codegen import EXACT_INTEGER_MAX, Program, _functions, _print_expr, _straight_line, emit_program
 from .modes.errorbounds import program_errbound
+from .precision import working_precision
 
 if TYPE_CHECKING:
     from .family import Family, RationalFunction
@@ -339,7 +340,7 @@ def _numpy_signs(cq: CompiledQuantity, xs: list[np.ndarray]) -> np.ndarray:
 def _mpmath_values(cq: CompiledQuantity, xs: list[np.ndarray], dps: int) -> np.ndarray:
     import mpmath
 
-    with mpmath.workdps(dps):
+    with working_precision(dps=dps):
         to_mpf = np.frompyfunc(mpmath.mpf, 1, 1)
         ys = [to_mpf(np.asarray(x, dtype=np.float64)) for x in xs]
         r = cq.functions["quantity"](*ys)

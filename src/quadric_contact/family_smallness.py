@@ -7,7 +7,7 @@ both quadratic parts, ``det``, and ``K``, ``J'`` where Table 2 uses them.  Over 
   centre), smallness is *constant*, decided once exactly;
 * when the characteristic polynomials of both quadratic parts split into linear factors over
   Q(parameters), every eigenvalue is a rational function of the parameters, and every
-  squared condition of :func:`quadric_contact.smallness._row_sides` (the corrected Table 1
+  squared condition of :func:`quadric_contact.smallness.row_sides` (the corrected Table 1
   rows, the same code as the exact decision) is a rational function, polynomial or not;
   they are the row's conditions where the eigenvalues keep the signs and the order they
   have at the reference point (which decides which eigenvalue gives ``alpha``, ``a``, ...);
@@ -15,7 +15,7 @@ both quadratic parts, ``det``, and ``K``, ``J'`` where Table 2 uses them.  Over 
   cubic factor over Q(parameters)) and the conditions are algebraic, not rational.
 
 The Table 2 formulas are run on sympy expressions through the number namespace of
-:mod:`quadric_contact.smallness` (``_parameters``, ``_ellipsoid_axes``).
+:mod:`quadric_contact.smallness` (``table_2_parameters``, ``ellipsoid_axes_squared``).
 """
 
 from __future__ import annotations
@@ -30,7 +30,7 @@ import sympy as sp
 
 from .classification import TABLE_1_KINDS, QuadricKind, principal_minor_sums_3, principal_minor_sums_4
 from .entries import ENTRY_INDICES
-from .smallness import _ellipsoid_axes, _parameters, _row_sides
+from .smallness import ellipsoid_axes_squared, row_sides, table_2_parameters
 from .smallness import smallness as smallness_exact
 
 if TYPE_CHECKING:
@@ -230,9 +230,9 @@ def family_smallness(fam: Family) -> FamilySmallness:
                 inv.J_prime.to_sympy(symbols),
             )
         )
-    e = _ellipsoid_axes(sides[0], numbers)  # type: ignore[arg-type]
-    p = _parameters(kind, sides[1], numbers)
-    conds, alt = _row_sides(kind, p, e)
+    e = ellipsoid_axes_squared(sides[0], numbers)  # type: ignore[arg-type]
+    p = table_2_parameters(kind, sides[1], numbers)
+    conds, alt = row_sides(kind, p, e)
 
     def condition(side: tuple[Any, ...]) -> FamilyCondition:
         relation, lhs, l2, rhs, r2, _, source, erratum = side

@@ -60,12 +60,13 @@ from typing import Any
 
 import flint
 
-from .algebraic import RealAlgebraic, _fmpq, _monic, _poly, algebraic_value, real_roots, sign_at
+from .algebraic import RealAlgebraic, algebraic_value, real_roots, sign_at
 from .classification import QuadricKind
 from .errors import ExcludedQuadricError
 from .linalg import nullspace, solve
 from .pencil import as_quadric
 from .quadric import Quadric
+from .rational import fmpq_of, fmpq_poly_of
 from .results import Region
 
 __all__ = ["CriticalSet", "GeometricDecision", "decide_geometrically"]
@@ -260,7 +261,7 @@ def _poly_fn(num: Poly, den: Poly | None = None) -> Callable[..., Any]:
 
 def _value(num: Poly, den: Poly | None, mu: RealAlgebraic) -> RealAlgebraic:
     if mu.is_rational:
-        x = _fmpq(mu.as_fraction())
+        x = fmpq_of(mu.as_fraction())
         v = num(x) / (den(x) if den is not None else 1)
         return RealAlgebraic(Fraction(int(v.p), int(v.q)))
     if den is not None:
@@ -350,7 +351,9 @@ def _critical_sets(
     D: list[Fraction], Ap: Mat, bp: list[Fraction], cp: Fraction, r: Fraction
 ) -> list[CriticalSet]:
     mu = flint.fmpq_poly([0, 1])
-    H = [[_poly([Ap[i][j]]) - (mu * _fmpq(D[i]) if i == j else 0) for j in range(3)] for i in range(3)]
+    H = [
+        [fmpq_poly_of([Ap[i][j]]) - (mu * fmpq_of(D[i]) if i == j else 0) for j in range(3)] for i in range(3)
+    ]
 
     def cof(i: int, j: int) -> Poly:
         rows = [k for k in range(3) if k != i]
@@ -359,21 +362,21 @@ def _critical_sets(
         return m if (i + j) % 2 == 0 else -m
 
     adj = [[cof(j, i) for j in range(3)] for i in range(3)]  # adjugate = transpose of cofactors
-    p3 = sum((H[0][j] * cof(0, j) for j in range(3)), _poly([0]))
-    bq = [_fmpq(v) for v in bp]
-    w = [sum((adj[i][j] * bq[j] for j in range(3)), _poly([0])) for i in range(3)]
-    Dq = [_fmpq(d) for d in D]
+    p3 = sum((H[0][j] * cof(0, j) for j in range(3)), fmpq_poly_of([0]))
+    bq = [fmpq_of(v) for v in bp]
+    w = [sum((adj[i][j] * bq[j] for j in range(3)), fmpq_poly_of([0])) for i in range(3)]
+    Dq = [fmpq_of(d) for d in D]
     Dw = [Dq[i] * w[i] for i in range(3)]
-    Pb = sum((bq[i] * w[i] for i in range(3)), _poly([0]))
-    Npsi = sum((w[i] * Dw[i] for i in range(3)), _poly([0]))
-    rq, cq = _fmpq(r), _fmpq(cp)
+    Pb = sum((bq[i] * w[i] for i in range(3)), fmpq_poly_of([0]))
+    Npsi = sum((w[i] * Dw[i] for i in range(3)), fmpq_poly_of([0]))
+    rq, cq = fmpq_of(r), fmpq_of(cp)
     S = Npsi - rq * p3 * p3
     NF = (mu * rq + cq) * p3 - Pb  # F = NF / p3
     # bordered Hessian and tangent trace, as polynomials in mu
-    G = sum((Dw[i] * adj[i][j] * Dw[j] for i in range(3) for j in range(3)), _poly([0]))
+    G = sum((Dw[i] * adj[i][j] * Dw[j] for i in range(3) for j in range(3)), fmpq_poly_of([0]))
     trH = H[0][0] + H[1][1] + H[2][2]
-    Tr = trH * sum((Dw[i] * Dw[i] for i in range(3)), _poly([0])) - sum(
-        (Dw[i] * H[i][j] * Dw[j] for i in range(3) for j in range(3)), _poly([0])
+    Tr = trH * sum((Dw[i] * Dw[i] for i in range(3)), fmpq_poly_of([0])) - sum(
+        (Dw[i] * H[i][j] * Dw[j] for i in range(3) for j in range(3)), fmpq_poly_of([0])
     )
 
     sets: list[CriticalSet] = []
@@ -400,7 +403,7 @@ def _critical_sets(
     _, factors = p3.factor()
     eig_roots: list[tuple[RealAlgebraic, int]] = []
     for f, m in factors:
-        for rt in real_roots(_monic(flint.fmpq_poly(f))):
+        for rt in real_roots(f):
             eig_roots.append((rt, m))
     for lam, m in eig_roots:
         below = sum(mm for other, mm in eig_roots if other < lam)
@@ -422,7 +425,7 @@ def _simple_eigen(
     dp3 = p3.derivative()
     dw = [wi.derivative() for wi in w]
     # psi(lambda) = y_p^T D y_p with y_p = -w'(lambda)/p3'(lambda)
-    R1 = rq * dp3 * dp3 - sum((dw[i] * Dq[i] * dw[i] for i in range(3)), _poly([0]))
+    R1 = rq * dp3 * dp3 - sum((dw[i] * Dq[i] * dw[i] for i in range(3)), fmpq_poly_of([0]))
     s = sign_at(R1, lam)
     if s < 0:
         return []

@@ -40,9 +40,11 @@ from .errors import SceneError
 from .events import PieceTrack, ZoneValue
 from .ledger import Ledger
 from .quadric import Quadric
-from .scene import MovingEllipsoid, Scene
-from .simulate import PairResult, Plan, _progress, _SegmentRun, _simulate_pair
-from .trajectory import MotionSegment, PolynomialMotion, fraction_to_fmpq, poly_eval
+from .rational import fmpq_of
+from .scene_model import MovingEllipsoid, Scene
+from .simulate import _progress, _SegmentRun, _simulate_pair
+from .simulation_reports import PairResult, Plan
+from .trajectory import MotionSegment, PolynomialMotion, poly_eval
 
 __all__ = ["GENERATED_SCENES", "PiecewiseTrack", "many_body_scene", "run_pairs", "totem"]
 
@@ -133,7 +135,7 @@ class _BroadSegmentRun(_SegmentRun):
             # the exact track's decision, on the placement at a time where it was certified
             t = part.witness
             assert t is not None
-            frozen = tuple(flint.fmpq_poly([fraction_to_fmpq(poly_eval(p, t))]) for p in self.E_upper)
+            frozen = tuple(flint.fmpq_poly([fmpq_of(poly_eval(p, t))]) for p in self.E_upper)
             scratch = Ledger()
             track = PieceTrack(
                 label,

@@ -187,12 +187,12 @@ def _draw_pair(fig: Any, spec: Any, result: Any, pair: Any, samples: int) -> Non
     for i in range(len(C) - 1):
         ax.plot(*C[i : i + 2].T, color=_colour(cats[i]), linewidth=2.2, zorder=5)
     # the ellipsoid where it starts and where it first touches
-    shown = [t0] + ([pair.first_contact[0].approx(8)] if pair.first_contact else [])
+    shown = [t0] + ([pair.first_contact[0].rational_near(8)] if pair.first_contact else [])
     for t in shown:
         X, Y, Z = _ellipsoid_mesh(ell.trajectory.placed(ell.quadric, t, t0, t1))
         ax.plot_wireframe(X, Y, Z, color="black", linewidth=0.3, alpha=0.6)
     for k, ev in enumerate(pair.events):
-        t = ev.time.approx(6)
+        t = ev.time.rational_near(6)
         seg = next((s for s in segs if s.t0 <= t <= s.t1), segs[-1])
         p = [float(v) for v in seg.center_at(t)]
         ax.scatter(*p, color="black", s=10, zorder=6)

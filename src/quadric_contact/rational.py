@@ -19,11 +19,21 @@ from decimal import Decimal
 from fractions import Fraction
 from typing import Any
 
+import flint
+
 from .errors import NonFiniteError, NotANumberError, NotRationalError, ShapeError
 
 __all__ = [
     "as_square_matrix",
     "common_denominator",
+    "dyadic_between",
+    "fmpq_of",
+    "fmpq_poly_of",
+    "fraction_of",
+    "monic",
+    "near_midpoint",
+    "sign",
+    "simplest_between",
     "to_fraction",
 ]
 
@@ -232,3 +242,162 @@ def common_denominator(values: Sequence[Fraction]) -> tuple[tuple[int, ...], int
     """
     d = math.lcm(*(v.denominator for v in values)) if values else 1
     return tuple(v.numerator * (d // v.denominator) for v in values), d
+
+
+def sign(x: Any) -> int:
+    """-1, 0 or 1: the sign of an exactly ordered number (Fraction, int, fmpq, ...).
+
+    Examples
+    --------
+    >>> sign(Fraction(-1, 3)), sign(0), sign(7)
+    (-1, 0, 1)
+    """
+    return (x > 0) - (x < 0)
+
+
+# -- exact flint numbers -----------------------------------------------------------------
+
+
+def fmpq_of(x: Any) -> Any:
+    """A rational as ``flint.fmpq`` (an ``fmpq`` is returned as it is).
+
+    Parameters
+    ----------
+    x : Fraction, int, flint.fmpz or flint.fmpq
+
+    Examples
+    --------
+    >>> fmpq_of(Fraction(-3, 4))
+    -3/4
+    """
+    if isinstance(x, flint.fmpq):
+        return x
+    if isinstance(x, flint.fmpz):
+        return flint.fmpq(x)
+    x = Fraction(x)
+    return flint.fmpq(x.numerator, x.denominator)
+
+
+def fraction_of(x: Any) -> Fraction:
+    """An exact flint number (``fmpq``, ``fmpz``, or an exact ``arb``/``arf``) as a Fraction.
+
+    Examples
+    --------
+    >>> fraction_of(flint.fmpq(3, 4)), fraction_of(flint.arb(0.75).mid())
+    (Fraction(3, 4), Fraction(3, 4))
+    """
+    if isinstance(x, flint.fmpq):
+        return Fraction(int(x.p), int(x.q))
+    if isinstance(x, flint.fmpz):
+        return Fraction(int(x))
+    if isinstance(x, flint.arb):
+        if not x.is_exact():
+            raise ValueError(f"the ball {x} is not an exact number")
+        x = x.mid()
+    man, exp = x.man_exp()
+    man, exp = int(man), int(exp)
+    return Fraction(man * 2**exp) if exp >= 0 else Fraction(man, 2**-exp)
+
+
+def fmpq_poly_of(coeffs: Sequence[Any]) -> Any:
+    """``flint.fmpq_poly`` from exact coefficients ``c0, c1, ...`` (lowest degree first).
+
+    Examples
+    --------
+    >>> fmpq_poly_of([Fraction(-1, 2), 0, 1])
+    x^2 + (-1/2)
+    """
+    return flint.fmpq_poly([fmpq_of(c) for c in coeffs])
+
+
+def monic(p: Any) -> Any:
+    """The monic multiple of a nonzero polynomial over Q (``fmpq_poly``).
+
+    Examples
+    --------
+    >>> monic(fmpq_poly_of([1, 2]))
+    x + 1/2
+    """
+    p = flint.fmpq_poly(p)
+    return p / p.leading_coefficient()
+
+
+# -- simple rationals in an interval ---------------------------------------------------
+
+
+def simplest_between(a: Fraction, b: Fraction) -> Fraction:
+    """The rational with the smallest denominator in the open interval ``(a, b)``.
+
+    Examples
+    --------
+    >>> simplest_between(Fraction(31, 10), Fraction(33, 10)), simplest_between(Fraction(1, 3), Fraction(1, 2))
+    (Fraction(13, 4), Fraction(2, 5))
+    """
+    if not a < b:
+        raise ValueError(f"empty interval ({a}, {b})")
+    if a < 0 < b:
+        return Fraction(0)
+    if b <= 0:
+        return -simplest_between(-b, -a)
+    n = math.floor(a) + 1  # smallest integer > a
+    if n < b:
+        return Fraction(n)
+    fl = n - 1
+    lo, hi = a - fl, b - fl  # 0 <= lo < hi <= 1
+    if lo == 0:
+        return fl + Fraction(1, math.floor(1 / hi) + 1)
+    return fl + 1 / simplest_between(1 / hi, 1 / lo)
+
+
+def dyadic_between(lo: Fraction, hi: Fraction) -> Fraction:
+    """A short dyadic rational ``m / 2^k`` (smallest ``k``) in the open interval ``(lo, hi)``.
+
+    Examples
+    --------
+    >>> dyadic_between(Fraction(31, 10), Fraction(33, 10)), dyadic_between(Fraction(1, 3), Fraction(2))
+    (Fraction(13, 4), Fraction(1, 1))
+    """
+    if not lo < hi:
+        raise ValueError(f"empty interval ({lo}, {hi})")
+    w = hi - lo
+    k = max(0, w.denominator.bit_length() - w.numerator.bit_length() + 1)  # 2^-k < w
+    best = None
+    while k >= 0:
+        m = math.floor(lo * (1 << k)) + 1
+        x = Fraction(m, 1 << k)
+        if not x < hi:
+            break
+        best = x
+        k -= 1
+    assert best is not None
+    return best
+
+
+def near_midpoint(lo: Fraction, hi: Fraction) -> Fraction:
+    """A rational with a small (power-of-two) denominator strictly inside ``(lo, hi)``,
+    within a quarter of the width from the middle (the middle itself if none is).
+
+    Bisecting at it halves an interval about as well as the midpoint does while
+    keeping the sizes of the ends small.
+
+    Examples
+    --------
+    >>> near_midpoint(Fraction(1, 3), Fraction(2, 3)), near_midpoint(Fraction(0), Fraction(1, 1000))
+    (Fraction(1, 2), Fraction(1, 2048))
+    """
+    w = hi - lo
+    # a power-of-two grid finer than a quarter of the width (floor(log2 w) from the bit
+    # lengths: w may be far below the smallest float)
+    if w > 0:
+        e = w.numerator.bit_length() - w.denominator.bit_length()
+        if Fraction(2) ** e > w:
+            e -= 1
+        k = max(0, -e + 2)
+    else:
+        k = 0
+    den = 2**k
+    mid = (lo + hi) / 2
+    cand = Fraction(round(mid * den), den)
+    if lo < cand < hi:
+        return cand
+    return mid

@@ -30,8 +30,8 @@ from fractions import Fraction
 from typing import Any
 
 from .certificate import separation_certificate
-from .classification import TABLE_1_KINDS, QuadricKind
-from .contact import NO_REAL_POINTS, _geometric, decide_transversal, refuse
+from .classification import NO_REAL_POINTS, TABLE_1_KINDS, QuadricKind
+from .contact import _geometric, decide_transversal, refuse
 from .errors import ExcludedQuadricError
 from .pencil import CharacteristicPolynomial, characteristic_polynomial
 from .quadric import Quadric

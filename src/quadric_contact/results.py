@@ -47,7 +47,7 @@ class Region(StrEnum):
         return {Region.R_MINUS: Region.R_PLUS, Region.R_PLUS: Region.R_MINUS}.get(self, self)
 
 
-def _frac(x: Any) -> Any:
+def _json_number(x: Any) -> Any:
     if isinstance(x, Fraction):
         return str(x) if x.denominator != 1 else int(x)
     return x
@@ -57,10 +57,10 @@ def _poly_dict(P: CharacteristicPolynomial) -> dict[str, Any]:
     d2, d3, d4 = P.deltas()
     return {
         "polynomial": str(P),
-        "coefficients": [_frac(c) for c in P.coefficients],
-        "delta2": _frac(d2),
-        "delta3": _frac(d3),
-        "delta4": _frac(d4),
+        "coefficients": [_json_number(c) for c in P.coefficients],
+        "delta2": _json_number(d2),
+        "delta3": _json_number(d3),
+        "delta4": _json_number(d4),
         "roots": P.structure.describe(),
         "root_signs": P.signs.pattern,
         "root_signs_method": P.signs.method,
@@ -321,8 +321,8 @@ class PlaneSideResult:
             "tangent": self.tangent,
             "decided_by": self.decided_by,
             "reason": self.reason,
-            "c3_squared_minus_4_c4_c2": _frac(self.discriminant),
-            "center_value": _frac(self.center_value),
+            "c3_squared_minus_4_c4_c2": _json_number(self.discriminant),
+            "center_value": _json_number(self.center_value),
             **_poly_dict(self.polynomial),
         }
 

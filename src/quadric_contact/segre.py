@@ -27,8 +27,9 @@ from typing import Any
 
 import flint
 
-from .algebraic import RealAlgebraic, _fmpq, _monic, real_roots
+from .algebraic import RealAlgebraic, real_roots
 from .pencil import as_quadric
+from .rational import fmpq_of, monic
 
 __all__ = ["SegreGroup", "SegreSymbol", "segre_symbol"]
 
@@ -109,7 +110,7 @@ class SegreSymbol:
 
 def _pencil(E: Any, Q: Any) -> list[list[Any]]:
     lam = flint.fmpq_poly([0, 1])
-    return [[lam * _fmpq(E[i, j]) + _fmpq(Q[i, j]) for j in range(4)] for i in range(4)]
+    return [[lam * fmpq_of(E[i, j]) + fmpq_of(Q[i, j]) for j in range(4)] for i in range(4)]
 
 
 def _det(M: list[list[Any]]) -> Any:
@@ -137,7 +138,7 @@ def _gcd_minors(M: list[list[Any]], k: int) -> Any:
                 g = d if g.is_zero() else g.gcd(d)
                 if g.degree() == 0:
                     return flint.fmpq_poly([1])
-    return _monic(g) if not g.is_zero() else g
+    return monic(g) if not g.is_zero() else g
 
 
 def _multiplicity(f: Any, p: Any) -> int:
@@ -188,12 +189,12 @@ def segre_symbol(E: Any, Q: Any) -> SegreSymbol:
         from .errors import DegeneratePencilError
 
         raise DegeneratePencilError("det(lambda*E + Q) vanishes identically: the pencil is singular", (e, q))
-    D.append(_monic(det))
+    D.append(monic(det))
     inv = [D[k] / D[k - 1] for k in range(1, 5)]
     groups: list[SegreGroup] = []
     _, factors = D[4].factor()
     for f, _m in factors:
-        p = _monic(flint.fmpq_poly(f))
+        p = monic(flint.fmpq_poly(f))
         blocks = tuple(b for b in (_multiplicity(inv[k], p) for k in (3, 2, 1, 0)) if b > 0)
         reals = real_roots(p)
         name = str(p)

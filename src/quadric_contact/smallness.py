@@ -50,155 +50,32 @@ kept in :attr:`SmallnessReport.paper_small`.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
-import flint
-
-from .algebraic import RealAlgebraic, _fmpq, algebraic_value, workprec
+from .algebraic import RealAlgebraic, algebraic_value
 from .classification import TABLE_1_KINDS, QuadricKind
 from .errors import ExcludedQuadricError, NotANumberError, ShapeError, UndecidedError
 from .invariants import QuadricInvariants, invariants
 from .pencil import as_quadric
+from .precision import working_precision
 from .quadric import Quadric
+from .quantity import EXACT, Quantity, compare_quantities, sorted_desc
+from .rational import to_fraction
 
 __all__ = [
     "Condition",
     "SmallnessReport",
-    "printed_table_2",
+    "ellipsoid_axes_squared",
+    "row_sides",
     "smallness",
     "table_1",
+    "table_2_parameters",
 ]
 
 K = QuadricKind
-
-# -- exact quantities --------------------------------------------------------------------
-
-
-class _Quantity:
-    """A rational function of real algebraic numbers, evaluated lazily:
-    certified balls for quick decisions, an exact RealAlgebraic on demand."""
-
-    __slots__ = ("_exact", "args", "display", "fn")
-
-    def __init__(
-        self,
-        args: tuple[RealAlgebraic, ...],
-        fn: Callable[[Sequence[Any], Callable[[Fraction], Any]], Any],
-        display: Callable[[], Any],
-    ) -> None:
-        self.args = args
-        self.fn = fn
-        self.display = display
-        self._exact: RealAlgebraic | None = None
-
-    @classmethod
-    def of(cls, value: Any) -> _Quantity:
-        if isinstance(value, _Quantity):
-            return value
-        if isinstance(value, RealAlgebraic) and not value.is_rational:
-            return cls((value,), lambda v, c: v[0], value.to_sympy)
-        q = value.as_fraction() if isinstance(value, RealAlgebraic) else Fraction(value)
-
-        def show() -> Any:
-            import sympy
-
-            return sympy.Rational(q.numerator, q.denominator)
-
-        return cls((), lambda v, c: c(q), show)
-
-    def _combine(
-        self, other: Any, op: Callable[[Any, Any], Any], sym: Callable[[Any, Any], Any]
-    ) -> _Quantity:
-        o = _Quantity.of(other)
-        args = list(self.args)
-        keys = [(a.minpoly, a.index) for a in args]
-        idx_o = []
-        for a in o.args:
-            k = (a.minpoly, a.index)
-            if k in keys:
-                idx_o.append(keys.index(k))
-            else:
-                keys.append(k)
-                args.append(a)
-                idx_o.append(len(args) - 1)
-        n_self = len(self.args)
-        f1, f2 = self.fn, o.fn
-
-        def fn(v: Sequence[Any], c: Callable[[Fraction], Any]) -> Any:
-            return op(f1(v[:n_self], c), f2([v[i] for i in idx_o], c))
-
-        d1, d2 = self.display, o.display
-        return _Quantity(tuple(args), fn, lambda: sym(d1(), d2()))
-
-    def __add__(self, o: Any) -> _Quantity:
-        return self._combine(o, lambda x, y: x + y, lambda x, y: x + y)
-
-    def __sub__(self, o: Any) -> _Quantity:
-        return self._combine(o, lambda x, y: x - y, lambda x, y: x - y)
-
-    def __mul__(self, o: Any) -> _Quantity:
-        return self._combine(o, lambda x, y: x * y, lambda x, y: x * y)
-
-    def __truediv__(self, o: Any) -> _Quantity:
-        return self._combine(o, lambda x, y: x / y, lambda x, y: x / y)
-
-    def __rtruediv__(self, o: Any) -> _Quantity:
-        return _Quantity.of(o) / self
-
-    def __rmul__(self, o: Any) -> _Quantity:
-        return _Quantity.of(o) * self
-
-    def __neg__(self) -> _Quantity:
-        return _Quantity.of(0) - self
-
-    def __pow__(self, n: int) -> _Quantity:
-        f = self.fn
-        d = self.display
-        return _Quantity(self.args, lambda v, c: f(v, c) ** n, lambda: d() ** n)
-
-    # -- evaluation ---------------------------------------------------------------
-
-    def ball(self, bits: int) -> Any:
-        with workprec(bits):
-            vals = [a.enclosure(bits) for a in self.args]
-            return self.fn(vals, lambda q: flint.arb(_fmpq(q)))
-
-    def exact(self) -> RealAlgebraic:
-        if self._exact is None:
-            f = self.fn
-
-            def run(*vals: Any, const: Callable[[Fraction], Any] = Fraction) -> Any:
-                return f(vals, const)
-
-            run.takes_const = True  # type: ignore[attr-defined]
-            self._exact = algebraic_value(run, self.args)
-        return self._exact
-
-    def is_rational(self) -> bool:
-        return not self.args
-
-    def sympy(self) -> Any:
-        return self.display()
-
-
-def _compare(x: _Quantity, y: _Quantity) -> int:
-    """Exact sign of ``x - y``: certified balls first, exact algebraic numbers if needed."""
-    if x.is_rational() and y.is_rational():
-        a = x.fn([], Fraction)
-        b = y.fn([], Fraction)
-        return (a > b) - (a < b)
-    for bits in (64, 160):
-        d = x.ball(bits) - y.ball(bits)
-        if d > 0:
-            return 1
-        if d < 0:
-            return -1
-    ex, ey = x.exact(), y.exact()
-    return (ex > ey) - (ex < ey)
-
 
 # -- conditions and reports --------------------------------------------------------------
 
@@ -232,8 +109,8 @@ class Condition:
     holds: bool
     source: str
     erratum: str | None
-    lhs_squared: _Quantity = field(repr=False, compare=False)
-    rhs_squared: _Quantity = field(repr=False, compare=False)
+    lhs_squared: Quantity = field(repr=False, compare=False)
+    rhs_squared: Quantity = field(repr=False, compare=False)
 
     @property
     def lhs(self) -> Any:
@@ -267,7 +144,7 @@ class Condition:
         """``side`` (``"lhs"`` or ``"rhs"``) to ``digits`` significant digits (certified ball arithmetic)."""
         q = self.lhs_squared if side == "lhs" else self.rhs_squared
         bits = int(digits * 3.33) + 32
-        with workprec(bits):
+        with working_precision(bits):
             v = q.ball(bits)
             return v.sqrt().str(digits, radius=False)
 
@@ -367,7 +244,7 @@ class SmallnessReport:
         """Decimal value of a parameter (``"a"``, ``"alpha"``, ...)."""
         q = self.parameters[name]
         bits = int(digits * 3.33) + 32
-        with workprec(bits):
+        with working_precision(bits):
             return q.ball(bits).sqrt().str(digits, radius=False)
 
     def to_dict(self) -> dict[str, Any]:
@@ -415,26 +292,26 @@ _T2 = {
 
 def _size(
     lhs: str,
-    l2: _Quantity,
+    l2: Quantity,
     rhs: str,
-    r2: _Quantity,
+    r2: Quantity,
     t2: str,
     source: str = "Table 1",
     erratum: str | None = None,
 ) -> Condition:
-    return Condition(f"{lhs} >= {rhs}", t2, ">=", _compare(l2, r2) >= 0, source, erratum, l2, r2)
+    return Condition(f"{lhs} >= {rhs}", t2, ">=", compare_quantities(l2, r2) >= 0, source, erratum, l2, r2)
 
 
 def _curv(
     lhs: str,
-    l2: _Quantity,
+    l2: Quantity,
     rhs: str,
-    r2: _Quantity,
+    r2: Quantity,
     t2: str,
     source: str = "Table 1",
     erratum: str | None = None,
 ) -> Condition:
-    return Condition(f"{lhs} <= {rhs}", t2, "<=", _compare(l2, r2) <= 0, source, erratum, l2, r2)
+    return Condition(f"{lhs} <= {rhs}", t2, "<=", compare_quantities(l2, r2) <= 0, source, erratum, l2, r2)
 
 
 Side = tuple[str, str, Any, str, Any, str, str, "str | None"]
@@ -442,7 +319,7 @@ Side = tuple[str, str, Any, str, Any, str, str, "str | None"]
 source, erratum)``; ``relation`` is ``">="`` (a size) or ``"<="`` (a curvature)."""
 
 
-def _row_sides(kind: QuadricKind, p: dict[str, Any], e: dict[str, Any]) -> tuple[list[Side], list[Side]]:
+def row_sides(kind: QuadricKind, p: dict[str, Any], e: dict[str, Any]) -> tuple[list[Side], list[Side]]:
     """The corrected Table 1 row for ``kind`` as squared sides: (conditions, enclosing alternative).
 
     ``p``: squared parameters ``a, b, c`` of Q (Table 1 standard form, with Table 1's
@@ -516,14 +393,14 @@ def _decided(side: Side) -> Condition:
 
 
 def _rows(
-    kind: QuadricKind, p: dict[str, _Quantity], e: dict[str, _Quantity]
+    kind: QuadricKind, p: dict[str, Quantity], e: dict[str, Quantity]
 ) -> tuple[list[Condition], list[Condition]]:
     """The corrected Table 1 row for ``kind``, decided exactly: (conditions, enclosing alternative)."""
-    conds, alt = _row_sides(kind, p, e)
+    conds, alt = row_sides(kind, p, e)
     return [_decided(c) for c in conds], [_decided(c) for c in alt]
 
 
-def _report(kind: QuadricKind, p: dict[str, _Quantity], e: dict[str, _Quantity]) -> SmallnessReport:
+def _report(kind: QuadricKind, p: dict[str, Quantity], e: dict[str, Quantity]) -> SmallnessReport:
     conds, alt = _rows(kind, p, e)
     inner = all(c.holds for c in conds)
     outer = bool(alt) and all(c.holds for c in alt)
@@ -555,13 +432,13 @@ _TABLE_1_PARAMS = {
 }
 
 
-def _square(value: Any, name: str) -> _Quantity:
+def _square(value: Any, name: str) -> Quantity:
     """The square of a positive parameter, exactly (int, Fraction, float, decimal
     string, sympy expression with a rational square, or RealAlgebraic)."""
     if isinstance(value, RealAlgebraic):
         if value.sign() <= 0:
             raise NotANumberError(f"parameter {name} must be positive, got {value}", value)
-        return _Quantity.of(algebraic_value(lambda x: x * x, [value]))
+        return Quantity.of(algebraic_value(lambda x: x * x, [value]))
     mod = type(value).__module__ or ""
     if mod.startswith("sympy"):
         import sympy
@@ -571,22 +448,11 @@ def _square(value: Any, name: str) -> _Quantity:
             raise NotANumberError(
                 f"parameter {name} must be a positive number with a rational square, got {value}", value
             )
-        return _Quantity.of(Fraction(int(sq.p), int(sq.q)))
-    from .rational import to_fraction
-
+        return Quantity.of(Fraction(int(sq.p), int(sq.q)))
     v = to_fraction(value)
     if v <= 0:
         raise NotANumberError(f"parameter {name} must be positive, got {value}", value)
-    return _Quantity.of(v * v)
-
-
-def _sorted_desc(qs: list[_Quantity]) -> list[_Quantity]:
-    import functools
-
-    def cmp(x: _Quantity, y: _Quantity) -> int:
-        return _compare(y, x)
-
-    return sorted(qs, key=functools.cmp_to_key(cmp))
+    return Quantity.of(v * v)
 
 
 def table_1(kind: QuadricKind | str, *, alpha: Any, beta: Any, gamma: Any, **params: Any) -> SmallnessReport:
@@ -648,10 +514,10 @@ def table_1(kind: QuadricKind | str, *, alpha: Any, beta: Any, gamma: Any, **par
             params,
         )
     sq = {n: _square(params[n], n) for n in names}
-    es = _sorted_desc([_square(alpha, "alpha"), _square(beta, "beta"), _square(gamma, "gamma")])
+    es = sorted_desc([_square(alpha, "alpha"), _square(beta, "beta"), _square(gamma, "gamma")])
     e = {"alpha": es[0], "beta": es[1], "gamma": es[2]}
     if kind is K.ELLIPSOID:
-        s = _sorted_desc([sq["a"], sq["b"], sq["c"]])
+        s = sorted_desc([sq["a"], sq["b"], sq["c"]])
         sq = {"a": s[0], "b": s[1], "c": s[2]}
     elif kind in (
         K.HYPERBOLOID_ONE_SHEET,
@@ -660,7 +526,7 @@ def table_1(kind: QuadricKind | str, *, alpha: Any, beta: Any, gamma: Any, **par
         K.ELLIPTIC_CYLINDER,
         K.HYPERBOLIC_PARABOLOID,
     ):
-        s = _sorted_desc([sq["a"], sq["b"]])
+        s = sorted_desc([sq["a"], sq["b"]])
         sq = {**sq, "a": s[0], "b": s[1]}
     return _report(kind, sq, e)
 
@@ -668,33 +534,7 @@ def table_1(kind: QuadricKind | str, *, alpha: Any, beta: Any, gamma: Any, **par
 # -- Table 2: general position ---------------------------------------------------------------
 
 
-class _ExactNumbers:
-    """The numbers the Table 2 formulas below are written in: exact quantities (balls
-    first, real algebraic numbers on demand).  :mod:`quadric_contact.family` passes
-    symbolic ones (rational functions of a family's parameters) with the same methods."""
-
-    @staticmethod
-    def of(value: Any) -> _Quantity:
-        return _Quantity.of(value)
-
-    @staticmethod
-    def rational(value: RealAlgebraic) -> Fraction:
-        """A rational eigenvalue (a rank-one quadratic part's only non-zero one: its trace)."""
-        return value.as_fraction()
-
-    @staticmethod
-    def sqrt(value: Fraction) -> _Quantity:
-        return _sqrt_rational(value)
-
-    @staticmethod
-    def sorted_desc(values: list[_Quantity]) -> list[_Quantity]:
-        return _sorted_desc(values)
-
-
-_EXACT = _ExactNumbers()
-
-
-def _ellipsoid_axes(inv: QuadricInvariants, num: Any = _EXACT) -> dict[str, Any]:
+def ellipsoid_axes_squared(inv: QuadricInvariants, num: Any = EXACT) -> dict[str, Any]:
     """Squared semi-axes of a real ellipsoid from its invariants (det < 0 sign)."""
     n1, n2, n3 = inv.eigenvalues  # increasing, positive
     Q_ = num.of
@@ -708,11 +548,7 @@ def _signed(eigs: Sequence[RealAlgebraic]) -> tuple[list[RealAlgebraic], list[Re
     return pos, neg, 3 - len(pos) - len(neg)
 
 
-def _sqrt_rational(q: Fraction) -> _Quantity:
-    return _Quantity.of(RealAlgebraic.sqrt(q))
-
-
-def _parameters(kind: QuadricKind, inv: Any, num: Any = _EXACT) -> dict[str, Any]:
+def table_2_parameters(kind: QuadricKind, inv: Any, num: Any = EXACT) -> dict[str, Any]:
     """Squared Table 1 parameters ``a, b, c`` of ``Q`` (canonical sign) from its
     invariants (Table 2, with the corrections of the module docstring), in the numbers ``num``."""
     pos, neg, _ = _signed(inv.eigenvalues)
@@ -810,198 +646,9 @@ def smallness(E: Any, Q: Any) -> SmallnessReport:
     """
     e, q = _normalized_pair(E, Q)
     kind = q.kind
-    return _report(kind, _parameters(kind, invariants(q)), _ellipsoid_axes(invariants(e)))
+    return _report(kind, table_2_parameters(kind, invariants(q)), ellipsoid_axes_squared(invariants(e)))
 
 
-# -- Table 2 as printed (for the readings of Example 6 and the errata) -------------------------
-
-
-@dataclass(frozen=True)
-class PrintedTable2:
-    """The quantities and conditions of one row of Table 2 exactly as printed.
-
-    ``quantities`` maps Table 2 names (``"a'"``, ``"d'"``, ``"L"``, ``"M"``,
-    ``"alpha'"``, ``"delta'"``, ...) to their squares; a printed formula
-    that yields a negative square makes the row undefined
-    (``conditions`` is then empty and ``undefined`` says why).
-    """
-
-    reading: QuadricKind
-    quantities: dict[str, _Quantity]
-    conditions: tuple[Condition, ...]
-    undefined: str | None = None
-
-    def value(self, name: str, digits: int = 17) -> str:
-        """Decimal value of a quantity (the square root of its stored square)."""
-        bits = int(digits * 3.33) + 32
-        with workprec(bits):
-            return self.quantities[name].ball(bits).sqrt().str(digits, radius=False)
-
-    def squared(self, name: str) -> RealAlgebraic:
-        return self.quantities[name].exact()
-
-    @property
-    def small(self) -> bool | None:
-        if self.undefined:
-            return None
-        return all(c.holds for c in self.conditions)
-
-
-def printed_table_2(E: Any, Q: Any, *, reading: QuadricKind | str | None = None) -> PrintedTable2:
-    """Evaluate one row of Table 2 *as printed*.
-
-    Parameters
-    ----------
-    E, Q : Quadric, matrix-like or equation
-    reading : QuadricKind or str, optional
-        The row to use; default the exact type of ``Q``.  Another row reads
-        ``Q`` as that type (Example 6 reads a hyperboloid with an eigenvalue
-        close to 0 as a hyperbolic paraboloid): the eigenvalues of ``Q00``
-        smallest in absolute value are taken as the zero ones, and the sign
-        of ``Q`` is chosen so that the remaining ones have the printed signs.
-
-    Returns
-    -------
-    PrintedTable2
-
-    Raises
-    ------
-    ExcludedQuadricError
-        ``reading`` (or the type of ``Q``) has no row in Table 2.
-
-    References
-    ----------
-    Table 2, Example 6.
-
-    Examples
-    --------
-    Example 6 read as a hyperbolic paraboloid: the paper prints
-    ``L = 2.00000169069926``, ``b = 0.9999998094301916`` and the maximal
-    curvature ``2/(L b^2) = 0.9999995357904882``, above the ellipsoid's
-    smallest curvature (about 0.416): not small.
-
-    >>> from fractions import Fraction
-    >>> from quadric_contact.paper import PRINTED
-    >>> E, Q = (
-    ...     [[Fraction(v) for v in row.split()] for row in PRINTED[f"Example 6 {name}"].split(";")]
-    ...     for name in "EQ"
-    ... )
-    >>> t = printed_table_2(E, Q, reading="hyperbolic paraboloid")
-    >>> t.value("L", 10), t.value("b'", 10)
-    ('2.000001691', '0.9999998094')
-    >>> [(c.decimal("lhs", 8), c.decimal("rhs", 8), c.holds) for c in t.conditions], t.small
-    ([('0.99999954', '0.41631601', False)], False)
-    """
-    e = as_quadric(E, "E").as_ellipsoid()
-    q = as_quadric(Q, "Q")
-    kind = QuadricKind(reading) if reading is not None else q.kind
-    if kind not in TABLE_1_KINDS:
-        raise ExcludedQuadricError(f"{kind.value} has no row in Table 2", q, kind=kind)
-    zeros = {
-        K.ELLIPTIC_PARABOLOID: 1,
-        K.HYPERBOLIC_PARABOLOID: 1,
-        K.ELLIPTIC_CYLINDER: 1,
-        K.HYPERBOLIC_CYLINDER: 1,
-        K.PARABOLIC_CYLINDER: 2,
-        K.PARALLEL_PLANES: 2,
-    }.get(kind, 0)
-    negs = {
-        K.HYPERBOLOID_ONE_SHEET: 1,
-        K.HYPERBOLOID_TWO_SHEETS: 1,
-        K.HYPERBOLIC_PARABOLOID: 1,
-        K.HYPERBOLIC_CYLINDER: 1,
-    }.get(kind, 0)
-    inv = invariants(q)
-    Q_ = _Quantity.of
-    # the eigenvalues used: drop the `zeros` smallest in absolute value
-    by_mag = sorted(inv.eigenvalues, key=lambda m: abs(float(m)))
-    used = by_mag[zeros:]
-    sign = 1
-    if sum(1 for m in used if m.sign() < 0) != negs:
-        sign = -1
-    if kind is K.HYPERBOLIC_PARABOLOID:
-        # printed: EV 1/a'^2, -1/b'^2 with a' >= b': the negative eigenvalue is the larger one
-        lo_m, hi_m = sorted(used, key=float)
-        if abs(float(hi_m)) > abs(float(lo_m)):
-            sign = -1
-    if kind is K.HYPERBOLIC_CYLINDER and -inv.K * sign / inv.J < 0:
-        sign = -sign
-    det, J, Kv, Jp = inv.det, inv.J, inv.K * sign, inv.J_prime
-    vals = sorted((Q_(m) if sign > 0 else -Q_(m) for m in used), key=lambda x: float(x.ball(64).mid()))
-    # vals increasing (signed, after normalisation)
-    quantities: dict[str, _Quantity] = {}
-    ea = invariants(e)
-    n1, n2, n3 = ea.eigenvalues
-    quantities["alpha'"] = 1 / Q_(n1)
-    quantities["beta'"] = 1 / Q_(n2)
-    quantities["gamma'"] = 1 / Q_(n3)
-    quantities["delta'"] = -quantities["alpha'"] * quantities["beta'"] * quantities["gamma'"] * Q_(ea.det)
-    undefined = None
-    if kind in (K.ELLIPSOID, K.HYPERBOLOID_ONE_SHEET, K.HYPERBOLOID_TWO_SHEETS):
-        if kind is K.ELLIPSOID:
-            m1, m2, m3 = vals
-            a2, b2, c2 = 1 / m1, 1 / m2, 1 / m3
-            d2 = -a2 * b2 * c2 * Q_(det)
-        else:
-            n, p1, p2 = vals
-            a2, b2, c2 = 1 / p1, 1 / p2, -1 / n
-            d2 = a2 * b2 * c2 * Q_(det) * (1 if kind is K.HYPERBOLOID_ONE_SHEET else -1)
-        quantities.update({"a'": a2, "b'": b2, "c'": c2, "d'": d2})
-    elif kind in (K.ELLIPTIC_PARABOLOID, K.HYPERBOLIC_PARABOLOID):
-        x, y = vals
-        if kind is K.ELLIPTIC_PARABOLOID:
-            quantities.update({"a'": 1 / x, "b'": 1 / y})
-        else:
-            quantities.update({"a'": 1 / y, "b'": -1 / x})
-        quantities["L"] = Q_(-4 * det / J)
-    elif kind in (K.ELLIPTIC_CYLINDER, K.HYPERBOLIC_CYLINDER):
-        x, y = vals
-        if kind is K.ELLIPTIC_CYLINDER:
-            quantities.update({"a'": 1 / x, "b'": 1 / y})
-        else:
-            quantities.update({"a'": 1 / y, "b'": -1 / x})
-        quantities["M"] = Q_(-Kv / J)
-    elif kind is K.PARABOLIC_CYLINDER:
-        (x,) = vals
-        quantities["a'"] = 1 / x
-        quantities["d'"] = Q_(4 * Kv) * quantities["a'"]  # printed: d'^2 = 4 K a'^2
-    else:
-        (x,) = vals
-        quantities["a'"] = 1 / x
-        quantities["d'"] = -quantities["a'"] * Q_(Jp)
-    for name, v in quantities.items():
-        if _compare(v, Q_(0)) <= 0:
-            undefined = f"the printed formula gives {name}^2 = {v.ball(64)} <= 0"
-            return PrintedTable2(kind, quantities, (), undefined)
-    g = quantities
-    kE2 = g["gamma'"] / (g["delta'"] * g["alpha'"] ** 2)
-    da2 = g["delta'"] * g["alpha'"]
-    conds: list[Condition] = []
-    t = "Table 2"
-
-    def size(name: str, l2: _Quantity) -> None:
-        conds.append(Condition(name, name, ">=", _compare(l2, da2) >= 0, t, None, l2, da2))
-
-    def curv(name: str, l2: _Quantity) -> None:
-        conds.append(Condition(name, name, "<=", _compare(l2, kE2) <= 0, t, None, l2, kE2))
-
-    rhs = "gamma'/(delta' alpha'^2)"
-    if kind is K.ELLIPSOID:
-        size("d'c' >= delta' alpha'", g["d'"] * g["c'"])
-        curv(f"a'/(d'c'^2) <= {rhs}", g["a'"] / (g["d'"] * g["c'"] ** 2))
-    elif kind is K.HYPERBOLOID_ONE_SHEET:
-        size("b'd' >= delta' alpha'", g["b'"] * g["d'"])
-        curv(f"a'/(d'c'^2) <= {rhs}", g["a'"] / (g["d'"] * g["c'"] ** 2))
-    elif kind is K.HYPERBOLOID_TWO_SHEETS:
-        size("c'd' >= delta' alpha'", g["c'"] * g["d'"])
-        curv(f"c'/(d'b'^2) <= {rhs}", g["c'"] / (g["d'"] * g["b'"] ** 2))
-    elif kind in (K.ELLIPTIC_PARABOLOID, K.HYPERBOLIC_PARABOLOID):
-        curv(f"2/(L b'^2) <= {rhs}", 4 / (g["L"] * g["b'"] ** 2))
-    elif kind in (K.ELLIPTIC_CYLINDER, K.HYPERBOLIC_CYLINDER):
-        size("M b' >= delta' alpha'", g["M"] * g["b'"])
-        curv(f"a'/(M b'^2) <= {rhs}", g["a'"] / (g["M"] * g["b'"] ** 2))
-    elif kind is K.PARABOLIC_CYLINDER:
-        curv(f"2/(d'a'^2) <= {rhs}", 4 / (g["d'"] * g["a'"] ** 2))
-    else:
-        size("a'd' >= alpha' delta'", g["a'"] * g["d'"])
-    return PrintedTable2(kind, quantities, tuple(conds), undefined)
+# The names modes/smallness_objects.py imports until the number modes are rehomed.
+_ellipsoid_axes = ellipsoid_axes_squared
+_parameters = table_2_parameters

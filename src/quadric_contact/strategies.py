@@ -2,7 +2,8 @@
 
 Everything is built from small rationals and rational rotations (rational
 quaternions), so every generated object is exact and shrinks to a small,
-readable counterexample.  Requires ``hypothesis`` (a test dependency).
+readable counterexample.  ``hypothesis`` is a dependency of the package, so
+the module imports after a plain ``pip install``.
 
 >>> from hypothesis import given
 >>> from quadric_contact.strategies import ellipsoids

@@ -27,7 +27,8 @@ from fractions import Fraction
 from typing import Any
 
 from .errors import MissingDependencyError, SceneError
-from .scene import MovingEllipsoid, Scene, parse_scene
+from .scene_model import MovingEllipsoid, Scene
+from .scene_toml import parse_scene
 from .simulate import simulate
 from .trajectory import Keyframes, Stationary
 

@@ -41,10 +41,11 @@ from typing import Any
 
 import flint
 
+from .algebraic import real_roots
 from .errors import SceneError, ShapeError
 from .motions import RigidMotion, rotation_from_quaternion
 from .quadric import Quadric
-from .rational import to_fraction
+from .rational import fmpq_of, fmpq_poly_of, to_fraction
 
 __all__ = [
     "Keyframes",
@@ -52,7 +53,6 @@ __all__ = [
     "PolynomialMotion",
     "Stationary",
     "Trajectory",
-    "fraction_to_fmpq",
     "poly_eval",
 ]
 
@@ -60,17 +60,9 @@ Vec3 = tuple[Fraction, Fraction, Fraction]
 Poly = Any  # flint.fmpq_poly
 
 
-def fraction_to_fmpq(x: Fraction) -> Any:
-    return flint.fmpq(x.numerator, x.denominator)
-
-
-def _poly(coeffs: Sequence[Fraction]) -> Any:
-    return flint.fmpq_poly([fraction_to_fmpq(c) for c in coeffs]) if coeffs else flint.fmpq_poly([])
-
-
 def poly_eval(p: Any, t: Fraction) -> Fraction:
     """Exact value of an ``fmpq_poly`` at a rational ``t``."""
-    v = p(fraction_to_fmpq(t))
+    v = p(fmpq_of(t))
     return Fraction(int(v.p), int(v.q))
 
 
@@ -143,7 +135,7 @@ class MotionSegment:
         """
         one = flint.fmpq_poly([1])
         zero = flint.fmpq_poly([])
-        c0 = [fraction_to_fmpq(to_fraction(v)) for v in pivot]
+        c0 = [fmpq_of(to_fraction(v)) for v in pivot]
         if self.quaternion is None:
             Mt = [[one if i == j else zero for j in range(3)] for i in range(3)]  # M^T = I
             n = one
@@ -163,7 +155,7 @@ class MotionSegment:
             shift = n * c0[i] - sum((Mt[i][k] * p[k] for k in range(3)), zero)
             G.append([Mt[i][0], Mt[i][1], Mt[i][2], shift])
         G.append([zero, zero, zero, n])
-        E = [[flint.fmpq_poly([fraction_to_fmpq(E0[i, j])]) for j in range(4)] for i in range(4)]
+        E = [[flint.fmpq_poly([fmpq_of(E0[i, j])]) for j in range(4)] for i in range(4)]
         # T = E0 G, result = G^T T
         T = [[sum((E[i][k] * G[k][j] for k in range(4)), zero) for j in range(4)] for i in range(4)]
         out = []
@@ -207,7 +199,7 @@ class Stationary(Trajectory):
     """The ellipsoid stays where it is."""
 
     def segments(self, t0: Fraction, t1: Fraction, origin: Vec3) -> list[MotionSegment]:
-        return [MotionSegment(t0, t1, tuple(_poly([c]) for c in origin))]
+        return [MotionSegment(t0, t1, tuple(fmpq_poly_of([c]) for c in origin))]
 
     def describe(self) -> str:
         return "stationary"
@@ -222,8 +214,6 @@ def _check_quaternion_nonzero(q: Sequence[Any], t0: Fraction, t1: Fraction, what
         raise SceneError(f"{what}: the quaternion is identically zero", q)
     if g.degree() <= 0:
         return
-    from .events import real_roots
-
     roots = real_roots(g, t0, t1, closed=True)
     if roots:
         raise SceneError(
@@ -299,10 +289,10 @@ class PolynomialMotion(Trajectory):
         return cls(tuple((-c * s, c) for c in v))
 
     def segments(self, t0: Fraction, t1: Fraction, origin: Vec3) -> list[MotionSegment]:
-        center = tuple(_poly([origin[i]]) + _poly(self.translation[i]) for i in range(3))
+        center = tuple(fmpq_poly_of([origin[i]]) + fmpq_poly_of(self.translation[i]) for i in range(3))
         quat = None
         if self.quaternion is not None:
-            quat = tuple(_poly(c) for c in self.quaternion)
+            quat = tuple(fmpq_poly_of(c) for c in self.quaternion)
             _check_quaternion_nonzero(quat, t0, t1, "polynomial rotation")
         return [MotionSegment(t0, t1, center, quat)]
 
@@ -378,8 +368,8 @@ class Keyframes(Trajectory):
             quats.append(q)
 
         def rest(a: Fraction, b: Fraction, i: int) -> MotionSegment:
-            c = tuple(_poly([v]) for v in keys[i].position)
-            q = tuple(_poly([v]) for v in quats[i]) if self.rotates else None
+            c = tuple(fmpq_poly_of([v]) for v in keys[i].position)
+            q = tuple(fmpq_poly_of([v]) for v in quats[i]) if self.rotates else None
             return MotionSegment(a, b, c, q)
 
         if t0 < keys[0].time:
@@ -390,16 +380,16 @@ class Keyframes(Trajectory):
             if lo >= hi:
                 continue
             span = b - a
-            tpoly = flint.fmpq_poly([fraction_to_fmpq(-a / span), fraction_to_fmpq(1 / span)])  # s(t)
+            tpoly = flint.fmpq_poly([fmpq_of(-a / span), fmpq_of(1 / span)])  # s(t)
             center = tuple(
-                _poly([keys[i].position[j]])
-                + tpoly * fraction_to_fmpq(keys[i + 1].position[j] - keys[i].position[j])
+                fmpq_poly_of([keys[i].position[j]])
+                + tpoly * fmpq_of(keys[i + 1].position[j] - keys[i].position[j])
                 for j in range(3)
             )
             quat = None
             if self.rotates:
                 quat = tuple(
-                    _poly([quats[i][j]]) + tpoly * fraction_to_fmpq(quats[i + 1][j] - quats[i][j])
+                    fmpq_poly_of([quats[i][j]]) + tpoly * fmpq_of(quats[i + 1][j] - quats[i][j])
                     for j in range(4)
                 )
             segs.append(MotionSegment(lo, hi, center, quat))
