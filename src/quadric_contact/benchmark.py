@@ -321,7 +321,7 @@ def peer_numpy_eigvals(E: np.ndarray, Q: np.ndarray, tol: float = EIG_TOL) -> np
 
 def _float_coefficients(E: np.ndarray, Q: np.ndarray) -> np.ndarray:
     from ._generated import formulas
-    from .codegen import ENTRY_INDICES
+    from .entries import ENTRY_INDICES
 
     e = [E[:, i, j] for i, j in ENTRY_INDICES]
     q = [Q[:, i, j] for i, j in ENTRY_INDICES]
