@@ -39,10 +39,11 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
+from quadric_contact.modes.smallness_arrays import smallness_codes  # noqa: E402
+
 from quadric_contact import Quadric, RigidMotion  # noqa: E402
 from quadric_contact.batch import transversal_contact_batch  # noqa: E402
 from quadric_contact.modes import BallMode, CertifiedMode, FilterMode, FloatMode  # noqa: E402
-from quadric_contact.modes.smallness_arrays import smallness_codes  # noqa: E402
 from quadric_contact.smallness import smallness  # noqa: E402
 
 

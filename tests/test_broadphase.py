@@ -22,7 +22,7 @@ from quadric_contact.broadphase import (
     swept_box,
 )
 from quadric_contact.manybody import many_body_scene, totem
-from quadric_contact.plane import plane_side
+from quadric_contact.plane import plane_side_exact as plane_side
 from quadric_contact.results import Region
 from quadric_contact.scene import builtin_scene, builtin_scene_names
 from quadric_contact.simulate import simulate

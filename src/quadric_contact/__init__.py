@@ -25,6 +25,7 @@ from .errors import (
     ShapeError,
     UndecidedError,
 )
+from .family import Family, family
 from .geometric import GeometricDecision, decide_geometrically
 from .invariants import QuadricInvariants, invariants
 from .modes import ContactCode, ContactKindCode, CriterionCode, RegionCode, SmallnessCode
@@ -60,6 +61,7 @@ __all__ = [
     "DegeneratePencilError",
     "EquationError",
     "ExcludedQuadricError",
+    "Family",
     "GeometricDecision",
     "NonFiniteError",
     "NotANumberError",
@@ -91,6 +93,7 @@ __all__ = [
     "corollary_10",
     "decide_geometrically",
     "discrimination_sequence",
+    "family",
     "invariants",
     "paper_deltas",
     "plane_side",

@@ -56,7 +56,7 @@ class SeparationCertificate:
     >>> from quadric_contact import Quadric, characteristic_polynomial
     >>> c = separation_certificate(characteristic_polynomial(Quadric.sphere(1), Quadric.sphere(1, (3, 0, 0))))
     >>> c.region, str(c)
-    (<Region.R_PLUS: 'R+'>, 'the member 3/2 E + Q is positive definite: X^T Q X > 0 on E (R+, strictly)')
+    (<Region.R_PLUS: 'R+'>, 'the member 3 E + Q is positive definite: X^T Q X > 0 on E (R+, strictly)')
     """
 
     region: Region | None

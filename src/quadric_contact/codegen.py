@@ -60,9 +60,11 @@ from __future__ import annotations
 
 import argparse
 import ast
+import itertools
 import math
 import sys
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -575,13 +577,18 @@ def emit_magnitude_function(fdef: ast.FunctionDef) -> list[str]:
     return out
 
 
+EXACT_INTEGER_MAX = 2**53
+"""Integers up to this magnitude are binary64 numbers; a larger literal may be rounded."""
+
+
 def rounding_counts(fdef: ast.FunctionDef, input_roundings: int = 0) -> list[tuple[int, int]]:
     """``(N, degree)`` for every output of a generated straight-line function.
 
     ``N`` is the largest number of rounded operations met on a path from the
     inputs to the output, counting ``input_roundings`` for each input (1 when
-    the inputs are themselves rounded values of exact numbers): a sum or
-    difference counts ``max(N_left, N_right) + 1``, a product
+    the inputs are themselves rounded values of exact numbers) and one for an
+    integer constant beyond :data:`EXACT_INTEGER_MAX` (binary64 may round it): a
+    sum or difference counts ``max(N_left, N_right) + 1``, a product
     ``N_left + N_right + 1`` (every product of the expanded polynomial picks up
     the rounding factors of both operands), a negation nothing.  The degree is
     the total degree of the output as a polynomial in the inputs.
@@ -593,7 +600,8 @@ def rounding_counts(fdef: ast.FunctionDef, input_roundings: int = 0) -> list[tup
         if isinstance(node, ast.Name):
             return env[node.id]
         if isinstance(node, ast.Constant):
-            return (0, 0)
+            big = isinstance(node.value, int) and abs(node.value) > EXACT_INTEGER_MAX
+            return (1 if big else 0, 0)
         if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
             return walk(node.operand)
         if isinstance(node, ast.BinOp):
@@ -607,6 +615,206 @@ def rounding_counts(fdef: ast.FunctionDef, input_roundings: int = 0) -> list[tup
     for target, expr in assignments:
         env[target] = walk(expr)
     return [env[r] for r in returned]
+
+
+# -- programs for any polynomial (parametric families) ------------------------------------
+#
+# The families of :mod:`quadric_contact.family` need the same kind of code for polynomials
+# known only at run time (the coefficients of P, the Deltas, ... as polynomials in the
+# family's parameters): a straight-line function in the grammar above, with its magnitude
+# companion and its rounding counts, so that the float filter's error bounds
+# (:mod:`quadric_contact.modes.errorbounds`) apply to it unchanged.  Each polynomial is put
+# in nested Horner form (one variable after the other) and the subexpressions the outputs
+# share are computed once (sympy's ``cse``).
+
+
+def horner_form(terms: dict[tuple[int, ...], int], symbols: Sequence[sp.Symbol]) -> sp.Expr:
+    """The polynomial ``sum c * prod symbols**e`` in nested Horner form.
+
+    Horner's rule in the first symbol, whose coefficients are polynomials in the
+    others, each in Horner form in turn; a gap in the exponents becomes a power
+    (printed as a product).
+
+    Examples
+    --------
+    >>> u, w = sp.symbols("u w")
+    >>> horner_form({(2, 0): 3, (1, 1): -2, (0, 0): 5}, (u, w))
+    u*(3*u - 2*w) + 5
+    """
+    if not terms:
+        return sp.Integer(0)
+    if not symbols:
+        return sp.Integer(sum(terms.values()))
+    x, rest = symbols[0], symbols[1:]
+    groups: dict[int, dict[tuple[int, ...], int]] = {}
+    for mono, c in terms.items():
+        if c:
+            groups.setdefault(mono[0], {})[mono[1:]] = c
+    if not groups:
+        return sp.Integer(0)
+    exponents = sorted(groups, reverse=True)
+    acc = horner_form(groups[exponents[0]], rest)
+    for prev, nxt in itertools.pairwise(exponents):
+        acc = acc * x ** (prev - nxt) + horner_form(groups[nxt], rest)
+    return acc * x ** exponents[-1]
+
+
+def _python_code(expr: sp.Expr) -> str:
+    """Python text of an integer polynomial expression over ``+ - *`` (powers become products)."""
+    if expr.is_Symbol:
+        return str(expr)
+    if expr.is_Integer:
+        return str(int(expr))
+    if expr.is_Add:
+        terms = expr.as_ordered_terms()
+        terms = [t for t in terms if t.as_coeff_Mul()[0] > 0] + [t for t in terms if t.as_coeff_Mul()[0] < 0]
+        out = ""
+        for term in terms:
+            if out and term.as_coeff_Mul()[0] < 0:
+                out += " - " + _python_code(-term)
+            else:
+                out += (" + " if out else "") + _python_code(term)
+        return f"({out})"
+    if expr.is_Mul:
+        c, rest = expr.as_coeff_Mul()
+        if c < 0:
+            return f"(-{_python_code(-expr)})"
+        return "(" + "*".join(_python_code(f) for f in expr.as_ordered_factors()) + ")"
+    if expr.is_Pow and expr.exp.is_Integer and int(expr.exp) >= 1:
+        return "(" + "*".join([_python_code(expr.base)] * int(expr.exp)) + ")"
+    raise AssertionError(f"not an integer polynomial over + - *: {expr}")
+
+
+@dataclass(frozen=True)
+class Program:
+    """A straight-line program for polynomials with integer coefficients, and what the
+    float filter needs to bound its rounding errors.
+
+    Attributes
+    ----------
+    name : str
+        The function's name; the magnitude companion is ``{name}_magnitude``.
+    args, outputs : tuple of str
+        Argument and output names.
+    source : str
+        The text of both functions (value and magnitude companion), in the grammar of
+        the generated modules: assignments over ``+ - *`` with integer literals.
+    degree, value_counts, magnitude_counts : tuple of int
+        Per output: total degree, rounding counts of the value program (exact
+        inputs) and of the magnitude companion (see :func:`rounding_counts`).
+    path_bound : int
+        The largest value any assignment of the magnitude companion takes at all
+        ones (exact): with non-zero inputs at most ``X >= 1`` in magnitude, every
+        intermediate of either program is at most ``path_bound * X**max(degree)``
+        before rounding.
+    operations : int
+        Binary operations in the value program.
+    """
+
+    name: str
+    args: tuple[str, ...]
+    outputs: tuple[str, ...]
+    source: str
+    degree: tuple[int, ...]
+    value_counts: tuple[int, ...]
+    magnitude_counts: tuple[int, ...]
+    path_bound: int
+    operations: int
+
+
+def _interpret(fdef: ast.FunctionDef, values: Sequence[Any]) -> tuple[dict[str, Any], list[Any]]:
+    """Run a straight-line function of the grammar above on ``values`` without compiling
+    it: every assignment, and the outputs."""
+    args, assignments, returned = _straight_line(fdef)
+    env: dict[str, Any] = dict(zip(args, values, strict=True))
+
+    def walk(node: ast.expr) -> Any:
+        if isinstance(node, ast.Name):
+            return env[node.id]
+        if isinstance(node, ast.Constant):
+            return node.value
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
+            return -walk(node.operand)
+        if isinstance(node, ast.BinOp):
+            left, right = walk(node.left), walk(node.right)
+            if isinstance(node.op, ast.Mult):
+                return left * right
+            if isinstance(node.op, ast.Add):
+                return left + right
+            if isinstance(node.op, ast.Sub):
+                return left - right
+        raise AssertionError(f"unexpected syntax: {ast.dump(node)}")
+
+    for target, expr in assignments:
+        env[target] = walk(expr)
+    return env, [env[r] for r in returned]
+
+
+def emit_program(
+    name: str,
+    args: Sequence[str],
+    outputs: Sequence[tuple[str, dict[tuple[int, ...], int]]],
+    doc: str = "Generated by quadric_contact.codegen.emit_program.",
+) -> Program:
+    """Straight-line code (nested Horner form, shared subexpressions) for polynomials with
+    integer coefficients, with its magnitude companion and rounding counts.
+
+    Parameters
+    ----------
+    name : str
+        Name of the emitted function.
+    args : sequence of str
+        Argument names (identifiers chosen by the caller, never user text).
+    outputs : sequence of (str, dict)
+        Output name and polynomial: exponent tuple over ``args`` to integer coefficient.
+    doc : str
+        The docstring.
+
+    Returns
+    -------
+    Program
+
+    Examples
+    --------
+    >>> p = emit_program("f", ("p0", "p1"), [("a", {(2, 0): 1, (0, 1): -3}), ("b", {(2, 0): 2})])
+    >>> for line in p.source.splitlines()[2:6]:
+    ...     print(line)
+        t0 = p0*p0
+        a = t0 - 3*p1
+        b = 2*t0
+        return (a, b)
+    >>> p.degree, p.value_counts, p.magnitude_counts
+    ((2, 2), (2, 2), (2, 2))
+    """
+    symbols = [sp.Symbol(a) for a in args]
+    taken = set(args) | {o for o, _ in outputs}
+    temps = (sp.Symbol(f"t{i}") for i in itertools.count() if f"t{i}" not in taken)
+    forms = [horner_form(poly, symbols) for _, poly in outputs]
+    replacements, reduced = sp.cse(forms, symbols=temps, optimizations=None)
+    lines = [f"def {name}({', '.join(args)}):", f'    """{doc}"""']
+    for target, expr in [*replacements, *zip((sp.Symbol(o) for o, _ in outputs), reduced, strict=True)]:
+        node = ast.parse(_python_code(expr), mode="eval").body
+        lines.append(f"    {target} = {_print_expr(node)}")
+    names = [o for o, _ in outputs]
+    lines.append(f"    return ({', '.join(names)}{',' if len(names) == 1 else ''})")
+    fdef = _functions("\n".join(lines))[name]
+    magnitude = emit_magnitude_function(fdef)
+    mag_def = _functions("\n".join(magnitude))[f"{name}_magnitude"]
+    value_counts = rounding_counts(fdef, 0)
+    mag_counts = rounding_counts(mag_def, 0)
+    env, _ = _interpret(mag_def, [1] * len(args))
+    operations = sum(isinstance(n, ast.BinOp) for n in ast.walk(fdef))
+    return Program(
+        name=name,
+        args=tuple(args),
+        outputs=tuple(names),
+        source="\n".join([*lines, "", "", *magnitude, ""]),
+        degree=tuple(d for _, d in value_counts),
+        value_counts=tuple(n for n, _ in value_counts),
+        magnitude_counts=tuple(n for n, _ in mag_counts),
+        path_bound=max(abs(int(v)) for v in env.values()),
+        operations=operations,
+    )
 
 
 #: Functions whose rounding counts and magnitude companions are emitted:
@@ -830,10 +1038,8 @@ def verify_row_bound() -> None:
     Q, qs = symmetric_matrix("q")
     sym = {X[r][s]: E[r, s] for r in range(4) for s in range(4)}
     sym.update({Y[r][s]: Q[r, s] for r in range(4) for s in range(4)})
-    namespace: dict[str, Any] = {}
-    exec(compile("\n".join(emit_magnitude_function(_functions(emit_formulas())["pencil_coefficients"])),
-                 "<magnitude>", "exec"), namespace)  # fmt: skip
-    magnitude = namespace["pencil_coefficients_magnitude"](*es, *qs)
+    mag_text = "\n".join(emit_magnitude_function(_functions(emit_formulas())["pencil_coefficients"]))
+    _, magnitude = _interpret(_functions(mag_text)["pencil_coefficients_magnitude"], [*es, *qs])
     for k in range(5):
         gap = sp.Poly(sp.expand(general[k].xreplace(sym) - magnitude[k]), *es, *qs)
         if any(c < 0 for c in gap.coeffs()):
@@ -851,13 +1057,9 @@ def verify_minor_row_bounds() -> None:
     R = ROW_SYMBOLS[0]
     args, minors = derive_leading_minors_3()
     A = sp.Matrix(3, 3, lambda i, j: sp.Symbol(f"a{min(i, j)}{max(i, j)}"))
-    namespace: dict[str, Any] = {}
     text = "\n".join(_emit_function("leading_minors_3", args, minors, ""))
-    exec(
-        compile("\n".join(emit_magnitude_function(_functions(text)["leading_minors_3"])), "<mag>", "exec"),
-        namespace,
-    )
-    magnitude = namespace["leading_minors_3_magnitude"](*args)
+    mag_text = "\n".join(emit_magnitude_function(_functions(text)["leading_minors_3"]))
+    _, magnitude = _interpret(_functions(mag_text)["leading_minors_3_magnitude"], list(args))
     for size, mag in ((2, magnitude[0]), (3, magnitude[1])):
         general = sp.Integer(0)
         rows = sp.Integer(0)

@@ -37,7 +37,13 @@ from .pencil import CharacteristicPolynomial, characteristic_polynomial
 from .quadric import Quadric
 from .results import Region, RegionResult
 
-__all__ = ["ROOT_SIGN_TABLE", "decide_region", "derive_root_sign_table", "relative_position_exact"]
+__all__ = [
+    "ROOT_SIGN_TABLE",
+    "decide_region",
+    "derive_root_sign_table",
+    "region_patterns",
+    "relative_position_exact",
+]
 
 K = QuadricKind
 ROOT_SIGN_TABLE: dict[QuadricKind, dict[Region, str]] = {
@@ -67,6 +73,25 @@ _PROBES: dict[QuadricKind, tuple[tuple[int, ...], tuple[int, int, int], tuple[in
     K.PARABOLIC_CYLINDER: ((3,), (0, 0, 10), (0, 0, -10)),
     K.PARALLEL_PLANES: ((3,), (0, 0, 0), (10, 0, 0)),
 }
+
+
+def region_patterns(kind: QuadricKind, canonical_sign: int) -> dict[Region, str]:
+    """The root-sign pattern of each region for ``Q`` of type ``kind`` given with the sign
+    ``canonical_sign`` (:attr:`Quadric.canonical_sign`) of its standard form.
+
+    For ``-Q_std`` the roots are negated and ``R-``/``R+`` swap.  Empty for a type
+    without a row of Table 4.
+
+    Examples
+    --------
+    >>> region_patterns(QuadricKind.HYPERBOLOID_ONE_SHEET, -1)
+    {<Region.R_PLUS: 'R+'>: '-+++', <Region.R_MINUS: 'R-'>: '---+'}
+    """
+    expected = ROOT_SIGN_TABLE.get(kind, {})
+    if canonical_sign > 0:
+        return dict(expected)
+    flip = str.maketrans("-+", "+-")
+    return {r.swapped(): "".join(sorted(p.translate(flip), key="-0+".index)) for r, p in expected.items()}
 
 
 def derive_root_sign_table(
@@ -162,15 +187,7 @@ def decide_region(
             kind=kind,
         )
     contact = decide_transversal(P, small=small, method=method)
-    sign = Q.canonical_sign
-    expected = {r.value: p for r, p in ROOT_SIGN_TABLE.get(kind, {}).items()}
-    if sign < 0 and expected:
-        # The patterns for the caller's matrix -Q_std: roots negated, regions swapped.
-        flip = str.maketrans("-+", "+-")
-        expected = {
-            Region(r).swapped().value: "".join(sorted(p.translate(flip), key="-0+".index))
-            for r, p in expected.items()
-        }
+    expected = {r.value: p for r, p in region_patterns(kind, Q.canonical_sign).items()}
     if contact.transversal:
         return RegionResult(Region.CONTACT, contact.decided_by, contact.reason, P, contact, expected)
     if contact.transversal is None:

@@ -437,27 +437,33 @@ def _curv(
     return Condition(f"{lhs} <= {rhs}", t2, "<=", _compare(l2, r2) <= 0, source, erratum, l2, r2)
 
 
-def _rows(
-    kind: QuadricKind, p: dict[str, _Quantity], e: dict[str, _Quantity]
-) -> tuple[list[Condition], list[Condition]]:
-    """The corrected Table 1 row for ``kind``: (conditions, enclosing alternative).
+Side = tuple[str, str, Any, str, Any, str, str, "str | None"]
+"""One inequality of a row: ``(relation, lhs name, lhs^2, rhs name, rhs^2, Table 2 text,
+source, erratum)``; ``relation`` is ``">="`` (a size) or ``"<="`` (a curvature)."""
 
-    ``p``: squared parameters ``a, b, c`` of Q (Table 1 standard form, with
-    Table 1's orderings); ``e``: squared semi-axes ``alpha >= beta >= gamma``.
+
+def _row_sides(kind: QuadricKind, p: dict[str, Any], e: dict[str, Any]) -> tuple[list[Side], list[Side]]:
+    """The corrected Table 1 row for ``kind`` as squared sides: (conditions, enclosing alternative).
+
+    ``p``: squared parameters ``a, b, c`` of Q (Table 1 standard form, with Table 1's
+    orderings); ``e``: squared semi-axes ``alpha >= beta >= gamma``.  Only ``+ - * /`` and
+    integer powers are applied to them, so they may be exact quantities (decided here) or
+    symbolic expressions (the parametric families of :mod:`quadric_contact.family`).
     """
     al2, ga2 = e["alpha"], e["gamma"]
     kE2 = ga2 / al2**2  # (gamma/alpha^2)^2, the smallest principal curvature of E, squared
     t2k = "gamma'/(delta' alpha'^2)"
     t2a = "delta' alpha'"
+    T1 = "Table 1"
     if kind is K.ELLIPSOID:
         a2, c2 = p["a"], p["c"]
-        conds = [
-            _size("c", c2, "alpha", al2, f"d'c' >= {t2a}"),
-            _curv("a/c^2", a2 / c2**2, "gamma/alpha^2", kE2, f"a'/(d'c'^2) <= {t2k}"),
-        ]
-        alt = [
-            _size("gamma", ga2, "a", a2, "delta' gamma' >= d'a'", "enclosing", _ERR_ELL),
-            _curv(
+        return [
+            (">=", "c", c2, "alpha", al2, f"d'c' >= {t2a}", T1, None),
+            ("<=", "a/c^2", a2 / c2**2, "gamma/alpha^2", kE2, f"a'/(d'c'^2) <= {t2k}", T1, None),
+        ], [
+            (">=", "gamma", ga2, "a", a2, "delta' gamma' >= d'a'", "enclosing", _ERR_ELL),
+            (
+                "<=",
                 "alpha/gamma^2",
                 al2 / ga2**2,
                 "c/a^2",
@@ -467,41 +473,54 @@ def _rows(
                 _ERR_ELL,
             ),
         ]
-        return conds, alt
     if kind is K.HYPERBOLOID_ONE_SHEET:
         a2, b2, c2 = p["a"], p["b"], p["c"]
         return [
-            _size("b", b2, "alpha", al2, f"b'd' >= {t2a}"),
-            _curv("a/c^2", a2 / c2**2, "gamma/alpha^2", kE2, f"a'/(d'c'^2) <= {t2k}"),
-            _curv("a/b^2", a2 / b2**2, "gamma/alpha^2", kE2, f"a'/(d'b'^2) <= {t2k}", "corrected", _ERR_H1),
+            (">=", "b", b2, "alpha", al2, f"b'd' >= {t2a}", T1, None),
+            ("<=", "a/c^2", a2 / c2**2, "gamma/alpha^2", kE2, f"a'/(d'c'^2) <= {t2k}", T1, None),
+            ("<=", "a/b^2", a2 / b2**2, "gamma/alpha^2", kE2, f"a'/(d'b'^2) <= {t2k}", "corrected", _ERR_H1),
         ], []
     if kind is K.HYPERBOLOID_TWO_SHEETS:
         b2, c2 = p["b"], p["c"]
         return [
-            _size("c", c2, "alpha", al2, f"c'd' >= {t2a}"),
-            _curv("c/b^2", c2 / b2**2, "gamma/alpha^2", kE2, f"c'/(d'b'^2) <= {t2k}"),
+            (">=", "c", c2, "alpha", al2, f"c'd' >= {t2a}", T1, None),
+            ("<=", "c/b^2", c2 / b2**2, "gamma/alpha^2", kE2, f"c'/(d'b'^2) <= {t2k}", T1, None),
         ], []
     if kind in (K.ELLIPTIC_PARABOLOID, K.HYPERBOLIC_PARABOLOID):
         b2 = p["b"]
-        return [_curv("2/b^2", 4 / b2**2, "gamma/alpha^2", kE2, f"2/(L b'^2) <= {t2k}")], []
+        return [("<=", "2/b^2", 4 / b2**2, "gamma/alpha^2", kE2, f"2/(L b'^2) <= {t2k}", T1, None)], []
     if kind is K.ELLIPTIC_CYLINDER:
         a2, b2 = p["a"], p["b"]
         return [
-            _size("b", b2, "alpha", al2, f"M b' >= {t2a}"),
-            _curv("a/b^2", a2 / b2**2, "gamma/alpha^2", kE2, f"a'/(M b'^2) <= {t2k}"),
+            (">=", "b", b2, "alpha", al2, f"M b' >= {t2a}", T1, None),
+            ("<=", "a/b^2", a2 / b2**2, "gamma/alpha^2", kE2, f"a'/(M b'^2) <= {t2k}", T1, None),
         ], []
     if kind is K.HYPERBOLIC_CYLINDER:
         a2, b2 = p["a"], p["b"]
         return [
-            _size("a", a2, "alpha", al2, f"M a' >= {t2a}  (printed: M b')", "Table 1", _ERR_HC),
-            _curv("a/b^2", a2 / b2**2, "gamma/alpha^2", kE2, f"a'/(M b'^2) <= {t2k}"),
+            (">=", "a", a2, "alpha", al2, f"M a' >= {t2a}  (printed: M b')", T1, _ERR_HC),
+            ("<=", "a/b^2", a2 / b2**2, "gamma/alpha^2", kE2, f"a'/(M b'^2) <= {t2k}", T1, None),
         ], []
     if kind is K.PARABOLIC_CYLINDER:
         a2 = p["a"]
-        return [_curv("2/a^2", 4 / a2**2, "gamma/alpha^2", kE2, f"2/(d'a'^2) <= {t2k}")], []
+        return [("<=", "2/a^2", 4 / a2**2, "gamma/alpha^2", kE2, f"2/(d'a'^2) <= {t2k}", T1, None)], []
     if kind is K.PARALLEL_PLANES:
-        return [_size("a", p["a"], "alpha", al2, f"a'd' >= {t2a}")], []
+        return [(">=", "a", p["a"], "alpha", al2, f"a'd' >= {t2a}", T1, None)], []
     raise ExcludedQuadricError(f"{kind.value} has no row in Table 1", kind, kind=kind)
+
+
+def _decided(side: Side) -> Condition:
+    relation, lhs, l2, rhs, r2, t2, source, erratum = side
+    make = _size if relation == ">=" else _curv
+    return make(lhs, l2, rhs, r2, t2, source, erratum)
+
+
+def _rows(
+    kind: QuadricKind, p: dict[str, _Quantity], e: dict[str, _Quantity]
+) -> tuple[list[Condition], list[Condition]]:
+    """The corrected Table 1 row for ``kind``, decided exactly: (conditions, enclosing alternative)."""
+    conds, alt = _row_sides(kind, p, e)
+    return [_decided(c) for c in conds], [_decided(c) for c in alt]
 
 
 def _report(kind: QuadricKind, p: dict[str, _Quantity], e: dict[str, _Quantity]) -> SmallnessReport:
@@ -649,11 +668,38 @@ def table_1(kind: QuadricKind | str, *, alpha: Any, beta: Any, gamma: Any, **par
 # -- Table 2: general position ---------------------------------------------------------------
 
 
-def _ellipsoid_axes(inv: QuadricInvariants) -> dict[str, _Quantity]:
+class _ExactNumbers:
+    """The numbers the Table 2 formulas below are written in: exact quantities (balls
+    first, real algebraic numbers on demand).  :mod:`quadric_contact.family` passes
+    symbolic ones (rational functions of a family's parameters) with the same methods."""
+
+    @staticmethod
+    def of(value: Any) -> _Quantity:
+        return _Quantity.of(value)
+
+    @staticmethod
+    def rational(value: RealAlgebraic) -> Fraction:
+        """A rational eigenvalue (a rank-one quadratic part's only non-zero one: its trace)."""
+        return value.as_fraction()
+
+    @staticmethod
+    def sqrt(value: Fraction) -> _Quantity:
+        return _sqrt_rational(value)
+
+    @staticmethod
+    def sorted_desc(values: list[_Quantity]) -> list[_Quantity]:
+        return _sorted_desc(values)
+
+
+_EXACT = _ExactNumbers()
+
+
+def _ellipsoid_axes(inv: QuadricInvariants, num: Any = _EXACT) -> dict[str, Any]:
     """Squared semi-axes of a real ellipsoid from its invariants (det < 0 sign)."""
     n1, n2, n3 = inv.eigenvalues  # increasing, positive
-    d2 = _Quantity.of(-inv.det / inv.det00)  # E: sum nu_i X_i^2 = d2 in principal axes
-    return {"alpha": d2 / _Quantity.of(n1), "beta": d2 / _Quantity.of(n2), "gamma": d2 / _Quantity.of(n3)}
+    Q_ = num.of
+    d2 = Q_(-inv.det / inv.det00)  # E: sum nu_i X_i^2 = d2 in principal axes
+    return {"alpha": d2 / Q_(n1), "beta": d2 / Q_(n2), "gamma": d2 / Q_(n3)}
 
 
 def _signed(eigs: Sequence[RealAlgebraic]) -> tuple[list[RealAlgebraic], list[RealAlgebraic], int]:
@@ -666,11 +712,11 @@ def _sqrt_rational(q: Fraction) -> _Quantity:
     return _Quantity.of(RealAlgebraic.sqrt(q))
 
 
-def _parameters(kind: QuadricKind, inv: QuadricInvariants) -> dict[str, _Quantity]:
+def _parameters(kind: QuadricKind, inv: Any, num: Any = _EXACT) -> dict[str, Any]:
     """Squared Table 1 parameters ``a, b, c`` of ``Q`` (canonical sign) from its
-    invariants (Table 2, with the corrections of the module docstring)."""
+    invariants (Table 2, with the corrections of the module docstring), in the numbers ``num``."""
     pos, neg, _ = _signed(inv.eigenvalues)
-    Q_ = _Quantity.of
+    Q_ = num.of
     if kind is K.ELLIPSOID:
         d2 = Q_(-inv.det / inv.det00)
         m1, m2, m3 = pos
@@ -681,9 +727,9 @@ def _parameters(kind: QuadricKind, inv: QuadricInvariants) -> dict[str, _Quantit
         (n,) = neg
         return {"a": d2 / Q_(p1), "b": d2 / Q_(p2), "c": -d2 / Q_(n)}
     if kind in (K.ELLIPTIC_PARABOLOID, K.HYPERBOLIC_PARABOLOID):
-        L = _sqrt_rational(-4 * inv.det / inv.J)
+        L = num.sqrt(-4 * inv.det / inv.J)
         nz = [m for m in inv.eigenvalues if m.sign() != 0]
-        mags = _sorted_desc([Q_(m) if m.sign() > 0 else -Q_(m) for m in nz])
+        mags = num.sorted_desc([Q_(m) if m.sign() > 0 else -Q_(m) for m in nz])
         # a^2 = L/|mu| : the larger |mu| gives the smaller parameter b
         return {"a": L / mags[1], "b": L / mags[0]}
     if kind is K.ELLIPTIC_CYLINDER:
@@ -697,12 +743,12 @@ def _parameters(kind: QuadricKind, inv: QuadricInvariants) -> dict[str, _Quantit
         return {"a": M2 / Q_(p), "b": -M2 / Q_(n)}
     if kind is K.PARABOLIC_CYLINDER:
         (m,) = pos
-        mu = m.as_fraction()  # rank 1: the eigenvalue is the trace, rational
-        d = RealAlgebraic.sqrt(-4 * inv.K / mu)
+        mu = num.rational(m)  # rank 1: the eigenvalue is the trace, rational
+        d = num.sqrt(-4 * inv.K / mu)
         return {"a": Q_(d) / Q_(mu)}
     if kind is K.PARALLEL_PLANES:
         (m,) = pos
-        mu = m.as_fraction()
+        mu = num.rational(m)
         return {"a": Q_(-inv.J_prime / (mu * mu))}
     raise ExcludedQuadricError(f"{kind.value} has no row in Table 2", kind, kind=kind)
 
