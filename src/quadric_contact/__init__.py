@@ -30,6 +30,7 @@ from .geometric import GeometricDecision, decide_geometrically
 from .invariants import QuadricInvariants, invariants
 from .modes import ContactCode, ContactKindCode, CriterionCode, RegionCode, SmallnessCode
 from .motions import RigidMotion, rotation_from_quaternion
+from .packing import Packed, pack, unpack
 from .pencil import CharacteristicPolynomial, characteristic_polynomial
 from .predicates import (
     CriterionResult,
@@ -69,6 +70,7 @@ __all__ = [
     "NotAnEllipsoidError",
     "NotRationalError",
     "NotSymmetricError",
+    "Packed",
     "PlaneSideResult",
     "Quadric",
     "QuadricContactError",
@@ -95,6 +97,7 @@ __all__ = [
     "discrimination_sequence",
     "family",
     "invariants",
+    "pack",
     "paper_deltas",
     "plane_side",
     "printed_table_2",
@@ -106,4 +109,5 @@ __all__ = [
     "smallness",
     "table_1",
     "transversal_contact",
+    "unpack",
 ]
