@@ -174,8 +174,10 @@ def float_pairs(
 def _compact(stack: MatrixStack, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``(floats, used, index)``: the ``(k, 4, 4)`` matrices of the distinct ``rows``, the rows
     they are, and where each entry of ``rows`` finds its matrix among them."""
-    used, index = np.unique(rows, return_inverse=True)
-    return stack.rows_floats(used), used, np.ascontiguousarray(np.asarray(index).reshape(-1), dtype=np.intp)
+    from .rows import unique_rows
+
+    used, index = unique_rows(rows, len(stack), return_inverse=True)
+    return stack.rows_floats(used), used, index
 
 
 def stage_codes(E: np.ndarray, Q: np.ndarray, stage: str, *, backend: str = "numba") -> np.ndarray:

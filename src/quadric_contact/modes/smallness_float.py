@@ -1107,8 +1107,10 @@ def _row_map(index: np.ndarray | None, m: int, n: int) -> tuple[np.ndarray | Non
         if m == n:
             return None, empty, 1
         return np.zeros(1, dtype=np.intp), empty, 0
-    rows, inverse = np.unique(index, return_inverse=True)
-    return rows, np.ascontiguousarray(np.asarray(inverse).reshape(-1), dtype=np.intp), 0
+    from .rows import unique_rows
+
+    rows, inverse = unique_rows(index, m, return_inverse=True)
+    return rows, inverse, 0
 
 
 def pair_codes(
