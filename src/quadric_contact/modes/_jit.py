@@ -44,8 +44,9 @@ def njit(fn: Callable[..., Any] | None = None, *, inline: bool = False, cache: b
 # of this package misses the cache the process says so, once, on stderr.
 
 COMPILE_NOTICE = (
-    "quadric-contact: compiling the numba kernels once for this machine (up to a few minutes in all, "
-    "spread over the first calls that need them); later processes load them from the on-disk cache{where}"
+    "quadric-contact: compiling the numba kernels once for this machine (two to four minutes of CPU "
+    "time in all, spread over the first calls that need them); later processes load them from the "
+    "on-disk cache{where}"
 )
 """The line printed (stderr) the first time a kernel of the package is compiled in a process."""
 
