@@ -172,7 +172,10 @@ def _float_core(e: Any, q: Any, c: Any, r0: float, plane: bool, guard: bool) -> 
     valid, table index, signs of c0 .. c4)``.  ``r0``: a bound of the error of ``c0 = det Q``
     (valid under ``guard``, the input guard of ``Q``); the pair falls back when ``det Q`` is
     not certainly non-zero (the general kernel reads the exact fact), when the quadratic parts
-    may be proportional (it compares them exactly) or a coefficient is not finite."""
+    may be proportional (it compares them exactly) or a coefficient is not finite.  A plane
+    (``Q`` with a zero quadratic part) is decided here: ``c0 = c1 = 0`` come out as exact zeros
+    and ``Delta_4`` vanishes identically there (``codegen.verify_plane_zeros``), which is what the
+    general kernel reads from the exact facts and the proportional (zero) quadratic part."""
     c0, c1, c2, c3, c4 = c
     m2, m3 = _minors(e[0], e[1], e[2], e[4], e[5], e[7])
     e00 = e[0]
@@ -188,11 +191,12 @@ def _float_core(e: Any, q: Any, c: Any, r0: float, plane: bool, guard: bool) -> 
         & (abs(c2) <= 1.7976931348623157e308) & (abs(c3) <= 1.7976931348623157e308)
         & (abs(c4) <= 1.7976931348623157e308)
     )  # fmt: skip
-    fallback = facts | prop | (not fin) | (not guard)
+    fallback = facts | (prop & (not plane)) | (not fin) | (not guard)
     o = -1.0 if e00 < 0.0 else 1.0
     x1 = o * c1
     x3 = o * c3
     d2, d3, d4 = _deltas(c0, x1, c2, x3, c4)
+    d4 = 0.0 if plane else d4
     idx = _psidx(d2) + 4.0 * _psidx(d3) + 16.0 * _psidx(d4)
     return fallback, valid, idx, _sgnf(c0), _sgnf(x1), _sgnf(c2), _sgnf(x3), _sgnf(c4)
 
