@@ -79,3 +79,12 @@ def test_fcl_peer_when_installed():
     gq = {k: v[keep] for k, v in gq.items()}
     truth = benchmark.exact_overlap(E, Q, transversal_contact_batch(E, Q, mode="exact"))
     assert (benchmark.peer_fcl(ge, gq, range(len(E))) == truth).all()
+
+
+@pytest.mark.slow
+def test_first_use_compiles_once_and_says_so():
+    # minutes: every kernel of the complete decision is compiled into an empty cache directory
+    c = benchmark.cold_start()
+    assert c["fresh"]["notice"]
+    assert not c["warm"]["notice"]
+    assert c["warm"]["first"] < c["fresh"]["first"]
