@@ -30,6 +30,7 @@ from quadric_contact.modes import (
     RegionCode,
     SmallnessCode,
 )
+from quadric_contact.overlap import OverlapResult, overlap_exact
 from quadric_contact.regions import relative_position_exact
 from quadric_contact.results import ContactResult, PlaneSideResult, RegionResult
 from quadric_contact.smallness import SmallnessReport
@@ -151,6 +152,8 @@ def reference(question: str, E: Quadric, Q: Quadric) -> int:
             _REF[key] = int(RegionCode.from_region(relative_position_exact(E, Q).region))
         elif question == "kind":
             _REF[key] = int(ContactKindCode.from_kind(contact_kind_exact(E, Q)))
+        elif question == "overlap":
+            _REF[key] = int(overlap_exact(E, Q).code)
         elif question == "smallness":
             if not Q.kind.in_table_1:
                 _REF[key] = int(SmallnessCode.EXCLUDED)
@@ -195,6 +198,8 @@ def _code_of(question: str, result) -> int:
         if not result.small:
             return int(SmallnessCode.NOT_SMALL)
         return int(SmallnessCode.SMALL if result.table_4_applies else SmallnessCode.SMALL_ENCLOSING)
+    if question == "overlap":
+        assert isinstance(result, OverlapResult)
     return int(result.code)
 
 
@@ -205,6 +210,7 @@ PREDICATES = {
     "kind": qc.contact_kind,
     "smallness": qc.smallness,
     "criterion": qc.corollary_10,
+    "overlap": qc.overlap,
 }
 
 
@@ -253,7 +259,7 @@ def test_every_form_gives_the_exact_answer(pair, question, mode):
 def test_a_pair_and_a_stack_broadcast_the_same_answers():
     """One ellipsoid against every quadric of PAIRS at once, in each certified mode, equals
     the pair-by-pair answers; a stack of one gives an array of one."""
-    for question in ("contact", "region", "kind"):
+    for question in ("contact", "region", "kind", "overlap"):
         for E0, Q0, _ in PAIRS.values():
             want = reference(question, E0, Q0)
             got = PREDICATES[question]([E0, E0], np.array([Q0.to_numpy(), Q0.to_numpy()]), mode="certified")
@@ -266,7 +272,7 @@ def test_dask_arrays_give_the_same_answer():
     da = pytest.importorskip("dask.array")
     Es = np.stack([E.to_numpy() for E, _, _ in PAIRS.values()])
     Qs = np.stack([Q.to_numpy() for _, Q, _ in PAIRS.values()])
-    for question in ("contact", "region", "kind"):
+    for question in ("contact", "region", "kind", "overlap"):
         want = PREDICATES[question](Es, Qs)
         got = PREDICATES[question](da.from_array(Es, chunks=(5, 4, 4)), da.from_array(Qs, chunks=(5, 4, 4)))
         assert (got == want).all()

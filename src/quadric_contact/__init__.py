@@ -28,14 +28,16 @@ from .errors import (
 from .family import Family, family
 from .geometric import GeometricDecision, decide_geometrically
 from .invariants import QuadricInvariants, invariants
-from .modes import ContactCode, ContactKindCode, CriterionCode, RegionCode, SmallnessCode
+from .modes import ContactCode, ContactKindCode, CriterionCode, OverlapCode, RegionCode, SmallnessCode
 from .motions import RigidMotion, rotation_from_quaternion
+from .overlap import OverlapResult, TouchingError
 from .packing import Packed, pack, unpack
 from .pencil import CharacteristicPolynomial, characteristic_polynomial
 from .predicates import (
     CriterionResult,
     contact_kind,
     corollary_10,
+    overlap,
     plane_side,
     relative_position,
     smallness,
@@ -70,6 +72,8 @@ __all__ = [
     "NotAnEllipsoidError",
     "NotRationalError",
     "NotSymmetricError",
+    "OverlapCode",
+    "OverlapResult",
     "Packed",
     "PlaneSideResult",
     "Quadric",
@@ -87,6 +91,7 @@ __all__ = [
     "ShapeError",
     "SmallnessCode",
     "SmallnessReport",
+    "TouchingError",
     "UndecidedError",
     "__version__",
     "analyze_contact",
@@ -97,6 +102,7 @@ __all__ = [
     "discrimination_sequence",
     "family",
     "invariants",
+    "overlap",
     "pack",
     "paper_deltas",
     "plane_side",

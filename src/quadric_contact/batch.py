@@ -255,6 +255,7 @@ _QUESTIONS = {
     "contact": "contact",
     "region": "region",
     "kind": "kind",
+    "overlap": "overlap",
     "plane": "region",
     "smallness": "public_smallness",
     "criterion": "criterion",
@@ -266,8 +267,8 @@ def run_stack(
 ) -> Any:
     """Ask ``mode`` the question ``question`` about every pair of the broadcast of ``E`` and ``Q``.
 
-    ``question`` is ``"contact"``, ``"region"``, ``"kind"``, ``"plane"`` (``region`` with
-    every ``Q`` required to be a plane), ``"smallness"`` or ``"criterion"``.  Returns an int8
+    ``question`` is ``"contact"``, ``"region"``, ``"kind"``, ``"overlap"``, ``"plane"``
+    (``region`` with every ``Q`` required to be a plane), ``"smallness"`` or ``"criterion"``.  Returns an int8
     array shaped like the broadcast batch (dask input: chunk by chunk, computed unless
     ``compute=False``)."""
     if question not in _QUESTIONS:

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["ERRATA", "NUMBERED_RESULTS", "PRINTED", "Erratum"]
+__all__ = ["ERRATA", "FURTHER_RESULTS", "NUMBERED_RESULTS", "PRINTED", "Erratum"]
 
 NUMBERED_RESULTS: tuple[str, ...] = (
     "eq. (1)",
@@ -41,6 +41,12 @@ NUMBERED_RESULTS: tuple[str, ...] = (
 """The paper's numbered results in the paper's order (Definition 1 is a
 definition; the formulas of Section 3.2 are unnumbered but proved too).
 Tables 1-4 and the numbered equations belong to the results that state them."""
+
+FURTHER_RESULTS: tuple[str, ...] = ("Wang-Wang-Kim 2001",)
+"""Results from outside the paper that the package relies on and proves in ``proofs/``
+alongside the paper's (after them, in this order): the separation condition of two
+ellipsoids of Wang, Wang and Kim (CAGD 18, 2001), on which
+:func:`quadric_contact.overlap` decides two ellipsoids."""
 
 PRINTED: dict[str, str] = {
     # Section 3.2, the two members of the discrimination system used by Corollary 10.

@@ -10,14 +10,15 @@ stack by the *type of the input*, never by the mode:
   Fractions) gives one result object in every mode, with its explanation at hand
   (:class:`~quadric_contact.ContactResult`, :class:`~quadric_contact.RegionResult`,
   :class:`~quadric_contact.PlaneSideResult`, :class:`~quadric_contact.ContactKind`,
-  :class:`~quadric_contact.SmallnessReport`); in the ``certified`` and ``exact``
-  modes it is decided by the exact scalar path, in the others by the mode's stages
-  on a stack of one (the exact characteristic polynomial is attached for audit);
+  :class:`~quadric_contact.SmallnessReport`, :class:`~quadric_contact.OverlapResult`); in
+  the ``certified`` and ``exact`` modes it is decided by the exact scalar path, in the
+  others by the mode's stages on a stack of one (the exact characteristic polynomial is attached for audit);
 * a stack (an array ``(..., 4, 4)``, a list or object array of matrices,
   Quadrics or equations, a dask array) gives an int8 array of codes
   (:class:`~quadric_contact.modes.ContactCode`, :class:`~quadric_contact.modes.RegionCode`,
   :class:`~quadric_contact.modes.ContactKindCode`,
-  :class:`~quadric_contact.modes.SmallnessCode`), broadcasting the batch shapes as
+  :class:`~quadric_contact.modes.SmallnessCode`, :class:`~quadric_contact.modes.OverlapCode`),
+  broadcasting the batch shapes as
   numpy does; a stack of one gives an array of one.
 
 :func:`corollary_10` is the one function that answers the paper's criterion rather
@@ -40,11 +41,13 @@ from .modes import (
     ContactKindCode,
     CriterionCode,
     NumberMode,
+    OverlapCode,
     RegionCode,
     SmallnessCode,
     StageCounts,
     get_mode,
 )
+from .overlap import OverlapResult, apply_touching, check_touching, overlap_exact, solid_of
 from .pencil import CharacteristicPolynomial, as_quadric, characteristic_polynomial
 from .plane import plane_side_exact
 from .quadric import Quadric
@@ -57,6 +60,7 @@ __all__ = [
     "CriterionResult",
     "contact_kind",
     "corollary_10",
+    "overlap",
     "plane_side",
     "relative_position",
     "smallness",
@@ -489,6 +493,141 @@ def contact_kind(
     _no_options(f"mode {m.name!r}", small=small)
     code, _ = _single("kind", E, Q, m)
     return ContactKindCode(code).to_kind()
+
+
+# -- do the solids overlap? ----------------------------------------------------------------------
+
+
+@overload
+def overlap(
+    E: ScalarInput,
+    Q: ScalarInput,
+    *,
+    touching: str | None = ...,
+    mode: str | NumberMode = ...,
+    client: Any = ...,
+    compute: bool = ...,
+) -> OverlapResult: ...
+
+
+@overload
+def overlap(
+    E: Any,
+    Q: Any,
+    *,
+    touching: str | None = ...,
+    mode: str | NumberMode = ...,
+    client: Any = ...,
+    compute: bool = ...,
+) -> OverlapResult | np.ndarray: ...
+
+
+def overlap(
+    E: Any,
+    Q: Any,
+    *,
+    touching: str | None = None,
+    mode: str | NumberMode = "certified",
+    client: Any = None,
+    compute: bool = True,
+) -> Any:
+    """Do the solids of the ellipsoid ``E`` and of the quadric ``Q`` overlap?
+
+    The solid of ``E`` is its inside; the solid of ``Q`` is its region ``R-`` for the sign
+    of its standard form (Table 1): the inside of an ellipsoid, of a cylinder, of a
+    one-sheet hyperboloid's tube or of a paraboloid, the two cups of a two-sheet
+    hyperboloid, the slab between parallel planes, the region between the sheets of a
+    hyperbolic cylinder; for a plane and a hyperbolic paraboloid (two congruent sides) the
+    side ``X^T Q X <= 0`` of the matrix as given (``n . x <= d`` for ``n . x - d``).  See
+    :mod:`quadric_contact.overlap`.
+
+    Parameters
+    ----------
+    E : Quadric, equation, matrix-like; or a stack ``(..., 4, 4)``
+        A real ellipsoid (either sign of its matrix).
+    Q : Quadric, equation, matrix-like; or a stack ``(..., 4, 4)``
+        A quadric of Table 1 or a plane (either sign of its matrix but for a plane and a
+        hyperbolic paraboloid, whose sign picks the side).
+    touching : {None, "separate", "no-overlap", "overlap"}
+        How to read a touch: reported as ``TOUCHING`` (default); ``"separate"`` (synonym
+        ``"no-overlap"``), no overlap (HOOMD-blue's ellipsoid test, FCL's libccd solver);
+        ``"overlap"``, an overlap (FCL's GJK solver).  Applied after the decision, in every
+        mode and input form.
+    mode, client, compute
+        As for :func:`transversal_contact`.
+
+    Returns
+    -------
+    OverlapResult for a single pair (usable as a bool, which raises for ``TOUCHING`` without
+    a convention and for ``UNCERTAIN``); for a stack an int8 array of
+    :class:`~quadric_contact.modes.OverlapCode` (``0`` separate, ``1`` overlapping, ``2``
+    uncertain, ``3`` touching).
+
+    Raises
+    ------
+    NotAnEllipsoidError, ExcludedQuadricError (cones, intersecting or coincident planes,
+    imaginary quadrics), and the input errors.
+
+    References
+    ----------
+    Wang, Wang and Kim (2001), for two ellipsoids; the separation certificate, Theorems 13
+    and 14, Remark 9 for the others.
+
+    Examples
+    --------
+    HOOMD-blue's unit test: ellipsoids with semi-axes ``(3, 1, 2)`` and ``(2, 3, 1)``, the
+    second moved along ``x``; a touch read the HOOMD way in one call:
+
+    >>> a = "x**2/9 + y**2 + z**2/4 - 1"
+    >>> b = ["(x - 4.9)**2/4 + y**2/9 + z**2 - 1", "(x - 5)**2/4 + y**2/9 + z**2 - 1",
+    ...      "(x - 5.1)**2/4 + y**2/9 + z**2 - 1"]
+    >>> overlap(a, b)
+    array([1, 3, 0], dtype=int8)
+    >>> overlap(a, b, touching="no-overlap"), overlap(a, b, touching="overlap")
+    (array([1, 0, 0], dtype=int8), array([1, 1, 0], dtype=int8))
+    >>> r = overlap(a, b[1])
+    >>> r.code, r.decided_by, r.tangent_points
+    (<OverlapCode.TOUCHING: 3>, 'Wang-Wang-Kim', ((3, 0, 0),))
+    """
+    check_touching(touching)
+    if is_stack(E) or is_stack(Q):
+        return apply_touching(run_stack("overlap", E, Q, mode, client, compute), touching)
+    m = _mode(mode)
+    if m.complete:
+        result = overlap_exact(E, Q, touching=touching)
+        _record_exact(m)
+        return result if m.name == "exact" else _with_mode(result, m.name)
+    q = solid_of(Q)
+    code, stage = _single("overlap", E, Q, m)
+    P = characteristic_polynomial(E, q)
+    raw = OverlapCode(code)
+    if raw is OverlapCode.UNCERTAIN:
+        return OverlapResult(raw, None, None, f"{m.name} mode cannot tell ({stage})", P, mode=m.name)
+    by = _stage_name(stage, "overlap")
+    if stage.startswith("criterion"):
+        by = (
+            "Remark 9"
+            if not P.structure.all_real
+            else ("Theorem 14" if q.kind is QuadricKind.PLANE else "Wang-Wang-Kim")
+        )
+    result = OverlapResult(
+        raw,
+        raw is OverlapCode.TOUCHING,
+        by,
+        f"{raw.name.lower()}, decided in {m.name} mode by {stage}",
+        P,
+        mode=m.name,
+    )
+    target = check_touching(touching)
+    if result.touching and target is not None:
+        return _replace(result, code=target, convention=touching)
+    return result if touching is None else _replace(result, convention=touching)
+
+
+def _replace(result: Any, **changes: Any) -> Any:
+    from dataclasses import replace
+
+    return replace(result, **changes)
 
 
 # -- smallness -----------------------------------------------------------------------------------

@@ -69,7 +69,11 @@ from types import ModuleType
 from typing import Any
 
 from .errors import MissingDependencyError, ProofsNotFoundError, QuadricContactError
-from .paper import ERRATA, NUMBERED_RESULTS, Erratum
+from .paper import ERRATA, FURTHER_RESULTS, NUMBERED_RESULTS, Erratum
+
+RESULTS: tuple[str, ...] = NUMBERED_RESULTS + FURTHER_RESULTS
+"""The results a proof module may prove: the paper's numbered ones, then the further results
+the package relies on (:data:`~quadric_contact.paper.FURTHER_RESULTS`)."""
 
 __all__ = [
     "PACKAGE_NAME",
@@ -250,7 +254,8 @@ class Proof:
     ----------
     result : str
         The paper's label, one of :data:`~quadric_contact.paper.NUMBERED_RESULTS`
-        (``"Lemma 3"``, ``"eq. (1)"``, ``"Section 3.2"``).
+        (``"Lemma 3"``, ``"eq. (1)"``, ``"Section 3.2"``), or a further result the package
+        relies on, one of :data:`~quadric_contact.paper.FURTHER_RESULTS`.
     title : str
         What the result says, in a few words.
     covers : sequence of str
@@ -283,8 +288,10 @@ class Proof:
         relies_on: Sequence[str] = (),
     ) -> None:
         for label in (result, *relies_on):
-            if label not in NUMBERED_RESULTS:
-                raise ValueError(f"{label!r} is not one of the paper's numbered results {NUMBERED_RESULTS}")
+            if label not in RESULTS:
+                raise ValueError(
+                    f"{label!r} is not one of the paper's numbered results or further results {RESULTS}"
+                )
         if result in relies_on:
             raise ValueError(f"{result} cannot rely on itself")
         self.result = result
@@ -416,7 +423,7 @@ class Proof:
 
     @property
     def order(self) -> int:
-        return NUMBERED_RESULTS.index(self.result)
+        return RESULTS.index(self.result)
 
     def __repr__(self) -> str:
         return f"Proof({self.result!r}, {len(self.checks)} checks, module {self.name!r})"

@@ -26,6 +26,7 @@ __all__ = [
     "CriterionCode",
     "MatrixStack",
     "NumberMode",
+    "OverlapCode",
     "Pairs",
     "RegionCode",
     "Sign",
@@ -186,6 +187,29 @@ class RegionCode(IntEnum):
         if region is None:
             return cls.NO_ROW
         return {v: k for k, v in _CODE_TO_REGION.items()}[Region(region)]
+
+
+class OverlapCode(IntEnum):
+    """Codes of the array predicate :func:`~quadric_contact.overlap` (do the solids overlap?).
+
+    The solid of ``E`` is its inside; the solid of ``Q`` is its region ``R-`` for the sign
+    of its standard form (the matrix as given for a plane or a hyperbolic paraboloid):
+    ``SEPARATE`` the closed solids are disjoint; ``OVERLAPPING`` their interiors meet
+    (containment either way included); ``TOUCHING`` they meet and their interiors are
+    disjoint.  ``UNCERTAIN`` (2, abstaining modes only) is non-zero, so a cast to bool reads
+    it as a possible overlap, never as a clearance; so is ``TOUCHING`` (3), unless the caller
+    chose a convention (``touching="separate"`` or ``"overlap"``).
+    """
+
+    SEPARATE = 0
+    OVERLAPPING = 1
+    UNCERTAIN = 2
+    TOUCHING = 3
+
+    @property
+    def overlapping(self) -> bool | None:
+        """True (interiors meet), False (closed solids disjoint), None (touching, uncertain)."""
+        return {OverlapCode.SEPARATE: False, OverlapCode.OVERLAPPING: True}.get(self)
 
 
 _CODE_TO_REGION = {
@@ -389,10 +413,10 @@ def _rows(index: np.ndarray | None, m: int, n: int) -> np.ndarray:
 class NumberMode(ABC):
     """A way of evaluating the closed forms (one formula, many number types).
 
-    The public array predicates ask a mode three questions, :meth:`contact`,
-    :meth:`region` and :meth:`kind`, and always mean the geometry (do the surfaces
-    cross, where is ``E``, how do they touch), for every pair.  They are answered by
-    one pipeline (:mod:`quadric_contact.modes.pipeline`) from the *stages* a mode
+    The public array predicates ask a mode four questions, :meth:`contact`,
+    :meth:`region`, :meth:`kind` and :meth:`overlap`, and always mean the geometry (do the
+    surfaces cross, where is ``E``, how do they touch, do the solids overlap), for every
+    pair.  They are answered by one pipeline (:mod:`quadric_contact.modes.pipeline`) from the *stages* a mode
     implements with its numbers:
 
     * :meth:`criterion_contact`, :meth:`criterion_region`: the paper's criterion (the
@@ -469,6 +493,12 @@ class NumberMode(ABC):
         from .pipeline import decide
 
         return decide(self, pairs, "kind")
+
+    def overlap(self, pairs: Pairs) -> np.ndarray:
+        """:class:`OverlapCode` of every pair: do the solids of ``E`` and ``Q`` overlap?"""
+        from .pipeline import decide_overlap
+
+        return decide_overlap(self, pairs)
 
     def criterion(self, pairs: Pairs) -> np.ndarray:
         """:class:`CriterionCode` of every pair (the raw criterion), recording its counts."""

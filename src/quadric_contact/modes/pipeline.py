@@ -26,6 +26,11 @@ steps and the order in which they hand pairs on are written once, here:
    ``ball``) answer ``UNCERTAIN`` there; the plain ones (``float``, ``mpmath``)
    have answered everything at step 3.
 
+The question "do the solids overlap?" (:func:`decide_overlap`) uses the same steps: the
+criterion (non-real roots: the surfaces cross; a plane's side by Theorem 14; for two
+ellipsoids the Wang-Wang-Kim reading of the root signs, valid for every pair), the
+separation certificate, and the exact pair (:func:`quadric_contact.overlap.overlap_exact`).
+
 Every step is counted in the mode's :class:`~quadric_contact.modes.base.StageCounts`
 under ``"<step> (<numbers>)"``, e.g. ``"criterion (filter)"``, ``"separation (exact)"``,
 ``"exact pair"``.
@@ -39,7 +44,7 @@ import numpy as np
 
 from ..classification import NO_REAL_POINTS, REFUSED_KINDS, TABLE_1_KINDS, QuadricKind
 from ..errors import ExcludedQuadricError
-from .base import ContactCode, ContactKindCode, Pairs, RegionCode, StageCounts
+from .base import ContactCode, ContactKindCode, OverlapCode, Pairs, RegionCode, StageCounts
 from .decisions import KINDS, UNCERTAIN_ROW, rows_from_masks
 from .rows import unique_rows
 from .separation import CROSSING, SEP_MINUS, SEP_PLUS
@@ -47,7 +52,7 @@ from .separation import CROSSING, SEP_MINUS, SEP_PLUS
 if TYPE_CHECKING:
     from .base import NumberMode
 
-__all__ = ["QUESTIONS", "decide"]
+__all__ = ["QUESTIONS", "decide", "decide_overlap"]
 
 _UNC = 2
 
@@ -248,5 +253,137 @@ def _exact_pairs(pairs: Pairs, rows: np.ndarray, question: str) -> np.ndarray:
                 cache[key] = int(RegionCode.from_region(relative_position_exact(E, Q).region))
             else:
                 cache[key] = int(ContactKindCode.from_kind(analyze_contact(E, Q).kind))
+        out[t] = cache[key]
+    return out
+
+
+# -- do the solids overlap? ---------------------------------------------------------------------
+
+
+def _solids(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per pair: ``Q`` is a plane, ``Q`` is an ellipsoid, and the sign that makes ``R-`` its
+    solid (its canonical sign).  The type is part of the question (which solid), so where the
+    mode cannot tell it the exact type decides (once per quadric); a type without a solid is
+    refused."""
+    from ..overlap import solid_of
+    from .validation import exact_matrix
+
+    used, where = np.unique(pairs.q_rows(), return_inverse=True)
+    rows = rows_from_masks(mode.classify(pairs.Q, used))
+    plane = np.zeros(used.size, dtype=bool)
+    ellipsoid = np.zeros(used.size, dtype=bool)
+    sign = np.ones(used.size, dtype=np.int8)
+    for k, row in enumerate(rows):
+        if row == UNCERTAIN_ROW:
+            q = exact_matrix(pairs.Q, int(used[k]))
+            kind, s = q.kind, q.canonical_sign  # type: ignore[attr-defined]
+        else:
+            kind, s = KINDS[int(row) // 2], (-1 if int(row) % 2 else 1)
+        if kind not in TABLE_1_KINDS and kind is not QuadricKind.PLANE:
+            q = exact_matrix(pairs.Q, int(used[k]))
+            try:
+                solid_of(q, pairs.Q.where(int(used[k])))
+            except ExcludedQuadricError as exc:
+                exc.details["index"] = int(used[k])
+                raise
+        plane[k] = kind is QuadricKind.PLANE
+        ellipsoid[k] = kind is QuadricKind.ELLIPSOID
+        sign[k] = s
+    where = np.asarray(where).reshape(-1)
+    return plane[where], ellipsoid[where], sign[where]
+
+
+def decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
+    """:class:`~quadric_contact.modes.OverlapCode` of every pair: do the solids overlap?
+
+    The solid of ``E`` is its inside, that of ``Q`` its region ``R-`` for the sign of its
+    standard form (:mod:`quadric_contact.overlap`).  With ``Q`` of that sign:
+
+    1. *criterion*: non-real roots of ``P`` mean the surfaces cross: ``OVERLAPPING``
+       (Remark 9).  A plane with ``E`` on its ``R-`` side: ``OVERLAPPING`` (Theorem 14).
+       Two ellipsoids: the criterion's reading of the root signs counts the positive roots,
+       for every pair (Wang-Wang-Kim): none means ``OVERLAPPING``; two mean ``SEPARATE`` or
+       ``TOUCHING``, which step 2 tells apart.
+    2. *separation*: the surfaces cross, or ``E`` is strictly inside the solid:
+       ``OVERLAPPING``; ``E`` strictly outside: ``SEPARATE``, except that an ellipsoid ``Q``
+       outside whose surface ``E`` lies may be inside ``E``: there ``SEPARATE`` needs the two
+       positive roots of step 1 (a definite member at a positive sample point).
+    3. *exact pair*: tangencies and multiple roots, by
+       :func:`~quadric_contact.overlap.overlap_exact` (``TOUCHING`` comes from here only).
+
+    The abstaining modes answer ``UNCERTAIN`` where 1-2 leave a pair; the plain modes answer
+    everything at step 2 (never ``TOUCHING``: a touch is a tangency, which binary64 cannot
+    see).  Records the stage counts in ``mode``."""
+    n = pairs.n
+    counts = StageCounts()
+    out = np.full(n, _UNC, dtype=np.int8)
+    if n == 0:
+        mode._record(counts)
+        return out
+    todo = np.ones(n, dtype=bool)
+
+    def settle(which: np.ndarray, values: Any, label: str) -> None:
+        which = which & todo
+        k = int(np.count_nonzero(which))
+        if k:
+            out[which] = values if np.isscalar(values) else np.asarray(values)[which]
+            todo[which] = False
+        counts.add(label, k)
+
+    # 1. criterion: root structure and signs (validates the input on the way).
+    crit, names, which = _staged(mode, "criterion_region", pairs)
+    plane, ellipsoid, qsign = _solids(mode, pairs)
+    sided = (crit == RegionCode.R_MINUS) | (crit == RegionCode.R_PLUS)
+    side = np.where(sided, crit * qsign, _UNC).astype(np.int8)  # -1 in the solid, 1 outside
+    for k, name in enumerate(names):
+        here = which == k
+        label = f"criterion ({name})"
+        settle(here & (crit == RegionCode.CONTACT), OverlapCode.OVERLAPPING, label)
+        settle(here & (side == RegionCode.R_MINUS) & (plane | ellipsoid), OverlapCode.OVERLAPPING, label)
+
+    # 2. separation: definite members, or four simple real roots without one.
+    rest = np.flatnonzero(todo)
+    if rest.size:
+        sep, names, which = _staged(mode, "separation", pairs.take(rest))
+        sep_side = np.where((sep == SEP_MINUS) | (sep == SEP_PLUS), sep * qsign[rest], sep)
+        values = np.full(rest.size, _UNC, dtype=np.int8)
+        values[(sep_side == CROSSING) | (sep_side == SEP_MINUS)] = OverlapCode.OVERLAPPING
+        outside = sep_side == SEP_PLUS
+        two_positive = side[rest] == RegionCode.R_PLUS
+        sure = two_positive if mode.certified else np.ones(rest.size, dtype=bool)
+        values[outside & (~ellipsoid[rest] | sure)] = OverlapCode.SEPARATE
+        for k, name in enumerate(names):
+            here = np.zeros(n, dtype=bool)
+            here[rest[which == k]] = True
+            full = np.full(n, _UNC, dtype=np.int8)
+            full[rest] = values
+            settle(here & (full != _UNC), full, f"separation ({name})")
+
+    # 3. the exact decision, pair by pair.
+    rest = np.flatnonzero(todo)
+    if rest.size and getattr(mode, "complete", False):
+        full = np.full(n, _UNC, dtype=np.int8)
+        full[rest] = _exact_overlaps(pairs, rest)
+        here = np.zeros(n, dtype=bool)
+        here[rest] = True
+        settle(here, full, "exact pair")
+    counts.undecided = int(np.count_nonzero(todo))
+    mode._record(counts)
+    return out
+
+
+def _exact_overlaps(pairs: Pairs, rows: np.ndarray) -> np.ndarray:
+    """:func:`~quadric_contact.overlap.overlap_exact` for the pairs ``rows`` (cached per pair)."""
+    from ..overlap import overlap_exact
+    from .validation import exact_matrix
+
+    e_rows, q_rows = pairs.e_rows()[rows], pairs.q_rows()[rows]
+    cache: dict[tuple[int, int], int] = {}
+    out = np.empty(rows.size, dtype=np.int8)
+    for t in range(rows.size):
+        key = (int(e_rows[t]), int(q_rows[t]))
+        if key not in cache:
+            E, Q = exact_matrix(pairs.E, key[0]), exact_matrix(pairs.Q, key[1])
+            cache[key] = int(overlap_exact(E, Q).code)
         out[t] = cache[key]
     return out
