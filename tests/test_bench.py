@@ -29,7 +29,19 @@ def test_bench_smoke_profile_writes_table_json_and_reports_targets(tmp_path, cap
         "exact mode per pair (float input)",
         "float kernel vs reading its inputs",
         "escalated past the float stage",
+        # the kernel targets: the criterion alone at the memory limit, first use
+        "certified criterion, distinct (N, 4, 4) pairs",
+        "certified criterion, one matrix against a stack",
+        "certified criterion vs numpy batch eigvals, same pairs",
+        "filter vs float, distinct pairs",
+        "certified criterion vs reading its inputs (distinct)",
+        "first array call after install (empty cache)",
+        # the complete decision
+        "complete decision, small ellipsoids vs one environment",
+        "complete decision, pairs of similar sizes",
+        "pairs of similar sizes reaching the exact pair stage",
     } <= names
+    assert "Kernels at the memory limit" in out
     wrong = {(m["population"], m["method"]): m["wrong"] for m in data["measurements"]}
     assert all(
         wrong[(pop, method)] == 0 for pop, method in wrong if method in ("certified", "exact", "filter")
@@ -67,3 +79,12 @@ def test_fcl_peer_when_installed():
     gq = {k: v[keep] for k, v in gq.items()}
     truth = benchmark.exact_overlap(E, Q, transversal_contact_batch(E, Q, mode="exact"))
     assert (benchmark.peer_fcl(ge, gq, range(len(E))) == truth).all()
+
+
+@pytest.mark.slow
+def test_first_use_compiles_once_and_says_so():
+    # minutes: every kernel of the complete decision is compiled into an empty cache directory
+    c = benchmark.cold_start()
+    assert c["fresh"]["notice"]
+    assert not c["warm"]["notice"]
+    assert c["warm"]["first"] < c["fresh"]["first"]

@@ -146,7 +146,7 @@ def _screen_check(E, Q):
     sq = screen_quantities(E, Q)
     decided = 0
     for k in range(E.shape[0]):
-        if sq["fail"][k]:
+        if not sq["ok"][k]:
             continue
         c = _exact_coefficients(E[k], Q[k])
         exact = [int(np.sign(v)) for v in c] + [int(np.sign(v)) for v in formulas.paper_deltas(*c)]
@@ -164,16 +164,31 @@ def test_screen_signs_are_exact_where_certain():
     assert _screen_check(E, Q) > 0.5 * len(cases)
     E, Q, _ = random_pairs(400, np.random.default_rng(17))
     assert _screen_check(E, Q) > 0.5 * 400  # rounded cylinders and parallel planes fail the screen
-    assert _screen_check(E * 2.0**100, Q * 2.0**-60) > 0.4 * 400
+    assert _screen_check(E * 2.0**30, Q * 2.0**-20) > 0.5 * 400
+    # coefficients beyond SEMI_COEFFICIENT_MAX: the screen steps aside (the dynamic filter rescales)
+    assert _screen_check(E * 2.0**100, Q * 2.0**-60) == 0
 
 
 def test_screen_constants_follow_from_the_rounding_counts():
-    # det has 24 permutation products, and c_k (k E-rows among 4) C(4, k) times as many
-    assert eb.SCREEN_PATHS == (24, 96, 144, 96, 24)
+    # the row bound: 24 W_k bounds the magnitude of c_k (24 permutations, one entry per row)
+    from quadric_contact._generated.blocks import BLOCK_COUNTS
+
+    value = eb._counts("pencil_coefficients")["value"]
+    rows = BLOCK_COUNTS["row_bound"]["value"]
     for k in range(5):
-        assert (
-            Fraction(eb.SCREEN_PENCIL[False][k])
-            >= Fraction(eb.PENCIL_ERRBOUND[False][k]) * eb.SCREEN_PATHS[k]
-        )
+        need = 24 * eb.gamma(value[k]) / (1 - Fraction(eb.UNIT_ROUNDOFF)) ** (rows[k] + 1)
+        assert Fraction(eb.SEMI_PENCIL[k]) >= need
     for j, degree in enumerate((2, 4, 6)):
-        assert eb.SCREEN_DELTA[j] >= degree * eb.SCREEN_EPS
+        rel, grow = eb.SEMI_DELTA[j]
+        assert rel >= degree
+        assert grow > 0
+    assert eb.SEMI_MINORS[0] >= 2 * eb.gamma(eb._counts("leading_minors_3")["value"][0])
+    assert eb.SEMI_MINORS[1] >= 6 * eb.gamma(eb._counts("leading_minors_3")["value"][1])
+
+
+def test_row_bound_is_proved():
+    from quadric_contact import codegen
+
+    codegen.verify_row_bound()
+    codegen.verify_minor_row_bounds()
+    codegen.verify_plane_zeros()

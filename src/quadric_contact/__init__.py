@@ -31,6 +31,7 @@ from .invariants import QuadricInvariants, invariants
 from .modes import ContactCode, ContactKindCode, CriterionCode, OverlapCode, RegionCode, SmallnessCode
 from .motions import RigidMotion, rotation_from_quaternion
 from .overlap import OverlapResult, TouchingError
+from .packing import Packed, pack, unpack
 from .pencil import CharacteristicPolynomial, characteristic_polynomial
 from .predicates import (
     CriterionResult,
@@ -74,6 +75,7 @@ __all__ = [
     "NotSymmetricError",
     "OverlapCode",
     "OverlapResult",
+    "Packed",
     "PlaneSideResult",
     "Quadric",
     "QuadricContactError",
@@ -102,6 +104,7 @@ __all__ = [
     "family",
     "invariants",
     "overlap",
+    "pack",
     "paper_deltas",
     "plane_side",
     "printed_table_2",
@@ -113,4 +116,5 @@ __all__ = [
     "smallness",
     "table_1",
     "transversal_contact",
+    "unpack",
 ]

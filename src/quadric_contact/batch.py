@@ -68,6 +68,10 @@ def is_stack(value: Any) -> bool:
     """
     if _is_single(value):
         return False
+    from .packing import Packed
+
+    if isinstance(value, Packed):
+        return True
     ndim = getattr(value, "ndim", None)
     if ndim is not None and hasattr(value, "shape"):
         if int(ndim) >= 3:
@@ -110,8 +114,11 @@ def as_stack(value: Any, name: str = "M") -> MatrixStack:
     ------
     ShapeError, NotANumberError, NonFiniteError, NotRationalError, NotSymmetricError
     """
+    from .packing import Packed
     from .pencil import as_quadric
 
+    if isinstance(value, Packed):
+        return _packed_stack(value, name)
     if _is_single(value):
         return _exact_stack([as_quadric(value, name).upper], (), name)
     if isinstance(value, (list, tuple)) and not value:
@@ -147,8 +154,29 @@ def as_stack(value: Any, name: str = "M") -> MatrixStack:
     return _exact_stack(_object_upper(arr.reshape(-1, 4, 4), name), batch, name)
 
 
+def _packed_stack(value: Any, name: str) -> MatrixStack:
+    """A packed stack (:class:`~quadric_contact.packing.Packed`): binary64 entries are used as
+    they are (the fast kernels read them without unpacking); other numbers go through the
+    exact conversion of the unpacked matrices."""
+    from .packing import unpack
+
+    arr = value.array
+    batch = tuple(arr.shape[:-1])
+    kind = arr.dtype.kind
+    if (
+        (kind == "f" and arr.dtype.itemsize <= 8)
+        or (kind in "iu" and arr.size and int(np.abs(arr).max()) <= 2**53)
+    ):
+        packed = np.ascontiguousarray(arr.reshape(-1, 10), dtype=np.float64)
+        return MatrixStack(None, None, False, name, batch, packed=packed)
+    if kind in "bc":
+        raise NotANumberError(f"{name} is not a stack of real matrices (dtype {arr.dtype})", value)
+    full = unpack(arr.reshape(-1, 10))
+    return _exact_stack(_object_upper(full.astype(object), name), batch, name)
+
+
 def _object_upper(arr: np.ndarray, name: str) -> list[tuple[Fraction, ...]]:
-    from .codegen import ENTRY_INDICES
+    from .entries import ENTRY_INDICES
     from .rational import as_square_matrix
 
     out = []
@@ -175,7 +203,7 @@ def _object_upper(arr: np.ndarray, name: str) -> list[tuple[Fraction, ...]]:
 def _exact_stack(uppers: list[tuple[Fraction, ...]], batch: tuple[int, ...], name: str) -> MatrixStack:
     """Exact matrices: binary64 roundings for the float stages; if every entry is a
     binary64 number the stack *is* float input (no rounding at all)."""
-    from .codegen import ENTRY_INDICES
+    from .entries import ENTRY_INDICES
 
     n = len(uppers)
     exact = np.empty((n, 10), dtype=object)
@@ -297,8 +325,9 @@ def _run_dask(what: str, E: Any, Q: Any, mode: Any, client: Any, compute: bool) 
     if not shape:
         Eb, Qb = Eb[None], Qb[None]
     Eb, Qb = da.core.unify_chunks(Eb, tuple(range(Eb.ndim)), Qb, tuple(range(Qb.ndim)))[1]
+
     def block(e: np.ndarray, q: np.ndarray) -> np.ndarray:
-        from .modes.float64 import single_threaded
+        from .modes.threads import single_threaded
 
         with single_threaded():
             return np.asarray(run_stack(what, e, q, m), dtype=np.int8).reshape(e.shape[:-2])

@@ -49,7 +49,7 @@ from .base import (
     StageCounts,
 )
 from .certified import CertifiedMode
-from .float64 import FilterMode, FloatMode
+from .float_modes import FilterMode, FloatMode
 from .objects import BallMode, ExactMode, MpmathMode
 
 __all__ = [

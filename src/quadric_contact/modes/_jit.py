@@ -32,3 +32,53 @@ def njit(fn: Callable[..., Any] | None = None, *, inline: bool = False, cache: b
         return numba.njit(nogil=True, cache=cache, error_model="numpy")(f)
 
     return wrap(fn) if fn is not None else wrap
+
+
+# -- first use: one line when the kernels are compiled rather than loaded ---------------------
+#
+# numba compiles a kernel the first time it is called with a new signature and keeps the
+# machine code in its on-disk cache (``cache=True``: next to the package when that directory
+# is writable, otherwise the user cache directory, ``~/.cache/numba`` on Linux;
+# ``NUMBA_CACHE_DIR`` overrides both).  Later processes load it in milliseconds.  The first
+# compilation of the complete decision takes minutes of CPU time, so the first time a kernel
+# of this package misses the cache the process says so, once, on stderr.
+
+COMPILE_NOTICE = (
+    "quadric-contact: compiling the numba kernels once for this machine (two to four minutes of CPU "
+    "time in all, spread over the first calls that need them); later processes load them from the "
+    "on-disk cache{where}"
+)
+"""The line printed (stderr) the first time a kernel of the package is compiled in a process."""
+
+_notice_printed = False
+
+
+def _cache_dir(dispatcher: Any) -> str:
+    cache = getattr(dispatcher, "_cache", None)
+    path = getattr(cache, "_cache_path", None)
+    return f" ({path})" if path else ""
+
+
+if HAVE_NUMBA:  # pragma: no branch
+    import sys
+
+    from numba.core import event as _event
+
+    class _CompileNotice(_event.Listener):  # type: ignore[misc,unused-ignore]
+        """Prints :data:`COMPILE_NOTICE` when a dispatcher of this package misses the cache."""
+
+        def on_start(self, ev: Any) -> None:
+            global _notice_printed
+            if _notice_printed:
+                return
+            dispatcher = (ev.data or {}).get("dispatcher")
+            module = getattr(getattr(dispatcher, "py_func", None), "__module__", "") or ""
+            if not module.startswith("quadric_contact"):
+                return
+            _notice_printed = True
+            print(COMPILE_NOTICE.format(where=_cache_dir(dispatcher)), file=sys.stderr, flush=True)
+
+        def on_end(self, ev: Any) -> None:
+            pass
+
+    _event.register("numba:compile", _CompileNotice())

@@ -260,7 +260,6 @@ class StageCounts:
         return ", ".join(parts) or "nothing"
 
 
-@dataclass(frozen=True)
 class MatrixStack:
     """Validated symmetric matrices, ``n`` of them.
 
@@ -269,23 +268,66 @@ class MatrixStack:
     floats : ndarray, shape (n, 4, 4), float64
         The matrices in binary64 (C-contiguous).  When ``exact`` is None they
         *are* the input (a float is an exact dyadic rational); otherwise they are
-        the correctly rounded values of ``exact``.
+        the correctly rounded values of ``exact``.  For packed input they are made
+        from ``packed`` on first use (the fast kernels read ``packed`` itself).
     exact : ndarray of Fraction, shape (n, 10), or None
         The upper entries exactly, when the input was not binary64.
     checked : bool
-        Symmetry and finiteness were verified on conversion (exact input);
+        Symmetry and finiteness were verified on conversion (exact or packed input);
         float input is verified by the kernels that read it.
     name : str
         ``"E"`` or ``"Q"``, for messages.
     shape : tuple of int
         The caller's batch shape (``()`` for a single matrix), for messages.
+    packed : ndarray, shape (n, 10), float64, or None
+        The ten upper entries of each matrix (:func:`quadric_contact.pack`), when the
+        input came packed.
     """
 
-    floats: np.ndarray
-    exact: np.ndarray | None = None
-    checked: bool = False
-    name: str = "M"
-    shape: tuple[int, ...] = ()
+    __slots__ = ("_floats", "checked", "exact", "name", "packed", "shape")
+
+    def __init__(
+        self,
+        floats: np.ndarray | None,
+        exact: np.ndarray | None = None,
+        checked: bool = False,
+        name: str = "M",
+        shape: tuple[int, ...] = (),
+        packed: np.ndarray | None = None,
+    ) -> None:
+        if floats is None and packed is None:
+            raise ValueError("a MatrixStack needs floats or packed entries")
+        self._floats = floats
+        self.exact = exact
+        self.checked = checked
+        self.name = name
+        self.shape = shape
+        self.packed = packed
+
+    @property
+    def floats(self) -> np.ndarray:
+        if self._floats is None:
+            from ..packing import unpack
+
+            assert self.packed is not None
+            self._floats = np.ascontiguousarray(unpack(self.packed))
+        return self._floats
+
+    def rows_floats(self, rows: np.ndarray) -> np.ndarray:
+        """``floats[rows]`` (a new ``(k, 4, 4)`` array), without unpacking the rest of a packed stack."""
+        if self._floats is None:
+            from ..packing import unpack
+
+            assert self.packed is not None
+            return np.ascontiguousarray(unpack(self.packed[rows]))
+        return np.ascontiguousarray(self._floats[rows])
+
+    def kernel_array(self) -> tuple[np.ndarray, bool]:
+        """The array the fast kernels read and whether it is packed: ``(n, 10)`` packed
+        entries, or the ``(n, 16)`` flat view of ``floats``."""
+        if self.packed is not None:
+            return self.packed, True
+        return self.floats.reshape(-1, 16), False
 
     def where(self, row: int) -> str:
         """``E[2, 1]``-style position of a matrix in the caller's array."""
@@ -295,7 +337,13 @@ class MatrixStack:
         return f"{self.name}[{', '.join(str(int(i)) for i in idx)}]"
 
     def __len__(self) -> int:
-        return int(self.floats.shape[0])
+        return int((self.packed if self._floats is None else self._floats).shape[0])  # type: ignore[union-attr]
+
+    def __repr__(self) -> str:
+        layout = "packed" if self.packed is not None else "float64"
+        return (
+            f"MatrixStack({self.name}, {len(self)} matrices, {layout}{', rounded' if self.rounded else ''})"
+        )
 
     @property
     def rounded(self) -> bool:
@@ -304,11 +352,15 @@ class MatrixStack:
     def upper_exact(self, rows: np.ndarray) -> list[np.ndarray]:
         """The ten upper-entry columns of ``rows`` as object arrays of exact rationals
         (Fractions, or Python floats standing for their exact dyadic values)."""
-        from ..codegen import ENTRY_INDICES
+        from ..entries import ENTRY_INDICES
 
         if self.exact is not None:
             sub = self.exact[rows]
             return [sub[:, k] for k in range(10)]
+        if self._floats is None:
+            assert self.packed is not None
+            psub = self.packed[rows]
+            return [psub[:, k].astype(object) for k in range(10)]
         sub = self.floats[rows]
         return [sub[:, i, j].astype(object) for i, j in ENTRY_INDICES]
 

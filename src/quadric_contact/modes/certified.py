@@ -19,7 +19,7 @@ import numpy as np
 
 from .base import MatrixStack, NumberMode, Pairs
 from .decisions import UNCERTAIN_ROW, rows_from_masks
-from .float64 import FilterMode
+from .float_modes import FilterMode
 from .objects import BallMode, ExactMode
 
 __all__ = ["CertifiedMode"]

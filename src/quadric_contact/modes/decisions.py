@@ -363,10 +363,10 @@ def region_code_masked(
 def region_from_signs(contact: np.ndarray, csigns: np.ndarray, masks: np.ndarray) -> np.ndarray:
     """Vectorised :func:`region_code_masked`: ``contact`` (n,), ``csigns`` (n, 5) for
     ``c0 .. c4``, ``masks`` (n,) the candidate rows of each pair's quadric."""
-    from . import float64
+    from . import float_modes
 
     masks = np.ascontiguousarray(masks, dtype=np.int64)
-    return float64.region_codes_from_signs(
+    return float_modes.region_codes_from_signs(
         np.ascontiguousarray(contact, dtype=np.int8),
         np.ascontiguousarray(csigns, dtype=np.int8),
         rows_from_masks(masks),

@@ -31,7 +31,7 @@ non-negative, ``N'`` its own count), so ``p~ <= M / (1 - u)^N'``.  A fused
 multiply-add only removes roundings from paths, so the bounds hold whether or
 not the compiler contracts.
 
-Everything here is used by :mod:`quadric_contact.modes.float64`; the tests
+Everything here is used by the binary64 kernels (:mod:`quadric_contact.modes.float_modes`); the tests
 check every bound against exact arithmetic on adversarial inputs.
 """
 
@@ -53,6 +53,10 @@ __all__ = [
     "PENCIL_ERRBOUND",
     "RHO_MAX",
     "ROUND_UP",
+    "SEMI_COEFFICIENT_MAX",
+    "SEMI_DELTA",
+    "SEMI_MINORS",
+    "SEMI_PENCIL",
     "UNIT_ROUNDOFF",
     "gamma",
     "program_errbound",
@@ -217,83 +221,6 @@ DELTA_ABSOLUTE = tuple(_delta_absolute(j) for j in range(3))
 """``(K1_j, K3_j)`` for ``Delta_2, Delta_3, Delta_4``: bound ``fl(fl(K1 fl(B - A)) + fl(K3 A))``."""
 
 
-# -- the screen: a first stage with static bounds ---------------------------------------------
-#
-# Shewchuk-style stage A: the pencil's magnitude programs (the bulk of the filter's work)
-# replaced by static bounds.  Every product of c_k's program has k factors from E and 4 - k
-# from Q (c_k is homogeneous of those degrees), so its magnitude program is at most
-#     n_k * max|E|^k * max|Q|^(4-k),      n_k = the magnitude program at all ones
-# (exact integers), a product that takes at most five roundings to compute.  When the
-# quadratic part of Q is zero (a plane), c0 = c1 = 0 exactly: every product of their
-# programs has a factor from that block (the Laplace expansion takes rows 0, 1 of Q in
-# c0 and, with one row of E, in the first half of c1; the second half takes rows 2, 3 of Q
-# in columns other than 3), so their computed values and errors are exactly zero.
-#
-# If every coefficient then satisfies r_k <= EPS |c^_k| (exact zeros with a zero bound
-# pass), every one is known to relative error EPS.  The screen rescales with two positive
-# floats, beta ~ (|c0| / |c4|)^(1/4) (balancing the roots) and s = 1 / max |c_k beta^k|:
-# x_k = fl(fl(c^_k fl(beta^k)) s) is within relative error rho = (1 + EPS)(1 + u)^12 - 1 of
-# c_k beta^k s (at most 11 roundings: the powers of beta, the two products), and any
-# positive factors keep every sign the decisions read.  The relative form of the Delta
-# bound then reads bound_j = fl(SCREEN_DELTA[j] * A_j) with A_j the magnitude program at |x|.
-
-SCREEN_EPS = 2.0**-20
-"""The screen passes a pair only when every coefficient is known to this relative error."""
-
-
-def _screen_paths() -> tuple[int, ...]:
-    from .._generated import kernels
-
-    return tuple(int(v) for v in kernels.pencil_coefficients_magnitude(*([1] * 20)))
-
-
-SCREEN_PATHS = _screen_paths()
-"""``n_k``: the pencil's magnitude programs at all ones."""
-
-SCREEN_PENCIL = {
-    rounded: tuple(
-        round_up(Fraction(K) * n / (1 - _U) ** 5)
-        for K, n in zip(PENCIL_ERRBOUND[rounded], SCREEN_PATHS, strict=True)
-    )
-    for rounded in (False, True)
-}
-"""``r_k = fl(SCREEN_PENCIL[k] * fl(max|E|^k * max|Q|^(4-k)))`` bounds ``|c^_k - c_k|``
-(``PENCIL_ERRBOUND`` for the program, ``n_k`` for the static magnitude, ``(1-u)^-5`` for the
-products that compute it)."""
-
-
-def _screen_minors() -> dict[bool, tuple[float, ...]]:
-    from .._generated import kernels
-
-    paths = kernels.leading_minors_3_magnitude(*([1] * 6))
-    return {
-        rounded: tuple(
-            round_up(Fraction(K) * int(n) / (1 - _U) ** 4)
-            for K, n in zip(MINORS_ERRBOUND[rounded], paths, strict=True)
-        )
-        for rounded in (False, True)
-    }
-
-
-SCREEN_MINORS = _screen_minors()
-"""Bounds of the leading minors of ``E``: ``SCREEN_MINORS[j] * max|A|^(j + 2)``."""
-
-
-def _screen_delta() -> tuple[float, ...]:
-    rho = (1 + Fraction(SCREEN_EPS)) * (1 + _U) ** 12 - 1
-    rc = _counts("paper_deltas")
-    out = []
-    for j in range(3):
-        d, n, nm = rc["degree"][j], rc["value"][j], rc["magnitude"][j]
-        factor = (d * (1 + rho) ** (d - 1) * rho + gamma(n)) / (1 - _U) ** (nm + 1)
-        out.append(round_up(factor))
-    return tuple(out)
-
-
-SCREEN_DELTA = _screen_delta()
-"""``bound_j = fl(SCREEN_DELTA[j] * A_j)`` on the screen (``A_j``: magnitude program at ``|x|``)."""
-
-
 # -- the separation certificate: members s E + Q of the pencil -------------------------------
 #
 # The separation stage (:mod:`quadric_contact.modes.separation`) reads the inertia of a member
@@ -354,3 +281,101 @@ def _check_member_guard() -> None:
 
 
 _check_member_guard()
+
+
+# -- the semi-static screen -------------------------------------------------------------------
+#
+# The first stage of the filter on binary64 input (CGAL's static filters, Shewchuk's stage A,
+# with one bound per coefficient from the rows of the two matrices).  Guard: every non-zero
+# entry in [INPUT_MIN, INPUT_MAX], so that, as for the filter, no intermediate of the pencil
+# program or of the row bound is subnormal or overflows.
+#
+# Coefficients.  With R_r, T_r the largest |entry| of row r of E and of Q (exact: maxima of
+# floats), the magnitude program of c_k is at most 24 W_k(R, T), W_k the coefficient of
+# lambda^k in prod_r (R_r lambda + T_r) (codegen.verify_row_bound: the general determinant has
+# 24 permutations, each taking one entry per row, and the symmetric program's magnitude is at
+# most the general one).  So |c^_k - c_k| <= gamma_N 24 W_k (Higham, Lemma 3.1, N the value
+# count of c_k).  ``row_bound`` adds non-negative products: its computed W^_k >= (1-u)^n W_k
+# (n its own count), and r_k = fl(SEMI_PENCIL[k] W^_k) loses one more factor (1 - u).
+#
+# Delta stage, without rescaling.  Every non-zero |c^_k| must lie in [COEFFICIENT_MIN,
+# SEMI_COEFFICIENT_MAX] (then the compact Delta programs neither underflow (the quantum
+# argument of the coefficient guard) nor overflow (below)).  With rho_k = r_k / |c^_k| and
+# c^_k = 0 allowed only with r_k = 0 (an exact zero), c_k = c^_k (1 + t_k), |t_k| <= rho =
+# max rho_k, and the relative form of the Delta bounds applies (as DELTA_RELATIVE, with the
+# counts of ``paper_deltas_compact``, whose Delta4_27 = 27 Delta_4 has the sign of Delta_4):
+#     |Delta^_j - Delta_j(c)| <= fl(fl(fl(R_j rho^) + G_j) A_j),   rho^ = max fl(r_k / |c^_k|),
+# A_j the computed magnitude program at |c^| (every path of the program, not only the
+# monomials of the polynomial, is perturbed by at most d rho (1 + rho)^(d-1)).  rho^ >= 2^-930
+# whenever it is not zero (r_k >= 2^-720 SEMI_PENCIL[k] for a non-zero W_k, |c^_k| <= 2^160),
+# so the quotients are normal.  For a plane (Q with a zero quadratic part) c0 and c1 are exact
+# zeros with zero bounds and Delta_4 vanishes identically (codegen.verify_plane_zeros).
+
+SEMI_COEFFICIENT_MAX = 2.0**160
+"""The screen's Delta stage needs ``fl(|c0| + .. + |c4|)`` at most this (no rescaling; each
+``|c_k|`` is then below ``2^161``), and every non-zero ``|c_k|`` at least COEFFICIENT_MIN."""
+
+
+def _semi_pencil() -> tuple[float, ...]:
+    from .._generated.blocks import BLOCK_COUNTS
+
+    pencil = _counts("pencil_coefficients")["value"]
+    rows: tuple[int, ...] = BLOCK_COUNTS["row_bound"]["value"]  # type: ignore[index]
+    return tuple(round_up(24 * gamma(n) / (1 - _U) ** (w + 1)) for n, w in zip(pencil, rows, strict=True))
+
+
+SEMI_PENCIL = _semi_pencil()
+"""``r_k = fl(SEMI_PENCIL[k] * W^_k)`` bounds ``|c^_k - c_k|`` (binary64 input, guarded)."""
+
+
+def _semi_minors() -> tuple[float, float]:
+    # The magnitude programs of m2 and m3 are at most 2 R0 R1 and 6 R0 R1 R2
+    # (codegen.verify_minor_row_bounds); the products of the row maxima take 1 and 2 roundings,
+    # the final product by the constant one more.
+    value = _counts("leading_minors_3")["value"]
+    return tuple(  # type: ignore[return-value]
+        round_up(math.factorial(k) * gamma(n) / (1 - _U) ** k) for k, n in zip((2, 3), value, strict=True)
+    )
+
+
+SEMI_MINORS = _semi_minors()
+"""The screen's test that ``E`` is an ellipsoid: ``|m2^ - m2| <= fl(SEMI_MINORS[0] fl(R0 R1))`` and
+``|m3^ - m3| <= fl(SEMI_MINORS[1] fl(fl(R0 R1) R2))`` (binary64 input, guarded)."""
+
+
+def _relative_form(d: int, n: int, nm: int) -> tuple[float, float]:
+    """``(R, G)`` of the relative form of a Delta bound (see above DELTA_RELATIVE) for a program
+    of degree ``d``, value count ``n`` and magnitude count ``nm``."""
+    rho_max = Fraction(RHO_MAX) / (1 - _U)
+    loss = (1 - _U) ** 3
+    r = d * (1 + rho_max) ** (d - 1) / (1 - _U) / (1 - _U) ** nm / loss
+    g = gamma(n) / (1 - _U) ** nm / loss
+    return round_up(r), round_up(g)
+
+
+def _semi_delta() -> tuple[tuple[float, float], ...]:
+    from .._generated.blocks import BLOCK_COUNTS
+
+    rc: dict[str, tuple[int, ...]] = BLOCK_COUNTS["paper_deltas_compact"]  # type: ignore[assignment]
+    return tuple(
+        _relative_form(d, n, nm) for d, n, nm in zip(rc["degree"], rc["value"], rc["magnitude"], strict=True)
+    )
+
+
+SEMI_DELTA = _semi_delta()
+"""``(R_j, G_j)`` for the compact ``Delta_2, Delta_3, 27 Delta_4``: bound ``fl(fl(fl(R rho^) + G) A)``."""
+
+
+def _check_semi_guard() -> None:
+    from .._generated import blocks
+
+    # the compact programs at |c_k| <= 2^160: every value and magnitude is at most the number
+    # of paths (the magnitude program at all ones) times 2^(160 d), d <= 6
+    paths = max(blocks.paper_deltas_compact_magnitude(*([1] * 5)))
+    assert math.log2(paths) + 6 * (math.log2(SEMI_COEFFICIENT_MAX) + 1) + 1 < 1023
+    # a non-zero rho^ is normal: r_k >= SEMI_PENCIL 2^(4 * -180), |c| <= 2^160
+    assert math.log2(min(SEMI_PENCIL)) + 4 * INPUT_MIN_EXPONENT - math.log2(SEMI_COEFFICIENT_MAX) >= -1000
+    assert all(r * RHO_MAX + g < 1 for r, g in SEMI_DELTA)
+
+
+_check_semi_guard()

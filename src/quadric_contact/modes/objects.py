@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from .._generated import formulas, kernels
-from ..codegen import ENTRY_INDICES
+from ..entries import ENTRY_INDICES
 from .base import MatrixStack, NumberMode, Pairs
 from .decisions import (
     ELLIPSOID_NOT,
@@ -197,7 +197,7 @@ def integer_rows(stack: MatrixStack, rows: np.ndarray) -> list[np.ndarray]:
             for k, v in enumerate(fr):
                 out[k][r] = v.numerator * (d // v.denominator)
         return out
-    f = stack.floats[rows]
+    f = stack.rows_floats(np.asarray(rows))
     upper = np.stack([f[:, i, j] for i, j in ENTRY_INDICES], axis=1)
     mant, ex = np.frexp(upper)
     m = (mant * 2.0**53).astype(np.int64)  # exact: |mant| in [1/2, 1)

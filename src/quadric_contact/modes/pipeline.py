@@ -46,6 +46,7 @@ from ..classification import NO_REAL_POINTS, REFUSED_KINDS, TABLE_1_KINDS, Quadr
 from ..errors import ExcludedQuadricError
 from .base import ContactCode, ContactKindCode, OverlapCode, Pairs, RegionCode, StageCounts
 from .decisions import KINDS, UNCERTAIN_ROW, rows_from_masks
+from .rows import unique_rows
 from .separation import CROSSING, SEP_MINUS, SEP_PLUS
 
 if TYPE_CHECKING:
@@ -79,7 +80,7 @@ _ROW_REFUSED = np.array([k in REFUSED_KINDS for k in KINDS for _ in (1, -1)] + [
 def _classes(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, np.ndarray]:
     """Per pair: the class of ``Q`` (Table 1 type, plane, no real points, other, uncertain)
     and its canonical sign (+1/-1; 0 when uncertain).  Raises for a refused type."""
-    used, where = np.unique(pairs.q_rows(), return_inverse=True)
+    used, where = unique_rows(pairs.q_rows(), len(pairs.Q), return_inverse=True)
     rows = rows_from_masks(mode.classify(pairs.Q, used)).astype(np.intp)
     klass = _ROW_CLASS[rows]
     sign = _ROW_SIGN[rows]

@@ -394,7 +394,7 @@ def separation_float(
     """Separation codes of every pair in binary64: certified (``UNCERTAIN`` where a sign or
     a guard fails) or plain (always an answer).  Inputs are assumed validated (finite,
     symmetric, ``E`` an ellipsoid)."""
-    from .float64 import run_parallel
+    from .threads import run_parallel
 
     n = pairs.n
     out = np.empty(n, dtype=np.int8)

@@ -52,7 +52,7 @@ guard.
 *Per matrix, once.*  The type of a quadric comes from the mode's
 :meth:`~quadric_contact.modes.base.NumberMode.classify`, and where that is uncertain
 (or the row is not trusted) from exact integer arithmetic
-(:func:`~quadric_contact.modes.float64.exact_facts`); a quadric whose sides the float
+(:func:`~quadric_contact.modes.float_modes.exact_facts`); a quadric whose sides the float
 code cannot certify (a degenerate type rounded off its exact zero eigenvalue, or close
 to it) gets them from ball arithmetic, rounded outward (:func:`_refine`).  Pairs still
 uncertain get a second try with Newton-polished approximations and much narrower
@@ -999,7 +999,7 @@ def _guard(stack: MatrixStack, rows: np.ndarray | None) -> np.ndarray:
     n = len(stack) if rows is None else rows.size
     if stack.exact is None:
         return np.zeros(n, dtype=np.bool_)
-    from ..codegen import ENTRY_INDICES
+    from ..entries import ENTRY_INDICES
 
     idx = slice(None) if rows is None else rows
     exact = stack.exact[idx]
@@ -1016,7 +1016,7 @@ def e_row_quantities(
     certain, 1 uncertain, INVALID; values ``(8, k)``: ``[lo, hi]`` of the four squared sides of
     :data:`~quadric_contact.modes.smallness_tables.E_SIDES`.  ``width``, ``polish``: see
     :data:`TIGHT_WIDTH`."""
-    from .float64 import run_parallel
+    from .threads import run_parallel
 
     M = _flat(stack)
     n = len(stack) if rows is None else rows.size
@@ -1057,7 +1057,7 @@ def q_row_quantities(
     out_s = np.empty(n, dtype=np.int8)
     out_v = np.empty((8, n))
     if _use_numba(backend):
-        from .float64 import run_parallel
+        from .threads import run_parallel
 
         loop = _compiled("_q_rows_loop")
         run_parallel(
@@ -1107,8 +1107,10 @@ def _row_map(index: np.ndarray | None, m: int, n: int) -> tuple[np.ndarray | Non
         if m == n:
             return None, empty, 1
         return np.zeros(1, dtype=np.intp), empty, 0
-    rows, inverse = np.unique(index, return_inverse=True)
-    return rows, np.ascontiguousarray(np.asarray(inverse).reshape(-1), dtype=np.intp), 0
+    from .rows import unique_rows
+
+    rows, inverse = unique_rows(index, m, return_inverse=True)
+    return rows, inverse, 0
 
 
 def pair_codes(
@@ -1116,7 +1118,7 @@ def pair_codes(
     qidx: np.ndarray, es: int, qs: int, n: int, *, backend: str = "numba", threads: int | None = None,
 ) -> np.ndarray:  # fmt: skip
     """Codes of ``n`` pairs from the rows' quantities (INVALID where a row is)."""
-    from .float64 import run_parallel
+    from .threads import run_parallel
 
     out = np.empty(n, dtype=np.int8)
     if n == 0:
@@ -1139,7 +1141,7 @@ def _fused_codes(
     E: MatrixStack, qst: np.ndarray, qkind: np.ndarray, qv: np.ndarray, qidx: np.ndarray, qs: int, n: int, *,
     certify: bool, threads: int | None,
 ) -> np.ndarray:  # fmt: skip
-    from .float64 import run_parallel
+    from .threads import run_parallel
 
     guard = _guard(E, None) if E.rounded else np.zeros(0, dtype=np.bool_)
     M = _flat(E)
@@ -1172,7 +1174,7 @@ def float_smallness(
         # uncertain or untrustworthy (an exact entry rounded to zero looks like an exact zero).
         unsure = np.flatnonzero((kinds == -2) | _guard(pairs.Q, rows_q))
         if unsure.size:
-            from .float64 import exact_facts
+            from .float_modes import exact_facts
 
             kinds[unsure], signs[unsure] = table_kinds(exact_facts(pairs.Q, rows_q[unsure])[1])
     qst, qv = q_row_quantities(pairs.Q, rows_q, kinds, signs, certify=certify, backend=backend)
@@ -1260,7 +1262,7 @@ def run(mode: Any, pairs: Pairs) -> np.ndarray:
     """:meth:`FloatMode.smallness` and :meth:`FilterMode.smallness`: the codes, invalid input
     diagnosed (the package's errors are raised; an ellipsoid the stage could not certify
     becomes ``UNCERTAIN``), the counts recorded."""
-    from .float64 import _diagnose
+    from .float_modes import _diagnose
 
     codes = float_smallness(
         pairs, certify=mode.filtered, classify=mode.classify, backend=mode.backend, threads=mode.threads

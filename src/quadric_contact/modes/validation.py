@@ -19,15 +19,15 @@ def validate_rows(stack: MatrixStack, rows: np.ndarray, name: str | None = None)
     """Raise for the first matrix among ``rows`` with a non-finite entry or that is not symmetric."""
     if stack.checked or len(rows) == 0:
         return
-    from .float64 import check_stack
+    from .float_modes import check_stack
 
-    sub = np.ascontiguousarray(stack.floats[rows])
+    sub = stack.rows_floats(np.asarray(rows))
     flags = check_stack(sub)
     if not flags.any():
         return
     k = int(np.argmax(flags != 0))
     row = int(rows[k])
-    M = stack.floats[row]
+    M = sub[k]
     where = stack.where(row)
     if flags[k] == 1:
         i, j = (int(v) for v in np.argwhere(~np.isfinite(M))[0])
@@ -50,7 +50,7 @@ def exact_matrix(stack: MatrixStack, row: int) -> object:
 
     if stack.exact is not None:
         return Quadric._from_upper(tuple(stack.exact[row]))
-    return Quadric.from_matrix(stack.floats[row])
+    return Quadric.from_matrix(stack.rows_floats(np.array([row]))[0])
 
 
 def raise_not_ellipsoid(stack: MatrixStack, row: int) -> None:

@@ -1,0 +1,119 @@
+"""Small compiled kernels around the criterion: invariant signs of quadrics, checking stacks,
+region codes from signs, and the memory-bandwidth floor (a streaming sum)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from .._generated import blocks, kernels
+from . import errorbounds as eb
+from ._jit import HAVE_NUMBA, numba
+from ._jit import njit as _njit
+from .decisions import ROWS, region_code_masked
+
+__all__ = ["check_stack_kernel", "invariant_signs_kernel", "read_all_kernel", "region_codes_kernel"]
+
+_UNC = 2
+_INPUT_MIN = eb.INPUT_MIN
+_INPUT_MAX = eb.INPUT_MAX
+_FLOAT_MAX = float(np.finfo(np.float64).max)
+
+_invariants = _njit(kernels.quadric_invariants, inline=True)
+_invariants_mag = _njit(kernels.quadric_invariants_magnitude, inline=True)
+_upper_full = _njit(blocks.upper_full, inline=True)
+_abs10 = _njit(blocks.abs_upper, inline=True)
+_outside = _njit(blocks.outside_count, inline=True)
+
+
+@_njit(inline=True)
+def _sgn(v: float, err: float) -> int:
+    if v > err:
+        return 1
+    if v < -err:
+        return -1
+    if err == 0.0:
+        return 0
+    return _UNC
+
+
+@_njit(inline=True)
+def _psgn(v: float) -> int:
+    if v > 0.0:
+        return 1
+    if v < 0.0:
+        return -1
+    return 0
+
+
+def _invariant_signs_impl(Q: Any, lo: int, hi: int, K: Any, filtered: bool, out: Any) -> None:
+    """Signs of ``(trA, J, detA, E1, E2, E3, E4, q33)`` for the flat ``(m, 16)`` quadrics
+    ``Q[lo:hi]``; with ``filtered`` the bounded ones, and all ``UNCERTAIN`` outside the guard."""
+    for p in range(lo, hi):
+        q = _upper_full(Q, p)
+        q00, q01, q02, q03, q11, q12, q13, q22, q23, q33 = q
+        v = _invariants(q00, q01, q02, q03, q11, q12, q13, q22, q23, q33)
+        out[p, 7] = _psgn(q33)
+        if not filtered:
+            for k in range(7):
+                out[p, k] = _psgn(v[k])
+            continue
+        a = _abs10(q)
+        g = _outside(a, _INPUT_MIN, _INPUT_MAX)
+        mags = _invariants_mag(a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8], a[9])
+        for k in range(7):
+            out[p, k] = _UNC if g != 0 else _sgn(v[k], K[k] * mags[k])
+
+
+def _check_stack_impl(M: Any, lo: int, hi: int, out: Any) -> None:
+    """1 where a matrix has a non-finite entry, 2 where it is not symmetric, else 0."""
+    for p in range(lo, hi):
+        flag = 0
+        for i in range(4):
+            for j in range(4):
+                x = M[p, i, j]
+                if not (abs(x) <= _FLOAT_MAX):
+                    flag = 1
+        if flag == 0:
+            for i in range(4):
+                for j in range(i + 1, 4):
+                    if M[p, i, j] != M[p, j, i]:
+                        flag = 2
+        out[p] = flag
+
+
+def _region_codes_impl(contact: Any, csigns: Any, rows: Any, masks: Any, out: Any) -> None:
+    for p in range(contact.shape[0]):
+        out[p] = region_code_masked(
+            contact[p], csigns[p, 0], csigns[p, 1], csigns[p, 2], csigns[p, 3], csigns[p, 4], rows[p],
+            masks[p],
+            ROWS,
+        )  # fmt: skip
+
+
+def _read_all_impl(a: Any, lo: int, hi: int) -> float:
+    """The sum of ``a[lo:hi]`` (a flat float64 array) with eight independent accumulators, so
+    that the loop streams at the speed of memory."""
+    s0 = s1 = s2 = s3 = s4 = s5 = s6 = s7 = 0.0
+    k = lo
+    while k + 8 <= hi:
+        s0 += a[k]
+        s1 += a[k + 1]
+        s2 += a[k + 2]
+        s3 += a[k + 3]
+        s4 += a[k + 4]
+        s5 += a[k + 5]
+        s6 += a[k + 6]
+        s7 += a[k + 7]
+        k += 8
+    while k < hi:
+        s0 += a[k]
+        k += 1
+    return ((s0 + s1) + (s2 + s3)) + ((s4 + s5) + (s6 + s7))
+
+
+invariant_signs_kernel = _njit(_invariant_signs_impl)
+check_stack_kernel = _njit(_check_stack_impl)
+region_codes_kernel = _njit(_region_codes_impl)
+read_all_kernel = numba.njit(nogil=True, cache=True)(_read_all_impl) if HAVE_NUMBA else _read_all_impl

@@ -1,0 +1,42 @@
+"""The distinct rows a stack of pairs uses, by marking instead of sorting.
+
+``np.unique`` sorts (``O(n log n)``); the row indices of pairs are bounded by the length
+``m`` of the stack they index, so marking the rows used in a boolean array of length ``m``
+finds them in ``O(n + m)``, in increasing order as ``np.unique`` gives them.
+"""
+
+from __future__ import annotations
+
+from typing import Literal, overload
+
+import numpy as np
+
+__all__ = ["unique_rows"]
+
+
+@overload
+def unique_rows(index: np.ndarray, m: int, return_inverse: Literal[False] = False) -> np.ndarray: ...
+@overload
+def unique_rows(
+    index: np.ndarray, m: int, return_inverse: Literal[True]
+) -> tuple[np.ndarray, np.ndarray]: ...
+
+
+def unique_rows(
+    index: np.ndarray, m: int, return_inverse: bool = False
+) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
+    """``np.unique(index)`` (and, with ``return_inverse``, where each entry of ``index`` finds
+    its row among them, as ``intp``) for indices in ``range(m)``.
+
+    >>> unique_rows(np.array([5, 2, 5, 0]), 7, return_inverse=True)
+    (array([0, 2, 5]), array([2, 1, 2, 0]))
+    """
+    index = np.asarray(index, dtype=np.intp).reshape(-1)
+    seen = np.zeros(m, dtype=np.bool_)
+    seen[index] = True
+    rows = np.flatnonzero(seen)
+    if not return_inverse:
+        return rows
+    position = np.empty(m, dtype=np.intp)
+    position[rows] = np.arange(rows.size, dtype=np.intp)
+    return rows, position[index]

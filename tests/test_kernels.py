@@ -1,0 +1,141 @@
+"""The fast block kernels: every layout (distinct pairs, one matrix against a stack on
+either side, float64 ``(N, 4, 4)`` or packed ``(N, 10)``) gives the codes of the numpy
+fallback, and the certified answers are those of exact arithmetic; the packed layout's
+public API; the first-use notice."""
+
+from __future__ import annotations
+
+import types
+
+import numpy as np
+import pytest
+from tests.oracles import criterion_contact, criterion_region
+
+import quadric_contact as qc
+from quadric_contact.benchmark import kernel_population
+from quadric_contact.hardcases import hard_cases
+from quadric_contact.modes import CertifiedMode, FilterMode, FloatMode
+from quadric_contact.modes._jit import HAVE_NUMBA
+from quadric_contact.samples import random_pairs
+
+PREDICATES = [criterion_contact, criterion_region]
+
+
+@pytest.fixture(scope="module")
+def pairs():
+    E, Q = kernel_population(1500, np.random.default_rng(5))
+    E2, Q2, _ = random_pairs(1500, np.random.default_rng(6))
+    cases = [
+        c for c in hard_cases(["ladder", "dyadic-tangent", "delta4-zero", "huge-offset"]) if not c.exact_input
+    ]
+    E3 = np.stack([c.matrices()[0] for c in cases])
+    Q3 = np.stack([c.matrices()[1] for c in cases])
+    return np.concatenate([E, E2, E3]), np.concatenate([Q, Q2, Q3])
+
+
+def _layouts(E, Q):
+    """The pairs in every layout the kernels read: ``(name, E, Q)`` (the fixed layouts take
+    ``Q[7]`` or ``E[11]`` against the whole other stack)."""
+    return [
+        ("distinct", E, Q),
+        ("packed", qc.Packed(qc.pack(E)), qc.Packed(qc.pack(Q))),
+        ("packed E", qc.Packed(qc.pack(E)), Q),
+        ("fixed Q", E, Q[7]),
+        ("fixed Q, packed", qc.Packed(qc.pack(E)), qc.Packed(qc.pack(Q[7:8]))),
+        ("fixed E", E[11], Q),
+    ]
+
+
+@pytest.mark.skipif(not HAVE_NUMBA, reason="numba not installed")
+@pytest.mark.parametrize("predicate", PREDICATES)
+@pytest.mark.parametrize("cls", [FloatMode, FilterMode])
+def test_every_layout_gives_the_numpy_codes(pairs, predicate, cls):
+    E, Q = pairs
+    for name, e, q in _layouts(E, Q):
+        a = np.asarray(predicate(e, q, mode=cls(backend="numba"))).reshape(-1)
+        b = np.asarray(predicate(e, q, mode=cls(backend="numpy"))).reshape(-1)
+        assert (a == b).all(), name
+        if name.startswith("fixed Q"):
+            ref = predicate(E, np.broadcast_to(Q[7], E.shape), mode=cls(backend="numpy"))
+            assert (a == ref).all(), name
+        elif name == "fixed E":
+            ref = predicate(np.broadcast_to(E[11], Q.shape), Q, mode=cls(backend="numpy"))
+            assert (a == ref).all(), name
+        else:
+            assert (a == predicate(E, Q, mode=cls(backend="numpy"))).all(), name
+
+
+@pytest.mark.parametrize("predicate", PREDICATES)
+def test_certified_is_exact_in_every_layout(pairs, predicate):
+    E, Q = pairs
+    sub = np.r_[0:300, 1500:1800, 3000 : len(E)]
+    E, Q = E[sub], Q[sub]
+    truth = predicate(E, Q, mode="exact")
+    for name, e, q in _layouts(E, Q):
+        got = np.asarray(predicate(e, q, mode=CertifiedMode())).reshape(-1)
+        if name.startswith("fixed Q"):
+            ref = predicate(E, np.broadcast_to(Q[7], E.shape), mode="exact")
+        elif name == "fixed E":
+            ref = predicate(np.broadcast_to(E[11], Q.shape), Q, mode="exact")
+        else:
+            ref = truth
+        assert (got == ref).all(), name
+
+
+def test_complete_decision_reads_packed_input():
+    E, Q = kernel_population(400, np.random.default_rng(8))
+    a = qc.transversal_contact(E, Q)
+    b = qc.transversal_contact(qc.Packed(qc.pack(E)), qc.Packed(qc.pack(Q)))
+    assert (a == b).all()
+    c = qc.relative_position(qc.Packed(qc.pack(E)), Q[0])
+    assert (c == qc.relative_position(E, Q[0])).all()
+
+
+def test_pack_and_unpack():
+    rng = np.random.default_rng(2)
+    A = rng.normal(size=(3, 5, 4, 4))
+    M = A + np.swapaxes(A, -1, -2)
+    P = qc.pack(M)
+    assert P.shape == (3, 5, 10)
+    assert (qc.unpack(P) == M).all()
+    assert qc.Packed(P).shape == (3, 5)
+    with pytest.raises(qc.NotSymmetricError):
+        qc.pack(A)
+    with pytest.raises(qc.ShapeError):
+        qc.pack(np.zeros((2, 3, 3)))
+    with pytest.raises(qc.ShapeError):
+        qc.unpack(np.zeros((2, 9)))
+    with pytest.raises(qc.ShapeError):
+        qc.Packed(np.zeros((2, 9)))
+
+
+def test_packed_input_is_validated():
+    E, Q = kernel_population(4, np.random.default_rng(9))
+    P = qc.pack(E)
+    P[2, 0] = np.nan
+    with pytest.raises(qc.NonFiniteError):
+        qc.transversal_contact(qc.Packed(P), Q, mode="certified")
+    P = qc.pack(E)
+    P[1] = qc.pack(np.diag([1.0, 1.0, -1.0, -1.0])[None])[0]  # a hyperboloid, not an ellipsoid
+    with pytest.raises(qc.NotAnEllipsoidError):
+        qc.transversal_contact(qc.Packed(P), Q, mode="filter")
+
+
+def test_the_first_compilation_says_so_once(monkeypatch, capsys):
+    from quadric_contact.modes import _jit
+
+    if not HAVE_NUMBA:
+        pytest.skip("numba not installed")
+    monkeypatch.setattr(_jit, "_notice_printed", False)
+    listener = _jit._CompileNotice()
+
+    def event(module):
+        func = types.SimpleNamespace(__module__=module)
+        return types.SimpleNamespace(data={"dispatcher": types.SimpleNamespace(py_func=func)})
+
+    listener.on_start(event("somebody_else"))
+    assert capsys.readouterr().err == ""
+    listener.on_start(event("quadric_contact.modes.kernels_criterion"))
+    listener.on_start(event("quadric_contact.modes.separation"))
+    err = capsys.readouterr().err
+    assert err.count("compiling the numba kernels once") == 1
