@@ -55,7 +55,7 @@ from typing import Any
 import numpy as np
 
 from .classification import QuadricKind
-from .codegen import ENTRY_INDICES
+from .entries import ENTRY_INDICES
 from .motions import RigidMotion, rotation_from_quaternion
 from .quadric import Quadric
 
