@@ -4,7 +4,7 @@ Every number that enters the package is turned into a :class:`fractions.Fraction
 *exactly*: a float is the dyadic rational it stores (``0.1`` is
 ``3602879701896397/36028797018963968``), a decimal string is the decimal it
 spells (``"0.1"`` is ``1/10``; strings are read by the package's parser,
-:mod:`quadric_contact.parsing`, never evaluated), a sympy ``Rational`` is
+:mod:`quadric_contact.reading`, never evaluated), a sympy ``Rational`` is
 itself.  Nothing is
 rounded, so every answer the exact layer gives is exact *for the numbers the
 caller passed*.
@@ -22,6 +22,7 @@ from typing import Any
 import flint
 
 from .errors import NonFiniteError, NotANumberError, NotRationalError, ShapeError
+from .reading import parse_number
 
 __all__ = [
     "as_square_matrix",
@@ -40,9 +41,7 @@ __all__ = [
 
 def _from_string(s: str) -> Fraction:
     """A number written as text, read by the package's own parser
-    (:func:`~quadric_contact.parsing.parse_number`): never evaluated."""
-    from .parsing import parse_number
-
+    (:func:`~quadric_contact.reading.parse_number`): never evaluated."""
     low = s.strip().lower().lstrip("+-")
     if low in {"nan", "inf", "infinity"}:
         raise NonFiniteError(f"{s!r} is not finite", s)
@@ -78,7 +77,7 @@ def to_fraction(value: Any) -> Fraction:
     ----------
     value : int, Fraction, float, Decimal, str, numpy scalar, sympy number, mpmath mpf, flint fmpq
         Floats are taken as the exact dyadic rationals they store; strings are
-        read by :func:`~quadric_contact.parsing.parse_number` as exact
+        read by :func:`~quadric_contact.reading.parse_number` as exact
         decimals, fractions or small exact expressions (``"8.36291"``,
         ``"1/3"``, ``"1e-5"``, ``"1/3 + 2/7"``), never evaluated.
 
