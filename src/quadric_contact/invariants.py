@@ -32,7 +32,7 @@ from typing import Any
 
 from .algebraic import RealAlgebraic, real_roots
 from .classification import principal_minor_sums_3, principal_minor_sums_4
-from .pencil import as_quadric
+from .quadric import as_quadric
 
 __all__ = ["QuadricInvariants", "invariants"]
 

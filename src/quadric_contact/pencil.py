@@ -28,43 +28,9 @@ from typing import Any
 from ._generated.formulas import pencil_coefficients
 from .descartes import RootSigns, root_signs
 from .discriminants import RootStructure, paper_deltas, root_structure
-from .quadric import Quadric
+from .quadric import Quadric, as_quadric
 
 __all__ = ["CharacteristicPolynomial", "as_quadric", "characteristic_polynomial"]
-
-
-def as_quadric(value: Any, name: str = "argument") -> Quadric:
-    """The argument as a :class:`Quadric`: what every public function accepts.
-
-    Parameters
-    ----------
-    value : Quadric, 4x4 matrix-like, equation string or sympy expression
-    name : str
-        The argument's name (for messages).
-
-    Returns
-    -------
-    Quadric
-
-    Raises
-    ------
-    EquationError, ShapeError, NotSymmetricError, NotANumberError, NonFiniteError, NotRationalError
-        As :meth:`Quadric.from_equation` and :meth:`Quadric.from_matrix`.
-
-    Examples
-    --------
-    >>> unit = [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, -1]]
-    >>> as_quadric("x**2 + y**2 + z**2 - 1") == as_quadric(unit)
-    True
-    """
-    if isinstance(value, Quadric):
-        return value
-    if isinstance(value, str):
-        return Quadric.from_equation(value)
-    mod = type(value).__module__ or ""
-    if mod.startswith("sympy") and not hasattr(value, "shape"):
-        return Quadric.from_equation(value)
-    return Quadric.from_matrix(value)
 
 
 class CharacteristicPolynomial:

@@ -37,7 +37,7 @@ from .errors import (
 from .motions import RigidMotion, rotation_from_quaternion
 from .rational import as_square_matrix, common_denominator, to_fraction
 
-__all__ = ["Quadric"]
+__all__ = ["Quadric", "as_quadric"]
 
 _UPPER_POS = {ij: k for k, ij in enumerate(ENTRY_INDICES)}
 _FULL_TO_UPPER = tuple(_UPPER_POS[(min(i, j), max(i, j))] for i in range(4) for j in range(4))
@@ -785,3 +785,37 @@ def _sympy_equation_entries(equation: Any) -> tuple[Fraction, ...]:
         except (NotRationalError, NotANumberError, NonFiniteError) as exc:
             raise EquationError(f"coefficient {c} of {monomial} in {equation!r}: {exc}", equation) from exc
     return quadric_entries(terms)
+
+
+def as_quadric(value: Any, name: str = "argument") -> Quadric:
+    """The argument as a :class:`Quadric`: what every public function accepts.
+
+    Parameters
+    ----------
+    value : Quadric, 4x4 matrix-like, equation string or sympy expression
+    name : str
+        The argument's name (for messages).
+
+    Returns
+    -------
+    Quadric
+
+    Raises
+    ------
+    EquationError, ShapeError, NotSymmetricError, NotANumberError, NonFiniteError, NotRationalError
+        As :meth:`Quadric.from_equation` and :meth:`Quadric.from_matrix`.
+
+    Examples
+    --------
+    >>> unit = [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, -1]]
+    >>> as_quadric("x**2 + y**2 + z**2 - 1") == as_quadric(unit)
+    True
+    """
+    if isinstance(value, Quadric):
+        return value
+    if isinstance(value, str):
+        return Quadric.from_equation(value)
+    mod = type(value).__module__ or ""
+    if mod.startswith("sympy") and not hasattr(value, "shape"):
+        return Quadric.from_equation(value)
+    return Quadric.from_matrix(value)
