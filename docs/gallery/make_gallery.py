@@ -16,13 +16,14 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[1] / "src"))
 
 from quadric_contact.animation import render_gif  # noqa: E402
-from quadric_contact.plotting import _matplotlib, plot_result  # noqa: E402
+from quadric_contact.optional import pyplot  # noqa: E402
+from quadric_contact.plotting import plot_result  # noqa: E402
 from quadric_contact.scene import builtin_scene, builtin_scene_names  # noqa: E402
 from quadric_contact.simulate import simulate  # noqa: E402
 
 
 def main() -> None:
-    plt = _matplotlib()
+    plt = pyplot()
     for name in builtin_scene_names():
         result = simulate(builtin_scene(name))
         fig = plot_result(result, max_pairs=3, samples=160)

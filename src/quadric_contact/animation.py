@@ -20,7 +20,8 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-from .plotting import _colour, _constraints, _ellipsoid_mesh, _matplotlib, _plane_value, _surface_points
+from .optional import pyplot, require
+from .plotting import _colour, _constraints, _ellipsoid_mesh, _plane_value, _surface_points
 
 __all__ = ["animate_result", "body_states", "render_gif"]
 
@@ -81,9 +82,9 @@ def animate_result(result: Any, *, frames: int = 40, fps: int = 10, whole: int =
         If matplotlib is not installed.
     """
     import numpy as np
-    from matplotlib import animation
 
-    plt = _matplotlib()
+    plt = pyplot("animations")
+    animation = require("matplotlib.animation", extra="plot", purpose="animations")
     if frames < 2:
         raise ValueError(f"an animation needs at least 2 frames, got {frames}")
     scene = result.scene
@@ -201,9 +202,9 @@ def render_gif(result: Any, *, dpi: int = 80, **kwargs: Any) -> bytes:
     -------
     bytes
     """
-    from matplotlib.animation import PillowWriter
-
-    plt = _matplotlib()
+    plt = pyplot("animations")
+    require("PIL", extra="plot", purpose="GIF animations", package="pillow")
+    PillowWriter = require("matplotlib.animation", extra="plot", purpose="animations").PillowWriter
     fps = int(kwargs.get("fps", 10))
     anim = animate_result(result, **kwargs)
     fd, tmp = tempfile.mkstemp(suffix=".gif")

@@ -49,7 +49,9 @@ import numpy as np
 
 from .batch import run_stack
 from .classification import QuadricKind
+from .errors import MissingDependencyError
 from .modes import BallMode, CertifiedMode, ExactMode, FilterMode, FloatMode, MpmathMode, NumberMode
+from .optional import pyplot
 from .samples import SAMPLE_KINDS, random_pairs
 
 __all__ = [
@@ -1268,11 +1270,8 @@ def plot(report: Report, path: Path) -> Path | None:
     """Time per test against error rate (one point per method and population), and
     throughput against batch size; returns the file written, or None without matplotlib."""
     try:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
+        plt = pyplot("benchmark plots")
+    except MissingDependencyError:
         report.missing.append("matplotlib")
         return None
     fig, axes = plt.subplots(1, 3, figsize=(18, 5.5))

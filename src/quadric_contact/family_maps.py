@@ -49,6 +49,7 @@ import numpy as np
 
 from .entries import ENTRY_INDICES
 from .errors import QuadricContactError, ShapeError
+from .optional import pyplot
 from .rational import to_fraction
 
 if TYPE_CHECKING:
@@ -323,13 +324,11 @@ class ContactMap:
         -------
         matplotlib Figure
         """
+        plt = pyplot("contact maps")
         from matplotlib.colors import ListedColormap
         from matplotlib.lines import Line2D
         from matplotlib.patches import Patch
 
-        from .plotting import _matplotlib
-
-        plt = _matplotlib()
         if ax is None:
             fig, ax = plt.subplots(figsize=(7, 6))
         else:

@@ -10,14 +10,14 @@ the picture is an illustration, the timeline it shows is the exact one.
 from __future__ import annotations
 
 import io
-import sys
 from collections.abc import Sequence
 from fractions import Fraction
 from typing import Any
 
 from .classification import QuadricKind
 from .composite import Composite, Piece, Split
-from .errors import MissingDependencyError, ShapeError
+from .errors import ShapeError
+from .optional import pyplot
 from .quadric import Quadric
 
 __all__ = ["STATE_COLOURS", "plot_quadric", "plot_result", "quadric_mesh", "render_png"]
@@ -35,22 +35,6 @@ STATE_COLOURS: dict[str, str] = {
     "free": "#1f77b4",
 }
 """Colour of each state category (:meth:`~quadric_contact.simulate.ObjectState.category`)."""
-
-
-def _matplotlib() -> Any:
-    try:
-        import matplotlib
-
-        if "matplotlib.pyplot" not in sys.modules:
-            # nobody has chosen a backend yet (the command line): draw off-screen.  A
-            # session that already uses pyplot (a notebook) keeps its own backend.
-            matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError as exc:  # pragma: no cover - depends on the environment
-        raise MissingDependencyError(
-            "plots need matplotlib: pip install 'quadric-contact[plot]' (or pip install matplotlib)"
-        ) from exc
-    return plt
 
 
 def _colour(category: str) -> str:
@@ -254,7 +238,7 @@ def plot_result(result: Any, *, max_pairs: int = 6, samples: int = 240) -> Any:
     MissingDependencyError
         If matplotlib is not installed.
     """
-    plt = _matplotlib()
+    plt = pyplot()
     pairs = [p for p in result.pairs if p.complete][:max_pairs]
     if not pairs:
         pairs = result.pairs[:max_pairs]
@@ -281,7 +265,7 @@ def render_png(result: Any, **kwargs: Any) -> bytes:
     -------
     bytes
     """
-    plt = _matplotlib()
+    plt = pyplot()
     fig = plot_result(result, **kwargs)
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=130, bbox_inches="tight")

@@ -139,9 +139,9 @@ def run(args: argparse.Namespace) -> int:
     plan_effects = effects if effects is not None else list(scene.effects)
     Plan.from_effects(plan_effects)  # validate before any work
     if args.plot or args.animate:
-        from ..plotting import _matplotlib
+        from ..optional import pyplot
 
-        _matplotlib()  # fail early when matplotlib is missing
+        pyplot()  # fail early when matplotlib is missing
     with warnings.catch_warnings():  # the report prints the scene's warnings itself
         warnings.simplefilter("ignore")
         result = simulate(
