@@ -182,7 +182,7 @@ def animate_result(result: Any, *, frames: int = 40, fps: int = 10, whole: int =
         return [*drawn, cursor, title]
 
     anim = animation.FuncAnimation(fig, draw, frames=frames, interval=1000 / fps, blit=False)
-    anim._quadric_contact_fps = fps  # type: ignore[attr-defined]
+    anim._quadric_contact_fps = fps
     return anim
 
 
