@@ -13,7 +13,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from quadric_contact._generated import formulas, kernels
-from quadric_contact.codegen import ENTRY_INDICES
+from quadric_contact.entries import ENTRY_INDICES
 from quadric_contact.hardcases import hard_cases
 from quadric_contact.modes import errorbounds as eb
 from quadric_contact.modes.float64 import filter_quantities

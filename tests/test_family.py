@@ -19,13 +19,14 @@ from tests.untrusted import HOSTILE, untrusted
 
 import quadric_contact as qc
 from quadric_contact import Quadric, Region, family
-from quadric_contact.codegen import _functions, emit_program, rounding_counts
 from quadric_contact.errors import EquationError, NotAnEllipsoidError, QuadricContactError, ShapeError
 from quadric_contact.family import MAX_PARAMETERS, RationalFunction
+from quadric_contact.family_emit import emit_program
 from quadric_contact.family_maps import MapAnswer
 from quadric_contact.family_numeric import UNCERTAIN, compile_quantity
 from quadric_contact.pencil import characteristic_polynomial
 from quadric_contact.smallness import smallness
+from quadric_contact.straight_line import _functions, rounding_counts
 
 TRUNK = "x^2 + y^2 - 0.25*(z - 3)^2 - 1"
 CROWN = "x^2 + y^2 + 3*(z - 8.36291)^2 - 20"

@@ -571,7 +571,7 @@ def test_shift_program_and_its_magnitude_companion():
     and its values are the trace, J and determinant (checked with sympy)."""
     import sympy
 
-    from quadric_contact.codegen import emit_magnitude_function
+    from quadric_contact.straight_line import emit_magnitude_function
 
     fdef = ast.parse(inspect.getsource(sf.shift_invariants)).body[0]
     emitted = ast.parse("\n".join(emit_magnitude_function(fdef))).body[0]

@@ -3,7 +3,7 @@
 Each exact quantity of a :class:`~quadric_contact.family.Family` is ``num / den`` with
 ``num, den`` in Q[parameters].  Both are scaled to primitive integer polynomials (a positive
 rational factor is kept apart) and emitted by the package's code generator
-(:func:`quadric_contact.codegen.emit_program`: nested Horner form, subexpressions shared
+(:func:`quadric_contact.family_emit.emit_program`: nested Horner form, subexpressions shared
 between numerator and denominator), with the magnitude companion and the rounding counts
 the float filter's error bounds are derived from.  The same program runs in every backend:
 
@@ -54,9 +54,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .codegen import EXACT_INTEGER_MAX, Program, _functions, _print_expr, _straight_line, emit_program
+from .family_emit import Program, emit_program
 from .modes.errorbounds import program_errbound
 from .precision import working_precision
+from .straight_line import EXACT_INTEGER_MAX, _functions, _print_expr, _straight_line
 
 if TYPE_CHECKING:
     from .family import Family, RationalFunction

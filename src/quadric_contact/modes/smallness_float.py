@@ -286,7 +286,7 @@ def _shift_errbound() -> tuple[float, ...]:
     diagonal ``fl(a_ii - t)`` is a rounded input (the off-diagonal entries are exact, and
     counting them as rounded only enlarges the bound); the counts are read off the program
     text as :mod:`quadric_contact.codegen` reads the generated ones."""
-    from ..codegen import rounding_counts
+    from ..straight_line import rounding_counts
 
     value = rounding_counts(_function_ast(shift_invariants), 1)
     magnitude = rounding_counts(_function_ast(shift_invariants_magnitude), 0)
