@@ -13,14 +13,20 @@ import sys
 from collections.abc import Sequence
 
 from ..errors import QuadricContactError
+from .exits import EXIT_BAD_INPUT, EXIT_FAILED, EXIT_OK, EXIT_UNDECIDED
 
 SUBCOMMANDS: tuple[str, ...] = ("check", "codegen", "simulate", "sweep", "prove", "bench")
 """Modules of this package that provide subcommands, in help order."""
 
-EXIT_OK = 0
-EXIT_FAILED = 1
-EXIT_BAD_INPUT = 2
-EXIT_UNDECIDED = 3
+__all__ = [
+    "EXIT_BAD_INPUT",
+    "EXIT_FAILED",
+    "EXIT_OK",
+    "EXIT_UNDECIDED",
+    "SUBCOMMANDS",
+    "build_parser",
+    "main",
+]
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -7,6 +7,8 @@ import json
 from fractions import Fraction
 from typing import Any
 
+from .exits import EXIT_OK, EXIT_UNDECIDED
+
 DEFAULT_E = "(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1"
 DEFAULT_Q = "x**2 + y**2 - 0.25*(z-3)**2 - 1"
 
@@ -54,7 +56,6 @@ def run(args: argparse.Namespace) -> int:
     from ..pencil import as_quadric, characteristic_polynomial
     from ..plane import plane_side_exact as plane_side
     from ..regions import decide_region
-    from . import EXIT_OK, EXIT_UNDECIDED
 
     E = as_quadric(args.E, "E")
     Q = as_quadric(args.Q, "Q")

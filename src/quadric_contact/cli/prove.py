@@ -17,6 +17,8 @@ import sys
 import time
 from typing import Any
 
+from .exits import EXIT_BAD_INPUT, EXIT_FAILED, EXIT_OK
+
 
 def register(sub: Any) -> None:
     p = sub.add_parser(
@@ -73,7 +75,6 @@ def run(args: argparse.Namespace) -> int:
         select,
         write_report,
     )
-    from . import EXIT_BAD_INPUT, EXIT_FAILED, EXIT_OK
 
     def show_check(rec: CheckRecord) -> None:
         if args.verbose:

@@ -11,6 +11,8 @@ import warnings
 from pathlib import Path
 from typing import Any
 
+from .exits import EXIT_BAD_INPUT, EXIT_OK
+
 
 def register(sub: Any) -> None:
     p = sub.add_parser(
@@ -92,7 +94,6 @@ def run(args: argparse.Namespace) -> int:
     from ..errors import SceneError
     from ..scene import EFFECTS, builtin_scene_names, load_scene
     from ..simulate import Plan, simulate
-    from . import EXIT_BAD_INPUT, EXIT_OK
 
     if args.list:
         from ..manybody import GENERATED_SCENES
