@@ -42,7 +42,7 @@ from .ledger import Ledger
 from .quadric import Quadric
 from .rational import fmpq_of
 from .scene_model import MovingEllipsoid, Scene
-from .simulate import _progress, _SegmentRun, _simulate_pair
+from .scene_pairs import _progress, _SegmentRun, _simulate_pair
 from .simulation_reports import PairResult, Plan
 from .trajectory import MotionSegment, PolynomialMotion, poly_eval
 
