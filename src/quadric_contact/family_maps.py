@@ -51,6 +51,7 @@ from .entries import ENTRY_INDICES
 from .errors import QuadricContactError, ShapeError
 from .optional import pyplot
 from .rational import to_fraction
+from .rational_functions import RationalFunction
 
 if TYPE_CHECKING:
     from .family import Family
@@ -394,7 +395,6 @@ def _draw_curve(
 ) -> bool:
     """The zero set of the polynomial ``f`` in two variables: a zero contour of its exact
     value (float evaluation of the generated program) and certified points on lines."""
-    from .family import RationalFunction
     from .family_numeric import compile_quantity
 
     cq = compile_quantity("curve", RationalFunction(f), 2)
@@ -449,7 +449,6 @@ def _boundary_cells(
 ) -> np.ndarray:
     """Cells to refine: an answer that differs from a neighbour's, or a boundary polynomial
     whose certified signs at the corners and the centre are not one non-zero sign."""
-    from .family import RationalFunction
     from .family_numeric import _numpy_signs, compile_quantity
 
     mark = np.zeros(codes.shape, dtype=bool)
@@ -570,8 +569,6 @@ def _reorder(fam: Family, order: tuple[str, ...]) -> Family:
     """The same family with its parameters in another order."""
     import flint
 
-    from .family import Family, RationalFunction
-
     perm = [fam.parameters.index(p) for p in order]
     ctx = flint.fmpq_mpoly_ctx.get(order, "lex")
 
@@ -583,4 +580,4 @@ def _reorder(fam: Family, order: tuple[str, ...]) -> Family:
         return RationalFunction(move(v.num), move(v.den))
 
     at = {p: fam.reference[p] for p in order}
-    return Family(order, [rf(v) for v in fam._e], [rf(v) for v in fam._q], at=at)
+    return type(fam)(order, [rf(v) for v in fam._e], [rf(v) for v in fam._q], at=at)

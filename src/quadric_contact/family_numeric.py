@@ -60,7 +60,8 @@ from .precision import working_precision
 from .straight_line import EXACT_INTEGER_MAX, _functions, _print_expr, _straight_line
 
 if TYPE_CHECKING:
-    from .family import Family, RationalFunction
+    from .family import Family
+    from .rational_functions import RationalFunction
 
 __all__ = ["BACKENDS", "UNCERTAIN", "CompiledQuantity", "FamilyFunction", "compile_quantity", "lambdify"]
 

@@ -30,11 +30,12 @@ import sympy as sp
 
 from .classification import TABLE_1_KINDS, QuadricKind, principal_minor_sums_3, principal_minor_sums_4
 from .entries import ENTRY_INDICES
+from .rational_functions import FamilyCondition, FamilySmallness, RationalFunction, _sympy_rational
 from .smallness import ellipsoid_axes_squared, row_sides, table_2_parameters
 from .smallness import smallness as smallness_exact
 
 if TYPE_CHECKING:
-    from .family import Family, FamilyCondition, FamilySmallness, RationalFunction
+    from .family import Family
 
 __all__ = ["family_smallness"]
 
@@ -127,8 +128,6 @@ def _rational_eigenvalues(inv: _Invariants, fam: Family) -> tuple[list[RationalF
     """The eigenvalues of the quadratic part as rational functions (with multiplicity), or
     None and the first irreducible factor of degree >= 2 in ``t`` of its characteristic
     polynomial over Q(parameters)."""
-    from .family import RationalFunction
-
     coeffs = [RationalFunction(fam.ctx.constant(1)), -inv.trace, inv.J, -inv.det00]  # t^3, t^2, t, 1
     d = fam.ctx.constant(1)
     for c in coeffs:
@@ -160,8 +159,6 @@ def _rational_eigenvalues(inv: _Invariants, fam: Family) -> tuple[list[RationalF
 
 def family_smallness(fam: Family) -> FamilySmallness:
     """Tables 1-2 (corrected) over ``fam``; see :class:`quadric_contact.family.FamilySmallness`."""
-    from .family import FamilyCondition, FamilySmallness, _sympy_rational
-
     E0, Q0 = fam.E_reference, fam.Q_reference
     kind = Q0.kind
     if kind not in TABLE_1_KINDS:
