@@ -46,6 +46,7 @@ __all__ = [
     "QuadricKind",
     "classify",
     "inertia_from_minor_sums",
+    "kind_from_inertia",
     "principal_minor_sums_3",
     "principal_minor_sums_4",
 ]
@@ -322,7 +323,7 @@ def classify(m: Sequence[Any]) -> tuple[QuadricKind, int]:
     raw_a = inertia_from_minor_sums(principal_minor_sums_3(a))
     raw_q = inertia_from_minor_sums(principal_minor_sums_4(m))
     ia, iq = (raw_a.flipped(), raw_q.flipped()) if raw_a.negative > raw_a.positive else (raw_a, raw_q)
-    kind = _kind_from_inertia(ia, iq)
+    kind = kind_from_inertia(ia, iq)
     # Canonical sign: where the quadratic part has more positive than negative
     # eigenvalues it fixes the sign; otherwise the standard form decides.
     if raw_a.positive != raw_a.negative:
@@ -336,8 +337,12 @@ def classify(m: Sequence[Any]) -> tuple[QuadricKind, int]:
     return kind, sign
 
 
-def _kind_from_inertia(ia: Inertia, iq: Inertia) -> QuadricKind:
-    """The table of the module docstring (``ia`` normalised to ``positive >= negative``)."""
+def kind_from_inertia(ia: Inertia, iq: Inertia) -> QuadricKind:
+    """The affine type from the inertias of the quadratic part ``A`` and of ``Q``: the table
+    of the module docstring (``ia`` normalised to ``positive >= negative``).
+
+    Shared by :func:`classify` (exact inertias) and the number modes
+    (:mod:`quadric_contact.modes.decisions`: inertias from certified signs)."""
     rA, rQ = ia.rank, iq.rank
     if rA == 3:
         if rQ == 4:

@@ -95,10 +95,9 @@ from .algebraic import QuadraticNumber, real_roots
 from .certificate import SeparationCertificate, separation_certificate
 from .classification import REFUSED_KINDS, TABLE_1_KINDS, QuadricKind
 from .errors import ExcludedQuadricError, QuadricContactError, UndecidedError
-from .modes.base import OverlapCode
 from .pencil import CharacteristicPolynomial, as_quadric, characteristic_polynomial
 from .quadric import Quadric
-from .results import Region
+from .results import OverlapCode, Region
 
 if TYPE_CHECKING:
     from .contact_kind import SingularMember

@@ -8,7 +8,7 @@ says so (``decided is False``) and refuses to be read as a boolean.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from enum import StrEnum
+from enum import IntEnum, StrEnum
 from fractions import Fraction
 from typing import TYPE_CHECKING, Any
 
@@ -19,7 +19,7 @@ if TYPE_CHECKING:
     from .discriminants import RootStructure
     from .pencil import CharacteristicPolynomial
 
-__all__ = ["ContactResult", "PlaneSideResult", "Region", "RegionResult"]
+__all__ = ["ContactResult", "OverlapCode", "PlaneSideResult", "Region", "RegionResult"]
 
 
 class Region(StrEnum):
@@ -330,3 +330,30 @@ class PlaneSideResult:
         t = " (tangent)" if self.tangent else ""
         where = "UNDECIDED" if self.zone is None else self.zone.value
         return f"{where}{t} ({self.decided_by or 'no result applies'}: {self.reason})"
+
+
+class OverlapCode(IntEnum):
+    """Codes of the array predicate :func:`~quadric_contact.overlap` (do the solids overlap?).
+
+    The solid of ``E`` is its inside; the solid of ``Q`` is its region ``R-`` for the sign
+    of its standard form (the matrix as given for a plane or a hyperbolic paraboloid):
+    ``SEPARATE`` the closed solids are disjoint; ``OVERLAPPING`` their interiors meet
+    (containment either way included); ``TOUCHING`` they meet and their interiors are
+    disjoint.  ``UNCERTAIN`` (2, abstaining modes only) is non-zero, so a cast to bool reads
+    it as a possible overlap, never as a clearance; so is ``TOUCHING`` (3), unless the caller
+    chose a convention (``touching="separate"`` or ``"overlap"``).
+
+    Also the code of an exact :class:`~quadric_contact.overlap.OverlapResult`; it lives
+    here, with the other results, so that :mod:`quadric_contact.overlap` does not import
+    the number modes (:mod:`quadric_contact.modes.base` re-exports it with the other codes).
+    """
+
+    SEPARATE = 0
+    OVERLAPPING = 1
+    UNCERTAIN = 2
+    TOUCHING = 3
+
+    @property
+    def overlapping(self) -> bool | None:
+        """True (interiors meet), False (closed solids disjoint), None (touching, uncertain)."""
+        return {OverlapCode.SEPARATE: False, OverlapCode.OVERLAPPING: True}.get(self)

@@ -71,6 +71,7 @@ __all__ = [
     "ellipsoid_axes_squared",
     "row_sides",
     "smallness",
+    "smallness_report",
     "table_1",
     "table_2_parameters",
 ]
@@ -400,7 +401,26 @@ def _rows(
     return [_decided(c) for c in conds], [_decided(c) for c in alt]
 
 
-def _report(kind: QuadricKind, p: dict[str, Quantity], e: dict[str, Quantity]) -> SmallnessReport:
+def smallness_report(kind: QuadricKind, p: dict[str, Quantity], e: dict[str, Quantity]) -> SmallnessReport:
+    """The decision of Definition 1 through Tables 1-2 (corrected) from the parameters.
+
+    Parameters
+    ----------
+    kind : QuadricKind
+        The type of ``Q`` (a row of Table 1).
+    p : dict
+        The Table 2 parameters of ``Q`` (:func:`table_2_parameters`, ``Q`` with its
+        canonical sign).
+    e : dict
+        The squared semi-axes of ``E`` (:func:`ellipsoid_axes_squared`).
+
+    Returns
+    -------
+    SmallnessReport
+        As :func:`smallness`, which is this function on the parameters of one pair; the
+        number modes call it directly to compute the parameters of every distinct matrix
+        of a stack once.
+    """
     conds, alt = _rows(kind, p, e)
     inner = all(c.holds for c in conds)
     outer = bool(alt) and all(c.holds for c in alt)
@@ -528,7 +548,7 @@ def table_1(kind: QuadricKind | str, *, alpha: Any, beta: Any, gamma: Any, **par
     ):
         s = sorted_desc([sq["a"], sq["b"]])
         sq = {**sq, "a": s[0], "b": s[1]}
-    return _report(kind, sq, e)
+    return smallness_report(kind, sq, e)
 
 
 # -- Table 2: general position ---------------------------------------------------------------
@@ -646,9 +666,6 @@ def smallness(E: Any, Q: Any) -> SmallnessReport:
     """
     e, q = _normalized_pair(E, Q)
     kind = q.kind
-    return _report(kind, table_2_parameters(kind, invariants(q)), ellipsoid_axes_squared(invariants(e)))
-
-
-# The names modes/smallness_objects.py imports until the number modes are rehomed.
-_ellipsoid_axes = ellipsoid_axes_squared
-_parameters = table_2_parameters
+    return smallness_report(
+        kind, table_2_parameters(kind, invariants(q)), ellipsoid_axes_squared(invariants(e))
+    )

@@ -40,7 +40,6 @@ from .base import (
     ContactKindCode,
     CriterionCode,
     MatrixStack,
-    NumberMode,
     OverlapCode,
     Pairs,
     RegionCode,
@@ -50,6 +49,7 @@ from .base import (
 )
 from .certified import CertifiedMode
 from .float_modes import FilterMode, FloatMode
+from .number_mode import NumberMode
 from .objects import BallMode, ExactMode, MpmathMode
 
 __all__ = [

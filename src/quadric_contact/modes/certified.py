@@ -17,9 +17,10 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .base import MatrixStack, NumberMode, Pairs
+from .base import MatrixStack, Pairs
 from .decisions import UNCERTAIN_ROW, rows_from_masks
 from .float_modes import FilterMode
+from .number_mode import NumberMode
 from .objects import BallMode, ExactMode
 
 __all__ = ["CertifiedMode"]

@@ -6,7 +6,7 @@ them into :class:`~quadric_contact.modes.base.ContactCode` and
 :class:`~quadric_contact.modes.base.RegionCode`.  They are written once, as
 small scalar functions over integers that numba compiles into the float kernels
 and that the other modes call through :func:`contact_from_signs` and
-:func:`region_from_signs`.  An uncertain sign is resolved by trying every value
+:func:`~quadric_contact.modes.support.region_from_signs`.  An uncertain sign is resolved by trying every value
 it could take: the answer is given only if all of them agree.
 
 Conventions
@@ -29,8 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from ..classification import QuadricKind, _kind_from_inertia, inertia_from_minor_sums
-from ..contact import NO_REAL_POINTS
+from ..classification import NO_REAL_POINTS, QuadricKind, inertia_from_minor_sums, kind_from_inertia
 from ..discriminants import revised_sign_list
 from ..regions import ROOT_SIGN_TABLE
 from ..results import Region
@@ -49,7 +48,6 @@ __all__ = [
     "masks_from_invariant_signs",
     "region_code",
     "region_code_masked",
-    "region_from_signs",
     "row_of",
     "rows_from_invariant_signs",
     "rows_from_masks",
@@ -213,7 +211,7 @@ def kind_from_invariant_signs(signs: tuple[int, ...]) -> tuple[QuadricKind, int]
     raw_a = inertia_from_minor_sums(sa)
     raw_q = inertia_from_minor_sums(sq)
     ia, iq = (raw_a.flipped(), raw_q.flipped()) if raw_a.negative > raw_a.positive else (raw_a, raw_q)
-    kind = _kind_from_inertia(ia, iq)
+    kind = kind_from_inertia(ia, iq)
     if raw_a.positive != raw_a.negative:
         sign = 1 if raw_a.positive > raw_a.negative else -1
     elif kind is QuadricKind.HYPERBOLIC_CYLINDER:
@@ -358,20 +356,6 @@ def region_code_masked(
             elif code != answer:
                 return 2
     return 2 if answer == -99 else answer
-
-
-def region_from_signs(contact: np.ndarray, csigns: np.ndarray, masks: np.ndarray) -> np.ndarray:
-    """Vectorised :func:`region_code_masked`: ``contact`` (n,), ``csigns`` (n, 5) for
-    ``c0 .. c4``, ``masks`` (n,) the candidate rows of each pair's quadric."""
-    from . import float_modes
-
-    masks = np.ascontiguousarray(masks, dtype=np.int64)
-    return float_modes.region_codes_from_signs(
-        np.ascontiguousarray(contact, dtype=np.int8),
-        np.ascontiguousarray(csigns, dtype=np.int8),
-        rows_from_masks(masks),
-        masks,
-    )
 
 
 def check_tables() -> None:

@@ -28,9 +28,11 @@ import numpy as np
 
 from . import errorbounds as eb
 from ._jit import HAVE_NUMBA
-from .base import INVALID, MatrixStack, NumberMode, Pairs
-from .decisions import ROWS, UNCERTAIN_ROW, masks_from_invariant_signs, region_code_masked, rows_from_masks
+from .base import INVALID, MatrixStack, Pairs
+from .decisions import UNCERTAIN_ROW, masks_from_invariant_signs, rows_from_masks
 from .kernels_criterion import FALLBACK, NB, fast_codes
+from .number_mode import NumberMode
+from .support import check_stack, region_codes_from_signs
 from .threads import run_parallel
 from .validation import exact_matrix, raise_not_ellipsoid, validate_rows
 
@@ -233,37 +235,6 @@ def float_invariant_signs(
     from .kernels_support import invariant_signs_kernel
 
     invariant_signs_kernel(np.ascontiguousarray(Q).reshape(-1, 16), 0, Q.shape[0], K, filtered, out)
-    return out
-
-
-def check_stack(M: np.ndarray) -> np.ndarray:
-    """Per matrix: 0 fine, 1 a non-finite entry, 2 not symmetric."""
-    out = np.empty(M.shape[0], dtype=np.int8)
-    if HAVE_NUMBA:
-        from .kernels_support import check_stack_kernel
-
-        run_parallel(lambda lo, hi: check_stack_kernel(M, lo, hi, out), M.shape[0])
-        return out
-    finite = np.isfinite(M).all(axis=(1, 2))
-    sym = (np.swapaxes(M, 1, 2) == M).all(axis=(1, 2))
-    out[:] = np.where(~finite, 1, np.where(~sym, 2, 0))
-    return out
-
-
-def region_codes_from_signs(
-    contact: np.ndarray, csigns: np.ndarray, rows: np.ndarray, masks: np.ndarray
-) -> np.ndarray:
-    """Region codes from contact codes, c-signs and the rows/masks of the quadrics (per pair)."""
-    out = np.empty(contact.shape[0], dtype=np.int8)
-    if HAVE_NUMBA:
-        from .kernels_support import region_codes_kernel
-
-        region_codes_kernel(contact, csigns, rows.astype(np.int16), masks.astype(np.int64), out)
-        return out
-    for p in range(contact.shape[0]):
-        out[p] = region_code_masked(
-            int(contact[p]), *(int(v) for v in csigns[p]), int(rows[p]), int(masks[p]), ROWS
-        )
     return out
 
 

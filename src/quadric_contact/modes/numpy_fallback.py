@@ -23,6 +23,7 @@ from .decisions import (
     ELLIPSOID_YES,
     ellipsoid_from_signs,
 )
+from .support import region_codes_from_signs
 
 __all__ = [
     "filter_quantities",
@@ -273,8 +274,6 @@ def numpy_pairs(
 ) -> np.ndarray:
     """Codes of ``n`` pairs (numpy variant of the compiled kernels; ``screen``: the filter's
     first pass on binary64 input, where the semi-static screen decides first)."""
-    from .float_modes import region_codes_from_signs
-
     out = np.empty(n, dtype=np.int8)
     for lo in range(0, n, _NUMPY_CHUNK):
         hi = min(n, lo + _NUMPY_CHUNK)

@@ -14,7 +14,7 @@ read a sign (:meth:`ObjectMode.signs`).
 from __future__ import annotations
 
 import contextlib
-from collections.abc import Iterator
+from contextlib import AbstractContextManager
 from fractions import Fraction
 from typing import Any
 
@@ -22,15 +22,17 @@ import numpy as np
 
 from .._generated import formulas, kernels
 from ..entries import ENTRY_INDICES
-from .base import MatrixStack, NumberMode, Pairs
+from ..precision import working_precision
+from .base import MatrixStack, Pairs
 from .decisions import (
     ELLIPSOID_NOT,
     ELLIPSOID_UNCERTAIN,
     contact_from_signs,
     ellipsoid_from_signs,
     masks_from_invariant_signs,
-    region_from_signs,
 )
+from .number_mode import NumberMode
+from .support import region_from_signs
 from .validation import raise_not_ellipsoid, validate_rows
 
 __all__ = ["BallMode", "ExactMode", "MpmathMode", "ObjectMode", "integer_rows"]
@@ -57,10 +59,10 @@ class ObjectMode(NumberMode):
         """int8 signs (``UNCERTAIN`` where the mode cannot tell)."""
         raise NotImplementedError
 
-    @contextlib.contextmanager
-    def context(self) -> Iterator[None]:
-        """Scope precision changes to one evaluation."""
-        yield
+    def context(self) -> AbstractContextManager[None]:
+        """Scope precision changes to one evaluation (through
+        :func:`~quadric_contact.precision.working_precision`, the one lock-holding context)."""
+        return contextlib.nullcontext()
 
     def deltas(self, c: list[np.ndarray]) -> tuple[np.ndarray, ...]:
         """``(Delta_2, Delta_3, Delta_4)`` or positive multiples of them."""
@@ -304,16 +306,9 @@ class BallMode(ObjectMode):
             raise ValueError("prec must be at least 2 bits")
         self.prec = int(prec)
 
-    @contextlib.contextmanager
-    def context(self) -> Iterator[None]:
-        import flint
-
-        old = flint.ctx.prec
-        flint.ctx.prec = self.prec
-        try:
-            yield
-        finally:
-            flint.ctx.prec = old
+    def context(self) -> AbstractContextManager[None]:
+        """The working precision of the balls (:func:`~quadric_contact.precision.working_precision`)."""
+        return working_precision(self.prec)
 
     def number(self, value: float) -> Any:
         import flint
@@ -352,8 +347,9 @@ class BallMode(ObjectMode):
 class MpmathMode(ObjectMode):
     """mpmath floating point at ``dps`` decimal digits (plain: no error bound, so,
     like ``float``, it answers everything and may be wrong where the exact value is
-    tiny or zero).  The precision is set with ``mpmath.workdps`` for each
-    evaluation and restored afterwards."""
+    tiny or zero).  The precision is set with
+    :func:`~quadric_contact.precision.working_precision` for each evaluation and restored
+    afterwards."""
 
     name = "mpmath"
     stage = "mpmath"
@@ -371,12 +367,9 @@ class MpmathMode(ObjectMode):
             raise ValueError("dps must be positive")
         self.dps = int(dps)
 
-    @contextlib.contextmanager
-    def context(self) -> Iterator[None]:
-        import mpmath
-
-        with mpmath.workdps(self.dps):
-            yield
+    def context(self) -> AbstractContextManager[None]:
+        """mpmath's working digits (:func:`~quadric_contact.precision.working_precision`)."""
+        return working_precision(dps=self.dps)
 
     def number(self, value: float) -> Any:
         import mpmath

@@ -1242,7 +1242,7 @@ def _refine(
     whose type is degenerate (its exact zero eigenvalue rounded off in binary64) or close to
     it is used by every pair of its stack, and should not send them all to the next stage."""
     from ..classification import TABLE_1_KINDS
-    from .smallness_objects import ball_sides
+    from .smallness_numbers import ball_sides
 
     todo = np.flatnonzero(status == 1)
     if kinds is not None:

@@ -17,7 +17,7 @@ primitive  value (of the matrix with its canonical sign; absolute values)
 ``L1..L3`` ``|lambda_i|``, the eigenvalues of M00 in increasing order
 =========  ===================================================================
 
-With ``d^2 = -det Q / det Q00`` and so on (:func:`quadric_contact.smallness._parameters`),
+With ``d^2 = -det Q / det Q00`` and so on (:func:`quadric_contact.smallness.table_2_parameters`),
 for instance the curvature side of an ellipsoid ``Q`` is
 ``a^2/c^4 = mu_3^2 / (mu_1 d^2) = L3^2 A3 / (L1 P)``.  The semi-axes of ``E`` are
 ``alpha^2 = P/(A3 L1)`` and ``gamma^2 = P/(A3 L3)``, so Lemma 3's curvature
@@ -92,7 +92,8 @@ E_SIDES = (
 )
 ALPHA2, CURV2, GAMMA2, ALPHA_CURV2 = range(4)
 
-# The squared sides of Q, per kind, in the order of the conditions of smallness._rows.
+# The squared sides of Q, per kind, in the order of the conditions of Table 1 (corrected),
+# as smallness.row_sides lists them.
 Q_SIDES: dict[QuadricKind, tuple[tuple[int, ...], ...]] = {
     # d^2 = P/A3; a^2 = d^2/mu1, c^2 = d^2/mu3
     K.ELLIPSOID: (

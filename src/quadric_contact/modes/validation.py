@@ -11,6 +11,7 @@ import numpy as np
 
 from ..errors import NonFiniteError, NotAnEllipsoidError, NotSymmetricError
 from .base import MatrixStack
+from .support import check_stack
 
 __all__ = ["raise_not_ellipsoid", "validate_rows"]
 
@@ -19,8 +20,6 @@ def validate_rows(stack: MatrixStack, rows: np.ndarray, name: str | None = None)
     """Raise for the first matrix among ``rows`` with a non-finite entry or that is not symmetric."""
     if stack.checked or len(rows) == 0:
         return
-    from .float_modes import check_stack
-
     sub = stack.rows_floats(np.asarray(rows))
     flags = check_stack(sub)
     if not flags.any():

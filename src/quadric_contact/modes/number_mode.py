@@ -1,0 +1,165 @@
+"""The base class of the number modes: the four questions, answered by one pipeline.
+
+:class:`NumberMode` declares the stages a mode implements with its numbers and
+answers the public questions (:meth:`~NumberMode.contact`, :meth:`~NumberMode.region`,
+:meth:`~NumberMode.kind`, :meth:`~NumberMode.overlap`) by handing itself to
+:mod:`quadric_contact.modes.pipeline`.  It is apart from
+:mod:`quadric_contact.modes.base` (the codes and inputs every mode shares, which the
+pipeline itself imports), so the pipeline is imported here at module level without
+a cycle.
+"""
+
+from __future__ import annotations
+
+import threading
+from abc import ABC, abstractmethod
+from typing import Any
+
+import numpy as np
+
+from .base import MatrixStack, Pairs, StageCounts
+from .pipeline import decide, decide_overlap
+
+__all__ = ["NumberMode"]
+
+
+class NumberMode(ABC):
+    """A way of evaluating the closed forms (one formula, many number types).
+
+    The public array predicates ask a mode four questions, :meth:`contact`,
+    :meth:`region`, :meth:`kind` and :meth:`overlap`, and always mean the geometry (do the
+    surfaces cross, where is ``E``, how do they touch, do the solids overlap), for every
+    pair.  They are answered by one pipeline (:mod:`quadric_contact.modes.pipeline`) from the *stages* a mode
+    implements with its numbers:
+
+    * :meth:`criterion_contact`, :meth:`criterion_region`: the paper's criterion (the
+      nature of the roots of ``P``, Corollary 10 / Remark 9, and the Table 4 reading
+      of their signs; Theorem 14 for planes), with no smallness test;
+    * :meth:`classify`: the type of each quadric;
+    * :meth:`smallness`: Definition 1 through Tables 1-2 (corrected);
+    * :meth:`separation`: the smallness-free separation certificate
+      (:mod:`quadric_contact.modes.separation`).
+
+    Every public call records which stage settled how many entries in :attr:`last`
+    and adds it to :attr:`counts` (thread-safe).
+
+    Attributes
+    ----------
+    name : str
+    certified : bool
+        True if every answer other than ``UNCERTAIN`` is guaranteed right (for the
+        matrices as given).
+    complete : bool
+        True if the mode ends with the exact scalar predicates for what its stages leave
+        (``certified``, ``exact``): it never answers ``UNCERTAIN``.
+    uses_smallness : bool
+        The pipeline tries Corollary 10 through :meth:`smallness` before the separation
+        certificate (not for ``exact``, whose separation is cheaper than exact smallness).
+    """
+
+    name: str = "mode"
+    stage: str = "mode"
+    certified: bool = False
+    complete: bool = False
+    uses_smallness: bool = True
+
+    def __init__(self) -> None:
+        self.counts = StageCounts()
+        self.last = StageCounts()
+        self._lock = threading.Lock()
+
+    def _record(self, counts: StageCounts) -> None:
+        with self._lock:
+            self.last = counts
+            self.counts.merge(counts)
+
+    def __getstate__(self) -> dict[str, Any]:
+        state = dict(self.__dict__)
+        del state["_lock"]
+        return state
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__dict__.update(state)
+        self._lock = threading.Lock()
+
+    def reset_counts(self) -> None:
+        with self._lock:
+            self.counts = StageCounts()
+            self.last = StageCounts()
+
+    # -- the questions (one pipeline for every mode) -------------------------------------
+
+    def contact(self, pairs: Pairs) -> np.ndarray:
+        """:class:`ContactCode` of every pair: do the surfaces cross (int8, ``(pairs.n,)``)."""
+        return decide(self, pairs, "contact")
+
+    def region(self, pairs: Pairs) -> np.ndarray:
+        """:class:`RegionCode` of every pair: the side of ``Q`` the surface of ``E`` is on."""
+        return decide(self, pairs, "region")
+
+    def kind(self, pairs: Pairs) -> np.ndarray:
+        """:class:`ContactKindCode` of every pair (Table 3)."""
+        return decide(self, pairs, "kind")
+
+    def overlap(self, pairs: Pairs) -> np.ndarray:
+        """:class:`OverlapCode` of every pair: do the solids of ``E`` and ``Q`` overlap?"""
+        return decide_overlap(self, pairs)
+
+    def criterion(self, pairs: Pairs) -> np.ndarray:
+        """:class:`CriterionCode` of every pair (the raw criterion), recording its counts."""
+        codes, names, which = self.staged("criterion_contact", pairs)
+        counts = StageCounts()
+        for k, name in enumerate(names):
+            counts.add(f"criterion ({name})", int(np.count_nonzero(which == k)))
+        counts.undecided = int(np.count_nonzero(which < 0))
+        self._record(counts)
+        return codes
+
+    def public_smallness(self, pairs: Pairs) -> np.ndarray:
+        """:class:`SmallnessCode` of every pair, recording its counts."""
+        codes, names, which = self.staged("smallness", pairs)
+        counts = StageCounts()
+        for k, name in enumerate(names):
+            counts.add(f"smallness ({name})", int(np.count_nonzero(which == k)))
+        counts.undecided = int(np.count_nonzero(which < 0))
+        self._record(counts)
+        return codes
+
+    # -- the stages -------------------------------------------------------------------------
+
+    @abstractmethod
+    def criterion_contact(self, pairs: Pairs) -> np.ndarray:
+        """The criterion: ``1`` non-real roots, ``0`` all roots real (``ContactCode`` values;
+        ``UNCERTAIN`` where the mode cannot tell).  Validates the input."""
+
+    @abstractmethod
+    def criterion_region(self, pairs: Pairs) -> np.ndarray:
+        """The criterion and Table 4's reading of the root signs (``RegionCode`` values)."""
+
+    @abstractmethod
+    def classify(self, Q: MatrixStack, rows: np.ndarray | None = None) -> np.ndarray:
+        """Candidate Table 4 rows (int64 bit masks, see :mod:`~quadric_contact.modes.decisions`)
+        of the quadrics ``rows`` (all by default): one bit where the type is certain."""
+
+    @abstractmethod
+    def separation(self, pairs: Pairs) -> np.ndarray:
+        """Separation certificate codes (``RegionCode`` values -1, 0, 1 or ``UNCERTAIN``)."""
+
+    def smallness(self, pairs: Pairs) -> np.ndarray:
+        """:class:`SmallnessCode` of every pair (Tables 1-2, corrected)."""
+        raise NotImplementedError(f"{type(self).__name__} does not decide smallness on arrays")
+
+    def quick_smallness(self, pairs: Pairs) -> np.ndarray:
+        """The smallness the pipeline tries before the separation certificate (by default
+        :meth:`smallness`; the certified cascade leaves out its slow exact stage)."""
+        return self.smallness(pairs)
+
+    def staged(self, method: str, pairs: Pairs) -> tuple[np.ndarray, list[str], np.ndarray]:
+        """Run the stage ``method``: ``(codes, stage names, index of the stage that decided
+        each entry or -1)``.  A cascade (the certified mode) reports each of its stages."""
+        codes = getattr(self, method)(pairs)
+        which = np.where(codes != 2, 0, -1).astype(np.int8)
+        return codes, [self.stage], which
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}()"
