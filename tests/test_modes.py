@@ -21,8 +21,9 @@ from quadric_contact import (
     UndecidedError,
     characteristic_polynomial,
 )
-from quadric_contact.classification import classify
+from quadric_contact.classification import TABLE_1_KINDS, classify
 from quadric_contact.discriminants import root_structure
+from quadric_contact.errors import QuadricContactError
 from quadric_contact.hardcases import hard_cases
 from quadric_contact.modes import (
     MODES,
@@ -352,11 +353,12 @@ def test_kind_from_invariant_signs_is_classify():
     E, Q, _ = random_pairs(60, np.random.default_rng(6))
     qs += [Quadric.from_matrix(m) for m in Q[:60]]
     qs += [-q for q in qs]
-    for kind in QuadricKind:
-        try:
-            qs.append(Quadric.standard(kind, a=3, b=2, c=1))
-        except Exception:
-            continue
+    for kind in TABLE_1_KINDS:  # the kinds with a standard form (the others are refused)
+        params = dict(zip(Quadric.standard_parameters(kind), (3, 2, 1), strict=False))
+        qs.append(Quadric.standard(kind, **params))
+    for kind in set(QuadricKind) - set(TABLE_1_KINDS):
+        with pytest.raises(QuadricContactError, match="no standard form"):
+            Quadric.standard(kind, a=3)
     for q in qs:
         inv = kernels.quadric_invariants(*q.upper)
         signs = (*tuple(int(np.sign(v)) for v in inv), int(np.sign(q.upper[9])))
