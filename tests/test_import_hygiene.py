@@ -1,0 +1,194 @@
+"""The package's imports: the code generator stays development time, and no import
+inside a function hides an import cycle.
+
+An AST scan of every module of ``src/quadric_contact`` (imports at module level and
+inside functions; an ``if TYPE_CHECKING:`` block is not run, so it does not count).
+
+* Nothing imports :mod:`quadric_contact.codegen` but the ``codegen`` command of the
+  command line (which runs the generator on request); the run-time code reads
+  straight-line programs with :mod:`quadric_contact.straight_line` and emits the
+  families' programs with :mod:`quadric_contact.family_emit`.
+* The graph of module-level imports has no cycle.
+* An import inside a function is fine for a heavy or optional dependency (sympy,
+  matplotlib, dask, numba, ...: not scanned here) or to keep a module light (the
+  command line imports its commands only when they run), but never to dodge a cycle:
+  for every function-level import of one of the package's modules, the imported
+  module must not reach the importer through module-level imports (else the import
+  could not move to the top of the file).
+
+Edges to the top package ``quadric_contact`` (the curated public API, which imports
+most modules) and from a module to its own enclosing packages are left out: Python
+has already started those packages when the module runs.
+"""
+
+from __future__ import annotations
+
+import ast
+import os
+import subprocess
+import sys
+from collections.abc import Iterator
+from dataclasses import dataclass
+from pathlib import Path
+
+import pytest
+
+SRC = Path(__file__).resolve().parents[1] / "src"
+PACKAGE = "quadric_contact"
+
+CODEGEN = f"{PACKAGE}.codegen"
+CODEGEN_IMPORTERS = {f"{PACKAGE}.cli.codegen"}
+"""The only module allowed to import the generator: the ``quadric-contact codegen`` command."""
+
+
+@dataclass(frozen=True)
+class Import:
+    importer: str
+    line: int
+    target: str
+    in_function: bool
+
+
+def _modules() -> dict[str, Path]:
+    out = {}
+    for path in sorted((SRC / PACKAGE).rglob("*.py")):
+        parts = list(path.relative_to(SRC).with_suffix("").parts)
+        if parts[-1] == "__init__":
+            parts = parts[:-1]
+        out[".".join(parts)] = path
+    return out
+
+
+MODULES = _modules()
+
+
+def _ancestors(module: str) -> set[str]:
+    parts = module.split(".")
+    return {".".join(parts[:i]) for i in range(1, len(parts))}
+
+
+def _targets(node: ast.Import | ast.ImportFrom, module: str) -> Iterator[str]:
+    """The package's modules an import statement runs (submodules named in a
+    ``from package import name`` included)."""
+    if isinstance(node, ast.Import):
+        names = [a.name for a in node.names]
+    else:
+        if node.level:
+            is_package = MODULES[module].name == "__init__.py"
+            base = module.split(".")
+            base = base[: len(base) - node.level + (1 if is_package else 0)]
+            source = ".".join([*base, *([node.module] if node.module else [])])
+        else:
+            source = node.module or ""
+        names = [f"{source}.{a.name}" if f"{source}.{a.name}" in MODULES else source for a in node.names]
+    for name in names:
+        if name == PACKAGE or not name.startswith(PACKAGE + "."):
+            continue
+        parts = name.split(".")
+        for i in range(2, len(parts) + 1):
+            prefix = ".".join(parts[:i])
+            if prefix in MODULES:
+                yield prefix
+
+
+def _is_type_checking(node: ast.AST) -> bool:
+    return isinstance(node, ast.If) and "TYPE_CHECKING" in ast.unparse(node.test)
+
+
+def _imports() -> list[Import]:
+    found: list[Import] = []
+    for module, path in MODULES.items():
+        tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+
+        def walk(node: ast.AST, in_function: bool, module: str = module) -> None:
+            for child in ast.iter_child_nodes(node):
+                if _is_type_checking(child):
+                    continue
+                if isinstance(child, ast.Import | ast.ImportFrom):
+                    for target in set(_targets(child, module)):
+                        if target != module and target not in _ancestors(module):
+                            found.append(Import(module, child.lineno, target, in_function))
+                inner = in_function or isinstance(child, ast.FunctionDef | ast.AsyncFunctionDef | ast.Lambda)
+                walk(child, inner)
+
+        walk(tree, False)
+    return found
+
+
+IMPORTS = _imports()
+
+
+def _module_graph() -> dict[str, set[str]]:
+    graph: dict[str, set[str]] = {m: set() for m in MODULES}
+    for imp in IMPORTS:
+        if not imp.in_function:
+            graph[imp.importer].add(imp.target)
+    return graph
+
+
+GRAPH = _module_graph()
+
+
+def _reaches(start: str, goal: str) -> bool:
+    seen, todo = {start}, [start]
+    while todo:
+        for nxt in GRAPH[todo.pop()]:
+            if nxt == goal:
+                return True
+            if nxt not in seen:
+                seen.add(nxt)
+                todo.append(nxt)
+    return False
+
+
+def test_the_scan_sees_the_imports() -> None:
+    """The scan is not vacuous: it finds known imports of both kinds."""
+    assert any(
+        i.importer == f"{PACKAGE}.rational" and i.target == f"{PACKAGE}.reading" and not i.in_function
+        for i in IMPORTS
+    )
+    assert any(i.importer in CODEGEN_IMPORTERS and i.target == CODEGEN and i.in_function for i in IMPORTS)
+    assert any(i.in_function for i in IMPORTS) and any(not i.in_function for i in IMPORTS)
+    assert _reaches(f"{PACKAGE}.family", f"{PACKAGE}.rational_functions")
+    assert not _reaches(f"{PACKAGE}.rational_functions", f"{PACKAGE}.family")
+
+
+def test_nothing_imports_the_code_generator_at_run_time() -> None:
+    offenders = [
+        f"{i.importer}:{i.line}"
+        for i in IMPORTS
+        if i.target == CODEGEN and i.importer not in CODEGEN_IMPORTERS
+    ]
+    assert offenders == [], f"the code generator is development time only; imported by {offenders}"
+
+
+def test_module_level_imports_have_no_cycle() -> None:
+    cyclic = sorted(m for m in MODULES if _reaches(m, m))
+    assert cyclic == [], f"modules on an import cycle: {cyclic}"
+
+
+def test_no_function_level_import_dodges_a_cycle() -> None:
+    dodging = sorted(
+        f"{i.importer}:{i.line} -> {i.target}"
+        for i in IMPORTS
+        if i.in_function and _reaches(i.target, i.importer)
+    )
+    assert dodging == [], (
+        "these imports inside functions hide an import cycle (the imported module imports the "
+        f"importer at module level); break the cycle instead: {dodging}"
+    )
+
+
+@pytest.mark.parametrize(
+    "modules",
+    [
+        # the modules that once imported the generator at run time
+        "quadric_contact.family_numeric, quadric_contact.modes.smallness_float, quadric_contact.batch, "
+        "quadric_contact.hardcases, quadric_contact.benchmark, quadric_contact.modes.float64",
+    ],
+)
+def test_importing_the_package_does_not_load_the_generator(modules: str) -> None:
+    code = f"import sys, quadric_contact, {modules}; print({CODEGEN!r} in sys.modules)"
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(SRC), os.environ.get("PYTHONPATH", "")])}
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env)
+    assert out.stdout.strip() == "False", out.stderr
