@@ -30,6 +30,16 @@ Numbers for many parameter values come from :meth:`Family.lambdify`
 (:mod:`quadric_contact.family_numeric`), pictures over two parameters from
 :meth:`Family.contact_map` (:mod:`quadric_contact.family_maps`).
 
+Module structure: the values every families module shares (:class:`RationalFunction`,
+:class:`FamilyCondition`, :class:`FamilySmallness`) live in
+:mod:`quadric_contact.rational_functions` and are re-exported here.  The modules that
+compute with a family (:mod:`~quadric_contact.family_smallness`,
+:mod:`~quadric_contact.family_numeric`, :mod:`~quadric_contact.family_maps`) import
+those values, never this module (a :class:`Family` reaches them as an argument), and
+this module imports them at module level for the conveniences
+:attr:`Family.smallness`, :meth:`Family.lambdify` and :meth:`Family.contact_map`,
+which are thin calls of their functions.
+
 Sign conventions
 ----------------
 ``E`` is normalised once, at the family's *reference point* (the first of a fixed list of
