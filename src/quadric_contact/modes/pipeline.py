@@ -6,13 +6,13 @@ not.  The paper's criterion is the fast way to the answer where it applies, not
 the answer itself.  A number mode supplies the arithmetic of each step; the
 steps and the order in which they hand pairs on are written once, here:
 
-1. **criterion** (:meth:`~quadric_contact.modes.number_mode.NumberMode.criterion_contact`):
+1. **criterion** (:meth:`~quadric_contact.modes.base.NumberMode.criterion_contact`):
    the pencil's root structure.  Non-real roots mean transversal contact for any
    pair (Remark 9); for a plane all roots real means no transversal contact
    (Theorem 14) and the side comes from Corollary 15; a quadric without a real
    surface (an imaginary quadric, a point, a line) is never crossed and ``X^T Q X``
    has one sign on all of space.
-2. **smallness** (:meth:`~quadric_contact.modes.number_mode.NumberMode.smallness`, where
+2. **smallness** (:meth:`~quadric_contact.modes.base.NumberMode.smallness`, where
    the mode offers it): all roots real and ``E`` small with respect to ``Q``
    (Tables 1-2, corrected) means no transversal contact (Corollary 10), and unless
    ``E`` is small only in the enclosing sense, Table 4 names the region
