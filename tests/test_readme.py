@@ -32,9 +32,13 @@ def test_the_tour_runs_as_written():
 
 def test_quick_start_commands_are_the_ones_ci_runs():
     assert "    pip install . && quadric-contact simulate\n" in README
-    assert '    pip install ".[test]" && pytest\n' in README
+    # the test command is the indented line after "Install and run the whole test suite:"
+    match = re.search(r"Install and run the whole test suite:\n\n    (.+)\n", README)
+    assert match, "the quick start lost its test command"
+    command = match.group(1)
+    assert command.startswith('pip install ".[test]" && pytest')
     ci = (ROOT / ".ci" / "run").read_text()
-    assert '\npip install ".[test]" && pytest\n' in ci
+    assert f"\n{command}\n" in ci, "`.ci/run` must run exactly the README's test command"
 
 
 def test_relative_links_exist():
