@@ -32,7 +32,7 @@ from .base import INVALID, MatrixStack, NumberMode, Pairs
 from .decisions import ROWS, UNCERTAIN_ROW, masks_from_invariant_signs, region_code_masked, rows_from_masks
 from .kernels_criterion import FALLBACK, NB, fast_codes
 from .threads import run_parallel
-from .validation import exact_matrix, raise_not_ellipsoid, validate_rows
+from .validation import exact_matrix, raise_not_ellipsoid, rows_view, validate_rows
 
 __all__ = [
     "BACKENDS",
@@ -308,6 +308,7 @@ class FloatMode(NumberMode):
         if self.backend not in BACKENDS:
             raise ValueError(f"backend must be one of {BACKENDS}, got {backend!r}")
         self.threads = threads
+        self._classified: tuple[MatrixStack, np.ndarray, np.ndarray] | None = None
 
     def _fast(self, pairs: Pairs) -> bool:
         """The fast kernels apply: compiled, binary64 input (not rounded exact input)."""
@@ -435,15 +436,29 @@ class FloatMode(NumberMode):
         the exact type where binary64 cannot tell (once per quadric), so that a structural
         zero (a cylinder's ``det Q = 0``) is never read from rounding noise."""
         index = np.arange(len(Q)) if rows is None else np.asarray(rows, dtype=np.intp)
+        seen = self._classified
+        if seen is not None and seen[0] is Q and bool(seen[1][index].all()):
+            # the stages of one decision ask about the same quadrics (the pipeline's classes,
+            # then smallness): once per quadric and call (the pipeline forgets after each call)
+            return seen[2][index]
         validate_rows(Q, index)
-        sub = Q.floats if rows is None else Q.rows_floats(index)
+        sub = Q.floats if rows is None else rows_view(Q, index)
         signs = float_invariant_signs(sub, filtered=True, rounded=Q.rounded, backend=self.backend)
         masks = masks_from_invariant_signs(signs)
         if not self.filtered:
             unsure = np.flatnonzero(rows_from_masks(masks) == UNCERTAIN_ROW)
             if unsure.size:
                 masks[unsure] = exact_facts(Q, index[unsure])[1]
+        if seen is None or seen[0] is not Q:
+            seen = (Q, np.zeros(len(Q), dtype=bool), np.zeros(len(Q), dtype=masks.dtype))
+        seen[2][index] = masks
+        seen[1][index] = True
+        self._classified = seen
         return masks
+
+    def forget(self) -> None:
+        """Drop what :meth:`classify` remembers of the stack of the last call."""
+        self._classified = None
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}(backend={self.backend!r})"
@@ -472,7 +487,9 @@ def _used_rows(index: np.ndarray | None, m: int, n: int) -> np.ndarray:
     """The distinct rows of a stack that ``n`` pairs use (no sorting when they use them all)."""
     if index is None:
         return np.arange(m, dtype=np.intp) if m == n else np.zeros(1, dtype=np.intp)
-    return np.unique(index)
+    from .rows import unique_rows
+
+    return unique_rows(index, m)
 
 
 def exact_facts(Q: MatrixStack, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
