@@ -11,7 +11,12 @@ steps and the order in which they hand pairs on are written once, here:
    pair (Remark 9); for a plane all roots real means no transversal contact
    (Theorem 14) and the side comes from Corollary 15; a quadric without a real
    surface (an imaginary quadric, a point, a line) is never crossed and ``X^T Q X``
-   has one sign on all of space.
+   has one sign on all of space.  For two ellipsoids with all roots real, the root signs
+   (Wang-Wang-Kim, for every pair) settle ``E`` outside ``Q`` or touching it from outside:
+   two positive roots mean no crossing and ``E`` in the closed ``R+`` of ``Q``'s canonical
+   sign (the contact question asks the criterion's region reading of these pairs only, and
+   of a cascade only its first stage).  This is most pairs of an environment and of
+   ellipsoids of similar sizes.
 2. **smallness** (:meth:`~quadric_contact.modes.base.NumberMode.smallness`, where
    the mode offers it): all roots real and ``E`` small with respect to ``Q``
    (Tables 1-2, corrected) means no transversal contact (Corollary 10), and unless
@@ -258,10 +263,14 @@ def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
     elif question == "contact" and ell is not False:
         cand = np.flatnonzero(todo & all_real & ell)
         if cand.size:
-            signs, names, which = _staged(mode, "criterion_region", _take(pairs, cand))
+            # the first stage of a cascade only: what it cannot read (a structural zero such as
+            # proportional quadratic parts, a tangency) goes on to smallness and separation,
+            # which settle it in binary64 more often than a slower stage here would
+            first = getattr(mode, "stages", (mode,))[0]
+            signs = first.criterion_region(_take(pairs, cand))
             outside = signs * qsign[cand] == RegionCode.R_PLUS
-            for k, name in enumerate(names):
-                settle_at(cand[outside & (which == k)], ContactCode.NO_CONTACT, f"criterion ({name})")
+            label = f"criterion ({getattr(first, 'stage', first.name)})"
+            settle_at(cand[outside], ContactCode.NO_CONTACT, label)
 
     # 2. smallness: Corollary 10 and Table 4 where they apply.
     if question != "kind" and getattr(mode, "uses_smallness", False):
