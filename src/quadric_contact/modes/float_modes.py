@@ -232,7 +232,8 @@ def float_invariant_signs(
         return numpy_invariant_signs(Q, filtered, K)
     from .kernels_support import invariant_signs_kernel
 
-    invariant_signs_kernel(np.ascontiguousarray(Q).reshape(-1, 16), 0, Q.shape[0], K, filtered, out)
+    flat = np.ascontiguousarray(Q).reshape(-1, 16)
+    run_parallel(lambda lo, hi: invariant_signs_kernel(flat, lo, hi, K, filtered, out), Q.shape[0])
     return out
 
 
@@ -308,7 +309,8 @@ class FloatMode(NumberMode):
         if self.backend not in BACKENDS:
             raise ValueError(f"backend must be one of {BACKENDS}, got {backend!r}")
         self.threads = threads
-        self._classified: tuple[MatrixStack, np.ndarray, np.ndarray] | None = None
+        # what classify remembers within one decision (None: nothing, not remembering)
+        self._classified: tuple[MatrixStack, np.ndarray, np.ndarray] | tuple[()] | None = None
 
     def _fast(self, pairs: Pairs) -> bool:
         """The fast kernels apply: compiled, binary64 input (not rounded exact input)."""
@@ -437,9 +439,9 @@ class FloatMode(NumberMode):
         zero (a cylinder's ``det Q = 0``) is never read from rounding noise."""
         index = np.arange(len(Q)) if rows is None else np.asarray(rows, dtype=np.intp)
         seen = self._classified
-        if seen is not None and seen[0] is Q and bool(seen[1][index].all()):
+        if seen and seen[0] is Q and bool(seen[1][index].all()):
             # the stages of one decision ask about the same quadrics (the pipeline's classes,
-            # then smallness): once per quadric and call (the pipeline forgets after each call)
+            # then smallness): once per quadric and call (see remember)
             return seen[2][index]
         validate_rows(Q, index)
         sub = Q.floats if rows is None else rows_view(Q, index)
@@ -449,15 +451,21 @@ class FloatMode(NumberMode):
             unsure = np.flatnonzero(rows_from_masks(masks) == UNCERTAIN_ROW)
             if unsure.size:
                 masks[unsure] = exact_facts(Q, index[unsure])[1]
-        if seen is None or seen[0] is not Q:
-            seen = (Q, np.zeros(len(Q), dtype=bool), np.zeros(len(Q), dtype=masks.dtype))
-        seen[2][index] = masks
-        seen[1][index] = True
-        self._classified = seen
+        if seen is not None:
+            if not seen or seen[0] is not Q:
+                seen = (Q, np.zeros(len(Q), dtype=bool), np.zeros(len(Q), dtype=masks.dtype))
+            seen[2][index] = masks
+            seen[1][index] = True
+            self._classified = seen
         return masks
 
+    def remember(self) -> None:
+        """From now on :meth:`classify` answers again from memory for the same stack (the
+        pipeline calls this at the start of a decision and :meth:`forget` at its end)."""
+        self._classified = ()
+
     def forget(self) -> None:
-        """Drop what :meth:`classify` remembers of the stack of the last call."""
+        """Drop what :meth:`classify` remembers, and stop remembering."""
         self._classified = None
 
     def __repr__(self) -> str:

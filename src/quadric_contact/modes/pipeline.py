@@ -166,12 +166,13 @@ def _staged(mode: NumberMode, method: str, pairs: Pairs) -> tuple[np.ndarray, li
     return mode.staged(method, pairs)
 
 
-def _forget(mode: NumberMode) -> None:
-    """Let the mode (and its cascade) drop what it remembered about this call's stacks."""
+def _remember(mode: NumberMode, start: bool) -> None:
+    """Let the mode (and its cascade) remember facts about this call's stacks (``start``), or
+    drop them (at the end of the call)."""
     for m in (mode, *getattr(mode, "stages", ())):
-        forget = getattr(m, "forget", None)
-        if forget is not None:
-            forget()
+        method = getattr(m, "remember" if start else "forget", None)
+        if method is not None:
+            method()
 
 
 def decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
@@ -179,10 +180,11 @@ def decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
 
     Returns :class:`ContactCode`, :class:`RegionCode` or :class:`ContactKindCode`
     values (int8); records the stage counts in ``mode``."""
+    _remember(mode, True)
     try:
         return _decide(mode, pairs, question)
     finally:
-        _forget(mode)
+        _remember(mode, False)
 
 
 def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
@@ -392,10 +394,11 @@ def _solids(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, np.ndarray, np.
 def decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
     """:class:`~quadric_contact.modes.OverlapCode` of every pair: do the solids overlap?
     (:func:`_decide_overlap`; the mode forgets this call's stacks afterwards.)"""
+    _remember(mode, True)
     try:
         return _decide_overlap(mode, pairs)
     finally:
-        _forget(mode)
+        _remember(mode, False)
 
 
 def _decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
