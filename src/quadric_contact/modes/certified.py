@@ -18,7 +18,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from .base import MatrixStack, Pairs
-from .decisions import UNCERTAIN_ROW, rows_from_masks
+from .decisions import UNCERTAIN_ROW
 from .float_modes import FilterMode
 from .number_mode import NumberMode
 from .objects import BallMode, ExactMode
@@ -26,6 +26,7 @@ from .objects import BallMode, ExactMode
 __all__ = ["CertifiedMode"]
 
 _UNC = 2
+_UNCERTAIN_BIT = 1 << UNCERTAIN_ROW
 
 
 class CertifiedMode(NumberMode):
@@ -110,7 +111,9 @@ class CertifiedMode(NumberMode):
         index = np.arange(len(Q)) if rows is None else np.asarray(rows)
         out = self.stages[0].classify(Q, index)
         for stage in self.stages[1:]:
-            todo = np.flatnonzero(rows_from_masks(out) == UNCERTAIN_ROW)
+            # rows_from_masks(out) == UNCERTAIN_ROW without finding the rows: not exactly one
+            # candidate row (a single bit), or the uncertain row itself
+            todo = np.flatnonzero((out == 0) | ((out & (out - 1)) != 0) | (out == _UNCERTAIN_BIT))
             if todo.size == 0:
                 break
             out[todo] = stage.classify(Q, index[todo])

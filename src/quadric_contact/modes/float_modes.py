@@ -34,7 +34,7 @@ from .kernels_criterion import FALLBACK, NB, fast_codes
 from .number_mode import NumberMode
 from .support import check_stack, region_codes_from_signs
 from .threads import run_parallel
-from .validation import exact_matrix, raise_not_ellipsoid, validate_rows
+from .validation import exact_matrix, raise_not_ellipsoid, rows_view, validate_rows
 
 __all__ = [
     "BACKENDS",
@@ -234,7 +234,8 @@ def float_invariant_signs(
         return numpy_invariant_signs(Q, filtered, K)
     from .kernels_support import invariant_signs_kernel
 
-    invariant_signs_kernel(np.ascontiguousarray(Q).reshape(-1, 16), 0, Q.shape[0], K, filtered, out)
+    flat = np.ascontiguousarray(Q).reshape(-1, 16)
+    run_parallel(lambda lo, hi: invariant_signs_kernel(flat, lo, hi, K, filtered, out), Q.shape[0])
     return out
 
 
@@ -279,6 +280,8 @@ class FloatMode(NumberMode):
         if self.backend not in BACKENDS:
             raise ValueError(f"backend must be one of {BACKENDS}, got {backend!r}")
         self.threads = threads
+        # what classify remembers within one decision (None: nothing, not remembering)
+        self._classified: tuple[MatrixStack, np.ndarray, np.ndarray] | tuple[()] | None = None
 
     def _fast(self, pairs: Pairs) -> bool:
         """The fast kernels apply: compiled, binary64 input (not rounded exact input)."""
@@ -406,15 +409,35 @@ class FloatMode(NumberMode):
         the exact type where binary64 cannot tell (once per quadric), so that a structural
         zero (a cylinder's ``det Q = 0``) is never read from rounding noise."""
         index = np.arange(len(Q)) if rows is None else np.asarray(rows, dtype=np.intp)
+        seen = self._classified
+        if seen and seen[0] is Q and bool(seen[1][index].all()):
+            # the stages of one decision ask about the same quadrics (the pipeline's classes,
+            # then smallness): once per quadric and call (see remember)
+            return seen[2][index]
         validate_rows(Q, index)
-        sub = Q.floats if rows is None else Q.rows_floats(index)
+        sub = Q.floats if rows is None else rows_view(Q, index)
         signs = float_invariant_signs(sub, filtered=True, rounded=Q.rounded, backend=self.backend)
         masks = masks_from_invariant_signs(signs)
         if not self.filtered:
             unsure = np.flatnonzero(rows_from_masks(masks) == UNCERTAIN_ROW)
             if unsure.size:
                 masks[unsure] = exact_facts(Q, index[unsure])[1]
+        if seen is not None:
+            if not seen or seen[0] is not Q:
+                seen = (Q, np.zeros(len(Q), dtype=bool), np.zeros(len(Q), dtype=masks.dtype))
+            seen[2][index] = masks
+            seen[1][index] = True
+            self._classified = seen
         return masks
+
+    def remember(self) -> None:
+        """From now on :meth:`classify` answers again from memory for the same stack (the
+        pipeline calls this at the start of a decision and :meth:`forget` at its end)."""
+        self._classified = ()
+
+    def forget(self) -> None:
+        """Drop what :meth:`classify` remembers, and stop remembering."""
+        self._classified = None
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}(backend={self.backend!r})"
@@ -443,7 +466,9 @@ def _used_rows(index: np.ndarray | None, m: int, n: int) -> np.ndarray:
     """The distinct rows of a stack that ``n`` pairs use (no sorting when they use them all)."""
     if index is None:
         return np.arange(m, dtype=np.intp) if m == n else np.zeros(1, dtype=np.intp)
-    return np.unique(index)
+    from .rows import unique_rows
+
+    return unique_rows(index, m)
 
 
 def exact_facts(Q: MatrixStack, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

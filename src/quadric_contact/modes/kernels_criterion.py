@@ -476,7 +476,8 @@ def fast_codes(
     region = qrows is not None
     rows = np.zeros(1, dtype=np.int16) if qrows is None else np.ascontiguousarray(qrows, dtype=np.int16)
     masks = np.zeros(1, dtype=np.int64) if qmasks is None else np.ascontiguousarray(qmasks, dtype=np.int64)
-    if eidx.shape[0] == 0 and qidx.shape[0] == 0 and qs == 0 and es != 0:
+    if qidx.shape[0] == 0 and qs == 0 and (es != 0 or eidx.shape[0] > 0):
+        # one quadric against a stack of ellipsoids (all of them, or a sub-batch by index)
         k = kernel("fixed_q", filtered, region)
         row, mask = int(rows[0]), int(masks[0])
         run(lambda lo, hi: k(E, eidx, es, epacked, Q, qpacked, lo, hi, row, mask, out), n)

@@ -6,13 +6,18 @@ not.  The paper's criterion is the fast way to the answer where it applies, not
 the answer itself.  A number mode supplies the arithmetic of each step; the
 steps and the order in which they hand pairs on are written once, here:
 
-1. **criterion** (:meth:`~quadric_contact.modes.base.NumberMode.criterion_contact`):
+1. **criterion** (:meth:`~quadric_contact.modes.number_mode.NumberMode.criterion_contact`):
    the pencil's root structure.  Non-real roots mean transversal contact for any
    pair (Remark 9); for a plane all roots real means no transversal contact
    (Theorem 14) and the side comes from Corollary 15; a quadric without a real
    surface (an imaginary quadric, a point, a line) is never crossed and ``X^T Q X``
-   has one sign on all of space.
-2. **smallness** (:meth:`~quadric_contact.modes.base.NumberMode.smallness`, where
+   has one sign on all of space.  For two ellipsoids with all roots real, the root signs
+   (Wang-Wang-Kim, for every pair) settle ``E`` outside ``Q`` or touching it from outside:
+   two positive roots mean no crossing and ``E`` in the closed ``R+`` of ``Q``'s canonical
+   sign (the contact question asks the criterion's region reading of these pairs only, and
+   of a cascade only its first stage).  This is most pairs of an environment and of
+   ellipsoids of similar sizes.
+2. **smallness** (:meth:`~quadric_contact.modes.number_mode.NumberMode.smallness`, where
    the mode offers it): all roots real and ``E`` small with respect to ``Q``
    (Tables 1-2, corrected) means no transversal contact (Corollary 10), and unless
    ``E`` is small only in the enclosing sense, Table 4 names the region
@@ -74,16 +79,19 @@ def _class_of_kind(kind: QuadricKind) -> int:
 # Per row of decisions.ROWS: the class, the canonical sign, whether the type is refused.
 _ROW_CLASS = np.array([_class_of_kind(k) for k in KINDS for _ in (1, -1)] + [_CLASS_UNCERTAIN], dtype=np.int8)
 _ROW_SIGN = np.array([s for _ in KINDS for s in (1, -1)] + [0], dtype=np.int8)
+_ROW_ELLIPSOID = np.array([k is QuadricKind.ELLIPSOID for k in KINDS for _ in (1, -1)] + [False], dtype=bool)
 _ROW_REFUSED = np.array([k in REFUSED_KINDS for k in KINDS for _ in (1, -1)] + [False], dtype=bool)
 
 
-def _classes(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, np.ndarray]:
-    """Per pair: the class of ``Q`` (Table 1 type, plane, no real points, other, uncertain)
-    and its canonical sign (+1/-1; 0 when uncertain).  Raises for a refused type."""
-    used, where = unique_rows(pairs.q_rows(), len(pairs.Q), return_inverse=True)
+def _classes(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per pair: the class of ``Q`` (Table 1 type, plane, no real points, other, uncertain),
+    its canonical sign (+1/-1; 0 when uncertain) and whether it is an ellipsoid.  Raises for a
+    refused type."""
+    used, where = _q_used(pairs)
     rows = rows_from_masks(mode.classify(pairs.Q, used)).astype(np.intp)
     klass = _ROW_CLASS[rows]
     sign = _ROW_SIGN[rows]
+    ellipsoid = _ROW_ELLIPSOID[rows]
     suspect = np.flatnonzero(_ROW_REFUSED[rows] | (rows == UNCERTAIN_ROW))
     for k in suspect:
         # Refusing input is not the mode's business: where the mode cannot rule a refused
@@ -105,12 +113,66 @@ def _classes(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, np.ndarray]:
             kind=kind,
             index=int(used[k]),
         )
+    if where is None:
+        if used.size == pairs.n:
+            return klass, sign, ellipsoid
+        return tuple(np.broadcast_to(a, (pairs.n,)) for a in (klass, sign, ellipsoid))  # type: ignore[return-value]
     where = np.asarray(where).reshape(-1)
-    return klass[where], sign[where]
+    return klass[where], sign[where], ellipsoid[where]
+
+
+def _q_used(pairs: Pairs) -> tuple[np.ndarray, np.ndarray | None]:
+    """The distinct quadrics the pairs use and where each pair finds its own among them
+    (None: pair ``p`` uses the ``p``-th, or all use the one quadric)."""
+    if pairs.q_index is None:
+        m = len(pairs.Q)
+        return (np.arange(m, dtype=np.intp) if m == pairs.n else np.zeros(1, dtype=np.intp)), None
+    return unique_rows(pairs.q_index, len(pairs.Q), return_inverse=True)
+
+
+def _take(pairs: Pairs, which: np.ndarray) -> Pairs:
+    """``pairs.take(which)`` (``which`` increasing), keeping a single matrix unindexed (no index
+    array of zeros to build and to read back)."""
+    which = np.asarray(which, dtype=np.intp)
+
+    def index(own: np.ndarray | None, m: int) -> np.ndarray | None:
+        if own is not None:
+            return np.asarray(own, dtype=np.intp)[which]
+        if m == pairs.n:
+            return which  # pair p uses row p
+        return None  # the one matrix
+
+    return Pairs(pairs.E, pairs.Q, int(which.size), index(pairs.e_index, len(pairs.E)),
+                 index(pairs.q_index, len(pairs.Q)))  # fmt: skip
+
+
+def _is(values: np.ndarray, value: int) -> np.ndarray | bool:
+    """``values == value``; the Python ``False`` when no entry can be (``values`` one entry
+    broadcast: a single quadric), the Python ``True`` when every entry is."""
+    if values.ndim == 1 and values.size and values.strides[0] == 0:
+        return bool(values[0] == value)
+    return values == value
+
+
+def _deciding_stages(which: np.ndarray, m: int) -> set[int]:
+    """The stages (of ``m``) that decided at least one entry (``which``: index or -1)."""
+    if m == 1:
+        return {0} if bool((which == 0).any()) else set()
+    seen = np.bincount(which.astype(np.intp) + 1, minlength=m + 1)
+    return {k for k in range(m) if seen[k + 1]}
 
 
 def _staged(mode: NumberMode, method: str, pairs: Pairs) -> tuple[np.ndarray, list[str], np.ndarray]:
     return mode.staged(method, pairs)
+
+
+def _remember(mode: NumberMode, start: bool) -> None:
+    """Let the mode (and its cascade) remember facts about this call's stacks (``start``), or
+    drop them (at the end of the call)."""
+    for m in (mode, *getattr(mode, "stages", ())):
+        method = getattr(m, "remember" if start else "forget", None)
+        if method is not None:
+            method()
 
 
 def decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
@@ -118,6 +180,15 @@ def decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
 
     Returns :class:`ContactCode`, :class:`RegionCode` or :class:`ContactKindCode`
     values (int8); records the stage counts in ``mode``."""
+    _remember(mode, True)
+    try:
+        return _decide(mode, pairs, question)
+    finally:
+        _remember(mode, False)
+
+
+def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
+    """:func:`decide`, step by step."""
     if question not in QUESTIONS:
         raise ValueError(f"question must be one of {QUESTIONS}, got {question!r}")
     n = pairs.n
@@ -128,7 +199,10 @@ def decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
         return out
     todo = np.ones(n, dtype=bool)
 
-    def settle(which: np.ndarray, values: Any, label: str) -> None:
+    def settle(which: np.ndarray | bool, values: Any, label: str) -> None:
+        if which is False:  # a class no pair has
+            counts.add(label, 0)
+            return
         which = which & todo
         k = int(np.count_nonzero(which))
         if k:
@@ -136,29 +210,43 @@ def decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
             todo[which] = False
         counts.add(label, k)
 
+    def settle_at(at: np.ndarray, values: Any, label: str) -> None:
+        """Settle the pairs ``at`` (indices of pairs still to do) with ``values`` (one per entry
+        of ``at``, or a scalar)."""
+        if at.size:
+            out[at] = values
+            todo[at] = False
+        counts.add(label, int(at.size))
+
     # 1. criterion: the root structure of P (validates the input on the way).
     method = "criterion_region" if question == "region" else "criterion_contact"
     crit, names, which = _staged(mode, method, pairs)
-    klass, qsign = _classes(mode, pairs)
+    klass, qsign, ellipsoid = _classes(mode, pairs)
     labels = [f"criterion ({name})" for name in names]
-    surfaceless = klass == _CLASS_NO_SURFACE
+    surfaceless = _is(klass, _CLASS_NO_SURFACE)
     if question == "region":
         settle(surfaceless, np.where(qsign > 0, 1, -1).astype(np.int8), "no real points (type)")
     else:
         none = ContactCode.NO_CONTACT if question == "contact" else ContactKindCode.NONE
         settle(surfaceless, none, "no real points (type)")
+    plane = _is(klass, _CLASS_PLANE)
+    deciding = _deciding_stages(which, len(labels))
     for k, label in enumerate(labels):
-        here = which == k
+        if k not in deciding:
+            counts.add(label, 0)
+            continue
+        here = which == k if len(deciding) > 1 else True  # one stage decided every decided pair
         if question == "region":
             settle(here & (crit == RegionCode.CONTACT), RegionCode.CONTACT, label)
-            on_side = (crit == RegionCode.R_MINUS) | (crit == RegionCode.R_PLUS)
-            settle(here & on_side & (klass == _CLASS_PLANE), crit, label)
+            if plane is not False:
+                on_side = (crit == RegionCode.R_MINUS) | (crit == RegionCode.R_PLUS)
+                settle(here & on_side & plane, crit, label)
         else:
             answer = ContactCode.CONTACT if question == "contact" else ContactKindCode.TRANSVERSAL
             settle(here & (crit == ContactCode.CONTACT), answer, label)
             if question == "contact":
                 settle(
-                    here & (crit == ContactCode.NO_CONTACT) & (klass == _CLASS_PLANE),
+                    False if plane is False else here & (crit == ContactCode.NO_CONTACT) & plane,
                     ContactCode.NO_CONTACT,
                     label,
                 )
@@ -166,52 +254,62 @@ def decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
     if question != "region":
         all_real = crit == ContactCode.NO_CONTACT
 
+    # 1b. two ellipsoids, all roots real: two positive roots of P (Wang-Wang-Kim, for every
+    # pair, read off the criterion's root signs) mean E outside Q or touching it from outside:
+    # no crossing, and E in the closed R+ of Q's canonical sign.
+    ell = _is(ellipsoid, True)
+    if question == "region" and ell is not False:
+        outside = (crit * qsign == RegionCode.R_PLUS) & ell
+        for k, label in enumerate(labels):
+            settle(False if k not in deciding else outside & (which == k), crit, label)
+    elif question == "contact" and ell is not False:
+        cand = np.flatnonzero(todo & all_real & ell)
+        if cand.size:
+            # the first stage of a cascade only: what it cannot read (a structural zero such as
+            # proportional quadratic parts, a tangency) goes on to smallness and separation,
+            # which settle it in binary64 more often than a slower stage here would
+            first = getattr(mode, "stages", (mode,))[0]
+            signs = first.criterion_region(_take(pairs, cand))
+            outside = signs * qsign[cand] == RegionCode.R_PLUS
+            label = f"criterion ({getattr(first, 'stage', first.name)})"
+            settle_at(cand[outside], ContactCode.NO_CONTACT, label)
+
     # 2. smallness: Corollary 10 and Table 4 where they apply.
     if question != "kind" and getattr(mode, "uses_smallness", False):
-        cand = np.flatnonzero(todo & all_real & (klass == _CLASS_TABLE))
+        table = _is(klass, _CLASS_TABLE)
+        cand = np.flatnonzero(todo & all_real & table) if table is not False else np.zeros(0, dtype=np.intp)
         names = []
         if cand.size:
             try:
-                sm, names, which = _staged(mode, "quick_smallness", pairs.take(cand))
+                sm, names, which = _staged(mode, "quick_smallness", _take(pairs, cand))
             except NotImplementedError:
                 names = []
         if names:
             from .base import SmallnessCode
 
             for k, name in enumerate(names):
-                here = np.zeros(n, dtype=bool)
                 hit = which == k
                 if question == "contact":
                     small = hit & ((sm == SmallnessCode.SMALL) | (sm == SmallnessCode.SMALL_ENCLOSING))
-                    here[cand[small]] = True
-                    settle(here, ContactCode.NO_CONTACT, f"smallness ({name})")
+                    settle_at(cand[small], ContactCode.NO_CONTACT, f"smallness ({name})")
                 else:
                     side = (crit[cand] == RegionCode.R_MINUS) | (crit[cand] == RegionCode.R_PLUS)
                     small = hit & (sm == SmallnessCode.SMALL) & side
-                    here[cand[small]] = True
-                    settle(here, crit, f"smallness ({name})")
+                    settle_at(cand[small], crit[cand[small]], f"smallness ({name})")
 
     # 3. separation: definite members, or four simple real roots without one.
     rest = np.flatnonzero(todo)
     if rest.size:
-        sep, names, which = _staged(mode, "separation", pairs.take(rest))
+        sep, names, which = _staged(mode, "separation", _take(pairs, rest))
+        values = _from_separation(sep, question)
         for k, name in enumerate(names):
-            hit = which == k
-            here = np.zeros(n, dtype=bool)
-            here[rest[hit]] = True
-            values = np.full(n, _UNC, dtype=np.int8)
-            values[rest] = _from_separation(sep, question)
-            settle(here, values, f"separation ({name})")
+            hit = np.flatnonzero((which == k) & (values != _UNC))
+            settle_at(rest[hit], values[hit], f"separation ({name})")
 
     # 4. the exact scalar predicates, pair by pair.
     rest = np.flatnonzero(todo)
     if rest.size and getattr(mode, "complete", False):
-        values = _exact_pairs(pairs, rest, question)
-        here = np.zeros(n, dtype=bool)
-        here[rest] = True
-        full = np.full(n, _UNC, dtype=np.int8)
-        full[rest] = values
-        settle(here, full, "exact pair")
+        settle_at(rest, _exact_pairs(pairs, rest, question), "exact pair")
     counts.undecided = int(np.count_nonzero(todo))
     mode._record(counts)
     return out
@@ -268,7 +366,7 @@ def _solids(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, np.ndarray, np.
     from ..overlap import solid_of
     from .validation import exact_matrix
 
-    used, where = np.unique(pairs.q_rows(), return_inverse=True)
+    used, where = unique_rows(pairs.q_rows(), len(pairs.Q), return_inverse=True)
     rows = rows_from_masks(mode.classify(pairs.Q, used))
     plane = np.zeros(used.size, dtype=bool)
     ellipsoid = np.zeros(used.size, dtype=bool)
@@ -294,6 +392,16 @@ def _solids(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, np.ndarray, np.
 
 
 def decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
+    """:class:`~quadric_contact.modes.OverlapCode` of every pair: do the solids overlap?
+    (:func:`_decide_overlap`; the mode forgets this call's stacks afterwards.)"""
+    _remember(mode, True)
+    try:
+        return _decide_overlap(mode, pairs)
+    finally:
+        _remember(mode, False)
+
+
+def _decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
     """:class:`~quadric_contact.modes.OverlapCode` of every pair: do the solids overlap?
 
     The solid of ``E`` is its inside, that of ``Q`` its region ``R-`` for the sign of its
@@ -344,7 +452,7 @@ def decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
     # 2. separation: definite members, or four simple real roots without one.
     rest = np.flatnonzero(todo)
     if rest.size:
-        sep, names, which = _staged(mode, "separation", pairs.take(rest))
+        sep, names, which = _staged(mode, "separation", _take(pairs, rest))
         sep_side = np.where((sep == SEP_MINUS) | (sep == SEP_PLUS), sep * qsign[rest], sep)
         values = np.full(rest.size, _UNC, dtype=np.int8)
         values[(sep_side == CROSSING) | (sep_side == SEP_MINUS)] = OverlapCode.OVERLAPPING

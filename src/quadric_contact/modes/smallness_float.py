@@ -50,7 +50,7 @@ a size condition), fails when they are strictly ordered the other way, and is
 guard.
 
 *Per matrix, once.*  The type of a quadric comes from the mode's
-:meth:`~quadric_contact.modes.base.NumberMode.classify`, and where that is uncertain
+:meth:`~quadric_contact.modes.number_mode.NumberMode.classify`, and where that is uncertain
 (or the row is not trusted) from exact integer arithmetic
 (:func:`~quadric_contact.modes.float_modes.exact_facts`); a quadric whose sides the float
 code cannot certify (a degenerate type rounded off its exact zero eigenvalue, or close
@@ -873,13 +873,14 @@ def _pairs_loop(
 
 
 def _fused_loop(
-    E: Any, lo: int, hi: int, certify: bool, rounded: bool, guard: Any, qidx: Any, qs: int, qst: Any,
-    qkind: Any, qv: Any, fixed_code: Any, offsets: Any, fq: Any, relations: Any, groups: Any, out: Any,
+    E: Any, eidx: Any, lo: int, hi: int, certify: bool, rounded: bool, guard: Any, qidx: Any, qs: int,
+    qst: Any, qkind: Any, qv: Any, fixed_code: Any, offsets: Any, fq: Any, relations: Any, groups: Any,
+    out: Any,
 ) -> None:  # fmt: skip
-    """Pairs ``lo .. hi`` whose ellipsoids are all distinct (pair ``p`` uses ``E[p]``: the
-    paper's many ellipsoids against an environment): each block computes its ellipsoids'
-    sides into block buffers and decides the pairs against the quadrics' precomputed sides;
-    nothing per ellipsoid goes to memory."""
+    """Pairs ``lo .. hi`` whose ellipsoids are all distinct (pair ``p`` uses ``E[eidx[p]]``, or
+    ``E[p]`` when ``eidx`` is empty: the paper's many ellipsoids against an environment): each
+    block computes its ellipsoids' sides into block buffers and decides the pairs against the
+    quadrics' precomputed sides; nothing per ellipsoid goes to memory.  ``guard`` is per pair."""
     eb_ = np.empty(16 * _NB)
     gb = np.zeros(_NB, dtype=np.bool_)
     ob = np.empty(9 * _NB)
@@ -893,8 +894,9 @@ def _fused_loop(
     for blo in range(lo, hi, _NB):
         m = min(_NB, hi - blo)
         for t in range(m):
+            r = eidx[blo + t] if eidx.shape[0] > 0 else blo + t
             for k in range(16):
-                eb_[k * _NB + t] = E[blo + t, k]
+                eb_[k * _NB + t] = E[r, k]
             gb[t] = guard[blo + t] if guard.shape[0] > 0 else False
         _e_block(eb_, gb, m, certify, rounded, WIDTH, False, ob)
         if single:  # one quadric for every pair: a short loop that vectorises
@@ -1138,23 +1140,35 @@ def pair_codes(
 
 
 def _fused_codes(
-    E: MatrixStack, qst: np.ndarray, qkind: np.ndarray, qv: np.ndarray, qidx: np.ndarray, qs: int, n: int, *,
-    certify: bool, threads: int | None,
+    E: MatrixStack, eidx: np.ndarray, qst: np.ndarray, qkind: np.ndarray, qv: np.ndarray, qidx: np.ndarray,
+    qs: int, n: int, *, certify: bool, threads: int | None,
 ) -> np.ndarray:  # fmt: skip
+    """Codes of ``n`` pairs whose ellipsoids are distinct rows of ``E`` (``eidx``, or all rows
+    in order when empty), with their sides computed in the pair loop (:func:`_fused_loop`)."""
     from .threads import run_parallel
 
-    guard = _guard(E, None) if E.rounded else np.zeros(0, dtype=np.bool_)
+    guard = _guard(E, eidx if eidx.size else None) if E.rounded else np.zeros(0, dtype=np.bool_)
     M = _flat(E)
     qkind = np.ascontiguousarray(qkind, dtype=np.int64)
     out = np.empty(n, dtype=np.int8)
     loop = _compiled("_fused_loop")
     fixed = fixed_conditions(int(qst[0]), int(qkind[0]), qv[:, 0])
     run_parallel(
-        lambda lo, hi: loop(M, lo, hi, certify, E.rounded, guard, qidx, qs, qst, qkind, qv, *fixed, out),
+        lambda lo, hi: loop(
+            M, eidx, lo, hi, certify, E.rounded, guard, qidx, qs, qst, qkind, qv, *fixed, out
+        ),
         n,
         threads,
     )
     return out
+
+
+def _distinct(index: np.ndarray | None) -> bool:
+    """The pairs' rows are distinct because they increase (a sub-batch taken in order)."""
+    if index is None:
+        return False
+    index = np.asarray(index).reshape(-1)
+    return index.size < 2 or bool((index[1:] > index[:-1]).all())
 
 
 def float_smallness(
@@ -1162,7 +1176,7 @@ def float_smallness(
 ) -> np.ndarray:
     """:class:`~quadric_contact.modes.base.SmallnessCode` of every pair in binary64, certified
     (``UNCERTAIN`` where unsure) or plain; INVALID where an input needs diagnosing.
-    ``classify`` is the mode's :meth:`~quadric_contact.modes.base.NumberMode.classify`."""
+    ``classify`` is the mode's :meth:`~quadric_contact.modes.number_mode.NumberMode.classify`."""
     n = pairs.n
     if n == 0:
         return np.empty(0, dtype=np.int8)
@@ -1180,10 +1194,15 @@ def float_smallness(
     qst, qv = q_row_quantities(pairs.Q, rows_q, kinds, signs, certify=certify, backend=backend)
     if certify:
         _refine(pairs.Q, rows_q, qst, qv, kinds, signs)
-    e_rows, eidx, es = _row_map(pairs.e_index, len(pairs.E), n)
-    if e_rows is None and _use_numba(backend):
-        codes = _fused_codes(pairs.E, qst, kinds, qv, qidx, qs, n, certify=certify, threads=threads)
+    if rows_q.size == 1:
+        qidx, qs = np.zeros(0, dtype=np.intp), 0  # one quadric for every pair
+    if _use_numba(backend) and (_distinct(pairs.e_index) or (pairs.e_index is None and len(pairs.E) == n)):
+        # distinct ellipsoids (all of E, or a sub-batch of them taken in order): their sides are
+        # computed inside the pair loop, never stored
+        eidx = np.zeros(0, dtype=np.intp) if pairs.e_index is None else np.asarray(pairs.e_index, np.intp)
+        codes = _fused_codes(pairs.E, eidx, qst, kinds, qv, qidx, qs, n, certify=certify, threads=threads)
     else:
+        e_rows, eidx, es = _row_map(pairs.e_index, len(pairs.E), n)
         est, ev = e_row_quantities(pairs.E, e_rows, certify=certify, backend=backend, threads=threads)
         if certify and e_rows is not None:
             _refine(pairs.E, e_rows, est, ev, None, None)

@@ -13,16 +13,30 @@ from ..errors import NonFiniteError, NotAnEllipsoidError, NotSymmetricError
 from .base import MatrixStack
 from .support import check_stack
 
-__all__ = ["raise_not_ellipsoid", "validate_rows"]
+__all__ = ["raise_not_ellipsoid", "rows_view", "validate_rows"]
+
+
+def rows_view(stack: MatrixStack, rows: np.ndarray) -> np.ndarray:
+    """``stack.floats[rows]`` to read, not to write: the stack's own array when ``rows`` are all
+    its rows in order (the common case of distinct pairs: no ``(n, 4, 4)`` copy), a gathered
+    copy otherwise."""
+    rows = np.asarray(rows)
+    n = len(stack)
+    every = rows.ndim == 1 and rows.size == n and n and rows[0] == 0 and rows[-1] == n - 1
+    if every and (n == 1 or bool((np.diff(rows) == 1).all())):
+        return stack.floats
+    return stack.rows_floats(rows)
 
 
 def validate_rows(stack: MatrixStack, rows: np.ndarray, name: str | None = None) -> None:
     """Raise for the first matrix among ``rows`` with a non-finite entry or that is not symmetric."""
     if stack.checked or len(rows) == 0:
         return
-    sub = stack.rows_floats(np.asarray(rows))
+    sub = rows_view(stack, np.asarray(rows))
     flags = check_stack(sub)
     if not flags.any():
+        if sub is stack.floats:
+            stack.checked = True  # every row is fine: later stages need not read them again
         return
     k = int(np.argmax(flags != 0))
     row = int(rows[k])
