@@ -28,7 +28,7 @@ import numpy as np
 import sympy as sp
 
 from quadric_contact import Quadric, characteristic_polynomial, transversal_contact
-from quadric_contact.motions import rotation_from_quaternion
+from quadric_contact.model.motions import rotation_from_quaternion
 
 
 def random_pairs(n: int, seed: int, rational: bool) -> list[tuple[Any, Any]]:

@@ -4,7 +4,7 @@ Two measurements.
 
 1. **Building** the family's exact quantities (the coefficients ``c0 .. c4`` of
    ``P(lambda)`` and ``Delta_2, Delta_3, Delta_4``) over Q(parameters): the package
-   (python-flint ``fmpq_mpoly`` running the generated closed form, :mod:`quadric_contact.family`)
+   (python-flint ``fmpq_mpoly`` running the generated closed form, :mod:`quadric_contact.families.family`)
    against sympy (``det(lambda E + Q)`` by Berkowitz, expanded, and the Deltas of the
    expanded coefficients, expanded).  Both must give the same polynomials, or the run stops.
 
@@ -32,7 +32,7 @@ import numpy as np
 import sympy as sp
 
 from quadric_contact import family
-from quadric_contact.discriminants import paper_deltas
+from quadric_contact.exact.discriminants import paper_deltas
 
 TRUNK = "x^2 + y^2 - 0.25*(z - 3)^2 - 1"
 

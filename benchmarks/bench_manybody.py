@@ -1,6 +1,6 @@
 """Many-body benchmark: the broad phase against the lazy engine and against fixed-step sampling.
 
-The generated scene (``quadric_contact.manybody.many_body_scene``: N ellipsoids on
+The generated scene (``quadric_contact.scenes.manybody.many_body_scene``: N ellipsoids on
 straight paths around a totem of M quadric pieces separated by M - 1 planes) is
 run
 
@@ -37,9 +37,9 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 
 import quadric_contact as qc
-from quadric_contact.composite import Piece
-from quadric_contact.manybody import many_body_scene
-from quadric_contact.simulate import simulate
+from quadric_contact.scenes.composite import Piece
+from quadric_contact.scenes.manybody import many_body_scene
+from quadric_contact.scenes.simulate import simulate
 
 
 def _entry_polys(scene):

@@ -1,6 +1,6 @@
 """What accuracy costs: the number modes against their peers.
 
-The measurement itself lives in :mod:`quadric_contact.benchmark` so that the
+The measurement itself lives in :mod:`quadric_contact.interfaces.benchmark` so that the
 installed command runs it too; this script is the same thing from a checkout::
 
     PYTHONPATH=src python benchmarks/bench_modes.py [--profile smoke|quick|full] [--huge]
@@ -19,7 +19,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 
-from quadric_contact.cli import main
+from quadric_contact.interfaces.cli import main
 
 if __name__ == "__main__":
     sys.exit(main(["bench", *sys.argv[1:]]))

@@ -1,4 +1,4 @@
-"""Do two solid ellipsoids overlap?  ``quadric_contact.overlap`` against the peers.
+"""Do two solid ellipsoids overlap?  ``quadric_contact.theory.overlap`` against the peers.
 
 Run from the repository root::
 
@@ -8,7 +8,7 @@ The pairs are given the way HOOMD-blue and FCL take them: semi-axes, a unit quat
 ``(w, x, y, z)`` and a position, in binary64.  Each method gets what it would get in its own
 program:
 
-* ``overlap certified`` / ``float`` / ``filter``: :func:`quadric_contact.overlap` on the
+* ``overlap certified`` / ``float`` / ``filter``: :func:`quadric_contact.theory.overlap` on the
   ``(N, 4, 4)`` binary64 stacks of the two ellipsoids (the matrices rounded from the exact
   ones); ``overlap exact input``: the same on exact rational matrices (object arrays; the
   ladder only, it is the reference);
@@ -35,8 +35,8 @@ Two tables:
    (``k = 1..16``) from an exact touch, moved by a rational rotation and translation so that
    the binary64 inputs are rounded: HOOMD-blue's own test pair (semi-axes ``(3, 1, 2)`` and
    ``(2, 3, 1)``, five apart along ``x``), and the ladder of
-   :mod:`quadric_contact.hardcases` (a small ellipsoid outside, and inside, the ellipsoid
-   ``(4, 3, 2)``).  The truth is :func:`quadric_contact.overlap.overlap_exact` on the exact
+   :mod:`quadric_contact.testing.hardcases` (a small ellipsoid outside, and inside, the ellipsoid
+   ``(4, 3, 2)``).  The truth is :func:`quadric_contact.theory.overlap.overlap_exact` on the exact
    pair, read with the peers' convention (a touch is no overlap); a method is wrong where its
    yes/no differs.  Rows on binary64 input cannot be right below the rounding of their input
    (about ``1e-16`` relative): ``overlap certified`` is exact for the rounded matrices it is
@@ -63,8 +63,8 @@ sys.path.insert(0, str(ROOT / "src"))
 
 import quadric_contact as qc  # noqa: E402
 from quadric_contact import OverlapCode, Quadric  # noqa: E402
-from quadric_contact.hardcases import _LADDER_Q, DISTANCES, _probe  # noqa: E402
-from quadric_contact.overlap import overlap_exact  # noqa: E402
+from quadric_contact.testing.hardcases import _LADDER_Q, DISTANCES, _probe  # noqa: E402
+from quadric_contact.theory.overlap import overlap_exact  # noqa: E402
 
 F = Fraction
 QUATERNION = (2, -1, 3, 1)  # the ladder's rotation (not normalised: it is exact)

@@ -3,7 +3,7 @@
 Measures the time per text of
 
 * ``Quadric.from_equation`` (the package's tokenizer, recursive-descent parser
-  and exact polynomial evaluation, :mod:`quadric_contact.parsing`), and
+  and exact polynomial evaluation, :mod:`quadric_contact.model.parsing`), and
 * the peer: the sympy-based reader the package used before (``parse_expr``
   with implicit multiplication, ``^``, rationalised decimals, then
   ``sympy.Poly``), kept here, and only here, as a private copy,
@@ -32,9 +32,9 @@ from pathlib import Path
 from typing import Any
 
 from quadric_contact import Quadric
-from quadric_contact.errors import QuadricContactError
-from quadric_contact.parsing import MAX_DEPTH, MAX_LENGTH, parse_quadric_equation
-from quadric_contact.rational import to_fraction
+from quadric_contact.exact.errors import QuadricContactError
+from quadric_contact.exact.rational import to_fraction
+from quadric_contact.model.parsing import MAX_DEPTH, MAX_LENGTH, parse_quadric_equation
 
 ROOT = Path(__file__).resolve().parents[1]
 

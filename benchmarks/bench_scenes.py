@@ -32,9 +32,9 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 
-from quadric_contact.composite import algorithm_2
-from quadric_contact.scene import builtin_scene, parse_scene
-from quadric_contact.simulate import simulate
+from quadric_contact.scenes.composite import algorithm_2
+from quadric_contact.scenes.scene import builtin_scene, parse_scene
+from quadric_contact.scenes.simulate import simulate
 
 
 def totem_scene(n: int, m: int, segments: int, effects: list[str]) -> str:
@@ -138,10 +138,10 @@ def lean_sampling(scene, samples):
     """The cheapest exact sampling: at each sample time the pencils of Algorithms 1-2
     only (Corollary 15 on the integer coefficients, Corollary 10 on the root
     structure), without the audit values of the public predicates."""
-    from quadric_contact.composite import Piece
-    from quadric_contact.pencil import CharacteristicPolynomial
-    from quadric_contact.quadric import Quadric
-    from quadric_contact.trajectory import poly_eval
+    from quadric_contact.model.quadric import Quadric
+    from quadric_contact.scenes.composite import Piece
+    from quadric_contact.scenes.trajectory import poly_eval
+    from quadric_contact.theory.pencil import CharacteristicPolynomial
 
     t0, t1 = scene.span
     seen = {}

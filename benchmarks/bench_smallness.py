@@ -49,13 +49,13 @@ from tests.table_search import adversarial_placements, corollary_10_says_transve
 from tests.test_table_verification import ORDERED, max_scale  # noqa: E402
 
 from quadric_contact import Quadric, QuadricKind, characteristic_polynomial  # noqa: E402
-from quadric_contact.classification import TABLE_1_KINDS  # noqa: E402
-from quadric_contact.geometric import decide_geometrically  # noqa: E402
-from quadric_contact.motions import RigidMotion, rotation_from_quaternion  # noqa: E402
-from quadric_contact.smallness import smallness  # noqa: E402
+from quadric_contact.model.classification import TABLE_1_KINDS  # noqa: E402
+from quadric_contact.model.motions import RigidMotion, rotation_from_quaternion  # noqa: E402
+from quadric_contact.theory.geometric import decide_geometrically  # noqa: E402
+from quadric_contact.theory.smallness import smallness  # noqa: E402
 
 # the module itself (the package re-exports the function under the same name)
-smallness_module = importlib.import_module("quadric_contact.smallness")
+smallness_module = importlib.import_module("quadric_contact.theory.smallness")
 
 F = Fraction
 K = QuadricKind

@@ -19,7 +19,7 @@ characteristic polynomial's criterion on stacks) on the same pairs:
 * ``distinct``: as many distinct environment ellipsoids as small ones, one pair each.
 
 ``ball`` runs on the first ``--ball-pairs`` pairs and the scalar exact decision
-(:func:`quadric_contact.smallness.smallness`, one pair at a time) on the first
+(:func:`quadric_contact.theory.smallness.smallness`, one pair at a time) on the first
 ``--scalar-pairs``.  Timings are wall-clock on a shared machine: treat them as indicative
 and re-measure on a quiet one.
 """
@@ -42,9 +42,9 @@ sys.path.insert(0, str(ROOT / "src"))
 from quadric_contact.modes.smallness_arrays import smallness_codes  # noqa: E402
 
 from quadric_contact import Quadric, RigidMotion  # noqa: E402
-from quadric_contact.batch import transversal_contact_batch  # noqa: E402
 from quadric_contact.modes import BallMode, CertifiedMode, FilterMode, FloatMode  # noqa: E402
-from quadric_contact.smallness import smallness  # noqa: E402
+from quadric_contact.modes.batch import transversal_contact_batch  # noqa: E402
+from quadric_contact.theory.smallness import smallness  # noqa: E402
 
 
 def rotations(rng: np.random.Generator, n: int) -> np.ndarray:

@@ -42,7 +42,7 @@ from typing import Any
 import sympy as sp
 
 from quadric_contact import Quadric, characteristic_polynomial
-from quadric_contact.proving import ensure
+from quadric_contact.paper.proving import ensure
 
 X_, LAM = sp.Symbol("x"), sp.Symbol("lambda")
 

@@ -37,8 +37,8 @@ from fractions import Fraction
 
 import sympy as sp
 
-from quadric_contact.proving import ensure
-from quadric_contact.segre import segre_symbol
+from quadric_contact.paper.proving import ensure
+from quadric_contact.theory.segre import segre_symbol
 
 Partition = tuple[int, ...]
 
@@ -91,7 +91,7 @@ def _partitions(n: int, largest: int | None = None) -> Iterator[Partition]:
 
 
 def _group_key(blocks: Partition) -> tuple[int, int, int]:
-    """The package's order of Segre groups (quadric_contact.segre): decreasing multiplicity,
+    """The package's order of Segre groups (quadric_contact.theory.segre): decreasing multiplicity,
     then decreasing largest block, then fewer blocks first."""
     return (-sum(blocks), -blocks[0], len(blocks))
 

@@ -7,9 +7,9 @@ semi-axes in [1/10, 1/2], rotated by a rational rotation and centred near the
 surface of the quadric (a float Newton step from a random point towards the
 surface, a random offset of the ellipsoid's size, rounded to a rational: only
 where to look is chosen in floating point).  Only pairs that the package's
-exact :func:`~quadric_contact.smallness.smallness` finds small (Table 1,
+exact :func:`~quadric_contact.theory.smallness.smallness` finds small (Table 1,
 corrected) are kept; everything about them is then decided exactly, by the
-characteristic polynomial and by :func:`~quadric_contact.geometric.decide_geometrically`,
+characteristic polynomial and by :func:`~quadric_contact.theory.geometric.decide_geometrically`,
 the package's exact decision of how the surfaces meet (Lagrange conditions and
 Morse theory, without the pencil).
 """
@@ -24,10 +24,10 @@ from fractions import Fraction
 import numpy as np
 
 from quadric_contact import Quadric, QuadricKind, characteristic_polynomial
-from quadric_contact.classification import TABLE_1_KINDS
-from quadric_contact.geometric import GeometricDecision, decide_geometrically
-from quadric_contact.motions import rotation_from_quaternion
-from quadric_contact.smallness import smallness
+from quadric_contact.model.classification import TABLE_1_KINDS
+from quadric_contact.model.motions import rotation_from_quaternion
+from quadric_contact.theory.geometric import GeometricDecision, decide_geometrically
+from quadric_contact.theory.smallness import smallness
 
 
 @dataclass(frozen=True)

@@ -67,8 +67,8 @@ import flint
 import sympy as sp
 
 from quadric_contact import Quadric, characteristic_polynomial, paper
-from quadric_contact.discriminants import revised_sign_list
-from quadric_contact.proving import Finding, Method, Proof, agrees, ensure, search_settings
+from quadric_contact.exact.discriminants import revised_sign_list
+from quadric_contact.paper.proving import Finding, Method, Proof, agrees, ensure, search_settings
 
 from ._real_pencils import canonical_pencil, ellipsoid_form, inertia, package_segre, segre_types
 
@@ -408,7 +408,7 @@ def one_pair_cross_check(examples: int) -> Finding:
     from hypothesis import given
     from hypothesis import strategies as st
 
-    from quadric_contact.strategies import ellipsoids
+    from quadric_contact.testing.strategies import ellipsoids
 
     seen: dict[int, int] = defaultdict(int)
     entry = st.integers(-9, 9)
@@ -438,7 +438,7 @@ def one_pair_cross_check(examples: int) -> Finding:
 def criterion_cross_check(examples: int) -> Finding:
     from hypothesis import given
 
-    from quadric_contact.strategies import ellipsoids, quadrics
+    from quadric_contact.testing.strategies import ellipsoids, quadrics
 
     seen: dict[bool, int] = defaultdict(int)
 

@@ -27,7 +27,7 @@ import itertools
 import sympy as sp
 
 from quadric_contact import Region, characteristic_polynomial, paper, plane_side
-from quadric_contact.proving import Finding, Method, Proof, agrees, differs, ensure
+from quadric_contact.paper.proving import Finding, Method, Proof, agrees, differs, ensure
 
 from ._plane_pencil import general_plane_pencil
 

@@ -27,8 +27,8 @@ import sympy as sp
 
 from quadric_contact import Quadric, RigidMotion, characteristic_polynomial, paper
 from quadric_contact._generated.formulas import pencil_coefficients
-from quadric_contact.entries import ENTRY_INDICES
-from quadric_contact.proving import Finding, Method, Proof, agrees, ensure
+from quadric_contact.exact.entries import ENTRY_INDICES
+from quadric_contact.paper.proving import Finding, Method, Proof, agrees, ensure
 
 proof = Proof("eq. (1)", "the characteristic polynomial det(l E + Q)", covers=("eq. (7)",))
 

@@ -11,9 +11,9 @@ both estimates agree, the ellipsoid has ``alpha, beta, gamma, delta = 1.17162,
 not small whichever reading is used.
 
 What is checked and how (exact computation with the package's public API:
-:func:`~quadric_contact.invariants.invariants`,
-:func:`~quadric_contact.printed_tables.printed_table_2`,
-:func:`~quadric_contact.smallness.smallness`).  The printed matrices are read
+:func:`~quadric_contact.model.invariants.invariants`,
+:func:`~quadric_contact.paper.printed_tables.printed_table_2`,
+:func:`~quadric_contact.theory.smallness.smallness`).  The printed matrices are read
 as exact decimals.  The type of ``Q`` is decided exactly (the small eigenvalue
 is exactly positive: a one-sheet hyperboloid).  The ``Q`` side of the printed
 numbers is recomputed exactly from the printed ``Q``: they agree to float64
@@ -37,12 +37,12 @@ import flint
 
 from quadric_contact import Quadric, QuadricKind, paper
 from quadric_contact._generated.formulas import det_symmetric_4
-from quadric_contact.classification import principal_minor_sums_3
-from quadric_contact.invariants import invariants
-from quadric_contact.precision import working_precision
-from quadric_contact.printed_tables import printed_table_2
-from quadric_contact.proving import Finding, Method, Proof, agrees, ensure
-from quadric_contact.smallness import smallness
+from quadric_contact.exact.precision import working_precision
+from quadric_contact.model.classification import principal_minor_sums_3
+from quadric_contact.model.invariants import invariants
+from quadric_contact.paper.printed_tables import printed_table_2
+from quadric_contact.paper.proving import Finding, Method, Proof, agrees, ensure
+from quadric_contact.theory.smallness import smallness
 
 proof = Proof("Example 6", "Table 2 on a numerically ambiguous quadric: not small either way")
 

@@ -27,7 +27,7 @@ from fractions import Fraction
 import sympy as sp
 
 from quadric_contact import characteristic_polynomial, paper, transversal_contact
-from quadric_contact.proving import Finding, Method, Proof, agrees, differs, ensure
+from quadric_contact.paper.proving import Finding, Method, Proof, agrees, differs, ensure
 
 proof = Proof("Example 11", "transversal contact detected by Delta_4 = 0 and Delta_3 < 0")
 

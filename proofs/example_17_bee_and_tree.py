@@ -18,11 +18,11 @@ recomputed exactly from the printed equations (decimals read exactly) and
 compared to the printed digits: the invariants and Table 2 quantities as
 exact square roots of rationals, ``P0``, ``P2``, ``Delta_3``, ``Delta_4``, the
 coefficient signs.  Smallness with the package's exact
-:func:`~quadric_contact.smallness.smallness` (and with the corrected one-sheet
+:func:`~quadric_contact.theory.smallness.smallness` (and with the corrected one-sheet
 condition ``a2/(d2 b2^2) <= gamma/(delta alpha^2)``).  Algorithms 1 and 2 are
 implemented here from the printed pseudo-code (with the discriminants of
 Section 3.2 as derived there) and also run through the package's
-:mod:`quadric_contact.composite` (which forms no pencil with the crown in Zone
+:mod:`quadric_contact.scenes.composite` (which forms no pencil with the crown in Zone
 2), on the bee and on four more placements
 whose answer is certified independently: a bee centred on a surface crosses
 it (the centre is a regular point of the surface), and a bee whose bounding
@@ -39,12 +39,12 @@ from fractions import Fraction
 import sympy as sp
 
 from quadric_contact import Quadric, QuadricKind, Region, characteristic_polynomial, paper, relative_position
-from quadric_contact.composite import Composite, Piece
-from quadric_contact.composite import algorithm_1 as package_algorithm_1
-from quadric_contact.composite import algorithm_2 as package_algorithm_2
-from quadric_contact.ledger import Ledger
-from quadric_contact.proving import Finding, Method, Proof, agrees, differs, ensure
-from quadric_contact.smallness import smallness
+from quadric_contact.paper.proving import Finding, Method, Proof, agrees, differs, ensure
+from quadric_contact.scenes.composite import Composite, Piece
+from quadric_contact.scenes.composite import algorithm_1 as package_algorithm_1
+from quadric_contact.scenes.composite import algorithm_2 as package_algorithm_2
+from quadric_contact.scenes.ledger import Ledger
+from quadric_contact.theory.smallness import smallness
 
 proof = Proof("Example 17", "the bee and the tree: every printed number, Algorithms 1 and 2")
 
@@ -174,7 +174,7 @@ def tree() -> Composite:
 
 
 def package_answer(E: str) -> tuple[int, bool, Ledger]:
-    """Zone and contact from :mod:`quadric_contact.composite` (Algorithms 1 and 2)."""
+    """Zone and contact from :mod:`quadric_contact.scenes.composite` (Algorithms 1 and 2)."""
     ledger = Ledger()
     result = package_algorithm_2(E, tree(), ledger=ledger)
     (zone,) = result.zone.zones.values()
@@ -221,7 +221,7 @@ def zone() -> Finding:
     ensure(zone_pkg == 2, f"the package's Algorithm 1 says zone {zone_pkg}")
     return agrees(
         "P0 as printed; Delta_3 = 39/320 = 0.121875 > 0 and c3 = -3/2 < 0: Zone 2 (R- of z - 6), by the "
-        "printed pseudo-code and by quadric_contact.composite.algorithm_1"
+        "printed pseudo-code and by quadric_contact.scenes.composite.algorithm_1"
     )
 
 
@@ -240,7 +240,7 @@ def contact() -> Finding:
     ensure(ledger.cost("crown") == 0, "the crown's pencil is not computed in Zone 2")
     return agrees(
         f"P2 as printed; Delta_4 = {d4} = {float(d4):.6g} > 0: no contact with S2 (printed pseudo-code and "
-        "quadric_contact.composite.algorithm_2, which forms no pencil with the crown)"
+        "quadric_contact.scenes.composite.algorithm_2, which forms no pencil with the crown)"
     )
 
 
@@ -333,6 +333,7 @@ def algorithms() -> Finding:
         ensure((zone_pkg, contact_pkg) == (zone_expected, contact_expected), f"{name}: package {zone_pkg}")
         done.append(f"{name}: zone {zone_found}, {'contact' if found else 'no contact'}")
     return agrees(
-        "; ".join(done) + " (printed pseudo-code and quadric_contact.composite agree; each answer certified "
-        "without the pencil)"
+        "; ".join(done)
+        + " (printed pseudo-code and quadric_contact.scenes.composite agree; each answer "
+        "certified without the pencil)"
     )

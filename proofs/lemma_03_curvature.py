@@ -32,7 +32,7 @@ from __future__ import annotations
 import sympy as sp
 
 from quadric_contact import paper
-from quadric_contact.proving import Finding, Method, Proof, agrees, differs, ensure
+from quadric_contact.paper.proving import Finding, Method, Proof, agrees, differs, ensure
 
 proof = Proof(
     "Lemma 3",

@@ -48,7 +48,7 @@ from fractions import Fraction
 import sympy as sp
 
 from quadric_contact import Quadric, RigidMotion, characteristic_polynomial, paper
-from quadric_contact.proving import Finding, Method, Proof, agrees, differs, ensure
+from quadric_contact.paper.proving import Finding, Method, Proof, agrees, differs, ensure
 
 from ._intersection import contact_type
 from ._small_pairs import small_pairs

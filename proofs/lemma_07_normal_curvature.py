@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from quadric_contact.proving import Finding, Method, Proof, agrees, ensure
+from quadric_contact.paper.proving import Finding, Method, Proof, agrees, ensure
 
 proof = Proof("Lemma 7", "a common normal curvature at a tangent point of an intersection curve")
 

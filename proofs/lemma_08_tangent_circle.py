@@ -9,7 +9,7 @@ admissible examples (Fig. 5(ii)).
 
 What is checked and how.  Exact constructions (intersection and tangency
 computed exactly, see ``_intersection``; smallness by the package's exact
-:func:`~quadric_contact.smallness.smallness`): the unit sphere in the circular
+:func:`~quadric_contact.theory.smallness.smallness`): the unit sphere in the circular
 cylinder of radius 1 and in the circular hyperboloid ``x^2 + y^2 - z^2/4 = 1``
 (both small, tangent along a curve, which lies in a plane: the pencil has a
 member of rank 1, a double plane, and the plane section of the sphere is a
@@ -34,8 +34,8 @@ from fractions import Fraction
 import sympy as sp
 
 from quadric_contact import Quadric, RigidMotion
-from quadric_contact.proving import Finding, Method, Proof, agrees, ensure
-from quadric_contact.smallness import smallness
+from quadric_contact.paper.proving import Finding, Method, Proof, agrees, ensure
+from quadric_contact.theory.smallness import smallness
 
 from ._intersection import contact_type, intersection, segre, show_segre, tangent_points
 

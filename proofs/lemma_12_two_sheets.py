@@ -34,7 +34,7 @@ from fractions import Fraction
 import sympy as sp
 
 from quadric_contact import Quadric, characteristic_polynomial, paper
-from quadric_contact.proving import Finding, Method, Proof, agrees, ensure, search_settings
+from quadric_contact.paper.proving import Finding, Method, Proof, agrees, ensure, search_settings
 
 from ._real_pencils import derive_root_signs, neutral_chain_identity
 
@@ -156,7 +156,7 @@ def placements(examples: int) -> Finding:
     from hypothesis import assume, given
     from hypothesis import strategies as st
 
-    from quadric_contact.strategies import points, rigid_motions, rotations
+    from quadric_contact.testing.strategies import points, rigid_motions, rotations
 
     seen = {"----": 0, "--++": 0}
 

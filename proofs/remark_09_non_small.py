@@ -7,7 +7,7 @@ Theorem 2 fails for non-small ellipsoids.  Conversely, non-real roots imply
 transversal contact for any pair.
 
 What is checked and how.  Exact constructions, each an ellipsoid that the
-package's exact :func:`~quadric_contact.smallness.smallness` finds not small,
+package's exact :func:`~quadric_contact.theory.smallness.smallness` finds not small,
 whose real intersection with ``Q`` (computed exactly, see ``_intersection``)
 is two curves, respectively a curve and an isolated tangent point, with the
 stated Segre characteristic; for each, Corollary 10's test (``Delta_4 < 0``, or
@@ -50,8 +50,8 @@ import numpy as np
 import sympy as sp
 
 from quadric_contact import Quadric, characteristic_polynomial, paper
-from quadric_contact.proving import Finding, Method, Proof, agrees, ensure, search_settings
-from quadric_contact.smallness import smallness
+from quadric_contact.paper.proving import Finding, Method, Proof, agrees, ensure, search_settings
+from quadric_contact.theory.smallness import smallness
 
 from ._intersection import contact_type, segre, show_segre
 
@@ -232,7 +232,7 @@ def crossing_cross_check(examples: int) -> Finding:
     from hypothesis import given
     from hypothesis import strategies as st
 
-    from quadric_contact.strategies import quadrics, rotations
+    from quadric_contact.testing.strategies import quadrics, rotations
 
     seen = {"non-real": 0, "real": 0}
     axis = st.fractions(F(1, 4), 3, max_denominator=6)

@@ -29,7 +29,7 @@ from __future__ import annotations
 import sympy as sp
 
 from quadric_contact import Region, paper, plane_side
-from quadric_contact.proving import Finding, Method, Proof, agrees, ensure, search_settings
+from quadric_contact.paper.proving import Finding, Method, Proof, agrees, ensure, search_settings
 
 from ._plane_pencil import general_plane_pencil, plane_pencil
 
@@ -113,7 +113,7 @@ def centre_side() -> Finding:
 def centre_side_cross_check(examples: int) -> Finding:
     from hypothesis import given
 
-    from quadric_contact.strategies import ellipsoids, planes
+    from quadric_contact.testing.strategies import ellipsoids, planes
 
     seen = {"crossing": 0, "clear": 0}
 

@@ -23,7 +23,7 @@ from __future__ import annotations
 import sympy as sp
 
 from quadric_contact import Quadric, characteristic_polynomial, paper
-from quadric_contact.proving import Finding, Method, Proof, agrees, differs, ensure
+from quadric_contact.paper.proving import Finding, Method, Proof, agrees, differs, ensure
 
 proof = Proof("Section 3.2", "the discriminants Delta_3 and Delta_4 of a quartic")
 

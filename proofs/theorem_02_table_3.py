@@ -12,7 +12,7 @@ adds ``[(11)11]_3``).
 
 What is checked and how.  For every entry of Table 3 an exact construction:
 an ellipsoid small with respect to a quadric (by the package's exact
-:func:`~quadric_contact.smallness.smallness`), both symmetric in ``y`` and
+:func:`~quadric_contact.theory.smallness.smallness`), both symmetric in ``y`` and
 ``z``, for which the Segre characteristic (Jordan blocks of ``-E^-1 Q`` at each
 root, exact), the nature of the roots, the signs of ``Delta_4`` and ``Delta_3``
 and the type of contact (the real intersection and the tangent points
@@ -46,10 +46,10 @@ from fractions import Fraction
 import sympy as sp
 
 from quadric_contact import Quadric, RigidMotion, characteristic_polynomial, contact_kind, paper
-from quadric_contact.contact_kind import ContactKind
-from quadric_contact.proving import Finding, Method, Proof, agrees, differs, ensure
-from quadric_contact.segre import segre_symbol
-from quadric_contact.smallness import smallness
+from quadric_contact.paper.proving import Finding, Method, Proof, agrees, differs, ensure
+from quadric_contact.theory.contact_kind import ContactKind
+from quadric_contact.theory.segre import segre_symbol
+from quadric_contact.theory.smallness import smallness
 
 from ._intersection import contact_type, parse_segre, segre, show_segre, tangent_points
 from ._small_pairs import small_pairs

@@ -23,7 +23,7 @@ cylinder's ``d'^2 = 4 K a'^2`` (true ``-4 K a'^2``) and the hyperbolic
 cylinder's size condition ``M b' >= delta' alpha'`` (Table 1: ``a >= alpha``,
 i.e. ``M a' >= delta' alpha'``), refuted by an exact construction with two
 intersection curves.  Cross-check of the package (full profile; it tests the
-code of :func:`quadric_contact.smallness.smallness`, and no part of the
+code of :func:`quadric_contact.theory.smallness.smallness`, and no part of the
 claim rests on it): 3000 hypothesis examples of rational ellipsoids and
 standard quadrics moved by the same rigid motion, where the package's verdict
 equals Table 1 (corrected) computed here from the printed table, and its
@@ -37,10 +37,10 @@ from fractions import Fraction
 import sympy as sp
 
 from quadric_contact import Quadric, QuadricKind, paper
-from quadric_contact.classification import TABLE_1_KINDS
-from quadric_contact.printed_tables import printed_table_2
-from quadric_contact.proving import Finding, Method, Proof, agrees, differs, ensure, search_settings
-from quadric_contact.smallness import smallness
+from quadric_contact.model.classification import TABLE_1_KINDS
+from quadric_contact.paper.printed_tables import printed_table_2
+from quadric_contact.paper.proving import Finding, Method, Proof, agrees, differs, ensure, search_settings
+from quadric_contact.theory.smallness import smallness
 
 from ._intersection import contact_type
 
@@ -316,7 +316,7 @@ def smallness_in_general_position(examples: int) -> Finding:
     from hypothesis import given
     from hypothesis import strategies as st
 
-    from quadric_contact.strategies import rigid_motions
+    from quadric_contact.testing.strategies import rigid_motions
 
     counts = {True: 0, False: 0}
 

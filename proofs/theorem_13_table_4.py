@@ -9,7 +9,7 @@ the root signs into the coefficient rules of the table.
 
 Reading of the table.  The extraction garbles the layout; the quadric names
 span several rows and the only reading consistent with the mathematics (the
-root-sign column re-derived by construction in :mod:`quadric_contact.regions`)
+root-sign column re-derived by construction in :mod:`quadric_contact.theory.regions`)
 groups them as: ellipsoid, two-sheet hyperboloid, elliptic paraboloid (rows
 ``----`` / ``--++``); one-sheet hyperboloid, hyperbolic paraboloid (``---+`` /
 ``-+++``); elliptic and parabolic cylinders (``---0`` / ``-0++``); hyperbolic
@@ -45,7 +45,7 @@ unbounded components: the ray ``p + t s e_k`` stays in ``{sigma Q > 0}`` when
 ``sigma A_kk >= 0``, an identity) gives every pattern of the column; only the
 ellipsoid has a bounded component, ``{Q < 0}``.  The root-sign column is also
 compared with the table derived by exact construction in
-:mod:`quadric_contact.regions`.
+:mod:`quadric_contact.theory.regions`.
 
 The coefficient cells: the a-priori signs as symbolic identities (``det`` of the
 standard forms; for a generic symmetric ``E``, ``c1`` of a cylinder is
@@ -74,9 +74,9 @@ from fractions import Fraction
 import sympy as sp
 
 from quadric_contact import ROOT_SIGN_TABLE, Quadric, QuadricKind, Region, characteristic_polynomial, paper
-from quadric_contact.classification import TABLE_1_KINDS
-from quadric_contact.proving import Finding, Method, Proof, agrees, differs, ensure, search_settings
-from quadric_contact.regions import derive_root_sign_table
+from quadric_contact.model.classification import TABLE_1_KINDS
+from quadric_contact.paper.proving import Finding, Method, Proof, agrees, differs, ensure, search_settings
+from quadric_contact.theory.regions import derive_root_sign_table
 
 from ._real_pencils import derive_root_signs, neutral_chain_identity, standard_matrix
 
@@ -444,7 +444,7 @@ def placements(examples: int) -> Finding:
     from hypothesis import assume, given
     from hypothesis import strategies as st
 
-    from quadric_contact.strategies import points, rigid_motions, rotations
+    from quadric_contact.testing.strategies import points, rigid_motions, rotations
 
     met: set[tuple[QuadricKind, str]] = set()
 
@@ -485,7 +485,7 @@ def placements(examples: int) -> Finding:
     erratum="table-1-ellipsoid-enclosing",
 )
 def enclosing_case() -> Finding:
-    from quadric_contact.smallness import smallness
+    from quadric_contact.theory.smallness import smallness
 
     E = Quadric.sphere(2)  # encloses Q: its whole surface lies in R+ of Q
     Q = Quadric.sphere(1)

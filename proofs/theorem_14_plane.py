@@ -31,7 +31,7 @@ from __future__ import annotations
 import sympy as sp
 
 from quadric_contact import paper
-from quadric_contact.proving import Finding, Method, Proof, agrees, ensure
+from quadric_contact.paper.proving import Finding, Method, Proof, agrees, ensure
 
 from ._plane_pencil import LAM, general_plane_pencil
 

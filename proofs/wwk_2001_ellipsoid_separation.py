@@ -2,7 +2,7 @@
 
 Not a result of the paper: the separation condition of W. Wang, J. Wang and M.-S. Kim
 (An algebraic condition for the separation of two ellipsoids, CAGD 18 (2001) 531-539),
-on which :func:`quadric_contact.overlap` decides two ellipsoids.  It is proved here for
+on which :func:`quadric_contact.theory.overlap` decides two ellipsoids.  It is proved here for
 the pencil of the package, ``P(l) = det(l E + Q)``, with both matrices negative inside
 (the paper's normalisation of ``E``; ``Q`` with the sign of its standard form).
 
@@ -61,7 +61,7 @@ from typing import Any
 
 import sympy as sp
 
-from quadric_contact.proving import Finding, Method, Proof, agrees, ensure, search_settings
+from quadric_contact.paper.proving import Finding, Method, Proof, agrees, ensure, search_settings
 
 from ._plane_pencil import LAM, ellipsoid_matrix
 
@@ -188,8 +188,8 @@ def two_spheres() -> Finding:
 
 def _root_reading(e: Any, q: Any) -> str:
     """The WWK reading of the exact roots of ``det(l E + Q)`` (sympy's real roots)."""
-    from quadric_contact.overlap import solid_of
-    from quadric_contact.pencil import characteristic_polynomial
+    from quadric_contact.theory.overlap import solid_of
+    from quadric_contact.theory.pencil import characteristic_polynomial
 
     P = characteristic_polynomial(e.as_ellipsoid(), solid_of(q))
     poly = sp.Poly([sp.Rational(c.numerator, c.denominator) for c in reversed(P.coefficients)], LAM)
@@ -207,8 +207,8 @@ def _root_reading(e: Any, q: Any) -> str:
 def _geometry(e: Any, q: Any) -> str:
     """Overlap from the exact extremes of ``q`` on the surface of ``e`` (no pencil), and the
     centre of ``q`` for an ellipsoid ``q`` that may lie inside ``e``."""
-    from quadric_contact.geometric import decide_geometrically
-    from quadric_contact.overlap import solid_of
+    from quadric_contact.theory.geometric import decide_geometrically
+    from quadric_contact.theory.overlap import solid_of
 
     e, q = e.as_ellipsoid(), solid_of(q)
     g = decide_geometrically(e, q)
@@ -231,7 +231,7 @@ def root_reading_against_geometry(examples: int) -> Finding:
     from hypothesis import given
     from hypothesis import strategies as st
 
-    from quadric_contact.strategies import ellipsoids, rigid_motions, tangent_pairs
+    from quadric_contact.testing.strategies import ellipsoids, rigid_motions, tangent_pairs
 
     seen: dict[str, int] = {}
 

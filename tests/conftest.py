@@ -32,7 +32,7 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "default"))
 def _restore_precision() -> Iterator[None]:
     """Every test starts at, and leaves behind, the precision it found (flint balls,
     mpmath): a test that changes it without the package's context manager
-    (:func:`quadric_contact.precision.working_precision`) cannot change what the
+    (:func:`quadric_contact.exact.precision.working_precision`) cannot change what the
     next test computes."""
     bits, prec = flint.ctx.prec, mpmath.mp.prec
     yield

@@ -11,7 +11,7 @@ from __future__ import annotations
 from fractions import Fraction as F
 from typing import Any
 
-from quadric_contact.composite import algorithm_2
+from quadric_contact.scenes.composite import algorithm_2
 
 
 def static_state(result: Any, pair: Any, t: F, *, region: bool) -> tuple[Any, Any]:

@@ -18,8 +18,8 @@ from fractions import Fraction
 from itertools import permutations, product
 
 from quadric_contact import Quadric, QuadricKind, characteristic_polynomial
-from quadric_contact.geometric import GeometricDecision, decide_geometrically
-from quadric_contact.motions import RigidMotion
+from quadric_contact.model.motions import RigidMotion
+from quadric_contact.theory.geometric import GeometricDecision, decide_geometrically
 
 F = Fraction
 K = QuadricKind

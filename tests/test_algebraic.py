@@ -1,4 +1,4 @@
-"""Exact real algebraic numbers (quadric_contact.algebraic) and the doctests
+"""Exact real algebraic numbers (quadric_contact.exact.algebraic) and the doctests
 of the smallness, geometric, Segre and contact-kind modules."""
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ import sympy
 from hypothesis import given
 from hypothesis import strategies as st
 
-from quadric_contact.algebraic import (
+from quadric_contact.exact.algebraic import (
     QuadraticNumber,
     RealAlgebraic,
     algebraic_sqrt,

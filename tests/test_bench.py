@@ -5,8 +5,8 @@ import json
 
 import pytest
 
-from quadric_contact import benchmark
-from quadric_contact.cli import main
+from quadric_contact.interfaces import benchmark
+from quadric_contact.interfaces.cli import main
 
 
 def test_bench_smoke_profile_writes_table_json_and_reports_targets(tmp_path, capsys):
@@ -52,8 +52,8 @@ def test_bench_smoke_profile_writes_table_json_and_reports_targets(tmp_path, cap
 def test_peers_agree_with_exact_far_from_tangency():
     import numpy as np
 
-    from quadric_contact.benchmark import criterion_stack as transversal_contact_batch
-    from quadric_contact.samples import random_pairs
+    from quadric_contact.interfaces.benchmark import criterion_stack as transversal_contact_batch
+    from quadric_contact.testing.samples import random_pairs
 
     E, Q, _ = random_pairs(30, np.random.default_rng(4), kinds=benchmark.GENERIC_KINDS)
     truth = transversal_contact_batch(E, Q, mode="exact")
@@ -66,9 +66,9 @@ def test_fcl_peer_when_installed():
     pytest.importorskip("fcl")
     import numpy as np
 
-    from quadric_contact.benchmark import criterion_stack as transversal_contact_batch
-    from quadric_contact.classification import QuadricKind
-    from quadric_contact.samples import random_pairs
+    from quadric_contact.interfaces.benchmark import criterion_stack as transversal_contact_batch
+    from quadric_contact.model.classification import QuadricKind
+    from quadric_contact.testing.samples import random_pairs
 
     E, Q, _, ge, gq = random_pairs(
         40, np.random.default_rng(8), kinds=(QuadricKind.ELLIPSOID,), with_geometry=True

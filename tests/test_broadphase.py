@@ -14,20 +14,20 @@ from hypothesis import strategies as st
 from tests.scene_oracle import check_timeline
 
 from quadric_contact import Quadric
-from quadric_contact.broadphase import (
+from quadric_contact.scenes.broadphase import (
     ellipsoid_extents,
     plane_sign_on_box,
     poly_range,
     quadric_sign_on_box,
     swept_box,
 )
-from quadric_contact.manybody import many_body_scene, totem
-from quadric_contact.plane import plane_side_exact as plane_side
-from quadric_contact.results import Region
-from quadric_contact.scene import builtin_scene, builtin_scene_names
-from quadric_contact.simulate import simulate
-from quadric_contact.strategies import ellipsoids, quadrics, rationals
-from quadric_contact.trajectory import PolynomialMotion
+from quadric_contact.scenes.manybody import many_body_scene, totem
+from quadric_contact.scenes.scene import builtin_scene, builtin_scene_names
+from quadric_contact.scenes.simulate import simulate
+from quadric_contact.scenes.trajectory import PolynomialMotion
+from quadric_contact.testing.strategies import ellipsoids, quadrics, rationals
+from quadric_contact.theory.plane import plane_side_exact as plane_side
+from quadric_contact.theory.results import Region
 
 
 def _value(Q, x):

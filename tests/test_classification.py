@@ -9,7 +9,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from quadric_contact import Quadric
-from quadric_contact.classification import (
+from quadric_contact.model.classification import (
     TABLE_1_KINDS,
     QuadricKind,
     classify,
@@ -17,7 +17,7 @@ from quadric_contact.classification import (
     principal_minor_sums_3,
     principal_minor_sums_4,
 )
-from quadric_contact.strategies import quadrics, rationals
+from quadric_contact.testing.strategies import quadrics, rationals
 
 UPPER = [(i, j) for i in range(4) for j in range(i, 4)]
 small = rationals(min_value=-3, max_value=3, max_denominator=4)

@@ -1,6 +1,6 @@
 import json
 
-from quadric_contact.cli import main
+from quadric_contact.interfaces.cli import main
 
 
 def test_check_default_pair_reports_every_step(capsys):

@@ -7,7 +7,7 @@ from fractions import Fraction as F
 
 import pytest
 
-from quadric_contact.cli import main
+from quadric_contact.interfaces.cli import main
 
 BROKEN = """
 [scene]

@@ -8,12 +8,12 @@ import pytest
 import sympy
 
 from quadric_contact import Quadric
-from quadric_contact.composite import Composite, Piece, Split, algorithm_1, algorithm_2
-from quadric_contact.errors import NotAPlaneError, QuadricContactError
-from quadric_contact.ledger import Ledger
+from quadric_contact.exact.errors import NotAPlaneError, QuadricContactError
 from quadric_contact.paper import PRINTED
-from quadric_contact.pencil import characteristic_polynomial
-from quadric_contact.results import Region
+from quadric_contact.scenes.composite import Composite, Piece, Split, algorithm_1, algorithm_2
+from quadric_contact.scenes.ledger import Ledger
+from quadric_contact.theory.pencil import characteristic_polynomial
+from quadric_contact.theory.results import Region
 
 BEE = PRINTED["Example 17 E"]
 
@@ -138,7 +138,7 @@ def test_static_pencil_equals_time_pencil_at_rational_times(tree):
     """The pencil in t (generated formulas on fmpq_poly) evaluated at t equals the
     static pencil of the exactly moved ellipsoid, up to the positive factor |q|^8."""
     from quadric_contact._generated.formulas import pencil_coefficients
-    from quadric_contact.trajectory import Keyframes, poly_eval
+    from quadric_contact.scenes.trajectory import Keyframes, poly_eval
 
     E = Quadric.from_equation(BEE).as_ellipsoid()
     traj = Keyframes([(0, (3, 3, 5.5)), (2, (1, 0, 7), (3, 1, 0, 2))])

@@ -8,7 +8,7 @@ from hypothesis import assume, given
 from tests.oracles import mpmath_nonreal, numpy_nonreal
 
 from quadric_contact import Quadric, characteristic_polynomial, transversal_contact
-from quadric_contact.strategies import ellipsoids, quadrics, tangent_pairs
+from quadric_contact.testing.strategies import ellipsoids, quadrics, tangent_pairs
 
 
 @given(e=ellipsoids(), q=quadrics())

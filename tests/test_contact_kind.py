@@ -12,11 +12,11 @@ from hypothesis import given, note
 from hypothesis import strategies as st
 
 from quadric_contact import Quadric, RigidMotion, characteristic_polynomial, contact_kind, paper
-from quadric_contact.contact_kind import ContactKind, analyze_contact
-from quadric_contact.geometric import decide_geometrically
-from quadric_contact.segre import segre_symbol
-from quadric_contact.smallness import smallness
-from quadric_contact.strategies import ellipsoids, quadrics, rigid_motions, rotations, tangent_pairs
+from quadric_contact.testing.strategies import ellipsoids, quadrics, rigid_motions, rotations, tangent_pairs
+from quadric_contact.theory.contact_kind import ContactKind, analyze_contact
+from quadric_contact.theory.geometric import decide_geometrically
+from quadric_contact.theory.segre import segre_symbol
+from quadric_contact.theory.smallness import smallness
 
 F = Fraction
 K = ContactKind

@@ -6,9 +6,9 @@ import pytest
 
 from quadric_contact import relative_position as relative_position_batch
 from quadric_contact import transversal_contact as transversal_contact_batch
-from quadric_contact.errors import ShapeError
+from quadric_contact.exact.errors import ShapeError
 from quadric_contact.modes import CertifiedMode
-from quadric_contact.samples import random_pairs
+from quadric_contact.testing.samples import random_pairs
 
 da = pytest.importorskip("dask.array")
 

@@ -4,9 +4,9 @@ import flint
 from hypothesis import given
 from hypothesis import strategies as st
 
-from quadric_contact.descartes import root_signs, sign_variations
-from quadric_contact.discriminants import root_structure
-from quadric_contact.precision import working_precision
+from quadric_contact.exact.descartes import root_signs, sign_variations
+from quadric_contact.exact.discriminants import root_structure
+from quadric_contact.exact.precision import working_precision
 
 
 def test_sign_variations_ignore_zeros():

@@ -10,8 +10,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from quadric_contact import codegen, paper
-from quadric_contact.discriminants import revised_sign_list, root_structure
-from quadric_contact.errors import DegeneratePencilError
+from quadric_contact.exact.discriminants import revised_sign_list, root_structure
+from quadric_contact.exact.errors import DegeneratePencilError
 
 C = codegen.coefficient_symbols(4)
 NAMES = {str(s): s for s in C}

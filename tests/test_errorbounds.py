@@ -13,12 +13,12 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from quadric_contact._generated import formulas, kernels
-from quadric_contact.entries import ENTRY_INDICES
-from quadric_contact.hardcases import hard_cases
+from quadric_contact.exact.entries import ENTRY_INDICES
 from quadric_contact.modes import errorbounds as eb
 from quadric_contact.modes.float64 import filter_quantities
-from quadric_contact.samples import random_pairs
-from quadric_contact.strategies import ellipsoids, quadrics
+from quadric_contact.testing.hardcases import hard_cases
+from quadric_contact.testing.samples import random_pairs
+from quadric_contact.testing.strategies import ellipsoids, quadrics
 
 U = eb.UNIT_ROUNDOFF
 

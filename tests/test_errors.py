@@ -1,7 +1,7 @@
 import pytest
 
 import quadric_contact as qc
-from quadric_contact import errors
+from quadric_contact.exact import errors
 
 
 def test_hierarchy_subclasses_builtin_types():

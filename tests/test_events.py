@@ -12,22 +12,22 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from quadric_contact import Quadric
-from quadric_contact.algebraic import RealAlgebraic, real_roots, sign_at
-from quadric_contact.composite import Composite
-from quadric_contact.contact import decide_transversal
-from quadric_contact.errors import SceneError
-from quadric_contact.events import PieceTrack
-from quadric_contact.ledger import Ledger
-from quadric_contact.pencil import characteristic_polynomial
-from quadric_contact.plane import plane_side_exact as plane_side
-from quadric_contact.precision import working_precision
-from quadric_contact.rational import simplest_between
-from quadric_contact.regions import decide_region
-from quadric_contact.results import Region
-from quadric_contact.scene import MovingEllipsoid, Scene
-from quadric_contact.simulate import simulate
-from quadric_contact.strategies import ellipsoids, quadrics, rationals
-from quadric_contact.trajectory import PolynomialMotion
+from quadric_contact.exact.algebraic import RealAlgebraic, real_roots, sign_at
+from quadric_contact.exact.errors import SceneError
+from quadric_contact.exact.precision import working_precision
+from quadric_contact.exact.rational import simplest_between
+from quadric_contact.scenes.composite import Composite
+from quadric_contact.scenes.events import PieceTrack
+from quadric_contact.scenes.ledger import Ledger
+from quadric_contact.scenes.scene import MovingEllipsoid, Scene
+from quadric_contact.scenes.simulate import simulate
+from quadric_contact.scenes.trajectory import PolynomialMotion
+from quadric_contact.testing.strategies import ellipsoids, quadrics, rationals
+from quadric_contact.theory.contact import decide_transversal
+from quadric_contact.theory.pencil import characteristic_polynomial
+from quadric_contact.theory.plane import plane_side_exact as plane_side
+from quadric_contact.theory.regions import decide_region
+from quadric_contact.theory.results import Region
 
 # -- real algebraic numbers ---------------------------------------------------------------
 

@@ -21,12 +21,12 @@ import pytest
 
 from quadric_contact import Quadric, QuadricKind, paper
 from quadric_contact._generated.formulas import det_symmetric_4
-from quadric_contact.classification import principal_minor_sums_3
-from quadric_contact.invariants import invariants
-from quadric_contact.precision import working_precision
-from quadric_contact.printed_tables import printed_table_2
-from quadric_contact.rational import fmpq_of
-from quadric_contact.smallness import smallness
+from quadric_contact.exact.precision import working_precision
+from quadric_contact.exact.rational import fmpq_of
+from quadric_contact.model.classification import principal_minor_sums_3
+from quadric_contact.model.invariants import invariants
+from quadric_contact.paper.printed_tables import printed_table_2
+from quadric_contact.theory.smallness import smallness
 
 P = paper.PRINTED
 UPPER = [(i, j) for i in range(4) for j in range(i, 4)]

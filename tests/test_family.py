@@ -19,14 +19,14 @@ from tests.untrusted import HOSTILE, untrusted
 
 import quadric_contact as qc
 from quadric_contact import Quadric, Region, family
-from quadric_contact.errors import EquationError, NotAnEllipsoidError, QuadricContactError, ShapeError
-from quadric_contact.family import MAX_PARAMETERS, RationalFunction
-from quadric_contact.family_emit import emit_program
-from quadric_contact.family_maps import MapAnswer
-from quadric_contact.family_numeric import UNCERTAIN, compile_quantity
-from quadric_contact.pencil import characteristic_polynomial
-from quadric_contact.smallness import smallness
-from quadric_contact.straight_line import _functions, rounding_counts
+from quadric_contact.exact.errors import EquationError, NotAnEllipsoidError, QuadricContactError, ShapeError
+from quadric_contact.exact.straight_line import _functions, rounding_counts
+from quadric_contact.families.family import MAX_PARAMETERS, RationalFunction
+from quadric_contact.families.family_emit import emit_program
+from quadric_contact.families.family_maps import MapAnswer
+from quadric_contact.families.family_numeric import UNCERTAIN, compile_quantity
+from quadric_contact.theory.pencil import characteristic_polynomial
+from quadric_contact.theory.smallness import smallness
 
 TRUNK = "x^2 + y^2 - 0.25*(z - 3)^2 - 1"
 CROWN = "x^2 + y^2 + 3*(z - 8.36291)^2 - 20"
@@ -180,7 +180,7 @@ def test_all_parameters_fixed_is_the_pair_api():
 
 
 def test_the_deltas_are_those_of_the_coefficients():
-    from quadric_contact.discriminants import paper_deltas
+    from quadric_contact.exact.discriminants import paper_deltas
 
     for fam in FAMILIES.values():
         assert all(
@@ -409,7 +409,7 @@ def test_the_certified_sign_near_and_on_the_boundary():
 
 def test_the_certified_checks():
     """Underflow, overflow and non-finite inputs make a point uncertain, in numba and numpy."""
-    from quadric_contact.family_numeric import _numpy_signs
+    from quadric_contact.families.family_numeric import _numpy_signs
 
     sign = BEE_TRUNK.lambdify("Delta4", "certified")
     u = np.array([1e-300, np.nan, 3.0, 1e200, 3.0, 1e-200])
@@ -498,7 +498,7 @@ def test_emitted_programs_are_exact_with_honest_counts(terms):
 
 
 def test_compiled_programs_refuse_anything_but_the_grammar():
-    from quadric_contact.family_numeric import _checked
+    from quadric_contact.families.family_numeric import _checked
 
     _checked("def f(a):\n    x = a*a - 3\n    return (x,)\n")
     with pytest.raises(AssertionError):

@@ -16,13 +16,13 @@ import numpy as np
 import pytest
 
 from quadric_contact import Quadric, relative_position, transversal_contact
-from quadric_contact.batch import as_stack, make_pairs
-from quadric_contact.contact import transversal_contact_exact
 from quadric_contact.modes import CertifiedMode, FilterMode, RegionCode
 from quadric_contact.modes._jit import HAVE_NUMBA
 from quadric_contact.modes.base import Pairs
-from quadric_contact.regions import relative_position_exact
-from quadric_contact.samples import random_ellipsoids
+from quadric_contact.modes.batch import as_stack, make_pairs
+from quadric_contact.testing.samples import random_ellipsoids
+from quadric_contact.theory.contact import transversal_contact_exact
+from quadric_contact.theory.regions import relative_position_exact
 
 numba_only = pytest.mark.skipif(not HAVE_NUMBA, reason="the compiled kernels need numba")
 

@@ -22,9 +22,9 @@ from quadric_contact import (
     relative_position,
     transversal_contact,
 )
-from quadric_contact.classification import TABLE_1_KINDS
-from quadric_contact.geometric import decide_geometrically
-from quadric_contact.strategies import ellipsoids, quadrics, rigid_motions, tangent_pairs
+from quadric_contact.model.classification import TABLE_1_KINDS
+from quadric_contact.testing.strategies import ellipsoids, quadrics, rigid_motions, tangent_pairs
+from quadric_contact.theory.geometric import decide_geometrically
 
 F = Fraction
 R_MINUS, R_PLUS, CONTACT = Region.R_MINUS, Region.R_PLUS, Region.CONTACT

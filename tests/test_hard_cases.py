@@ -13,8 +13,8 @@ from tests.oracles import criterion_contact as transversal_contact_batch
 from tests.oracles import criterion_region as relative_position_batch
 
 from quadric_contact import Quadric
-from quadric_contact.hardcases import FAMILIES, hard_cases
 from quadric_contact.modes import CertifiedMode, ContactCode, RegionCode, get_mode
+from quadric_contact.testing.hardcases import FAMILIES, hard_cases
 
 FIXTURES = Path(__file__).parent / "fixtures"
 
@@ -74,7 +74,7 @@ def test_every_family_is_present_and_ladders_cover_every_type(records):
 def test_every_construction_means_what_it_says(records):
     """The intended answers hold for the exact rational matrices (exact scalar path)."""
     script = _load_script()
-    from quadric_contact.hardcases import HardCase
+    from quadric_contact.testing.hardcases import HardCase
 
     for r in records:
         if r["intended_contact"] is None:

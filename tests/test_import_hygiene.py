@@ -6,8 +6,8 @@ inside functions; an ``if TYPE_CHECKING:`` block is not run, so it does not coun
 
 * Nothing imports :mod:`quadric_contact.codegen` but the ``codegen`` command of the
   command line (which runs the generator on request); the run-time code reads
-  straight-line programs with :mod:`quadric_contact.straight_line` and emits the
-  families' programs with :mod:`quadric_contact.family_emit`.
+  straight-line programs with :mod:`quadric_contact.exact.straight_line` and emits the
+  families' programs with :mod:`quadric_contact.families.family_emit`.
 * The graph of module-level imports has no cycle.
 * An import inside a function is fine for a heavy or optional dependency (sympy,
   matplotlib, dask, numba, ...: not scanned here) or to keep a module light (the
@@ -37,7 +37,7 @@ SRC = Path(__file__).resolve().parents[1] / "src"
 PACKAGE = "quadric_contact"
 
 CODEGEN = f"{PACKAGE}.codegen"
-CODEGEN_IMPORTERS = {f"{PACKAGE}.cli.codegen"}
+CODEGEN_IMPORTERS = {f"{PACKAGE}.interfaces.cli.codegen"}
 """The only module allowed to import the generator: the ``quadric-contact codegen`` command."""
 
 
@@ -144,13 +144,15 @@ def _reaches(start: str, goal: str) -> bool:
 def test_the_scan_sees_the_imports() -> None:
     """The scan is not vacuous: it finds known imports of both kinds."""
     assert any(
-        i.importer == f"{PACKAGE}.rational" and i.target == f"{PACKAGE}.reading" and not i.in_function
+        i.importer == f"{PACKAGE}.exact.rational"
+        and i.target == f"{PACKAGE}.exact.reading"
+        and not i.in_function
         for i in IMPORTS
     )
     assert any(i.importer in CODEGEN_IMPORTERS and i.target == CODEGEN and i.in_function for i in IMPORTS)
     assert any(i.in_function for i in IMPORTS) and any(not i.in_function for i in IMPORTS)
-    assert _reaches(f"{PACKAGE}.family", f"{PACKAGE}.rational_functions")
-    assert not _reaches(f"{PACKAGE}.rational_functions", f"{PACKAGE}.family")
+    assert _reaches(f"{PACKAGE}.families.family", f"{PACKAGE}.families.rational_functions")
+    assert not _reaches(f"{PACKAGE}.families.rational_functions", f"{PACKAGE}.families.family")
 
 
 def test_nothing_imports_the_code_generator_at_run_time() -> None:
@@ -183,8 +185,9 @@ def test_no_function_level_import_dodges_a_cycle() -> None:
     "modules",
     [
         # the modules that once imported the generator at run time
-        "quadric_contact.family_numeric, quadric_contact.modes.smallness_float, quadric_contact.batch, "
-        "quadric_contact.hardcases, quadric_contact.benchmark, quadric_contact.modes.float64",
+        "quadric_contact.families.family_numeric, quadric_contact.modes.smallness_float, "
+        "quadric_contact.modes.batch, quadric_contact.testing.hardcases, "
+        "quadric_contact.interfaces.benchmark, quadric_contact.modes.float64",
     ],
 )
 def test_importing_the_package_does_not_load_the_generator(modules: str) -> None:

@@ -8,9 +8,9 @@ import sympy as sp
 from hypothesis import given
 from hypothesis import strategies as st
 
-from quadric_contact.algebraic import sign_at
-from quadric_contact.invariants import invariants
-from quadric_contact.strategies import quadrics, rationals, rigid_motions
+from quadric_contact.exact.algebraic import sign_at
+from quadric_contact.model.invariants import invariants
+from quadric_contact.testing.strategies import quadrics, rationals, rigid_motions
 
 
 @given(quadrics(bound=4), rigid_motions(bound=4))

@@ -12,11 +12,11 @@ import pytest
 from tests.oracles import criterion_contact, criterion_region
 
 import quadric_contact as qc
-from quadric_contact.benchmark import kernel_population
-from quadric_contact.hardcases import hard_cases
+from quadric_contact.interfaces.benchmark import kernel_population
 from quadric_contact.modes import CertifiedMode, FilterMode, FloatMode
 from quadric_contact.modes._jit import HAVE_NUMBA
-from quadric_contact.samples import random_pairs
+from quadric_contact.testing.hardcases import hard_cases
+from quadric_contact.testing.samples import random_pairs
 
 PREDICATES = [criterion_contact, criterion_region]
 

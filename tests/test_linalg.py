@@ -8,8 +8,8 @@ import sympy as sp
 from hypothesis import given
 from hypothesis import strategies as st
 
-from quadric_contact.linalg import nullspace, row_reduce, solve
-from quadric_contact.strategies import rationals
+from quadric_contact.exact.linalg import nullspace, row_reduce, solve
+from quadric_contact.testing.strategies import rationals
 
 
 @st.composite

@@ -21,10 +21,9 @@ from quadric_contact import (
     UndecidedError,
     characteristic_polynomial,
 )
-from quadric_contact.classification import TABLE_1_KINDS, classify
-from quadric_contact.discriminants import root_structure
-from quadric_contact.errors import QuadricContactError
-from quadric_contact.hardcases import hard_cases
+from quadric_contact.exact.discriminants import root_structure
+from quadric_contact.exact.errors import QuadricContactError
+from quadric_contact.model.classification import TABLE_1_KINDS, classify
 from quadric_contact.modes import (
     MODES,
     CertifiedMode,
@@ -46,8 +45,9 @@ from quadric_contact.modes.decisions import (
     rows_from_masks,
     sign_index,
 )
-from quadric_contact.results import Region
-from quadric_contact.samples import random_pairs
+from quadric_contact.testing.hardcases import hard_cases
+from quadric_contact.testing.samples import random_pairs
+from quadric_contact.theory.results import Region
 
 ALL_MODES = list(MODES)
 PREDICATES = [transversal_contact_batch, relative_position_batch]
@@ -300,7 +300,7 @@ def test_modes_pickle_without_their_lock(sample):
 
 def test_contact_table_agrees_with_root_structure_of_random_quartics():
     rng = np.random.default_rng(5)
-    from quadric_contact.discriminants import paper_deltas
+    from quadric_contact.exact.discriminants import paper_deltas
 
     seen = set()
     for _ in range(3000):

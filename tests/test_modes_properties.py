@@ -17,7 +17,7 @@ from quadric_contact import characteristic_polynomial
 from quadric_contact.modes import ContactCode
 from quadric_contact.modes.decisions import CONTACT_TABLE, sign_index
 from quadric_contact.modes.float64 import filter_quantities
-from quadric_contact.strategies import ellipsoids, quadrics, tangent_pairs
+from quadric_contact.testing.strategies import ellipsoids, quadrics, tangent_pairs
 
 pairs = st.one_of(
     st.tuples(ellipsoids(), quadrics()),

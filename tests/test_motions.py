@@ -9,9 +9,9 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from quadric_contact import Quadric
-from quadric_contact.errors import NotANumberError, ShapeError
-from quadric_contact.motions import RigidMotion, rotation_from_quaternion
-from quadric_contact.strategies import points, rationals, rigid_motions
+from quadric_contact.exact.errors import NotANumberError, ShapeError
+from quadric_contact.model.motions import RigidMotion, rotation_from_quaternion
+from quadric_contact.testing.strategies import points, rationals, rigid_motions
 
 quaternions = st.tuples(*[st.integers(-4, 4)] * 4).filter(any)
 

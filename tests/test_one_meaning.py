@@ -14,8 +14,6 @@ from hypothesis import strategies as st
 
 import quadric_contact as qc
 from quadric_contact import Quadric
-from quadric_contact.contact import transversal_contact_exact
-from quadric_contact.contact_kind import ContactKind, contact_kind_exact
 from quadric_contact.modes import (
     MODES,
     BallMode,
@@ -30,12 +28,14 @@ from quadric_contact.modes import (
     RegionCode,
     SmallnessCode,
 )
-from quadric_contact.overlap import OverlapResult, overlap_exact
-from quadric_contact.regions import relative_position_exact
-from quadric_contact.results import ContactResult, PlaneSideResult, RegionResult
-from quadric_contact.smallness import SmallnessReport
-from quadric_contact.smallness import smallness as smallness_exact
-from quadric_contact.strategies import ellipsoids, quadrics, tangent_pairs
+from quadric_contact.testing.strategies import ellipsoids, quadrics, tangent_pairs
+from quadric_contact.theory.contact import transversal_contact_exact
+from quadric_contact.theory.contact_kind import ContactKind, contact_kind_exact
+from quadric_contact.theory.overlap import OverlapResult, overlap_exact
+from quadric_contact.theory.regions import relative_position_exact
+from quadric_contact.theory.results import ContactResult, PlaneSideResult, RegionResult
+from quadric_contact.theory.smallness import SmallnessReport
+from quadric_contact.theory.smallness import smallness as smallness_exact
 
 BEE = Quadric.from_equation("(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1")
 

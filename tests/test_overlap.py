@@ -13,12 +13,12 @@ from hypothesis import strategies as st
 
 import quadric_contact as qc
 from quadric_contact import OverlapCode, Quadric
-from quadric_contact.classification import QuadricKind
-from quadric_contact.geometric import decide_geometrically
-from quadric_contact.hardcases import _LADDER_Q, TRANSLATION, _motion, _probe
+from quadric_contact.model.classification import QuadricKind
 from quadric_contact.modes import MODES, FilterMode, RegionCode
-from quadric_contact.overlap import apply_touching, overlap_exact, solid_of
-from quadric_contact.strategies import ellipsoids, quadrics, rigid_motions, tangent_pairs
+from quadric_contact.testing.hardcases import _LADDER_Q, TRANSLATION, _motion, _probe
+from quadric_contact.testing.strategies import ellipsoids, quadrics, rigid_motions, tangent_pairs
+from quadric_contact.theory.geometric import decide_geometrically
+from quadric_contact.theory.overlap import apply_touching, overlap_exact, solid_of
 
 K = QuadricKind
 S, O, U, T = OverlapCode.SEPARATE, OverlapCode.OVERLAPPING, OverlapCode.UNCERTAIN, OverlapCode.TOUCHING  # noqa: E741
@@ -30,7 +30,7 @@ MOTION = _motion(TRANSLATION)
 
 def independent(E: Quadric, Q: Quadric) -> OverlapCode:
     """Overlap from the exact extremes of ``f = X^T Q X`` on the surface of ``E`` (no pencil:
-    :mod:`quadric_contact.geometric`) and, for an ellipsoid ``Q`` outside whose surface ``E``
+    :mod:`quadric_contact.theory.geometric`) and, for an ellipsoid ``Q`` outside whose surface ``E``
     lies, whether the centre of ``Q`` is inside ``E``.
 
     ``max f <= 0``: ``E`` in the solid; ``min f < 0 < max f``: the surfaces cross; both
@@ -453,8 +453,8 @@ def test_agreement_with_the_independent_decision(pair, motion):
 def _by_region(E: Quadric, Q: Quadric) -> OverlapCode:
     """Overlap from the exact relative position of the surface of ``E`` (no touches among
     random float pairs: ``R+`` is apart unless ``Q`` is an ellipsoid inside ``E``)."""
-    from quadric_contact.regions import relative_position_exact
-    from quadric_contact.results import Region
+    from quadric_contact.theory.regions import relative_position_exact
+    from quadric_contact.theory.results import Region
 
     e, q = E.as_ellipsoid(), solid_of(Q)
     region = relative_position_exact(e, q).region
@@ -467,7 +467,7 @@ def _by_region(E: Quadric, Q: Quadric) -> OverlapCode:
 def test_agreement_with_the_independent_decision_on_random_float_pairs():
     """Two ellipsoids against the extremes of ``f`` on ``E`` (no pencil); the other types against
     the exact relative position (the extremes are slow on some float pairs of hyperboloids)."""
-    from quadric_contact.samples import random_pairs
+    from quadric_contact.testing.samples import random_pairs
 
     rng = np.random.default_rng(7)
     E, Q, _ = random_pairs(24, rng, kinds=(K.ELLIPSOID,), ellipsoid_axes=(0.5, 3.0), box=2.0)

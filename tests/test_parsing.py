@@ -1,4 +1,4 @@
-"""The package's parser (``quadric_contact.parsing``): exact values, refusals that
+"""The package's parser (``quadric_contact.model.parsing``): exact values, refusals that
 name the offending text and its position, every documented bound at its edge, an
 algebra of sympy objects for parametric families, and hypothesis properties
 (random well-formed expressions against an independent polynomial arithmetic,
@@ -20,8 +20,9 @@ from hypothesis import strategies as st
 from tests.untrusted import untrusted
 
 from quadric_contact import Quadric
-from quadric_contact.errors import EquationError, NonFiniteError, NotANumberError, QuadricContactError
-from quadric_contact.parsing import (
+from quadric_contact.exact.errors import EquationError, NonFiniteError, NotANumberError, QuadricContactError
+from quadric_contact.exact.rational import to_fraction
+from quadric_contact.model.parsing import (
     MAX_DEGREE,
     MAX_DEPTH,
     MAX_DIGITS,
@@ -39,8 +40,7 @@ from quadric_contact.parsing import (
     parse_quadric_equation,
     parse_univariate,
 )
-from quadric_contact.rational import to_fraction
-from quadric_contact.strategies import quadrics, rationals
+from quadric_contact.testing.strategies import quadrics, rationals
 
 XYZ = ("x", "y", "z")
 

@@ -9,8 +9,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from quadric_contact import Quadric, characteristic_polynomial
-from quadric_contact.precision import working_precision
-from quadric_contact.strategies import ellipsoids, quadrics, rigid_motions
+from quadric_contact.exact.precision import working_precision
+from quadric_contact.testing.strategies import ellipsoids, quadrics, rigid_motions
 
 
 def _sympy_charpoly(E, Q):

@@ -7,7 +7,7 @@ import sympy as sp
 from hypothesis import given
 
 from quadric_contact import Quadric, Region, characteristic_polynomial, paper, plane_side
-from quadric_contact.strategies import ellipsoids, planes
+from quadric_contact.testing.strategies import ellipsoids, planes
 
 
 def test_eq_12_symbolically():

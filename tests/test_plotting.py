@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from quadric_contact import Quadric, QuadricKind
-from quadric_contact.errors import ShapeError
-from quadric_contact.plotting import plot_quadric, quadric_mesh
+from quadric_contact.exact.errors import ShapeError
+from quadric_contact.interfaces.plotting import plot_quadric, quadric_mesh
 
 BOX = [(-3, 3), (-2, 4), (-3, 3)]
 
@@ -181,9 +181,9 @@ def test_plot_result_keeps_the_backend_of_a_session_that_uses_pyplot():
     matplotlib = pytest.importorskip("matplotlib")
     import matplotlib.pyplot as plt
 
-    from quadric_contact.plotting import plot_result
-    from quadric_contact.scene import builtin_scene
-    from quadric_contact.simulate import simulate
+    from quadric_contact.interfaces.plotting import plot_result
+    from quadric_contact.scenes.scene import builtin_scene
+    from quadric_contact.scenes.simulate import simulate
 
     before = matplotlib.get_backend()
     plt.switch_backend("svg")

@@ -11,9 +11,9 @@ from pathlib import Path
 import pytest
 
 from quadric_contact import paper
-from quadric_contact.cli import main
-from quadric_contact.errors import ProofsNotFoundError, QuadricContactError
-from quadric_contact.proving import (
+from quadric_contact.exact.errors import ProofsNotFoundError, QuadricContactError
+from quadric_contact.interfaces.cli import main
+from quadric_contact.paper.proving import (
     PACKAGE_NAME,
     REPORT_NAME,
     Method,
@@ -217,7 +217,7 @@ def test_full_profile_checks_are_skipped_in_the_default_profile():
 
 
 def test_a_check_whose_optional_dependency_is_missing_is_skipped_with_a_note(monkeypatch):
-    import quadric_contact.proving as proving
+    import quadric_contact.paper.proving as proving
 
     monkeypatch.setitem(proving.OPTIONAL_DEPENDENCIES, "no_such_package_for_the_proofs", "pip install it")
     proof = Proof("Remark 16", "test")
@@ -247,7 +247,7 @@ def test_find_proofs_dir_from_root_subdirectories_and_the_dir_itself(tmp_path, m
 
 def test_no_proofs_dir_is_a_clear_error(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    import quadric_contact.proving as proving
+    import quadric_contact.paper.proving as proving
 
     monkeypatch.setattr(proving, "__file__", str(tmp_path / "a" / "b" / "proving.py"))
     monkeypatch.setattr(proving, "installed_proofs_dir", lambda: None)
@@ -268,7 +268,7 @@ def test_the_installed_proofs_are_found_outside_a_checkout(tmp_path, monkeypatch
     elsewhere = tmp_path / "elsewhere"
     elsewhere.mkdir()
     monkeypatch.chdir(elsewhere)
-    import quadric_contact.proving as proving
+    import quadric_contact.paper.proving as proving
 
     monkeypatch.setattr(proving, "__file__", str(tmp_path / "a" / "b" / "proving.py"))
     monkeypatch.syspath_prepend(str(site))
@@ -328,7 +328,7 @@ def test_cli_exit_1_on_an_unexplained_difference(tmp_path, capsys):
 
         A claim that is checked to fail.
         """
-        from quadric_contact.proving import Method, Proof, differs
+        from quadric_contact.paper.proving import Method, Proof, differs
         proof = Proof("Remark 16", "fake")
 
         @proof.check("wrong", method=Method.IDENTITY)
@@ -368,7 +368,7 @@ def test_cli_report_writes_a_report_from_the_declarations(tmp_path, capsys):
 
         What is checked and how. The sum is computed.
         """
-        from quadric_contact.proving import Method, Proof, agrees, differs
+        from quadric_contact.paper.proving import Method, Proof, agrees, differs
         proof = Proof("Remark 16", "fake")
 
         @proof.check("one plus one", method=Method.COMPUTATION)
@@ -405,7 +405,7 @@ def test_cli_default_profile_skips_full_checks(tmp_path, capsys):
 
         A claim whose slow check is skipped.
         """
-        from quadric_contact.proving import Method, Proof, agrees
+        from quadric_contact.paper.proving import Method, Proof, agrees
         proof = Proof("Remark 16", "fake")
 
         @proof.check("fast", method=Method.COMPUTATION)
@@ -465,7 +465,7 @@ def test_intersection_helpers_on_known_configurations():
 
 
 def test_the_report_is_written_into_a_checkout_only(tmp_path):
-    from quadric_contact.proving import write_report
+    from quadric_contact.paper.proving import write_report
 
     installed = tmp_path / PACKAGE_NAME
     installed.mkdir()

@@ -7,9 +7,9 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from quadric_contact import Quadric, QuadricKind, RigidMotion, rotation_from_quaternion
-from quadric_contact.classification import TABLE_1_KINDS
-from quadric_contact.errors import EquationError, NotANumberError, NotSymmetricError, ShapeError
-from quadric_contact.strategies import ellipsoids, quadrics, rigid_motions
+from quadric_contact.exact.errors import EquationError, NotANumberError, NotSymmetricError, ShapeError
+from quadric_contact.model.classification import TABLE_1_KINDS
+from quadric_contact.testing.strategies import ellipsoids, quadrics, rigid_motions
 
 K = QuadricKind
 

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 import sympy
 
-from quadric_contact.errors import NonFiniteError, NotANumberError, NotRationalError, ShapeError
-from quadric_contact.rational import as_square_matrix, common_denominator, to_fraction
+from quadric_contact.exact.errors import NonFiniteError, NotANumberError, NotRationalError, ShapeError
+from quadric_contact.exact.rational import as_square_matrix, common_denominator, to_fraction
 
 
 @pytest.mark.parametrize(

@@ -14,9 +14,9 @@ from quadric_contact import (
     characteristic_polynomial,
     relative_position,
 )
-from quadric_contact.classification import TABLE_1_KINDS
-from quadric_contact.regions import derive_root_sign_table
-from quadric_contact.strategies import points, rigid_motions, rotations
+from quadric_contact.model.classification import TABLE_1_KINDS
+from quadric_contact.testing.strategies import points, rigid_motions, rotations
+from quadric_contact.theory.regions import derive_root_sign_table
 
 
 def test_table_is_rederived_by_construction():

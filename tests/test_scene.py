@@ -9,10 +9,10 @@ import pytest
 from tests.bee_and_tree import bee_and_tree
 
 from quadric_contact import Quadric
-from quadric_contact.classification import QuadricKind
-from quadric_contact.errors import SceneError
-from quadric_contact.scene import builtin_scene, builtin_scene_names, load_scene, parse_scene
-from quadric_contact.trajectory import Keyframes, PolynomialMotion, Stationary
+from quadric_contact.exact.errors import SceneError
+from quadric_contact.model.classification import QuadricKind
+from quadric_contact.scenes.scene import builtin_scene, builtin_scene_names, load_scene, parse_scene
+from quadric_contact.scenes.trajectory import Keyframes, PolynomialMotion, Stationary
 
 GOOD = bee_and_tree(
     name="t",
@@ -289,7 +289,7 @@ def test_not_small_is_refused_by_default():
 
 
 def test_not_small_with_warn_keeps_the_scene_and_leaves_contact_undecided():
-    from quadric_contact.simulate import simulate
+    from quadric_contact.scenes.simulate import simulate
 
     with pytest.warns(UserWarning, match="not small"):
         s = parse_scene(NOT_SMALL.format(policy='on_not_small = "warn"'), "throat.toml")
@@ -305,7 +305,7 @@ def test_not_small_with_warn_keeps_the_scene_and_leaves_contact_undecided():
 def test_enclosing_pair_is_small_but_table_4_is_not_used():
     """A sphere of radius 2 around a sphere of radius 1 (erratum
     table-1-ellipsoid-enclosing): small, contact decided, region undecided."""
-    from quadric_contact.simulate import simulate
+    from quadric_contact.scenes.simulate import simulate
 
     text = """
 [scene]

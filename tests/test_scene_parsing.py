@@ -7,9 +7,9 @@ from fractions import Fraction
 
 import pytest
 
-from quadric_contact.errors import SceneError
-from quadric_contact.parsing import parse_univariate
-from quadric_contact.scene import parse_scene
+from quadric_contact.exact.errors import SceneError
+from quadric_contact.model.parsing import parse_univariate
+from quadric_contact.scenes.scene import parse_scene
 
 SCENE = """
 [scene]

@@ -9,8 +9,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from quadric_contact import Quadric
-from quadric_contact.segre import segre_symbol
-from quadric_contact.strategies import ellipsoids, quadrics, rigid_motions
+from quadric_contact.testing.strategies import ellipsoids, quadrics, rigid_motions
+from quadric_contact.theory.segre import segre_symbol
 
 positive = st.integers(1, 4).map(F)
 entries = st.integers(-3, 3).map(F)

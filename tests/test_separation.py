@@ -14,11 +14,9 @@ from hypothesis import strategies as st
 
 from quadric_contact import Quadric, characteristic_polynomial
 from quadric_contact._generated import kernels
-from quadric_contact.batch import as_stack, make_pairs
-from quadric_contact.certificate import separation_certificate
-from quadric_contact.classification import inertia_from_minor_sums, principal_minor_sums_4
-from quadric_contact.geometric import decide_geometrically
+from quadric_contact.model.classification import inertia_from_minor_sums, principal_minor_sums_4
 from quadric_contact.modes import errorbounds as eb
+from quadric_contact.modes.batch import as_stack, make_pairs
 from quadric_contact.modes.separation import (
     CROSSING,
     SEP_MINUS,
@@ -29,8 +27,10 @@ from quadric_contact.modes.separation import (
     quartic_roots,
     separation_float,
 )
-from quadric_contact.results import Region
-from quadric_contact.strategies import ellipsoids, quadrics, tangent_pairs
+from quadric_contact.testing.strategies import ellipsoids, quadrics, tangent_pairs
+from quadric_contact.theory.certificate import separation_certificate
+from quadric_contact.theory.geometric import decide_geometrically
+from quadric_contact.theory.results import Region
 
 CODES = {Region.R_MINUS: SEP_MINUS, Region.CONTACT: CROSSING, Region.R_PLUS: SEP_PLUS}
 
@@ -166,7 +166,7 @@ def test_the_exact_certificate_on_a_tangent_pair_says_nothing():
 
 @pytest.mark.parametrize("backend", ["numba", "numpy"])
 def test_backends_agree(backend):
-    from quadric_contact.samples import random_ellipsoids
+    from quadric_contact.testing.samples import random_ellipsoids
 
     rng = np.random.default_rng(3)
     E, _ = random_ellipsoids(300, rng, axes=(0.5, 2.0), box=2.0)

@@ -8,11 +8,11 @@ from fractions import Fraction as F
 
 import pytest
 
-from quadric_contact.composite import algorithm_2
-from quadric_contact.errors import SceneError
-from quadric_contact.ledger import FULL_ITEMS, Ledger
-from quadric_contact.scene import builtin_scene, builtin_scene_names, parse_scene
-from quadric_contact.simulate import Plan, simulate
+from quadric_contact.exact.errors import SceneError
+from quadric_contact.scenes.composite import algorithm_2
+from quadric_contact.scenes.ledger import FULL_ITEMS, Ledger
+from quadric_contact.scenes.scene import builtin_scene, builtin_scene_names, parse_scene
+from quadric_contact.scenes.simulate import Plan, simulate
 
 
 @pytest.fixture

@@ -18,10 +18,10 @@ from quadric_contact import (
     characteristic_polynomial,
     paper,
 )
-from quadric_contact.classification import TABLE_1_KINDS
-from quadric_contact.printed_tables import printed_table_2
-from quadric_contact.smallness import smallness, table_1
-from quadric_contact.strategies import rigid_motions
+from quadric_contact.model.classification import TABLE_1_KINDS
+from quadric_contact.paper.printed_tables import printed_table_2
+from quadric_contact.testing.strategies import rigid_motions
+from quadric_contact.theory.smallness import smallness, table_1
 
 K = QuadricKind
 P = paper.PRINTED

@@ -16,10 +16,10 @@ from tests.oracles import smallness_codes
 from tests.test_table_verification import ORDERED, max_scale
 
 from quadric_contact import NotAnEllipsoidError, Quadric, QuadricKind, RigidMotion
-from quadric_contact.batch import as_stack, make_pairs
-from quadric_contact.classification import TABLE_1_KINDS
-from quadric_contact.errors import ExcludedQuadricError
-from quadric_contact.invariants import invariants
+from quadric_contact.exact.errors import ExcludedQuadricError
+from quadric_contact.exact.quantity import Quantity, compare_quantities
+from quadric_contact.model.classification import TABLE_1_KINDS
+from quadric_contact.model.invariants import invariants
 from quadric_contact.modes import (
     CertifiedMode,
     FilterMode,
@@ -28,6 +28,7 @@ from quadric_contact.modes import (
 )
 from quadric_contact.modes import smallness_float as sf
 from quadric_contact.modes.base import SmallnessCode
+from quadric_contact.modes.batch import as_stack, make_pairs
 from quadric_contact.modes.smallness_tables import (
     E_SIDES,
     NPRIM,
@@ -36,9 +37,8 @@ from quadric_contact.modes.smallness_tables import (
     evaluate,
     kind_signs,
 )
-from quadric_contact.quantity import Quantity, compare_quantities
-from quadric_contact.smallness import smallness
-from quadric_contact.strategies import ellipsoids, quadrics
+from quadric_contact.testing.strategies import ellipsoids, quadrics
+from quadric_contact.theory.smallness import smallness
 
 K = QuadricKind
 C = SmallnessCode
@@ -410,7 +410,7 @@ def test_not_an_ellipsoid():
 
 
 def test_bad_input_is_diagnosed():
-    from quadric_contact.errors import NonFiniteError, NotSymmetricError
+    from quadric_contact.exact.errors import NonFiniteError, NotSymmetricError
 
     E = np.diag([1.0, 1, 1, -1])
     Q = np.diag([1.0, 1, 1, -9])
@@ -468,7 +468,7 @@ def exact_primitives(M, kind):
     if kind is K.ELLIPSOID and q.kind is K.ELLIPSOID:
         q = q if q.canonical_sign > 0 else -q
     inv = invariants(q)
-    from quadric_contact.classification import principal_minor_sums_4
+    from quadric_contact.model.classification import principal_minor_sums_4
 
     _, E2, E3, E4 = principal_minor_sums_4(q.upper)
     values = [E4, inv.det00, inv.J, E3, E2, inv.trace]
@@ -571,7 +571,7 @@ def test_shift_program_and_its_magnitude_companion():
     and its values are the trace, J and determinant (checked with sympy)."""
     import sympy
 
-    from quadric_contact.straight_line import emit_magnitude_function
+    from quadric_contact.exact.straight_line import emit_magnitude_function
 
     fdef = ast.parse(inspect.getsource(sf.shift_invariants)).body[0]
     emitted = ast.parse("\n".join(emit_magnitude_function(fdef))).body[0]

@@ -9,11 +9,11 @@ from importlib import resources
 
 import pytest
 
-from quadric_contact.cli import main
-from quadric_contact.errors import SceneError
-from quadric_contact.scene import builtin_scene
-from quadric_contact.simulate import simulate
-from quadric_contact.sweep import perturbed, run_sweep, summarize
+from quadric_contact.exact.errors import SceneError
+from quadric_contact.interfaces.cli import main
+from quadric_contact.scenes.scene import builtin_scene
+from quadric_contact.scenes.simulate import simulate
+from quadric_contact.scenes.sweep import perturbed, run_sweep, summarize
 
 BEE = resources.files("quadric_contact").joinpath("scenes", "bee_and_tree.toml").read_text()
 

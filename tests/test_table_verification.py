@@ -32,10 +32,10 @@ from tests.table_search import (
 )
 
 from quadric_contact import Quadric, QuadricKind, Region, relative_position
-from quadric_contact.classification import TABLE_1_KINDS
-from quadric_contact.motions import RigidMotion
-from quadric_contact.smallness import table_1
-from quadric_contact.strategies import rotations
+from quadric_contact.model.classification import TABLE_1_KINDS
+from quadric_contact.model.motions import RigidMotion
+from quadric_contact.testing.strategies import rotations
+from quadric_contact.theory.smallness import table_1
 
 F = Fraction
 K = QuadricKind

@@ -9,9 +9,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from quadric_contact import Quadric
-from quadric_contact.errors import SceneError, ShapeError
-from quadric_contact.strategies import ellipsoids, rationals
-from quadric_contact.trajectory import Keyframes, PolynomialMotion, Stationary, poly_eval
+from quadric_contact.exact.errors import SceneError, ShapeError
+from quadric_contact.scenes.trajectory import Keyframes, PolynomialMotion, Stationary, poly_eval
+from quadric_contact.testing.strategies import ellipsoids, rationals
 
 
 def proportional_positive(upper_polys, t, Q):

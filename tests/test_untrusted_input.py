@@ -23,14 +23,14 @@ from tests.untrusted import HOSTILE, PAYLOAD, untrusted
 
 import quadric_contact as qc
 from quadric_contact import Quadric
-from quadric_contact.algebraic import compile_expression
-from quadric_contact.cli import main
-from quadric_contact.errors import QuadricContactError, SceneError
-from quadric_contact.motions import rotation_from_quaternion
-from quadric_contact.pencil import as_quadric
-from quadric_contact.rational import to_fraction
-from quadric_contact.scene import load_scene, parse_scene
-from quadric_contact.trajectory import Keyframes, PolynomialMotion
+from quadric_contact.exact.algebraic import compile_expression
+from quadric_contact.exact.errors import QuadricContactError, SceneError
+from quadric_contact.exact.rational import to_fraction
+from quadric_contact.interfaces.cli import main
+from quadric_contact.model.motions import rotation_from_quaternion
+from quadric_contact.scenes.scene import load_scene, parse_scene
+from quadric_contact.scenes.trajectory import Keyframes, PolynomialMotion
+from quadric_contact.theory.pencil import as_quadric
 
 BEE = "(x - 3)^2 + (y - 3)^2 + 3*(z - 5.5)^2 - 0.1"
 TRUNK = "x^2 + y^2 - 0.25*(z - 3)^2 - 1"

@@ -102,7 +102,7 @@ plt.tight_layout()
 # box.
 
 # %%
-from quadric_contact.plotting import plot_quadric
+from quadric_contact.interfaces.plotting import plot_quadric
 
 fig = plt.figure(figsize=(5, 5))
 ax = fig.add_subplot(projection="3d")

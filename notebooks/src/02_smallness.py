@@ -28,11 +28,11 @@ import numpy as np
 import sympy as sp
 
 import quadric_contact as qc
-from quadric_contact.geometric import decide_geometrically
+from quadric_contact.interfaces.plotting import plot_quadric, quadric_mesh
 from quadric_contact.paper import ERRATA, PRINTED
-from quadric_contact.plotting import plot_quadric, quadric_mesh
-from quadric_contact.printed_tables import printed_table_2
-from quadric_contact.smallness import smallness, table_1
+from quadric_contact.paper.printed_tables import printed_table_2
+from quadric_contact.theory.geometric import decide_geometrically
+from quadric_contact.theory.smallness import smallness, table_1
 
 # %% [markdown]
 # A small drawing helper: the ellipsoid coloured by the sign of $X^TQX$ on it (red where

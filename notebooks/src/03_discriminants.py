@@ -22,12 +22,12 @@ import numpy as np
 import sympy as sp
 
 import quadric_contact as qc
-from quadric_contact.contact_kind import analyze_contact
-from quadric_contact.discriminants import revised_sign_list
+from quadric_contact.exact.discriminants import revised_sign_list
+from quadric_contact.interfaces.plotting import plot_quadric
 from quadric_contact.paper import ERRATA, PRINTED
-from quadric_contact.plotting import plot_quadric
-from quadric_contact.segre import segre_symbol
-from quadric_contact.smallness import smallness
+from quadric_contact.theory.contact_kind import analyze_contact
+from quadric_contact.theory.segre import segre_symbol
+from quadric_contact.theory.smallness import smallness
 
 lam = sp.Symbol("lambda")
 

@@ -22,9 +22,9 @@ import numpy as np
 import sympy as sp
 
 import quadric_contact as qc
-from quadric_contact.descartes import sign_variations
-from quadric_contact.plotting import plot_quadric
-from quadric_contact.regions import derive_root_sign_table
+from quadric_contact.exact.descartes import sign_variations
+from quadric_contact.interfaces.plotting import plot_quadric
+from quadric_contact.theory.regions import derive_root_sign_table
 
 lam = sp.Symbol("lambda")
 

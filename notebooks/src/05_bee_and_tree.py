@@ -23,12 +23,12 @@ import numpy as np
 import sympy as sp
 
 import quadric_contact as qc
-from quadric_contact.composite import algorithm_1, algorithm_2
-from quadric_contact.ledger import Ledger
+from quadric_contact.interfaces.plotting import plot_quadric, plot_result
 from quadric_contact.paper import PRINTED
-from quadric_contact.plotting import plot_quadric, plot_result
-from quadric_contact.scene import builtin_scene
-from quadric_contact.simulate import simulate
+from quadric_contact.scenes.composite import algorithm_1, algorithm_2
+from quadric_contact.scenes.ledger import Ledger
+from quadric_contact.scenes.scene import builtin_scene
+from quadric_contact.scenes.simulate import simulate
 
 # %% [markdown]
 # ## The scene

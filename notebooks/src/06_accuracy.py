@@ -22,11 +22,11 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import quadric_contact as qc
-from quadric_contact.benchmark import EIG_TOL, GENERIC_KINDS, peer_numpy_eigvals, peer_numpy_roots
-from quadric_contact.hardcases import hard_cases
+from quadric_contact.interfaces.benchmark import EIG_TOL, GENERIC_KINDS, peer_numpy_eigvals, peer_numpy_roots
 from quadric_contact.modes import MODES, BallMode, CertifiedMode, CriterionCode, FilterMode, MpmathMode
 from quadric_contact.modes.float64 import filter_quantities
-from quadric_contact.samples import SAMPLE_KINDS, random_pairs
+from quadric_contact.testing.hardcases import hard_cases
+from quadric_contact.testing.samples import SAMPLE_KINDS, random_pairs
 
 # %% [markdown]
 # ## One formula, many number modes
@@ -86,7 +86,7 @@ print(qc.corollary_10(bees[:, None], np.stack([trunk.to_numpy(), crown.to_numpy(
 #
 # Easy pairs are easy for every mode.  The hard ones are near tangency, where the roots of
 # $\mathfrak P$ that meet when the surfaces touch are almost equal and $\Delta_4$ is almost
-# 0.  `quadric_contact.hardcases` builds them **exactly**: for each of the ten types of
+# 0.  `quadric_contact.testing.hardcases` builds them **exactly**: for each of the ten types of
 # Table 1 and the plane, a small ellipsoid (semi-axes $1/4$ along the normal, $1/8$
 # across) touching $Q$ at a vertex from the $R_-$ side and from the $R_+$ side, then moved
 # along the normal by $d=10^{-2},\dots,10^{-16}$ *away* (no contact) or *into* $Q$
@@ -134,7 +134,7 @@ for d in DISTANCES[-4:]:
     print(f"d = {d:6s}: rounding changed the answer in {np.count_nonzero(sel & (truth != intended)):2d} of {sel.sum()} cases")
 
 # %% [markdown]
-# Now every mode, and two floating-point peers from `quadric_contact.benchmark`:
+# Now every mode, and two floating-point peers from `quadric_contact.interfaces.benchmark`:
 #
 # * **numpy eigvals**: the eigenvalues of $-E^{-1}Q$ (the roots of $\mathfrak P$), in
 #   batch; "non-real" when an imaginary part exceeds $10^{-9}$ of the largest modulus;
@@ -277,7 +277,7 @@ plt.setp(ax.get_xticklabels(), rotation=45)
 plt.tight_layout()
 
 # %% [markdown]
-# On random pairs (`quadric_contact.samples.random_pairs`: random rigid motions, binary64)
+# On random pairs (`quadric_contact.testing.samples.random_pairs`: random rigid motions, binary64)
 # the filter decides everything for the types that rounding leaves generic (ellipsoids,
 # hyperboloids, paraboloids, planes).  Over all ten types about one pair in ten goes on
 # to the ball stage: rotated cylinders and parallel planes, rounded to binary64, are only
@@ -546,7 +546,7 @@ print("correct: decided by", answer_3, {s: CriterionCode(v).name for s, v in res
 # geometry:
 
 # %%
-from quadric_contact.samples import random_ellipsoids
+from quadric_contact.testing.samples import random_ellipsoids
 
 rng = np.random.default_rng(5)
 Ea, _ = random_ellipsoids(2000, rng, axes=(0.5, 2.0), box=2.0)

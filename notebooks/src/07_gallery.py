@@ -16,13 +16,13 @@ import matplotlib.pyplot as plt
 import sympy as sp
 from IPython.display import Image, display
 
-from quadric_contact.animation import render_gif
-from quadric_contact.classification import QuadricKind
-from quadric_contact.manybody import many_body_scene
-from quadric_contact.plotting import plot_result
-from quadric_contact.scene import builtin_scene, builtin_scene_names
-from quadric_contact.simulate import simulate
-from quadric_contact.sweep import run_sweep
+from quadric_contact.interfaces.animation import render_gif
+from quadric_contact.interfaces.plotting import plot_result
+from quadric_contact.model.classification import QuadricKind
+from quadric_contact.scenes.manybody import many_body_scene
+from quadric_contact.scenes.scene import builtin_scene, builtin_scene_names
+from quadric_contact.scenes.simulate import simulate
+from quadric_contact.scenes.sweep import run_sweep
 
 # %% [markdown]
 # ## Which scene shows which quadric

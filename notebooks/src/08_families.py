@@ -22,7 +22,7 @@ import numpy as np
 import sympy as sp
 
 import quadric_contact as qc
-from quadric_contact.family_maps import MapAnswer
+from quadric_contact.families.family_maps import MapAnswer
 
 # %% [markdown]
 # ## The bee in the vertical plane through the tree

@@ -2,16 +2,29 @@
 and another quadric, after Brozos-Vázquez, Pereira-Sáez, Rodríguez-Raposo,
 Souto-Salorio and Tarrío-Tobar, *Contact detection between a small ellipsoid
 and another quadric*, Computer Aided Geometric Design 98 (2022).
+
+The top level is the public API: the types (``Quadric``, ``RealAlgebraic``, the
+pencil and its invariants, parametric families), the predicates (one meaning for
+every input form and number mode), their results, codes and errors, and the
+scenes.  Tables and internals live in their layers: the formulas in
+``quadric_contact._generated``, exact arithmetic in ``quadric_contact.exact``,
+the model in ``quadric_contact.model``, the paper's decisions and tables in
+``quadric_contact.theory``, the number modes in ``quadric_contact.modes``, what
+the paper prints in ``quadric_contact.paper``, testing support in
+``quadric_contact.testing``.
 """
 
 from __future__ import annotations
 
-from .algebraic import RealAlgebraic
-from .classification import QuadricKind
-from .contact_kind import ContactAnalysis, ContactKind, analyze_contact
-from .descartes import RootSigns, root_signs
-from .discriminants import RootStructure, discrimination_sequence, paper_deltas, root_structure
-from .errors import (
+from quadric_contact.exact.algebraic import RealAlgebraic
+from quadric_contact.exact.descartes import RootSigns, root_signs
+from quadric_contact.exact.discriminants import (
+    RootStructure,
+    discrimination_sequence,
+    paper_deltas,
+    root_structure,
+)
+from quadric_contact.exact.errors import (
     DegeneratePencilError,
     EquationError,
     ExcludedQuadricError,
@@ -25,15 +38,21 @@ from .errors import (
     ShapeError,
     UndecidedError,
 )
-from .family import Family, family
-from .geometric import GeometricDecision, decide_geometrically
-from .invariants import QuadricInvariants, invariants
-from .modes import ContactCode, ContactKindCode, CriterionCode, OverlapCode, RegionCode, SmallnessCode
-from .motions import RigidMotion, rotation_from_quaternion
-from .overlap import OverlapResult, TouchingError
-from .packing import Packed, pack, unpack
-from .pencil import CharacteristicPolynomial, characteristic_polynomial
-from .predicates import (
+from quadric_contact.families.family import Family, family
+from quadric_contact.model.classification import QuadricKind
+from quadric_contact.model.invariants import QuadricInvariants, invariants
+from quadric_contact.model.motions import RigidMotion, rotation_from_quaternion
+from quadric_contact.model.quadric import Quadric
+from quadric_contact.modes import (
+    ContactCode,
+    ContactKindCode,
+    CriterionCode,
+    OverlapCode,
+    RegionCode,
+    SmallnessCode,
+)
+from quadric_contact.modes.packing import Packed, pack, unpack
+from quadric_contact.modes.predicates import (
     CriterionResult,
     contact_kind,
     corollary_10,
@@ -43,18 +62,36 @@ from .predicates import (
     smallness,
     transversal_contact,
 )
-from .printed_tables import printed_table_2
-from .quadric import Quadric
-from .regions import ROOT_SIGN_TABLE
-from .results import ContactResult, PlaneSideResult, Region, RegionResult
-from .segre import SegreSymbol, segre_symbol
-from .smallness import SmallnessReport, table_1
+from quadric_contact.scenes.composite import Composite, Piece
+from quadric_contact.scenes.scene import (
+    MovingEllipsoid,
+    Scene,
+    builtin_scene,
+    builtin_scene_names,
+    load_scene,
+    parse_scene,
+)
+from quadric_contact.scenes.simulate import SimulationResult, simulate
+from quadric_contact.theory.contact_kind import ContactAnalysis, ContactKind, analyze_contact
+from quadric_contact.theory.geometric import GeometricDecision, decide_geometrically
+from quadric_contact.theory.overlap import OverlapResult, TouchingError
+from quadric_contact.theory.pencil import CharacteristicPolynomial, characteristic_polynomial
+from quadric_contact.theory.regions import ROOT_SIGN_TABLE
+from quadric_contact.theory.results import (
+    ContactResult,
+    PlaneSideResult,
+    Region,
+    RegionResult,
+)
+from quadric_contact.theory.segre import SegreSymbol, segre_symbol
+from quadric_contact.theory.smallness import SmallnessReport
 
 __version__ = "0.1.0"
 
 __all__ = [
     "ROOT_SIGN_TABLE",
     "CharacteristicPolynomial",
+    "Composite",
     "ContactAnalysis",
     "ContactCode",
     "ContactKind",
@@ -67,6 +104,7 @@ __all__ = [
     "ExcludedQuadricError",
     "Family",
     "GeometricDecision",
+    "MovingEllipsoid",
     "NonFiniteError",
     "NotANumberError",
     "NotAPlaneError",
@@ -76,6 +114,7 @@ __all__ = [
     "OverlapCode",
     "OverlapResult",
     "Packed",
+    "Piece",
     "PlaneSideResult",
     "Quadric",
     "QuadricContactError",
@@ -88,14 +127,18 @@ __all__ = [
     "RigidMotion",
     "RootSigns",
     "RootStructure",
+    "Scene",
     "SegreSymbol",
     "ShapeError",
+    "SimulationResult",
     "SmallnessCode",
     "SmallnessReport",
     "TouchingError",
     "UndecidedError",
     "__version__",
     "analyze_contact",
+    "builtin_scene",
+    "builtin_scene_names",
     "characteristic_polynomial",
     "contact_kind",
     "corollary_10",
@@ -103,18 +146,19 @@ __all__ = [
     "discrimination_sequence",
     "family",
     "invariants",
+    "load_scene",
     "overlap",
     "pack",
     "paper_deltas",
+    "parse_scene",
     "plane_side",
-    "printed_table_2",
     "relative_position",
     "root_signs",
     "root_structure",
     "rotation_from_quaternion",
     "segre_symbol",
+    "simulate",
     "smallness",
-    "table_1",
     "transversal_contact",
     "unpack",
 ]

@@ -35,7 +35,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .base import (
+from quadric_contact.modes.base import (
     ContactCode,
     ContactKindCode,
     CriterionCode,
@@ -47,10 +47,10 @@ from .base import (
     SmallnessCode,
     StageCounts,
 )
-from .certified import CertifiedMode
-from .float_modes import FilterMode, FloatMode
-from .number_mode import NumberMode
-from .objects import BallMode, ExactMode, MpmathMode
+from quadric_contact.modes.certified import CertifiedMode
+from quadric_contact.modes.float_modes import FilterMode, FloatMode
+from quadric_contact.modes.number_mode import NumberMode
+from quadric_contact.modes.objects import BallMode, ExactMode, MpmathMode
 
 __all__ = [
     "MODES",

@@ -17,8 +17,8 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import UndecidedError
-from ..results import OverlapCode, Region
+from quadric_contact.exact.errors import UndecidedError
+from quadric_contact.theory.results import OverlapCode, Region
 
 __all__ = [
     "ContactCode",
@@ -38,7 +38,7 @@ class Sign(IntEnum):
     """A sign as a number mode knows it.
 
     ``UNCERTAIN`` means "this mode cannot tell"; it is never read as ``False``
-    (``bool(Sign.UNCERTAIN)`` raises :class:`~quadric_contact.errors.UndecidedError`),
+    (``bool(Sign.UNCERTAIN)`` raises :class:`~quadric_contact.exact.errors.UndecidedError`),
     and in the int8 arrays of the modes its value 2 is non-zero.
     """
 
@@ -93,7 +93,7 @@ class CriterionCode(IntEnum):
 
 
 class ContactKindCode(IntEnum):
-    """Codes of the array predicate :func:`~quadric_contact.contact_kind` (the rows of Table 3).
+    """Codes of the array predicate :func:`~quadric_contact.theory.contact_kind` (the rows of Table 3).
 
     ``NONE`` no contact, ``TRANSVERSAL`` the surfaces cross, ``UNCERTAIN`` (abstaining
     modes only), ``TANGENT_POINT``, ``TWO_TANGENT_POINTS``, ``TANGENT_CURVE``.
@@ -108,12 +108,12 @@ class ContactKindCode(IntEnum):
 
     @classmethod
     def from_kind(cls, kind: Any) -> ContactKindCode:
-        """The code of a :class:`~quadric_contact.contact_kind.ContactKind`."""
+        """The code of a :class:`~quadric_contact.theory.contact_kind.ContactKind`."""
         return cls[str(getattr(kind, "name", kind)).upper()]
 
     def to_kind(self) -> Any:
-        """The :class:`~quadric_contact.contact_kind.ContactKind` of the code."""
-        from ..contact_kind import ContactKind
+        """The :class:`~quadric_contact.theory.contact_kind.ContactKind` of the code."""
+        from quadric_contact.theory.contact_kind import ContactKind
 
         return ContactKind[self.name]
 
@@ -127,8 +127,8 @@ class SmallnessCode(IntEnum):
     (Definition 1 is symmetric): Corollary 10 holds, Table 4 does not (the
     scalar report has ``small and not table_4_applies``).  ``EXCLUDED``: ``Q`` has no
     row in Table 1 (a plane, a cone, intersecting or coincident planes, a quadric
-    without real points); the scalar :func:`~quadric_contact.smallness.smallness`
-    raises :class:`~quadric_contact.errors.ExcludedQuadricError` there.
+    without real points); the scalar :func:`~quadric_contact.theory.smallness.smallness`
+    raises :class:`~quadric_contact.exact.errors.ExcludedQuadricError` there.
     ``UNCERTAIN`` only comes from the modes that abstain; it is non-zero, so a cast
     to bool never reads it as "not small".
     """
@@ -158,7 +158,7 @@ class RegionCode(IntEnum):
     """Codes of the array predicates :func:`~quadric_contact.relative_position` and
     :func:`~quadric_contact.plane_side` (int8 arrays).
 
-    The three regions of :class:`~quadric_contact.results.Region` are the sign of
+    The three regions of :class:`~quadric_contact.theory.results.Region` are the sign of
     ``X^T Q X`` over the surface of the ellipsoid: ``R_MINUS = -1`` (``<= 0``),
     ``CONTACT = 0`` (both signs: the surfaces cross), ``R_PLUS = 1`` (``>= 0``);
     tangency counts as being in a region.  ``UNCERTAIN`` (2): an abstaining mode
@@ -283,7 +283,7 @@ class MatrixStack:
     @property
     def floats(self) -> np.ndarray:
         if self._floats is None:
-            from ..packing import unpack
+            from quadric_contact.modes.packing import unpack
 
             assert self.packed is not None
             self._floats = np.ascontiguousarray(unpack(self.packed))
@@ -292,7 +292,7 @@ class MatrixStack:
     def rows_floats(self, rows: np.ndarray) -> np.ndarray:
         """``floats[rows]`` (a new ``(k, 4, 4)`` array), without unpacking the rest of a packed stack."""
         if self._floats is None:
-            from ..packing import unpack
+            from quadric_contact.modes.packing import unpack
 
             assert self.packed is not None
             return np.ascontiguousarray(unpack(self.packed[rows]))
@@ -328,7 +328,7 @@ class MatrixStack:
     def upper_exact(self, rows: np.ndarray) -> list[np.ndarray]:
         """The ten upper-entry columns of ``rows`` as object arrays of exact rationals
         (Fractions, or Python floats standing for their exact dyadic values)."""
-        from ..entries import ENTRY_INDICES
+        from quadric_contact.exact.entries import ENTRY_INDICES
 
         if self.exact is not None:
             sub = self.exact[rows]

@@ -17,11 +17,11 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .base import MatrixStack, Pairs
-from .decisions import UNCERTAIN_ROW
-from .float_modes import FilterMode
-from .number_mode import NumberMode
-from .objects import BallMode, ExactMode
+from quadric_contact.modes.base import MatrixStack, Pairs
+from quadric_contact.modes.decisions import UNCERTAIN_ROW
+from quadric_contact.modes.float_modes import FilterMode
+from quadric_contact.modes.number_mode import NumberMode
+from quadric_contact.modes.objects import BallMode, ExactMode
 
 __all__ = ["CertifiedMode"]
 

@@ -29,12 +29,17 @@ from typing import Any
 
 import numpy as np
 
-from ..classification import NO_REAL_POINTS, QuadricKind, inertia_from_minor_sums, kind_from_inertia
-from ..discriminants import revised_sign_list
-from ..regions import ROOT_SIGN_TABLE
-from ..results import Region
-from ._jit import njit
-from .base import ContactCode, RegionCode
+from quadric_contact.exact.discriminants import revised_sign_list
+from quadric_contact.model.classification import (
+    NO_REAL_POINTS,
+    QuadricKind,
+    inertia_from_minor_sums,
+    kind_from_inertia,
+)
+from quadric_contact.modes._jit import njit
+from quadric_contact.modes.base import ContactCode, RegionCode
+from quadric_contact.theory.regions import ROOT_SIGN_TABLE
+from quadric_contact.theory.results import Region
 
 __all__ = [
     "CONTACT_TABLE",
@@ -73,7 +78,7 @@ def _completions(signs: tuple[int, ...]) -> list[tuple[int, ...]]:
 
 def _contact_certain(s2: int, s3: int, s4: int) -> int:
     """Non-real roots iff the revised sign list of ``(D1, D2, D3, D4)`` with ``D1 > 0``
-    has a sign change (Yang 1999, Theorem 1; see :mod:`quadric_contact.discriminants`)."""
+    has a sign change (Yang 1999, Theorem 1; see :mod:`quadric_contact.exact.discriminants`)."""
     rev = [s for s in revised_sign_list([1, s2, s3, s4]) if s]
     changes = sum(1 for a, b in pairwise(rev) if a != b)
     return int(ContactCode.CONTACT if changes else ContactCode.NO_CONTACT)
@@ -186,7 +191,7 @@ def _build_rows() -> np.ndarray:
 
 ROWS = _build_rows()
 """``(class, R- negatives, R- zeros, R+ negatives, R+ zeros)`` per row: the numbers of
-negative and zero roots Table 4 (as :mod:`quadric_contact.regions` derives it)
+negative and zero roots Table 4 (as :mod:`quadric_contact.theory.regions` derives it)
 expects in each region, for the caller's sign of ``Q``."""
 
 UNCERTAIN_ROW = len(ROWS) - 1
@@ -201,7 +206,7 @@ def row_of(kind: QuadricKind, canonical_sign: int) -> int:
 def kind_from_invariant_signs(signs: tuple[int, ...]) -> tuple[QuadricKind, int]:
     """Type and canonical sign from the signs of ``(trA, J, detA, E1, E2, E3, E4, q33)``.
 
-    The same rule as :func:`quadric_contact.classification.classify`, which
+    The same rule as :func:`quadric_contact.model.classification.classify`, which
     needs only these signs: the inertias come from Descartes' rule on the
     characteristic polynomials (exact, their roots are real) and the canonical
     sign from the inertias (and, for the empty quadric, from ``q33``).  A test
@@ -302,7 +307,7 @@ def region_code(
     """:class:`RegionCode` from the contact code, the signs of ``c0 .. c4`` (paper's
     sign of ``E``) and the row of ``Q`` (unpacked from :data:`ROWS`).
 
-    In the order of :func:`quadric_contact.regions.decide_region`: a quadric
+    In the order of :func:`quadric_contact.theory.regions.decide_region`: a quadric
     without real points is excluded; non-real roots mean contact; a type without
     a row is excluded; otherwise Descartes' rule (exact, all roots being real)
     counts the negative and zero roots and Table 4 names the region.

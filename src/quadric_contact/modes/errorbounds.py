@@ -41,7 +41,7 @@ import math
 from fractions import Fraction
 from typing import Any
 
-from .._generated.kernels import ROUNDING_COUNTS
+from quadric_contact._generated.kernels import ROUNDING_COUNTS
 
 __all__ = [
     "COEFFICIENT_MIN",
@@ -143,7 +143,7 @@ def _check_input_guard() -> None:
     assert 4 * q >= -1022 and 4 * q + math.log2(min(PENCIL_ERRBOUND[False])) >= -1022
     # Upper guard: |intermediate| <= magnitude <= (number of paths) * 2^(4*180); the
     # number of paths is the magnitude program at all ones (exact integers).
-    from .._generated import kernels
+    from quadric_contact._generated import kernels
 
     paths = max(kernels.pencil_coefficients_magnitude(*([1] * 20)))
     assert math.log2(paths) + 4 * INPUT_MAX_EXPONENT + 1 < 1023
@@ -273,7 +273,7 @@ def _check_member_guard() -> None:
     # entries are guarded like the inputs, so _check_input_guard's argument applies.
     assert math.log2(SAMPLE_MIN) + INPUT_MIN_EXPONENT >= -1022
     assert math.log2(SAMPLE_MAX) + INPUT_MAX_EXPONENT <= 1000
-    from .._generated import kernels
+    from quadric_contact._generated import kernels
 
     paths = max(kernels.quadric_invariants_magnitude(*([1] * 10)))
     assert math.log2(paths) + 4 * INPUT_MAX_EXPONENT + 1 < 1023
@@ -317,7 +317,7 @@ SEMI_COEFFICIENT_MAX = 2.0**160
 
 
 def _semi_pencil() -> tuple[float, ...]:
-    from .._generated.blocks import BLOCK_COUNTS
+    from quadric_contact._generated.blocks import BLOCK_COUNTS
 
     pencil = _counts("pencil_coefficients")["value"]
     rows: tuple[int, ...] = BLOCK_COUNTS["row_bound"]["value"]  # type: ignore[index]
@@ -354,7 +354,7 @@ def _relative_form(d: int, n: int, nm: int) -> tuple[float, float]:
 
 
 def _semi_delta() -> tuple[tuple[float, float], ...]:
-    from .._generated.blocks import BLOCK_COUNTS
+    from quadric_contact._generated.blocks import BLOCK_COUNTS
 
     rc: dict[str, tuple[int, ...]] = BLOCK_COUNTS["paper_deltas_compact"]  # type: ignore[assignment]
     return tuple(
@@ -367,7 +367,7 @@ SEMI_DELTA = _semi_delta()
 
 
 def _check_semi_guard() -> None:
-    from .._generated import blocks
+    from quadric_contact._generated import blocks
 
     # the compact programs at |c_k| <= 2^160: every value and magnitude is at most the number
     # of paths (the magnitude program at all ones) times 2^(160 d), d <= 6

@@ -17,7 +17,7 @@ This module re-exports what callers imported from it.
 
 from __future__ import annotations
 
-from .float_modes import (
+from quadric_contact.modes.float_modes import (
     BACKENDS,
     BLOCK,
     HAVE_NUMBA,
@@ -32,8 +32,12 @@ from .float_modes import (
     region_codes_from_signs,
     stage_codes,
 )
-from .numpy_fallback import filter_quantities, proportional_quadratic_parts, screen_quantities
-from .threads import run_parallel, single_threaded
+from quadric_contact.modes.numpy_fallback import (
+    filter_quantities,
+    proportional_quadratic_parts,
+    screen_quantities,
+)
+from quadric_contact.modes.threads import run_parallel, single_threaded
 
 __all__ = [
     "BACKENDS",

@@ -26,15 +26,20 @@ from typing import Any
 
 import numpy as np
 
-from . import errorbounds as eb
-from ._jit import HAVE_NUMBA
-from .base import INVALID, MatrixStack, Pairs
-from .decisions import UNCERTAIN_ROW, masks_from_invariant_signs, rows_from_masks
-from .kernels_criterion import FALLBACK, NB, fast_codes
-from .number_mode import NumberMode
-from .support import check_stack, region_codes_from_signs
-from .threads import run_parallel
-from .validation import exact_matrix, raise_not_ellipsoid, rows_view, validate_rows
+from quadric_contact.modes import errorbounds as eb
+from quadric_contact.modes._jit import HAVE_NUMBA
+from quadric_contact.modes.base import INVALID, MatrixStack, Pairs
+from quadric_contact.modes.decisions import UNCERTAIN_ROW, masks_from_invariant_signs, rows_from_masks
+from quadric_contact.modes.kernels_criterion import FALLBACK, NB, fast_codes
+from quadric_contact.modes.number_mode import NumberMode
+from quadric_contact.modes.support import check_stack, region_codes_from_signs
+from quadric_contact.modes.threads import run_parallel
+from quadric_contact.modes.validation import (
+    exact_matrix,
+    raise_not_ellipsoid,
+    rows_view,
+    validate_rows,
+)
 
 __all__ = [
     "BACKENDS",
@@ -110,7 +115,7 @@ def float_pairs(
     if n == 0:
         return out
     if backend == "numpy" or not HAVE_NUMBA:
-        from .numpy_fallback import numpy_pairs
+        from quadric_contact.modes.numpy_fallback import numpy_pairs
 
         return numpy_pairs(
             E,
@@ -132,7 +137,7 @@ def float_pairs(
         )
     if backend != "numba":
         raise ValueError(f"backend must be one of {BACKENDS}, got {backend!r}")
-    from .kernels_filter import filter_kernel, float_kernel
+    from quadric_contact.modes.kernels_filter import filter_kernel, float_kernel
 
     E2 = np.ascontiguousarray(E).reshape(-1, 16)
     Q2 = np.ascontiguousarray(Q).reshape(-1, 16)
@@ -176,7 +181,7 @@ def float_pairs(
 def _compact(stack: MatrixStack, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``(floats, used, index)``: the ``(k, 4, 4)`` matrices of the distinct ``rows``, the rows
     they are, and where each entry of ``rows`` finds its matrix among them."""
-    from .rows import unique_rows
+    from quadric_contact.modes.rows import unique_rows
 
     used, index = unique_rows(rows, len(stack), return_inverse=True)
     return stack.rows_floats(used), used, index
@@ -187,8 +192,8 @@ def stage_codes(E: np.ndarray, Q: np.ndarray, stage: str, *, backend: str = "num
     the dynamic filter) for the pairs ``(E[k], Q[k])`` of two ``(n, 4, 4)`` binary64 stacks:
     ``UNCERTAIN`` where the stage is not sure (for the screen also where it would not look: an
     input outside its guards); for tests and measurements."""
-    from .decisions import CONTACT_TABLE, ELLIPSOID_NOT, ELLIPSOID_UNCERTAIN
-    from .numpy_fallback import _table_index, filter_quantities, screen_quantities
+    from quadric_contact.modes.decisions import CONTACT_TABLE, ELLIPSOID_NOT, ELLIPSOID_UNCERTAIN
+    from quadric_contact.modes.numpy_fallback import _table_index, filter_quantities, screen_quantities
 
     n = E.shape[0]
     e0 = np.zeros(0, dtype=np.intp)
@@ -203,7 +208,7 @@ def stage_codes(E: np.ndarray, Q: np.ndarray, stage: str, *, backend: str = "num
         code = CONTACT_TABLE[_table_index(sq["signs"][5:])]
         return np.where(sq["ok"], code, _UNC).astype(np.int8)
     if backend == "numba" and HAVE_NUMBA:
-        from .kernels_filter import filter_kernel
+        from quadric_contact.modes.kernels_filter import filter_kernel
 
         out = np.empty(n, dtype=np.int8)
         rows, masks = np.zeros(1, dtype=np.int16), np.zeros(1, dtype=np.int64)
@@ -229,10 +234,10 @@ def float_invariant_signs(
     out = np.empty((Q.shape[0], 8), dtype=np.int8)
     K = np.array(eb.INVARIANTS_ERRBOUND[rounded])
     if backend == "numpy" or not HAVE_NUMBA:
-        from .numpy_fallback import numpy_invariant_signs
+        from quadric_contact.modes.numpy_fallback import numpy_invariant_signs
 
         return numpy_invariant_signs(Q, filtered, K)
-    from .kernels_support import invariant_signs_kernel
+    from quadric_contact.modes.kernels_support import invariant_signs_kernel
 
     flat = np.ascontiguousarray(Q).reshape(-1, 16)
     run_parallel(lambda lo, hi: invariant_signs_kernel(flat, lo, hi, K, filtered, out), Q.shape[0])
@@ -242,7 +247,7 @@ def float_invariant_signs(
 def read_all(*arrays: np.ndarray, threads: int | None = None) -> float:
     """Read every byte of the arrays once (a compiled, threaded streaming sum): the
     memory-bandwidth floor of any kernel that reads them."""
-    from .kernels_support import read_all_kernel
+    from quadric_contact.modes.kernels_support import read_all_kernel
 
     def one(flat: np.ndarray) -> float:
         parts: list[float] = []
@@ -315,7 +320,7 @@ class FloatMode(NumberMode):
             qflags = self._structural_flags(pairs.Q, np.unique(pairs.q_rows()))
         prop = None
         if rounded and not self.filtered:
-            from .objects import _proportional_exact
+            from quadric_contact.modes.objects import _proportional_exact
 
             prop = _proportional_exact(pairs, pairs.e_rows(), pairs.q_rows()).astype(np.int8)
         if pairs.e_index is None and pairs.q_index is None:
@@ -395,12 +400,12 @@ class FloatMode(NumberMode):
         return self._codes(pairs, (rows_from_masks(masks), masks))
 
     def separation(self, pairs: Pairs) -> np.ndarray:
-        from .separation import separation_float
+        from quadric_contact.modes.separation import separation_float
 
         return separation_float(pairs, certified=self.filtered, backend=self.backend, threads=self.threads)
 
     def smallness(self, pairs: Pairs) -> np.ndarray:
-        from . import smallness_float
+        from quadric_contact.modes import smallness_float
 
         return smallness_float.run(self, pairs)
 
@@ -466,7 +471,7 @@ def _used_rows(index: np.ndarray | None, m: int, n: int) -> np.ndarray:
     """The distinct rows of a stack that ``n`` pairs use (no sorting when they use them all)."""
     if index is None:
         return np.arange(m, dtype=np.intp) if m == n else np.zeros(1, dtype=np.intp)
-    from .rows import unique_rows
+    from quadric_contact.modes.rows import unique_rows
 
     return unique_rows(index, m)
 
@@ -477,7 +482,7 @@ def exact_facts(Q: MatrixStack, rows: np.ndarray) -> tuple[np.ndarray, np.ndarra
     ``det Q = 0`` (then ``c0 = 0`` for every ``E``) and bit 1 when ``rank Q <= 2`` (then
     ``c1 = 0`` too; for a symmetric matrix the rank is 4 minus the number of trailing zeros
     of ``E1 .. E4``), and ``masks`` their Table 4 rows."""
-    from .objects import ExactMode
+    from quadric_contact.modes.objects import ExactMode
 
     signs = ExactMode().invariant_signs(Q, np.asarray(rows, dtype=np.intp))
     det_zero = signs[:, 6] == 0

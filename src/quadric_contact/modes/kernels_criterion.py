@@ -34,11 +34,11 @@ from typing import Any
 
 import numpy as np
 
-from .._generated import blocks, formulas, kernels
-from . import errorbounds as eb
-from ._jit import njit
-from .base import INVALID
-from .decisions import CONTACT_TABLE, ROWS, region_code_masked
+from quadric_contact._generated import blocks, formulas, kernels
+from quadric_contact.modes import errorbounds as eb
+from quadric_contact.modes._jit import njit
+from quadric_contact.modes.base import INVALID
+from quadric_contact.modes.decisions import CONTACT_TABLE, ROWS, region_code_masked
 
 __all__ = ["FALLBACK", "NB", "fast_codes", "kernel"]
 

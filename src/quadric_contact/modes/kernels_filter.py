@@ -25,11 +25,11 @@ from typing import Any
 
 import numpy as np
 
-from .._generated import blocks, formulas, kernels
-from . import errorbounds as eb
-from ._jit import njit as _njit
-from .base import INVALID
-from .decisions import (
+from quadric_contact._generated import blocks, formulas, kernels
+from quadric_contact.modes import errorbounds as eb
+from quadric_contact.modes._jit import njit as _njit
+from quadric_contact.modes.base import INVALID
+from quadric_contact.modes.decisions import (
     CONTACT_TABLE,
     ELLIPSOID_NOT,
     ELLIPSOID_UNCERTAIN,

@@ -7,11 +7,11 @@ from typing import Any
 
 import numpy as np
 
-from .._generated import blocks, kernels
-from . import errorbounds as eb
-from ._jit import HAVE_NUMBA, numba
-from ._jit import njit as _njit
-from .decisions import ROWS, region_code_masked
+from quadric_contact._generated import blocks, kernels
+from quadric_contact.modes import errorbounds as eb
+from quadric_contact.modes._jit import HAVE_NUMBA, numba
+from quadric_contact.modes._jit import njit as _njit
+from quadric_contact.modes.decisions import ROWS, region_code_masked
 
 __all__ = ["check_stack_kernel", "invariant_signs_kernel", "read_all_kernel", "region_codes_kernel"]
 

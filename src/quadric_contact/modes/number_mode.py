@@ -17,8 +17,8 @@ from typing import Any
 
 import numpy as np
 
-from .base import MatrixStack, Pairs, StageCounts
-from .pipeline import decide, decide_overlap
+from quadric_contact.modes.base import MatrixStack, Pairs, StageCounts
+from quadric_contact.modes.pipeline import decide, decide_overlap
 
 __all__ = ["NumberMode"]
 

@@ -12,18 +12,18 @@ from typing import Any
 
 import numpy as np
 
-from .._generated import blocks, formulas, kernels
-from ..entries import ENTRY_INDICES
-from . import errorbounds as eb
-from .base import INVALID
-from .decisions import (
+from quadric_contact._generated import blocks, formulas, kernels
+from quadric_contact.exact.entries import ENTRY_INDICES
+from quadric_contact.modes import errorbounds as eb
+from quadric_contact.modes.base import INVALID
+from quadric_contact.modes.decisions import (
     CONTACT_TABLE,
     ELLIPSOID_NOT,
     ELLIPSOID_UNCERTAIN,
     ELLIPSOID_YES,
     ellipsoid_from_signs,
 )
-from .support import region_codes_from_signs
+from quadric_contact.modes.support import region_codes_from_signs
 
 __all__ = [
     "filter_quantities",

@@ -20,20 +20,20 @@ from typing import Any
 
 import numpy as np
 
-from .._generated import formulas, kernels
-from ..entries import ENTRY_INDICES
-from ..precision import working_precision
-from .base import MatrixStack, Pairs
-from .decisions import (
+from quadric_contact._generated import formulas, kernels
+from quadric_contact.exact.entries import ENTRY_INDICES
+from quadric_contact.exact.precision import working_precision
+from quadric_contact.modes.base import MatrixStack, Pairs
+from quadric_contact.modes.decisions import (
     ELLIPSOID_NOT,
     ELLIPSOID_UNCERTAIN,
     contact_from_signs,
     ellipsoid_from_signs,
     masks_from_invariant_signs,
 )
-from .number_mode import NumberMode
-from .support import region_from_signs
-from .validation import raise_not_ellipsoid, validate_rows
+from quadric_contact.modes.number_mode import NumberMode
+from quadric_contact.modes.support import region_from_signs
+from quadric_contact.modes.validation import raise_not_ellipsoid, validate_rows
 
 __all__ = ["BallMode", "ExactMode", "MpmathMode", "ObjectMode", "integer_rows"]
 
@@ -61,7 +61,7 @@ class ObjectMode(NumberMode):
 
     def context(self) -> AbstractContextManager[None]:
         """Scope precision changes to one evaluation (through
-        :func:`~quadric_contact.precision.working_precision`, the one lock-holding context)."""
+        :func:`~quadric_contact.exact.precision.working_precision`, the one lock-holding context)."""
         return contextlib.nullcontext()
 
     def deltas(self, c: list[np.ndarray]) -> tuple[np.ndarray, ...]:
@@ -113,7 +113,7 @@ class ObjectMode(NumberMode):
         raise NotImplementedError
 
     def separation(self, pairs: Pairs) -> np.ndarray:
-        from .separation import separation_objects
+        from quadric_contact.modes.separation import separation_objects
 
         return separation_objects(self, pairs, certified=self.certified)
 
@@ -267,7 +267,7 @@ class ExactMode(ObjectMode):
     def separation(self, pairs: Pairs) -> np.ndarray:
         """Float sample points first (cheap); where they do not separate the roots, exact
         sample points between the exactly isolated roots."""
-        from .separation import separation_isolated
+        from quadric_contact.modes.separation import separation_isolated
 
         codes = super().separation(pairs)
         todo = np.flatnonzero(codes == _UNC)
@@ -276,7 +276,7 @@ class ExactMode(ObjectMode):
         return codes
 
     def smallness(self, pairs: Pairs) -> np.ndarray:
-        from .smallness_objects import exact_smallness
+        from quadric_contact.modes.smallness_objects import exact_smallness
 
         return exact_smallness(self, pairs)
 
@@ -307,7 +307,7 @@ class BallMode(ObjectMode):
         self.prec = int(prec)
 
     def context(self) -> AbstractContextManager[None]:
-        """The working precision of the balls (:func:`~quadric_contact.precision.working_precision`)."""
+        """The working precision of the balls (:func:`~quadric_contact.exact.precision.working_precision`)."""
         return working_precision(self.prec)
 
     def number(self, value: float) -> Any:
@@ -333,7 +333,7 @@ class BallMode(ObjectMode):
         return np.where(pos, 1, np.where(neg, -1, np.where(zero, 0, _UNC))).astype(np.int8)
 
     def smallness(self, pairs: Pairs) -> np.ndarray:
-        from .smallness_objects import BallNumbers, object_smallness
+        from quadric_contact.modes.smallness_objects import BallNumbers, object_smallness
 
         return object_smallness(self, pairs, BallNumbers(self.prec))
 
@@ -348,7 +348,7 @@ class MpmathMode(ObjectMode):
     """mpmath floating point at ``dps`` decimal digits (plain: no error bound, so,
     like ``float``, it answers everything and may be wrong where the exact value is
     tiny or zero).  The precision is set with
-    :func:`~quadric_contact.precision.working_precision` for each evaluation and restored
+    :func:`~quadric_contact.exact.precision.working_precision` for each evaluation and restored
     afterwards."""
 
     name = "mpmath"
@@ -368,7 +368,7 @@ class MpmathMode(ObjectMode):
         self.dps = int(dps)
 
     def context(self) -> AbstractContextManager[None]:
-        """mpmath's working digits (:func:`~quadric_contact.precision.working_precision`)."""
+        """mpmath's working digits (:func:`~quadric_contact.exact.precision.working_precision`)."""
         return working_precision(dps=self.dps)
 
     def number(self, value: float) -> Any:
@@ -391,7 +391,7 @@ class MpmathMode(ObjectMode):
         return _exact_sign(values)
 
     def smallness(self, pairs: Pairs) -> np.ndarray:
-        from .smallness_objects import MpmathNumbers, object_smallness
+        from quadric_contact.modes.smallness_objects import MpmathNumbers, object_smallness
 
         return object_smallness(self, pairs, MpmathNumbers(self.dps))
 

@@ -34,7 +34,7 @@ steps and the order in which they hand pairs on are written once, here:
 The question "do the solids overlap?" (:func:`decide_overlap`) uses the same steps: the
 criterion (non-real roots: the surfaces cross; a plane's side by Theorem 14; for two
 ellipsoids the Wang-Wang-Kim reading of the root signs, valid for every pair), the
-separation certificate, and the exact pair (:func:`quadric_contact.overlap.overlap_exact`).
+separation certificate, and the exact pair (:func:`quadric_contact.theory.overlap.overlap_exact`).
 
 Every step is counted in the mode's :class:`~quadric_contact.modes.base.StageCounts`
 under ``"<step> (<numbers>)"``, e.g. ``"criterion (filter)"``, ``"separation (exact)"``,
@@ -47,15 +47,27 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..classification import NO_REAL_POINTS, REFUSED_KINDS, TABLE_1_KINDS, QuadricKind
-from ..errors import ExcludedQuadricError
-from .base import ContactCode, ContactKindCode, OverlapCode, Pairs, RegionCode, StageCounts
-from .decisions import KINDS, UNCERTAIN_ROW, rows_from_masks
-from .rows import unique_rows
-from .separation import CROSSING, SEP_MINUS, SEP_PLUS
+from quadric_contact.exact.errors import ExcludedQuadricError
+from quadric_contact.model.classification import (
+    NO_REAL_POINTS,
+    REFUSED_KINDS,
+    TABLE_1_KINDS,
+    QuadricKind,
+)
+from quadric_contact.modes.base import (
+    ContactCode,
+    ContactKindCode,
+    OverlapCode,
+    Pairs,
+    RegionCode,
+    StageCounts,
+)
+from quadric_contact.modes.decisions import KINDS, UNCERTAIN_ROW, rows_from_masks
+from quadric_contact.modes.rows import unique_rows
+from quadric_contact.modes.separation import CROSSING, SEP_MINUS, SEP_PLUS
 
 if TYPE_CHECKING:
-    from .number_mode import NumberMode
+    from quadric_contact.modes.number_mode import NumberMode
 
 __all__ = ["QUESTIONS", "decide", "decide_overlap"]
 
@@ -96,7 +108,7 @@ def _classes(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, np.ndarray, np
     for k in suspect:
         # Refusing input is not the mode's business: where the mode cannot rule a refused
         # type out, the exact type decides (once per quadric).
-        from .validation import exact_matrix
+        from quadric_contact.modes.validation import exact_matrix
 
         q = exact_matrix(pairs.Q, int(used[k]))
         kind = q.kind  # type: ignore[attr-defined]
@@ -285,7 +297,7 @@ def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
             except NotImplementedError:
                 names = []
         if names:
-            from .base import SmallnessCode
+            from quadric_contact.modes.base import SmallnessCode
 
             for k, name in enumerate(names):
                 hit = which == k
@@ -332,10 +344,10 @@ def _from_separation(sep: np.ndarray, question: str) -> np.ndarray:
 
 def _exact_pairs(pairs: Pairs, rows: np.ndarray, question: str) -> np.ndarray:
     """The exact scalar answer for the pairs ``rows`` (cached per pair of matrices)."""
-    from ..contact import transversal_contact_exact
-    from ..contact_kind import analyze_contact
-    from ..regions import relative_position_exact
-    from .validation import exact_matrix
+    from quadric_contact.modes.validation import exact_matrix
+    from quadric_contact.theory.contact import transversal_contact_exact
+    from quadric_contact.theory.contact_kind import analyze_contact
+    from quadric_contact.theory.regions import relative_position_exact
 
     e_rows, q_rows = pairs.e_rows()[rows], pairs.q_rows()[rows]
     cache: dict[tuple[int, int], int] = {}
@@ -363,8 +375,8 @@ def _solids(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, np.ndarray, np.
     solid (its canonical sign).  The type is part of the question (which solid), so where the
     mode cannot tell it the exact type decides (once per quadric); a type without a solid is
     refused."""
-    from ..overlap import solid_of
-    from .validation import exact_matrix
+    from quadric_contact.modes.validation import exact_matrix
+    from quadric_contact.theory.overlap import solid_of
 
     used, where = unique_rows(pairs.q_rows(), len(pairs.Q), return_inverse=True)
     rows = rows_from_masks(mode.classify(pairs.Q, used))
@@ -405,7 +417,7 @@ def _decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
     """:class:`~quadric_contact.modes.OverlapCode` of every pair: do the solids overlap?
 
     The solid of ``E`` is its inside, that of ``Q`` its region ``R-`` for the sign of its
-    standard form (:mod:`quadric_contact.overlap`).  With ``Q`` of that sign:
+    standard form (:mod:`quadric_contact.theory.overlap`).  With ``Q`` of that sign:
 
     1. *criterion*: non-real roots of ``P`` mean the surfaces cross: ``OVERLAPPING``
        (Remark 9).  A plane with ``E`` on its ``R-`` side: ``OVERLAPPING`` (Theorem 14).
@@ -417,7 +429,7 @@ def _decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
        outside whose surface ``E`` lies may be inside ``E``: there ``SEPARATE`` needs the two
        positive roots of step 1 (a definite member at a positive sample point).
     3. *exact pair*: tangencies and multiple roots, by
-       :func:`~quadric_contact.overlap.overlap_exact` (``TOUCHING`` comes from here only).
+       :func:`~quadric_contact.theory.overlap.overlap_exact` (``TOUCHING`` comes from here only).
 
     The abstaining modes answer ``UNCERTAIN`` where 1-2 leave a pair; the plain modes answer
     everything at step 2 (never ``TOUCHING``: a touch is a tangency, which binary64 cannot
@@ -481,9 +493,9 @@ def _decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
 
 
 def _exact_overlaps(pairs: Pairs, rows: np.ndarray) -> np.ndarray:
-    """:func:`~quadric_contact.overlap.overlap_exact` for the pairs ``rows`` (cached per pair)."""
-    from ..overlap import overlap_exact
-    from .validation import exact_matrix
+    """:func:`~quadric_contact.theory.overlap.overlap_exact` for the pairs ``rows`` (cached per pair)."""
+    from quadric_contact.modes.validation import exact_matrix
+    from quadric_contact.theory.overlap import overlap_exact
 
     e_rows, q_rows = pairs.e_rows()[rows], pairs.q_rows()[rows]
     cache: dict[tuple[int, int], int] = {}

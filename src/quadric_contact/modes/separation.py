@@ -62,11 +62,11 @@ from typing import Any
 
 import numpy as np
 
-from .._generated import formulas, kernels
-from . import errorbounds as eb
-from ._jit import HAVE_NUMBA
-from ._jit import njit as _njit
-from .base import Pairs
+from quadric_contact._generated import formulas, kernels
+from quadric_contact.modes import errorbounds as eb
+from quadric_contact.modes._jit import HAVE_NUMBA
+from quadric_contact.modes._jit import njit as _njit
+from quadric_contact.modes.base import Pairs
 
 __all__ = [
     "CROSSING",
@@ -394,7 +394,7 @@ def separation_float(
     """Separation codes of every pair in binary64: certified (``UNCERTAIN`` where a sign or
     a guard fails) or plain (always an answer).  Inputs are assumed validated (finite,
     symmetric, ``E`` an ellipsoid)."""
-    from .threads import run_parallel
+    from quadric_contact.modes.threads import run_parallel
 
     n = pairs.n
     out = np.empty(n, dtype=np.int8)
@@ -490,14 +490,14 @@ def separation_objects(mode: Any, pairs: Pairs, *, certified: bool) -> np.ndarra
 
 def separation_isolated(pairs: Pairs) -> np.ndarray:
     """Exact separation codes with exact sample points between the exactly isolated roots
-    (:func:`quadric_contact.certificate.separation_certificate`): a definite member gives
+    (:func:`quadric_contact.theory.certificate.separation_certificate`): a definite member gives
     ``R_MINUS``/``R_PLUS``; four simple real roots and none definite ``CONTACT``; otherwise
     (a multiple root without a definite member: a tangency or a degenerate pencil)
     ``UNCERTAIN``."""
-    from ..certificate import separation_certificate
-    from ..pencil import characteristic_polynomial
-    from ..results import Region
-    from .validation import exact_matrix
+    from quadric_contact.modes.validation import exact_matrix
+    from quadric_contact.theory.certificate import separation_certificate
+    from quadric_contact.theory.pencil import characteristic_polynomial
+    from quadric_contact.theory.results import Region
 
     codes = {Region.R_MINUS: SEP_MINUS, Region.CONTACT: CROSSING, Region.R_PLUS: SEP_PLUS, None: UNCERTAIN}
     n = pairs.n

@@ -94,11 +94,11 @@ from typing import Any
 
 import numpy as np
 
-from .._generated import kernels
-from . import errorbounds as eb
-from ._jit import HAVE_NUMBA, numba
-from .base import INVALID, MatrixStack, Pairs
-from .smallness_tables import (
+from quadric_contact._generated import kernels
+from quadric_contact.modes import errorbounds as eb
+from quadric_contact.modes._jit import HAVE_NUMBA, numba
+from quadric_contact.modes.base import INVALID, MatrixStack, Pairs
+from quadric_contact.modes.smallness_tables import (
     E_SIDES,
     MAX_ALTERNATIVE,
     MAX_CONDITIONS,
@@ -286,7 +286,7 @@ def _shift_errbound() -> tuple[float, ...]:
     diagonal ``fl(a_ii - t)`` is a rounded input (the off-diagonal entries are exact, and
     counting them as rounded only enlarges the bound); the counts are read off the program
     text as :mod:`quadric_contact.codegen` reads the generated ones."""
-    from ..straight_line import rounding_counts
+    from quadric_contact.exact.straight_line import rounding_counts
 
     value = rounding_counts(_function_ast(shift_invariants), 1)
     magnitude = rounding_counts(_function_ast(shift_invariants_magnitude), 0)
@@ -1001,7 +1001,7 @@ def _guard(stack: MatrixStack, rows: np.ndarray | None) -> np.ndarray:
     n = len(stack) if rows is None else rows.size
     if stack.exact is None:
         return np.zeros(n, dtype=np.bool_)
-    from ..entries import ENTRY_INDICES
+    from quadric_contact.exact.entries import ENTRY_INDICES
 
     idx = slice(None) if rows is None else rows
     exact = stack.exact[idx]
@@ -1018,7 +1018,7 @@ def e_row_quantities(
     certain, 1 uncertain, INVALID; values ``(8, k)``: ``[lo, hi]`` of the four squared sides of
     :data:`~quadric_contact.modes.smallness_tables.E_SIDES`.  ``width``, ``polish``: see
     :data:`TIGHT_WIDTH`."""
-    from .threads import run_parallel
+    from quadric_contact.modes.threads import run_parallel
 
     M = _flat(stack)
     n = len(stack) if rows is None else rows.size
@@ -1059,7 +1059,7 @@ def q_row_quantities(
     out_s = np.empty(n, dtype=np.int8)
     out_v = np.empty((8, n))
     if _use_numba(backend):
-        from .threads import run_parallel
+        from quadric_contact.modes.threads import run_parallel
 
         loop = _compiled("_q_rows_loop")
         run_parallel(
@@ -1082,8 +1082,8 @@ def table_kinds(masks: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """``(kinds, signs)`` from candidate-row bit masks (:meth:`NumberMode.classify`): the index of
     the type in TABLE_1_KINDS and its canonical sign; ``-1`` where the type is certainly without
     a row in Table 1 (every candidate is), ``-2`` where it is uncertain."""
-    from ..classification import TABLE_1_KINDS
-    from .decisions import KINDS, UNCERTAIN_ROW, rows_from_masks
+    from quadric_contact.model.classification import TABLE_1_KINDS
+    from quadric_contact.modes.decisions import KINDS, UNCERTAIN_ROW, rows_from_masks
 
     masks = np.asarray(masks, dtype=np.int64)
     rows = rows_from_masks(masks).astype(np.intp)
@@ -1109,7 +1109,7 @@ def _row_map(index: np.ndarray | None, m: int, n: int) -> tuple[np.ndarray | Non
         if m == n:
             return None, empty, 1
         return np.zeros(1, dtype=np.intp), empty, 0
-    from .rows import unique_rows
+    from quadric_contact.modes.rows import unique_rows
 
     rows, inverse = unique_rows(index, m, return_inverse=True)
     return rows, inverse, 0
@@ -1120,7 +1120,7 @@ def pair_codes(
     qidx: np.ndarray, es: int, qs: int, n: int, *, backend: str = "numba", threads: int | None = None,
 ) -> np.ndarray:  # fmt: skip
     """Codes of ``n`` pairs from the rows' quantities (INVALID where a row is)."""
-    from .threads import run_parallel
+    from quadric_contact.modes.threads import run_parallel
 
     out = np.empty(n, dtype=np.int8)
     if n == 0:
@@ -1145,7 +1145,7 @@ def _fused_codes(
 ) -> np.ndarray:  # fmt: skip
     """Codes of ``n`` pairs whose ellipsoids are distinct rows of ``E`` (``eidx``, or all rows
     in order when empty), with their sides computed in the pair loop (:func:`_fused_loop`)."""
-    from .threads import run_parallel
+    from quadric_contact.modes.threads import run_parallel
 
     guard = _guard(E, eidx if eidx.size else None) if E.rounded else np.zeros(0, dtype=np.bool_)
     M = _flat(E)
@@ -1188,7 +1188,7 @@ def float_smallness(
         # uncertain or untrustworthy (an exact entry rounded to zero looks like an exact zero).
         unsure = np.flatnonzero((kinds == -2) | _guard(pairs.Q, rows_q))
         if unsure.size:
-            from .float_modes import exact_facts
+            from quadric_contact.modes.float_modes import exact_facts
 
             kinds[unsure], signs[unsure] = table_kinds(exact_facts(pairs.Q, rows_q[unsure])[1])
     qst, qv = q_row_quantities(pairs.Q, rows_q, kinds, signs, certify=certify, backend=backend)
@@ -1260,8 +1260,8 @@ def _refine(
     with ball arithmetic (exact invariants, isolated eigenvalues), rounded outward: a quadric
     whose type is degenerate (its exact zero eigenvalue rounded off in binary64) or close to
     it is used by every pair of its stack, and should not send them all to the next stage."""
-    from ..classification import TABLE_1_KINDS
-    from .smallness_numbers import ball_sides
+    from quadric_contact.model.classification import TABLE_1_KINDS
+    from quadric_contact.modes.smallness_numbers import ball_sides
 
     todo = np.flatnonzero(status == 1)
     if kinds is not None:
@@ -1281,7 +1281,7 @@ def run(mode: Any, pairs: Pairs) -> np.ndarray:
     """:meth:`FloatMode.smallness` and :meth:`FilterMode.smallness`: the codes, invalid input
     diagnosed (the package's errors are raised; an ellipsoid the stage could not certify
     becomes ``UNCERTAIN``), the counts recorded."""
-    from .float_modes import _diagnose
+    from quadric_contact.modes.float_modes import _diagnose
 
     codes = float_smallness(
         pairs, certify=mode.filtered, classify=mode.classify, backend=mode.backend, threads=mode.threads

@@ -8,7 +8,7 @@ comparisons) compute the primitives of one matrix and the monomials of
 modes use them for whole stacks (:mod:`~quadric_contact.modes.smallness_objects`), and
 the float filter refines, once per matrix, the sides it could not certify with
 :func:`ball_sides` (:mod:`~quadric_contact.modes.smallness_float`).  Their precision
-is set with :func:`~quadric_contact.precision.working_precision`, the package's one
+is set with :func:`~quadric_contact.exact.precision.working_precision`, the package's one
 lock-holding precision context (a bare change of ``flint.ctx.prec`` or ``mpmath.mp``
 would race with it under dask's threads).
 """
@@ -20,10 +20,17 @@ from typing import Any
 
 import numpy as np
 
-from .._generated import kernels
-from ..classification import TABLE_1_KINDS
-from ..precision import working_precision
-from .smallness_tables import E_SIDES, GE, NPRIM, Q_SIDES, evaluate, kind_signs
+from quadric_contact._generated import kernels
+from quadric_contact.exact.precision import working_precision
+from quadric_contact.model.classification import TABLE_1_KINDS
+from quadric_contact.modes.smallness_tables import (
+    E_SIDES,
+    GE,
+    NPRIM,
+    Q_SIDES,
+    evaluate,
+    kind_signs,
+)
 
 __all__ = ["BallNumbers", "MpmathNumbers", "ball_sides", "used_signs"]
 
@@ -40,7 +47,7 @@ class BallNumbers:
         self.prec = prec
 
     def context(self) -> Any:
-        """The working precision of the balls (:func:`~quadric_contact.precision.working_precision`)."""
+        """The working precision of the balls (:func:`~quadric_contact.exact.precision.working_precision`)."""
         return working_precision(self.prec)
 
     def primitives(self, upper: tuple[Any, ...], sign: int, signs: tuple[int, ...]) -> list[Any] | None:
@@ -98,7 +105,7 @@ class MpmathNumbers:
         self.dps = dps
 
     def context(self) -> Any:
-        """mpmath's working digits (:func:`~quadric_contact.precision.working_precision`)."""
+        """mpmath's working digits (:func:`~quadric_contact.exact.precision.working_precision`)."""
         return working_precision(dps=self.dps)
 
     def primitives(self, upper: tuple[Any, ...], sign: int, signs: tuple[int, ...]) -> list[Any] | None:

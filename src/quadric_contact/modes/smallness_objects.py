@@ -14,12 +14,12 @@ once per distinct matrix, and compare them per distinct pair:
 * ``mpmath``: the entries at ``dps`` digits, ``mpmath.eigsy`` for the eigenvalues, plain
   comparisons: always an answer, possibly wrong at the boundary.
 
-``exact`` is the scalar :func:`quadric_contact.smallness.smallness` itself: the Table 2
+``exact`` is the scalar :func:`quadric_contact.theory.smallness.smallness` itself: the Table 2
 parameters of every distinct ``E`` and ``Q`` are computed once (exact real algebraic
 eigenvalues) and every distinct pair runs the corrected Table 1 row on them.
 
 In every mode ``E`` must be a real ellipsoid; that is decided exactly for each distinct
-``E`` (integer arithmetic), raising :class:`~quadric_contact.errors.NotAnEllipsoidError`
+``E`` (integer arithmetic), raising :class:`~quadric_contact.exact.errors.NotAnEllipsoidError`
 as the other array predicates do.
 """
 
@@ -29,13 +29,13 @@ from typing import Any
 
 import numpy as np
 
-from ..classification import TABLE_1_KINDS
-from .base import Pairs
-from .number_mode import NumberMode
-from .smallness_float import table_kinds
-from .smallness_numbers import BallNumbers, MpmathNumbers, used_signs
-from .smallness_tables import E_SIDES, Q_SIDES, TABLE_CONDITIONS
-from .validation import exact_matrix, raise_not_ellipsoid, validate_rows
+from quadric_contact.model.classification import TABLE_1_KINDS
+from quadric_contact.modes.base import Pairs
+from quadric_contact.modes.number_mode import NumberMode
+from quadric_contact.modes.smallness_float import table_kinds
+from quadric_contact.modes.smallness_numbers import BallNumbers, MpmathNumbers, used_signs
+from quadric_contact.modes.smallness_tables import E_SIDES, Q_SIDES, TABLE_CONDITIONS
+from quadric_contact.modes.validation import exact_matrix, raise_not_ellipsoid, validate_rows
 
 __all__ = ["BallNumbers", "MpmathNumbers", "exact_smallness", "object_smallness"]
 
@@ -125,8 +125,8 @@ def object_smallness(mode: NumberMode, pairs: Pairs, numbers: Any) -> np.ndarray
 def exact_smallness(mode: NumberMode, pairs: Pairs) -> np.ndarray:
     """Codes of every pair by the exact scalar decision (Tables 1-2 corrected), with the
     parameters of every distinct matrix computed once."""
-    from ..invariants import invariants
-    from ..smallness import ellipsoid_axes_squared, smallness_report, table_2_parameters
+    from quadric_contact.model.invariants import invariants
+    from quadric_contact.theory.smallness import ellipsoid_axes_squared, smallness_report, table_2_parameters
 
     n = pairs.n
     out = np.empty(n, dtype=np.int8)

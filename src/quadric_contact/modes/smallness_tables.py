@@ -1,6 +1,6 @@
 """Tables 1-2 (corrected) as data: every smallness condition as a comparison of two monomials.
 
-The exact scalar decision (:func:`quadric_contact.smallness.smallness`) compares the
+The exact scalar decision (:func:`quadric_contact.theory.smallness.smallness`) compares the
 *squares* of the two positive sides of every inequality of the corrected Table 1
 row of ``Q`` (and, for two ellipsoids, of the enclosing alternative).  Each square
 is a product of integer powers of a few positive *primitives* of one matrix:
@@ -17,7 +17,7 @@ primitive  value (of the matrix with its canonical sign; absolute values)
 ``L1..L3`` ``|lambda_i|``, the eigenvalues of M00 in increasing order
 =========  ===================================================================
 
-With ``d^2 = -det Q / det Q00`` and so on (:func:`quadric_contact.smallness.table_2_parameters`),
+With ``d^2 = -det Q / det Q00`` and so on (:func:`quadric_contact.theory.smallness.table_2_parameters`),
 for instance the curvature side of an ellipsoid ``Q`` is
 ``a^2/c^4 = mu_3^2 / (mu_1 d^2) = L3^2 A3 / (L1 P)``.  The semi-axes of ``E`` are
 ``alpha^2 = P/(A3 L1)`` and ``gamma^2 = P/(A3 L3)``, so Lemma 3's curvature
@@ -43,8 +43,8 @@ from typing import Any
 
 import numpy as np
 
-from ..classification import TABLE_1_KINDS, QuadricKind
-from .base import SmallnessCode
+from quadric_contact.model.classification import TABLE_1_KINDS, QuadricKind
+from quadric_contact.modes.base import SmallnessCode
 
 __all__ = [
     "E_SIDES",
@@ -164,8 +164,8 @@ def kind_signs(kind: QuadricKind) -> tuple[int, ...]:
     ``(det, detA, JA, E3, E2, trA, lambda_1, lambda_2, lambda_3)`` of the matrix with the
     canonical sign, read off the standard form of Table 1 (they depend only on the type).
     For ``E`` use ``kind_signs(QuadricKind.ELLIPSOID)``."""
-    from ..classification import principal_minor_sums_3, principal_minor_sums_4
-    from ..quadric import Quadric
+    from quadric_contact.model.classification import principal_minor_sums_3, principal_minor_sums_4
+    from quadric_contact.model.quadric import Quadric
 
     params = dict(zip(Quadric.standard_parameters(kind), (3, 2, 1), strict=False))
     q = Quadric.standard(kind, **params)
@@ -182,7 +182,7 @@ def kind_signs(kind: QuadricKind) -> tuple[int, ...]:
 @cache
 def kind_arrays() -> dict[str, np.ndarray]:
     """The tables as arrays for the compiled kernels, indexed by the position of a kind in
-    :data:`~quadric_contact.classification.TABLE_1_KINDS`:
+    :data:`~quadric_contact.model.classification.TABLE_1_KINDS`:
 
     ``exponents`` (9, MAX_SLOTS, NPRIM) int64, ``nslots`` (9,), ``signs`` (9, NPRIM) (0 where the
     primitive is not used), ``cond`` (9, MAX_CONDITIONS, 3) and ``ncond`` (9,), ``alt``
@@ -229,7 +229,7 @@ def kind_arrays() -> dict[str, np.ndarray]:
 
 
 def kind_index(kind: QuadricKind) -> int:
-    """Position of a Table 1 kind in :data:`~quadric_contact.classification.TABLE_1_KINDS`."""
+    """Position of a Table 1 kind in :data:`~quadric_contact.model.classification.TABLE_1_KINDS`."""
     return TABLE_1_KINDS.index(kind)
 
 

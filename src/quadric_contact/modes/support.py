@@ -14,9 +14,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._jit import HAVE_NUMBA
-from .decisions import ROWS, region_code_masked, rows_from_masks
-from .threads import run_parallel
+from quadric_contact.modes._jit import HAVE_NUMBA
+from quadric_contact.modes.decisions import ROWS, region_code_masked, rows_from_masks
+from quadric_contact.modes.threads import run_parallel
 
 __all__ = ["check_stack", "region_codes_from_signs", "region_from_signs"]
 
@@ -25,7 +25,7 @@ def check_stack(M: np.ndarray) -> np.ndarray:
     """Per matrix: 0 fine, 1 a non-finite entry, 2 not symmetric."""
     out = np.empty(M.shape[0], dtype=np.int8)
     if HAVE_NUMBA:
-        from .kernels_support import check_stack_kernel
+        from quadric_contact.modes.kernels_support import check_stack_kernel
 
         run_parallel(lambda lo, hi: check_stack_kernel(M, lo, hi, out), M.shape[0])
         return out
@@ -41,7 +41,7 @@ def region_codes_from_signs(
     """Region codes from contact codes, c-signs and the rows/masks of the quadrics (per pair)."""
     out = np.empty(contact.shape[0], dtype=np.int8)
     if HAVE_NUMBA:
-        from .kernels_support import region_codes_kernel
+        from quadric_contact.modes.kernels_support import region_codes_kernel
 
         region_codes_kernel(contact, csigns, rows.astype(np.int16), masks.astype(np.int64), out)
         return out

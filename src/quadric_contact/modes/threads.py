@@ -16,7 +16,7 @@ import threading
 from collections.abc import Callable, Iterator
 from concurrent.futures import Future, ThreadPoolExecutor
 
-from ._jit import HAVE_NUMBA
+from quadric_contact.modes._jit import HAVE_NUMBA
 
 __all__ = ["MIN_PER_THREAD", "THREADS", "run_parallel", "single_threaded"]
 

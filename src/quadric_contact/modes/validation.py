@@ -2,16 +2,16 @@
 
 The float kernels only flag an entry as invalid; the functions here say which
 matrix is at fault and why, and raise the matching error of
-:mod:`quadric_contact.errors` with the offending matrix attached.
+:mod:`quadric_contact.exact.errors` with the offending matrix attached.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..errors import NonFiniteError, NotAnEllipsoidError, NotSymmetricError
-from .base import MatrixStack
-from .support import check_stack
+from quadric_contact.exact.errors import NonFiniteError, NotAnEllipsoidError, NotSymmetricError
+from quadric_contact.modes.base import MatrixStack
+from quadric_contact.modes.support import check_stack
 
 __all__ = ["raise_not_ellipsoid", "rows_view", "validate_rows"]
 
@@ -59,7 +59,7 @@ def validate_rows(stack: MatrixStack, rows: np.ndarray, name: str | None = None)
 
 def exact_matrix(stack: MatrixStack, row: int) -> object:
     """The exact :class:`~quadric_contact.Quadric` of a matrix of the stack."""
-    from ..quadric import Quadric
+    from quadric_contact.model.quadric import Quadric
 
     if stack.exact is not None:
         return Quadric._from_upper(tuple(stack.exact[row]))

@@ -1,0 +1,1 @@
+"""The exact layer: rationals, precision, linear algebra, real algebraic numbers, root signs."""

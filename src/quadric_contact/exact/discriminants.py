@@ -1,0 +1,347 @@
+"""The complete discrimination system of a polynomial (Yang 1999) and the
+exact classification of its roots.
+
+For ``f`` of degree ``n`` the *discriminant sequence* ``D_1, .., D_n`` is the
+list of even-order principal minors of the discrimination matrix of ``f``
+and ``f'`` (the subresultant-based sequence of Yang 1999).  Its *revised sign
+list* gives, exactly (Yang 1999, Theorem 1):
+
+* the number of distinct pairs of non-real conjugate roots: the number ``v``
+  of sign changes of the revised list;
+* the number of distinct real roots: ``l - 2v`` with ``l`` the number of
+  non-zero members;
+* ``deg gcd(f, f') = n - k`` for the last non-zero ``D_k``.
+
+Multiplicities follow by applying the same to ``gcd(f, f')``, whose roots are
+the multiple roots of ``f`` with multiplicity lowered by one, and so on.  The
+formulas are the generated ones (:mod:`quadric_contact.codegen`); the
+paper's ``Delta_3`` and ``Delta_4`` (Section 3.2) are ``D_3/(2 c4^2)`` and
+``D_4/c4^2``: same signs, since ``c4 = det E != 0``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+from itertools import pairwise
+from typing import Any
+
+from quadric_contact._generated import formulas
+from quadric_contact.exact.errors import DegeneratePencilError
+from quadric_contact.exact.rational import sign
+
+__all__ = [
+    "RootStructure",
+    "discrimination_sequence",
+    "paper_deltas",
+    "revised_sign_list",
+    "root_structure",
+    "strip",
+]
+
+_SEQUENCES: dict[int, Any] = {
+    1: formulas.discrimination_sequence_1,
+    2: formulas.discrimination_sequence_2,
+    3: formulas.discrimination_sequence_3,
+    4: formulas.discrimination_sequence_4,
+}
+
+
+def strip(coeffs: Sequence[Any]) -> list[Any]:
+    """Drop zero leading (highest-degree) coefficients.
+
+    Parameters
+    ----------
+    coeffs : sequence of numbers
+        ``c0, c1, ...`` (lowest degree first).
+
+    Returns
+    -------
+    list
+        The same coefficients without the trailing zeros of the list, so that
+        the last one is the true leading coefficient (empty for the zero
+        polynomial).
+
+    Examples
+    --------
+    >>> strip([0, 0, -1, -3, 0])
+    [0, 0, -1, -3]
+    """
+    out = list(coeffs)
+    while out and out[-1] == 0:
+        out.pop()
+    return out
+
+
+def discrimination_sequence(coeffs: Sequence[Any]) -> tuple[Any, ...]:
+    """Yang's discrimination sequence ``(D_1, .., D_n)`` of ``f = sum coeffs[k] x^k``.
+
+    Parameters
+    ----------
+    coeffs : sequence
+        ``c0, c1, ...`` of a polynomial of degree ``n <= 4`` (zero leading
+        coefficients are dropped first).  Any number type with ``+ - *``:
+        ints, Fractions, floats, numpy arrays, sympy symbols, flint balls.
+
+    Returns
+    -------
+    tuple
+        ``(D_1, .., D_n)``, the even-order principal minors of the
+        discrimination matrix of ``f`` and ``f'``; empty for a constant.
+
+    Raises
+    ------
+    ValueError
+        If the degree is above 4.
+
+    References
+    ----------
+    Yang (1999), the complete discrimination system; Section 3.2 of the paper
+    (``D_3 = 2 c4^2 Delta_3``, ``D_4 = c4^2 Delta_4``).
+
+    Examples
+    --------
+    Example 11: ``P = -(1 + 2 lambda)^2 (16 + 3 lambda^2)``.
+
+    >>> P = [-16, -64, -67, -12, -12]
+    >>> discrimination_sequence(P)   # D_3 = 2 c4^2 Delta_3, D_4 = c4^2 Delta_4
+    (576, -864000, -3971579904, 0)
+    """
+    c = strip(coeffs)
+    n = len(c) - 1
+    if n < 1:
+        return ()
+    if n > 4:
+        raise ValueError(f"degree {n} > 4 is not supported")
+    return tuple(_SEQUENCES[n](*c))
+
+
+def paper_deltas(coeffs: Sequence[Any]) -> tuple[Any, Any, Any]:
+    """``(Delta_2, Delta_3, Delta_4)`` of a quartic, with the paper's normalisation.
+
+    Parameters
+    ----------
+    coeffs : sequence
+        ``c0 .. c4`` (missing high coefficients are taken as 0); any number
+        type with ``+ - *``.
+
+    Returns
+    -------
+    tuple
+        ``(Delta_2, Delta_3, Delta_4)``: ``D_2 / c4^2``, ``D_3 / (2 c4^2)`` and
+        ``D_4 / c4^2`` (Yang's sequence divided by positive factors, so the
+        signs agree when ``c4 != 0``).  ``Delta_4`` is the corrected formula
+        (erratum ``delta4-term``: the printed fifth term is wrong).
+
+    References
+    ----------
+    Section 3.2 (the formulas), Corollary 10 (their use), Algorithm 1.
+
+    Examples
+    --------
+    Example 17, the bee and the plane ``z = 6``: the paper prints
+    ``P0 = lambda^2 (-0.3 lambda^2 - 1.5 lambda - 0.25)`` and
+    ``Delta_3 = 0.121875``:
+
+    >>> from fractions import Fraction as F
+    >>> d2, d3, d4 = paper_deltas([0, 0, F(-1, 4), F(-3, 2), F(-3, 10)])
+    >>> d3, float(d3), d4
+    (Fraction(39, 320), 0.121875, Fraction(0, 1))
+
+    Example 11.  The paper prints ``Delta_4 = 0`` and ``Delta_3 = -400``; the
+    printed formula gives ``Delta_3 = -13790208`` (same sign; see
+    :data:`quadric_contact.paper.ERRATA`):
+
+    >>> paper_deltas([-16, -64, -67, -12, -12])
+    (-6000, -13790208, 0)
+    """
+    c = list(coeffs) + [0] * (5 - len(coeffs))
+    return formulas.paper_deltas(*c[:5])
+
+
+def revised_sign_list(signs: Sequence[int]) -> list[int]:
+    """Yang's revised sign list of a sign list.
+
+    Each run of ``k`` zeros that follows a non-zero sign ``s`` and precedes
+    another non-zero sign becomes ``[-s, -s, s, s, -s, -s, ...]`` (the
+    ``r``-th zero gets ``(-1)^(r(r+1)/2) s``).  Trailing zeros are kept.
+
+    Parameters
+    ----------
+    signs : sequence of int
+        Signs (-1, 0, 1) of ``D_1, .., D_n``.
+
+    Returns
+    -------
+    list of int
+        The revised list: its number ``v`` of sign changes is the number of
+        distinct pairs of non-real roots, and ``l - 2v`` (``l`` the number of
+        non-zero entries) the number of distinct real roots.
+
+    References
+    ----------
+    Yang (1999), Theorem 1.
+
+    Examples
+    --------
+    >>> revised_sign_list([1, 0, 0, 1])
+    [1, -1, -1, 1]
+    >>> revised_sign_list([1, -1, 0, 0])   # trailing zeros: a multiple root
+    [1, -1, 0, 0]
+    """
+    out = list(signs)
+    last_nonzero = max((i for i, s in enumerate(out) if s), default=-1)
+    i = 0
+    while i <= last_nonzero:
+        if out[i] == 0:
+            j = i
+            while out[j] == 0:
+                j += 1
+            s = out[i - 1]
+            for r in range(1, j - i + 1):
+                out[i + r - 1] = s * (-1) ** (r * (r + 1) // 2)
+            i = j
+        i += 1
+    return out
+
+
+@dataclass(frozen=True)
+class RootStructure:
+    """Exact numbers and multiplicities of the real and non-real roots.
+
+    Attributes
+    ----------
+    degree : int
+    real : tuple of int
+        Multiplicities of the distinct real roots, decreasing.
+    nonreal : tuple of int
+        Multiplicities of the distinct non-real conjugate pairs (each pair
+        listed once), decreasing.
+    sequence_signs : tuple of int
+        Signs of Yang's ``D_1 .. D_n`` (for a quartic: ``D_1`` and the signs
+        of the paper's ``Delta_2 .. Delta_4``).
+
+    Examples
+    --------
+    ``(x^2 - 1)^2``: two double real roots.
+
+    >>> s = root_structure([1, 0, -2, 0, 1])
+    >>> s.real, s.nonreal, s.real_count, s.has_multiple_root
+    ((2, 2), (), 4, True)
+    """
+
+    degree: int
+    real: tuple[int, ...]
+    nonreal: tuple[int, ...]
+    sequence_signs: tuple[int, ...]
+
+    @property
+    def distinct_real(self) -> int:
+        """Number of distinct real roots."""
+        return len(self.real)
+
+    @property
+    def nonreal_pairs(self) -> int:
+        """Number of non-real conjugate pairs, counted with multiplicity."""
+        return sum(self.nonreal)
+
+    @property
+    def real_count(self) -> int:
+        """Number of real roots counted with multiplicity."""
+        return sum(self.real)
+
+    @property
+    def all_real(self) -> bool:
+        """No non-real root (Theorem 2: no transversal contact for a small ellipsoid)."""
+        return not self.nonreal
+
+    @property
+    def has_multiple_root(self) -> bool:
+        """Some root (real or not) is multiple: ``Delta_4 = 0``."""
+        return any(m > 1 for m in self.real + self.nonreal)
+
+    def describe(self) -> str:
+        """In words, e.g. ``'2 real (1 distinct, multiplicities [2]), 2 non-real (1 distinct pair(s))'``."""
+        parts = []
+        if self.real:
+            parts.append(
+                f"{self.real_count} real ({self.distinct_real} distinct"
+                + (f", multiplicities {list(self.real)}" if self.has_multiple_root else "")
+                + ")"
+            )
+        if self.nonreal:
+            parts.append(f"{2 * self.nonreal_pairs} non-real ({len(self.nonreal)} distinct pair(s))")
+        return ", ".join(parts) if parts else "no roots"
+
+
+def _to_int_poly(coeffs: Sequence[Any]) -> list[int]:
+    fr = [c if isinstance(c, (int, Fraction)) else Fraction(c) for c in coeffs]
+    d = math.lcm(*(Fraction(c).denominator for c in fr)) if fr else 1
+    return [int(Fraction(c) * d) for c in fr]
+
+
+def _counts(c: Sequence[Any]) -> tuple[int, int, int, tuple[int, ...]]:
+    """(distinct real, distinct nonreal pairs, deg gcd(f, f'), signs of D) for exact coefficients."""
+    n = len(c) - 1
+    if n == 0:
+        return 0, 0, 0, ()
+    if n == 4:
+        # D_1 = 4 c4^2 > 0 and D_k = (positive) * Delta_k for k = 2, 3, 4: the
+        # paper's normalisation has the same signs and much smaller numbers.
+        signs = (1, *(sign(d) for d in formulas.quartic_sign_forms(*c)))
+    else:
+        signs = tuple(sign(d) for d in discrimination_sequence(c))
+    rev = revised_sign_list(list(signs))
+    nonzero = [s for s in rev if s]
+    v = sum(1 for a, b in pairwise(nonzero) if a != b)
+    k = max((i + 1 for i, s in enumerate(signs) if s), default=0)
+    return len(nonzero) - 2 * v, v, n - k, signs
+
+
+def root_structure(coeffs: Sequence[Any]) -> RootStructure:
+    """Classify the roots of ``sum coeffs[k] x^k`` exactly (degree <= 4).
+
+    Parameters
+    ----------
+    coeffs : sequence of exact numbers
+        ``c0, c1, ...`` (ints or Fractions; zero leading coefficients are dropped).
+
+    Returns
+    -------
+    RootStructure
+        Numbers and multiplicities of the real roots and of the non-real
+        pairs, from the signs of the discrimination sequence (and, for the
+        multiplicities, of that of ``gcd(f, f')``).
+
+    References
+    ----------
+    Yang (1999), Theorem 1; Section 3.2 and Corollary 10 of the paper.
+
+    Raises
+    ------
+    DegeneratePencilError
+        If the polynomial is identically zero.
+
+    Examples
+    --------
+    >>> root_structure([-16, -64, -67, -12, -12]).describe()   # Example 11
+    '2 real (1 distinct, multiplicities [2]), 2 non-real (1 distinct pair(s))'
+    """
+    c = strip(coeffs)
+    if not c:
+        raise DegeneratePencilError("the polynomial vanishes identically", tuple(coeffs))
+    n = len(c) - 1
+    real_f, pairs_f, gdeg, signs = _counts(c)
+    if gdeg == 0:
+        return RootStructure(n, (1,) * real_f, (1,) * pairs_f, signs)
+    import flint
+
+    ints = _to_int_poly(c)
+    f = flint.fmpz_poly(ints)
+    g = f.gcd(f.derivative())
+    inner = root_structure([int(t) for t in g.coeffs()])
+    real = sorted([m + 1 for m in inner.real] + [1] * (real_f - inner.distinct_real), reverse=True)
+    pairs = sorted([m + 1 for m in inner.nonreal] + [1] * (pairs_f - len(inner.nonreal)), reverse=True)
+    return RootStructure(n, tuple(real), tuple(pairs), signs)

@@ -1,0 +1,1 @@
+"""Parametric families of pairs: the paper's conditions over Q(parameters)."""

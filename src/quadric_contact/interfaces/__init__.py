@@ -1,0 +1,1 @@
+"""Plotting, animation, benchmarking and the command line."""

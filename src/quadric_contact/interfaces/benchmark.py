@@ -1,0 +1,1320 @@
+"""What accuracy costs: the number modes and their peers, measured in one run.
+
+Everything is measured against the exact answer for the binary64 matrices the
+predicates receive (:class:`~quadric_contact.modes.ExactMode`).  Used by
+``quadric-contact bench`` and the scripts in ``benchmarks/``.
+
+Populations
+-----------
+``random``
+    :func:`~quadric_contact.testing.samples.random_pairs` over the ten types (Table 1 and
+    the plane).  Rounding makes the rotated cylinders and parallel planes only
+    *nearly* degenerate, so some of their pairs are genuinely hard.
+``generic``
+    The same with the types that rounding does not make nearly degenerate for the
+    contact question (ellipsoid, both hyperboloids, both paraboloids, plane).
+``hard``
+    The hard-case suite (:mod:`quadric_contact.testing.hardcases`).
+
+Peers
+-----
+``numpy eigvals``: batched eigenvalues of ``-Q E^-1`` (non-real when an imaginary
+part exceeds ``1e-9`` of the modulus); ``numpy roots``: ``numpy.roots`` of the
+float pencil coefficients, pair by pair, same tolerance; ``fcl GJK``: python-fcl
+ellipsoid-ellipsoid collision (solid overlap, compared with the exact "contact
+or one inside the other"); ``sympy``: sympy determinant of ``lambda E + Q`` over
+the rationals, its discriminant and a Sturm count of the real roots (exact, slow).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import functools
+import json
+import math
+import os
+import platform
+import resource
+import subprocess
+import sys
+import time
+import tracemalloc
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import asdict, dataclass, field
+from fractions import Fraction
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from quadric_contact.exact.errors import MissingDependencyError
+from quadric_contact.exact.optional import pyplot
+from quadric_contact.model.classification import QuadricKind
+from quadric_contact.modes import (
+    BallMode,
+    CertifiedMode,
+    ExactMode,
+    FilterMode,
+    FloatMode,
+    MpmathMode,
+    NumberMode,
+)
+from quadric_contact.modes.batch import run_stack
+from quadric_contact.testing.samples import SAMPLE_KINDS, random_pairs
+
+__all__ = [
+    "EIG_TOL",
+    "GENERIC_KINDS",
+    "PROFILES",
+    "Measurement",
+    "Report",
+    "peer_numpy_eigvals",
+    "peer_numpy_roots",
+    "run",
+]
+
+K = QuadricKind
+GENERIC_KINDS = (
+    K.ELLIPSOID,
+    K.HYPERBOLOID_ONE_SHEET,
+    K.HYPERBOLOID_TWO_SHEETS,
+    K.ELLIPTIC_PARABOLOID,
+    K.HYPERBOLIC_PARABOLOID,
+    K.PLANE,
+)
+
+PROFILES: dict[str, dict[str, Any]] = {
+    "smoke": {  # seconds: what the test suite runs
+        "pairs": 2_000,
+        "slow_pairs": 100,
+        "sympy_pairs": 2,
+        "fcl_pairs": 200,
+        "sizes": (10**3, 10**4),
+        "escalation_pairs": 10**4,
+        "exact_timing_pairs": 200,
+        "hard_families": ("example-11", "delta4-zero", "dyadic-tangent", "ladder"),
+        "complete_pairs": 5_000,
+        "fcl_complete_pairs": 200,
+        "kernel_pairs": 20_000,
+        "cold_start": False,
+    },
+    "quick": {
+        "pairs": 20_000,  # fast modes on the random populations
+        "slow_pairs": 1_000,  # ball, mpmath, exact, numpy roots
+        "sympy_pairs": 10,
+        "fcl_pairs": 2_000,
+        "sizes": (10**3, 10**4, 10**5, 10**6),
+        "escalation_pairs": 10**6,
+        "exact_timing_pairs": 5_000,
+        "complete_pairs": 10**6,
+        "fcl_complete_pairs": 5_000,
+        "kernel_pairs": 2 * 10**6,
+        "cold_start": True,
+    },
+    "full": {
+        "pairs": 200_000,
+        "slow_pairs": 5_000,
+        "sympy_pairs": 40,
+        "fcl_pairs": 20_000,
+        "sizes": (10**3, 10**4, 10**5, 10**6, 10**7),
+        "escalation_pairs": 10**7,
+        "exact_timing_pairs": 20_000,
+        "complete_pairs": 4 * 10**6,
+        "fcl_complete_pairs": 20_000,
+        "kernel_pairs": 4 * 10**6,
+        "cold_start": True,
+    },
+}
+
+
+def criterion_stack(E: Any, Q: Any, *, mode: Any = "certified") -> np.ndarray:
+    """The paper's criterion on a stack (:func:`quadric_contact.corollary_10`): the stage the
+    number modes compute first, and what the mode measurements below time."""
+    return run_stack("criterion", E, Q, mode)
+
+
+@dataclass
+class Measurement:
+    """One method on one population."""
+
+    method: str
+    kind: str  # "mode" or "peer"
+    population: str
+    n: int
+    seconds: float
+    wrong: int
+    undecided: int
+    note: str = ""
+
+    @property
+    def per_test(self) -> float:
+        return self.seconds / max(self.n, 1)
+
+    @property
+    def wrong_rate(self) -> float:
+        return self.wrong / max(self.n, 1)
+
+    @property
+    def undecided_rate(self) -> float:
+        return self.undecided / max(self.n, 1)
+
+
+@dataclass
+class Target:
+    name: str
+    goal: str
+    measured: float
+    unit: str
+    met: bool
+    note: str = ""
+
+
+@dataclass
+class Report:
+    profile: str
+    machine: dict[str, Any]
+    measurements: list[Measurement] = field(default_factory=list)
+    ladder: dict[str, dict[str, int]] = field(default_factory=dict)
+    throughput: list[dict[str, Any]] = field(default_factory=list)
+    bandwidth: dict[str, float] = field(default_factory=dict)
+    escalation: dict[str, Any] = field(default_factory=dict)
+    targets: list[Target] = field(default_factory=list)
+    huge: dict[str, Any] | None = None
+    missing: list[str] = field(default_factory=list)
+    complete: list[dict[str, Any]] = field(default_factory=list)
+    kernels: list[dict[str, Any]] = field(default_factory=list)
+    kernel_bandwidth: dict[str, dict[str, float]] = field(default_factory=dict)
+    cold_start: dict[str, Any] = field(default_factory=dict)
+
+    def to_json(self) -> str:
+        data = asdict(self)
+        for m, d in zip(self.measurements, data["measurements"], strict=True):
+            d.update(per_test=m.per_test, wrong_rate=m.wrong_rate, undecided_rate=m.undecided_rate)
+        return json.dumps(data, indent=1, default=str)
+
+    def table(self) -> str:
+        lines = [f"# quadric-contact bench ({self.profile} profile)", ""]
+        lines += [f"machine: {self.machine}", ""]
+        if self.missing:
+            lines += [f"not measured (missing optional packages): {', '.join(self.missing)}", ""]
+        lines += ["## Time per test and errors", ""]
+        lines += [
+            "| population | method | pairs | time per test | wrong | undecided | note |",
+            "|---|---|---:|---:|---:|---:|---|",
+        ]
+        for m in self.measurements:
+            lines.append(
+                f"| {m.population} | {m.method} | {m.n} | {_fmt_time(m.per_test)} | "
+                f"{m.wrong} ({m.wrong_rate:.2%}) | {m.undecided} ({m.undecided_rate:.2%}) | {m.note} |"
+            )
+        if self.ladder:
+            methods = list(next(iter(self.ladder.values())))
+            lines += [
+                "",
+                "## Near-tangent ladder: wrong answers (of 40 per distance: 10 types x 2 sides x away/into)",
+                "",
+            ]
+            lines += ["| distance | " + " | ".join(methods) + " |", "|---|" + "---:|" * len(methods)]
+            for d, row in self.ladder.items():
+                lines.append(f"| {d} | " + " | ".join(str(row[m]) for m in methods) + " |")
+        if self.throughput:
+            lines += ["", "## Throughput against batch size", ""]
+            lines += ["| mode | pairs | seconds | pairs/s | peak numpy memory |", "|---|---:|---:|---:|---:|"]
+            for row in self.throughput:
+                lines.append(
+                    f"| {row['mode']} | {row['n']} | {row['seconds']:.4f} | {row['rate']:.3g} | "
+                    f"{_fmt_bytes(row['peak_bytes'])} |"
+                )
+        if self.bandwidth:
+            b = self.bandwidth
+            lines += [
+                "",
+                f"Reading the inputs once ({b['pairs']} pairs, {_fmt_bytes(b['bytes'])}): "
+                f"{b['seconds']:.4f} s, {b['gbytes_per_s']:.1f} GB/s = {b['pairs_per_s']:.3g} pairs/s "
+                "(the memory-bandwidth limit).",
+            ]
+        if self.escalation:
+            lines += ["", "## Escalation past the filter (certified, transversal contact)", ""]
+            for pop, e in self.escalation.items():
+                lines.append(
+                    f"- {pop}: {e['escalated']} of {e['pairs']} ({e['rate']:.2e}); stages {e['stages']}"
+                )
+        if self.complete:
+            lines += [
+                "",
+                "## The complete decision (transversal contact, every pair) against the criterion alone",
+                "",
+                "| population | method | pairs | time per pair | pairs/s | wrong | settled by |",
+                "|---|---|---:|---:|---:|---:|---|",
+            ]
+            for row in self.complete:
+                wrong = "" if row.get("wrong") is None else f"{row['wrong']} ({row['wrong'] / row['n']:.2%})"
+                lines.append(
+                    f"| {row['population']} | {row['method']} | {row['n']} | "
+                    f"{_fmt_time(row['seconds'] / row['n'])} "
+                    f"| {row['n'] / row['seconds']:.3g} | {wrong} | {row.get('stages', '')} |"
+                )
+        if self.kernels:
+            lines += [
+                "",
+                "## Kernels at the memory limit (small ellipsoids against larger ones, float64 (N, 4, 4))",
+                "",
+                "| input | method | pairs | pairs/s | fraction of the read-bandwidth limit |",
+                "|---|---|---:|---:|---:|",
+            ]
+            for row in self.kernels:
+                frac = "" if row.get("fraction") is None else f"{row['fraction']:.2f}"
+                lines.append(
+                    f"| {row['input']} | {row['method']} | {row['n']} | {row['rate']:.3g} | {frac} |"
+                )
+            for name, b in self.kernel_bandwidth.items():
+                lines.append(
+                    f"\nReading the inputs of the {name} pairs once: {_fmt_bytes(b['bytes'])} "
+                    f"in {b['seconds']:.4f} s, "
+                    f"{b['gbytes_per_s']:.1f} GB/s = {b['pairs_per_s']:.3g} pairs/s."
+                )
+        if self.cold_start:
+            c = self.cold_start
+            lines += [
+                "",
+                "## First use (a fresh process with an empty numba cache directory, then a second process)",
+                "",
+                f"- fresh cache: import {c['fresh']['import']:.1f} s, "
+                f"first array call {c['fresh']['first']:.1f} s, "
+                f"notice printed: {'yes' if c['fresh']['notice'] else 'no'}",
+                f"- cache warm: import {c['warm']['import']:.1f} s, "
+                f"first array call {c['warm']['first']:.2f} s",
+            ]
+        if self.huge:
+            h = self.huge
+            lines += [
+                "",
+                f"## Chunked run: {h['pairs']:.3g} pairs in chunks of {h['chunk']}: {h['seconds']:.1f} s, "
+                f"peak RSS {_fmt_bytes(h['peak_rss'])}, contact {h['contact']}",
+            ]
+        if self.targets:
+            lines += ["", "## Targets", "", "| target | goal | measured | met |", "|---|---|---:|---|"]
+            for tg in self.targets:
+                met = "yes" if tg.met else "NO"
+                lines.append(f"| {tg.name} | {tg.goal} | {tg.measured:.3g} {tg.unit} | {met} {tg.note} |")
+        return "\n".join(lines) + "\n"
+
+
+def _fmt_time(s: float) -> str:
+    if s >= 1e-3:
+        return f"{s * 1e3:.3g} ms"
+    if s >= 1e-6:
+        return f"{s * 1e6:.3g} us"
+    return f"{s * 1e9:.3g} ns"
+
+
+def _fmt_bytes(b: float) -> str:
+    for unit in ("B", "KB", "MB", "GB"):
+        if b < 1024 or unit == "GB":
+            return f"{b:.3g} {unit}"
+        b /= 1024
+    return f"{b:.3g} GB"
+
+
+# -- helpers ---------------------------------------------------------------------------------
+
+
+def _best_of(fn: Callable[[], Any], repeat: int) -> tuple[float, Any]:
+    best, out = math.inf, None
+    for _ in range(max(1, repeat)):
+        t = time.perf_counter()
+        out = fn()
+        best = min(best, time.perf_counter() - t)
+    return best, out
+
+
+@contextlib.contextmanager
+def _traced() -> Iterator[list[int]]:
+    box = [0]
+    tracemalloc.start()
+    try:
+        yield box
+    finally:
+        box[0] = tracemalloc.get_traced_memory()[1]
+        tracemalloc.stop()
+
+
+def machine_info() -> dict[str, Any]:
+    import numba
+
+    info = {
+        "python": platform.python_version(),
+        "numpy": np.__version__,
+        "numba": numba.__version__,
+        "cpus": os.cpu_count(),
+        "platform": platform.platform(),
+    }
+    with contextlib.suppress(OSError):
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                info["cpu"] = line.split(":", 1)[1].strip()
+                break
+    return info
+
+
+# -- peers -----------------------------------------------------------------------------------
+
+EIG_TOL = 1e-9
+
+
+def peer_numpy_eigvals(E: np.ndarray, Q: np.ndarray, tol: float = EIG_TOL) -> np.ndarray:
+    """Contact codes from the batched eigenvalues of ``-Q E^-1`` (same as of ``-E^-1 Q``)."""
+    w = np.linalg.eigvals(-np.linalg.solve(E, Q))
+    scale = np.maximum(1.0, np.abs(w).max(axis=-1, keepdims=True))
+    return (np.abs(w.imag) > tol * scale).any(axis=-1).astype(np.int8)
+
+
+def _float_coefficients(E: np.ndarray, Q: np.ndarray) -> np.ndarray:
+    from quadric_contact._generated import formulas
+    from quadric_contact.exact.entries import ENTRY_INDICES
+
+    e = [E[:, i, j] for i, j in ENTRY_INDICES]
+    q = [Q[:, i, j] for i, j in ENTRY_INDICES]
+    return np.stack(formulas.pencil_coefficients(*e, *q), axis=1)
+
+
+def peer_numpy_roots(E: np.ndarray, Q: np.ndarray, tol: float = EIG_TOL) -> np.ndarray:
+    """Contact codes from ``numpy.roots`` of the float pencil coefficients, pair by pair."""
+    c = _float_coefficients(E, Q)
+    out = np.empty(len(c), dtype=np.int8)
+    for k, row in enumerate(c):
+        r = np.roots(row[::-1])
+        out[k] = bool((np.abs(r.imag) > tol * max(1.0, float(np.abs(r).max(initial=0.0)))).any())
+    return out
+
+
+def peer_sympy(E: np.ndarray, Q: np.ndarray) -> np.ndarray:
+    """Exact contact codes by sympy: the determinant of ``lambda E + Q`` over the
+    rationals, its discriminant, and a Sturm count of the real roots when needed."""
+    import sympy
+
+    lam = sympy.Symbol("lambda")
+    out = np.empty(len(E), dtype=np.int8)
+    for k in range(len(E)):
+        entries = [
+            lam * sympy.Rational(Fraction(float(E[k, i, j]))) + sympy.Rational(Fraction(float(Q[k, i, j])))
+            for i in range(4)
+            for j in range(4)
+        ]
+        M = sympy.Matrix(4, 4, entries)
+        P = sympy.Poly(M.det(method="berkowitz"), lam)
+        disc = sympy.discriminant(P)
+        if disc < 0:
+            out[k] = 1
+            continue
+        real = sum(m * f.count_roots() for f, m in P.sqf_list()[1])
+        out[k] = int(bool(int(real) < P.degree()))
+    return out
+
+
+def _fcl_objects(geometry: dict[str, np.ndarray], k: int) -> Any:
+    import fcl
+
+    a = geometry["axes"][k]
+    return fcl.CollisionObject(
+        fcl.Ellipsoid(float(a[0]), float(a[1]), float(a[2])),
+        fcl.Transform(
+            np.asarray(geometry["rotation"][k], dtype=float), np.asarray(geometry["center"][k], dtype=float)
+        ),
+    )
+
+
+def peer_fcl(geo_e: dict[str, np.ndarray], geo_q: dict[str, np.ndarray], which: Sequence[int]) -> np.ndarray:
+    """Solid overlap of two ellipsoids by python-fcl's GJK (libccd), pair by pair."""
+    import fcl
+
+    out = np.empty(len(which), dtype=np.int8)
+    for t, k in enumerate(which):
+        request, result = fcl.CollisionRequest(), fcl.CollisionResult()
+        out[t] = fcl.collide(_fcl_objects(geo_e, k), _fcl_objects(geo_q, k), request, result) > 0
+    return out
+
+
+def exact_overlap(E: np.ndarray, Q: np.ndarray, contact: np.ndarray) -> np.ndarray:
+    """Do the solid ellipsoids overlap, exactly: transversal contact, or the centre of
+    one inside the other (without contact one is then inside the other)."""
+    from quadric_contact.model.quadric import Quadric
+
+    out = np.empty(len(E), dtype=np.int8)
+    for k in range(len(E)):
+        if contact[k]:
+            out[k] = 1
+            continue
+        e, q = Quadric.from_matrix(E[k]), Quadric.from_matrix(Q[k])
+        ce, cq = e.center(), q.center()
+        assert ce is not None and cq is not None
+        out[k] = int(q.value_at(ce) * q[0, 0] < 0 or e.value_at(cq) * e[0, 0] < 0)
+    return out
+
+
+# -- measurements -------------------------------------------------------------------------------
+
+
+def _modes() -> list[tuple[str, NumberMode]]:
+    return [
+        ("float", FloatMode()),
+        ("filter", FilterMode()),
+        ("certified", CertifiedMode()),
+        ("ball (128 bits)", BallMode(128)),
+        ("mpmath (50 digits)", MpmathMode(50)),
+        ("exact", ExactMode()),
+    ]
+
+
+_SLOW = ("ball (128 bits)", "mpmath (50 digits)", "exact")
+
+
+def _measure_modes(
+    population: str, E: np.ndarray, Q: np.ndarray, truth: np.ndarray, cfg: dict[str, Any], report: Report
+) -> None:
+    n_slow = min(len(E), cfg["slow_pairs"])
+    for name, mode in _modes():
+        n = n_slow if name in _SLOW else len(E)
+        repeat = 1 if name in _SLOW else 3
+        seconds, codes = _best_of(functools.partial(criterion_stack, E[:n], Q[:n], mode=mode), repeat)
+        decided = codes != 2
+        note = ""
+        if isinstance(mode, CertifiedMode):
+            note = f"stages {mode.last}"
+        report.measurements.append(
+            Measurement(
+                name,
+                "mode",
+                population,
+                n,
+                seconds,
+                int(np.count_nonzero(decided & (codes != truth[:n]))),
+                int(np.count_nonzero(~decided)),
+                note,
+            )
+        )
+
+
+def _measure_peers(
+    population: str,
+    E: np.ndarray,
+    Q: np.ndarray,
+    truth: np.ndarray,
+    cfg: dict[str, Any],
+    report: Report,
+) -> None:
+    seconds, codes = _best_of(lambda: peer_numpy_eigvals(E, Q), 1)
+    report.measurements.append(
+        Measurement(
+            "numpy eigvals",
+            "peer",
+            population,
+            len(E),
+            seconds,
+            int(np.count_nonzero(codes != truth)),
+            0,
+            f"tol {EIG_TOL}",
+        )
+    )
+    n = min(len(E), cfg["slow_pairs"])
+    seconds, codes = _best_of(lambda: peer_numpy_roots(E[:n], Q[:n]), 1)
+    report.measurements.append(
+        Measurement(
+            "numpy roots",
+            "peer",
+            population,
+            n,
+            seconds,
+            int(np.count_nonzero(codes != truth[:n])),
+            0,
+            f"tol {EIG_TOL}",
+        )
+    )
+    n = min(len(E), cfg["sympy_pairs"])
+    seconds, codes = _best_of(lambda: peer_sympy(E[:n], Q[:n]), 1)
+    report.measurements.append(
+        Measurement(
+            "sympy det+discriminant",
+            "peer",
+            population,
+            n,
+            seconds,
+            int(np.count_nonzero(codes != truth[:n])),
+            0,
+        )
+    )
+
+
+def _measure_fcl(rng: np.random.Generator, cfg: dict[str, Any], report: Report) -> None:
+    try:
+        import fcl  # noqa: F401
+    except ImportError:
+        report.missing.append("python-fcl")
+        return
+    n = cfg["fcl_pairs"]
+    E, Q, _, geo_e, geo_q = random_pairs(n, rng, kinds=(K.ELLIPSOID,), with_geometry=True)
+    keep = np.flatnonzero(geo_q["sign"] > 0)
+    E, Q = E[keep], Q[keep]
+    geo_q = {k: v[keep] for k, v in geo_q.items()}
+    geo_e = {k: v[keep] for k, v in geo_e.items()}
+    contact = criterion_stack(E, Q, mode="exact")
+    truth = exact_overlap(E, Q, contact)
+    seconds, got = _best_of(lambda: peer_fcl(geo_e, geo_q, range(len(E))), 1)
+    report.measurements.append(
+        Measurement(
+            "fcl GJK",
+            "peer",
+            "random ellipsoid pairs (solid overlap)",
+            len(E),
+            seconds,
+            int(np.count_nonzero(got != truth)),
+            0,
+            "truth: contact or one inside the other",
+        )
+    )
+    seconds, codes = _best_of(lambda: criterion_stack(E, Q), 3)
+    report.measurements.append(
+        Measurement(
+            "certified",
+            "mode",
+            "random ellipsoid pairs (solid overlap)",
+            len(E),
+            seconds,
+            int(np.count_nonzero(codes != contact)),
+            0,
+            "transversal contact; overlap adds an exact centre test",
+        )
+    )
+
+
+def _hard(report: Report, cfg: dict[str, Any]) -> None:
+    from quadric_contact.modes import ContactCode
+    from quadric_contact.testing.hardcases import FAMILIES, hard_cases
+
+    cases = [c for c in hard_cases(cfg.get("hard_families", FAMILIES)) if not c.exact_input]
+    E = np.stack([c.matrices()[0] for c in cases])
+    Q = np.stack([c.matrices()[1] for c in cases])
+    truth = criterion_stack(E, Q, mode="exact")
+    _measure_modes("hard", E, Q, truth, {**cfg, "slow_pairs": len(E)}, report)
+    _measure_peers("hard", E, Q, truth, cfg, report)
+    # the ladder, distance by distance
+    ladder = [k for k, c in enumerate(cases) if c.family == "ladder" and c.direction != "tangent"]
+    distances = sorted({str(cases[k].distance) for k in ladder}, key=lambda d: int(d.split("-")[-1]))
+    methods: dict[str, np.ndarray] = {}
+    El, Ql = E[ladder], Q[ladder]
+    for name, mode in _modes():
+        methods[name] = criterion_stack(El, Ql, mode=mode)
+    methods["numpy eigvals"] = peer_numpy_eigvals(El, Ql)
+    methods["numpy roots"] = peer_numpy_roots(El, Ql)
+    t = truth[ladder]
+    for d in distances:
+        sel = np.array([cases[k].distance == d for k in ladder])
+        report.ladder[str(d)] = {
+            name: int(np.count_nonzero(sel & (codes != 2) & (codes != t))) for name, codes in methods.items()
+        }
+    # fcl on the ellipsoid rungs (solid overlap: contact, or E inside Q on the R- side)
+    with contextlib.suppress(ImportError):
+        import fcl  # noqa: F401
+
+        rungs = [k for k in ladder if cases[k].kind == "ellipsoid"]
+        geometry = [cases[k].geometry or {} for k in rungs]
+        geo_e = {key: np.array([g["E"][key] for g in geometry]) for key in ("axes", "rotation", "center")}
+        geo_q = {key: np.array([g["Q"][key] for g in geometry]) for key in ("axes", "rotation", "center")}
+        region = [cases[k].side for k in rungs]
+        overlap = np.array(
+            [
+                int(truth[k] == ContactCode.CONTACT or side == "R-")
+                for k, side in zip(rungs, region, strict=True)
+            ]
+        )
+        seconds, got = _best_of(lambda: peer_fcl(geo_e, geo_q, range(len(rungs))), 1)
+        report.measurements.append(
+            Measurement(
+                "fcl GJK",
+                "peer",
+                "hard (ellipsoid ladder, solid overlap)",
+                len(rungs),
+                seconds,
+                int(np.count_nonzero(got != overlap)),
+                0,
+            )
+        )
+        for d in distances:
+            sel = np.array([cases[k].distance == d for k in rungs])
+            report.ladder[str(d)]["fcl GJK (ellipsoid rungs)"] = int(np.count_nonzero(sel & (got != overlap)))
+        for row in report.ladder.values():
+            row.setdefault("fcl GJK (ellipsoid rungs)", 0)
+
+
+def read_bandwidth(E: np.ndarray, Q: np.ndarray, repeat: int = 5) -> dict[str, float]:
+    """The time to read every byte of ``E`` and ``Q`` once (a compiled, threaded sum):
+    no kernel that reads its inputs can be faster."""
+    from quadric_contact.modes.float64 import read_all
+
+    read_all(E[:10], Q[:10])
+    seconds, _ = _best_of(lambda: read_all(E, Q), repeat)
+    nbytes = E.nbytes + Q.nbytes
+    return {
+        "pairs": len(E),
+        "bytes": nbytes,
+        "seconds": seconds,
+        "gbytes_per_s": nbytes / seconds / 1e9,
+        "pairs_per_s": len(E) / seconds,
+    }
+
+
+def _throughput(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> None:
+    top = max(cfg["sizes"])
+    pool = min(top, 10**6)
+    E, Q, _ = random_pairs(pool, rng, kinds=GENERIC_KINDS)
+    if top > pool:
+        reps = -(-top // pool)
+        E = np.tile(E, (reps, 1, 1))[:top]
+        Q = np.tile(Q, (reps, 1, 1))[:top]
+    report.bandwidth = read_bandwidth(E, Q)
+    for size in cfg["sizes"]:
+        for name, mode in (("float", FloatMode()), ("filter", FilterMode()), ("certified", CertifiedMode())):
+            e, q = E[:size], Q[:size]
+            repeat = 5 if size <= 10**5 else 2
+            seconds, _ = _best_of(functools.partial(criterion_stack, e, q, mode=mode), repeat)
+            with _traced() as peak:
+                criterion_stack(e, q, mode=mode)
+            report.throughput.append(
+                {"mode": name, "n": size, "seconds": seconds, "rate": size / seconds, "peak_bytes": peak[0]}
+            )
+    size = min(top, 10**5)
+    seconds, _ = _best_of(functools.partial(peer_numpy_eigvals, E[:size], Q[:size]), 2)
+    report.throughput.append(
+        {"mode": "numpy eigvals", "n": size, "seconds": seconds, "rate": size / seconds, "peak_bytes": 0}
+    )
+
+
+def _escalation(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> None:
+    total = cfg["escalation_pairs"]
+    for population, kinds in (("generic", GENERIC_KINDS), ("random", SAMPLE_KINDS)):
+        mode = CertifiedMode()
+        done = 0
+        while done < total:
+            n = min(10**6, total - done)
+            E, Q, _ = random_pairs(n, rng, kinds=kinds)
+            criterion_stack(E, Q, mode=mode)
+            done += n
+        report.escalation[population] = {
+            "pairs": total,
+            "escalated": mode.counts.escalated,
+            "rate": mode.counts.escalated / total,
+            "stages": str(mode.counts),
+        }
+
+
+def _stage_fractions(counts: Any) -> str:
+    total = max(counts.total, 1)
+    parts = [f"{stage} {n / total:.3g}" for stage, n in counts.decided.items() if n]
+    if counts.undecided:
+        parts.append(f"undecided {counts.undecided / total:.3g}")
+    return ", ".join(parts)
+
+
+def complete_populations(n: int, rng: np.random.Generator) -> dict[str, tuple[np.ndarray, np.ndarray, Any]]:
+    """The two populations of the complete-decision measurement: ``environment`` (``n`` small
+    ellipsoids, semi-axes 0.1-0.5, centres in [-6, 6]^3, against one ellipsoid of semi-axes 3,
+    4, 5: the paper's use case, nearly all pairs small) and ``similar sizes`` (``n`` pairs of
+    ellipsoids with semi-axes 0.5-2 and centres in [-2, 2]^3: many pairs not small), with the
+    geometry of the second for peers that take shapes."""
+    from quadric_contact.testing.samples import random_ellipsoids
+
+    small, _ = random_ellipsoids(n, rng, axes=(0.1, 0.5), box=6.0)
+    env, _ = random_ellipsoids(1, rng, axes=(3.0, 5.0), box=0.0)
+    E, geo_e = random_ellipsoids(n, rng, axes=(0.5, 2.0), box=2.0)
+    Q, geo_q = random_ellipsoids(n, rng, axes=(0.5, 2.0), box=2.0)
+    return {"environment": (small, env[0], None), "similar sizes": (E, Q, (geo_e, geo_q))}
+
+
+def _complete(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> None:
+    """Item by item: the complete decision (certified) and the criterion alone on the same
+    pairs, the fraction each stage settles, and the peers' errors against the certified answer."""
+    from quadric_contact.modes.predicates import relative_position, transversal_contact
+
+    n = cfg["complete_pairs"]
+    for population, (E, Q, geometry) in complete_populations(n, rng).items():
+        transversal_contact(E[:100], Q if Q.ndim == 2 else Q[:100])  # compile / load the kernels
+        criterion_stack(E[:100], Q if Q.ndim == 2 else Q[:100])
+        mode = CertifiedMode()
+        seconds, truth = _best_of(functools.partial(transversal_contact, E, Q, mode=mode), 3)
+        report.complete.append(
+            {
+                "population": population,
+                "method": "certified, complete",
+                "n": n,
+                "seconds": seconds,
+                "wrong": None,
+                "stages": _stage_fractions(mode.last),
+                "exact_pairs": mode.last.decided.get("exact pair", 0),
+            }
+        )
+        seconds, crit = _best_of(functools.partial(criterion_stack, E, Q), 3)
+        report.complete.append(
+            {
+                "population": population,
+                "method": "certified, criterion alone",
+                "n": n,
+                "seconds": seconds,
+                "wrong": int(np.count_nonzero(crit != truth)),
+                "stages": "Corollary 10 without smallness",
+            }
+        )
+        if geometry is None:
+            continue
+        m = min(n, 200_000)
+        seconds, eig = _best_of(functools.partial(peer_numpy_eigvals, E[:m], Q[:m]), 1)
+        report.complete.append(
+            {
+                "population": population,
+                "method": "numpy batch eigvals (peer)",
+                "n": m,
+                "seconds": seconds,
+                "wrong": int(np.count_nonzero(eig != truth[:m])),
+                "stages": "non-real eigenvalues of -Q E^-1 (tolerance 1e-9)",
+            }
+        )
+        try:
+            import fcl  # noqa: F401
+        except ImportError:
+            continue
+        k = min(n, cfg["fcl_complete_pairs"])
+        which = range(k)
+        t0 = time.perf_counter()
+        got = peer_fcl(geometry[0], geometry[1], which)
+        seconds = time.perf_counter() - t0
+        inside = relative_position(E[:k], Q[:k]) == -1
+        around = relative_position(Q[:k], E[:k]) == -1
+        overlap = (truth[:k] == 1) | inside | around
+        report.complete.append(
+            {
+                "population": population,
+                "method": "python-fcl GJK, solid overlap (peer)",
+                "n": k,
+                "seconds": seconds,
+                "wrong": int(np.count_nonzero(got != overlap)),
+                "stages": "against the certified overlap (contact, or one inside the other)",
+            }
+        )
+
+
+def kernel_population(n: int, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+    """The population of the kernel measurements: ``n`` small ellipsoids (semi-axes 0.5-2, random
+    rotations, centres in [-3, 3]^3) against ``n`` ellipsoids of semi-axes 2-5 (centres likewise)."""
+    from quadric_contact.testing.samples import random_ellipsoids
+
+    E, _ = random_ellipsoids(n, rng, axes=(0.5, 2.0), box=3.0)
+    Q, _ = random_ellipsoids(n, rng, axes=(2.0, 5.0), box=3.0)
+    return E, Q
+
+
+def _kernels(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> None:
+    """The criterion alone (float, filter, certified; float64 and packed input) and the complete
+    decision on distinct pairs and on one matrix against the stack (broadcasting), each against
+    the time it takes to read its inputs once, and numpy's batch eigenvalues on the same pairs."""
+    from quadric_contact.modes.packing import Packed, pack
+    from quadric_contact.modes.predicates import transversal_contact
+
+    n = cfg["kernel_pairs"]
+    E, Q = kernel_population(n, rng)
+    repeat = 5 if n <= 10**5 else 3
+    report.kernel_bandwidth = {"distinct": read_bandwidth(E, Q), "broadcast": read_bandwidth(E, Q[:1])}
+    PE, PQ = Packed(pack(E)), Packed(pack(Q))
+    inputs = {
+        "distinct": (E, Q),
+        "broadcast": (E, Q[0]),
+        "distinct, packed": (PE, PQ),
+        "broadcast, packed": (PE, Packed(pack(Q[:1]))),
+    }
+    methods: list[tuple[str, Any, Callable[..., Any]]] = [
+        ("float", FloatMode(), criterion_stack),
+        ("filter", FilterMode(), criterion_stack),
+        ("certified", CertifiedMode(), criterion_stack),
+        ("certified, complete decision", CertifiedMode(), transversal_contact),
+    ]
+    truth = None
+    for label, (e, q) in inputs.items():
+        limit = report.kernel_bandwidth["broadcast" if label.startswith("broadcast") else "distinct"]
+        packed = "packed" in label
+        lim_rate = limit["pairs_per_s"] * (128 / 80 if packed else 1.0)
+        for name, mode, fn in methods:
+            if packed and name in ("float", "filter"):
+                continue
+            seconds, codes = _best_of(functools.partial(fn, e, q, mode=mode), repeat)
+            if label == "distinct" and name == "certified":
+                truth = codes
+            report.kernels.append(
+                {
+                    "input": label,
+                    "method": name,
+                    "n": n,
+                    "seconds": seconds,
+                    "rate": n / seconds,
+                    "fraction": None if name.endswith("decision") else n / seconds / lim_rate,
+                }
+            )
+    m = min(n, 200_000)
+    seconds, eig = _best_of(functools.partial(peer_numpy_eigvals, E[:m], Q[:m]), 1)
+    report.kernels.append(
+        {
+            "input": "distinct",
+            "method": "numpy batch eigvals (peer)",
+            "n": m,
+            "seconds": seconds,
+            "rate": m / seconds,
+            "fraction": None,
+            "wrong": None if truth is None else int(np.count_nonzero(eig != truth[:m])),
+        }
+    )
+
+
+COLD_START_CODE = """
+import time
+t0 = time.perf_counter()
+import numpy as np
+import quadric_contact as qc
+from quadric_contact.interfaces.benchmark import kernel_population
+t1 = time.perf_counter()
+E, Q = kernel_population(1000, np.random.default_rng(0))
+qc.transversal_contact(E, Q)
+t2 = time.perf_counter()
+print(t1 - t0, t2 - t1)
+"""
+
+
+def cold_start() -> dict[str, Any]:
+    """The first array call (the complete decision, certified, on 1000 pairs) in a fresh
+    interpreter whose numba cache directory is empty (as after ``pip install``), then in a
+    second one that finds the cache: the import time, the call's time, and whether the
+    one-line compile notice was printed."""
+    import tempfile
+
+    from quadric_contact.modes._jit import COMPILE_NOTICE
+
+    src = str(Path(__file__).resolve().parents[2])
+    out: dict[str, Any] = {}
+    with tempfile.TemporaryDirectory(prefix="quadric-contact-cache-") as cache:
+        env = dict(
+            os.environ, NUMBA_CACHE_DIR=cache, PYTHONPATH=src + os.pathsep + os.environ.get("PYTHONPATH", "")
+        )
+        for run_ in ("fresh", "warm"):
+            t = time.perf_counter()
+            proc = subprocess.run(
+                [sys.executable, "-c", COLD_START_CODE], capture_output=True, text=True, check=True, env=env
+            )
+            wall = time.perf_counter() - t
+            imp, first = (float(v) for v in proc.stdout.split())
+            out[run_] = {
+                "import": imp,
+                "first": first,
+                "wall": wall,
+                "notice": COMPILE_NOTICE.split("{")[0][:40] in proc.stderr,
+            }
+    return out
+
+
+def _exact_timing(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> dict[str, float]:
+    n = cfg["exact_timing_pairs"]
+    E, Q, _ = random_pairs(n, rng)
+    out = {}
+    for backend in ("int", "fmpz"):
+        seconds, _ = _best_of(functools.partial(criterion_stack, E, Q, mode=ExactMode(backend)), 2)
+        out[backend] = seconds / n
+    return out
+
+
+def _targets(report: Report, exact_per_pair: dict[str, float]) -> None:
+    def rate(method: str, population: str = "generic") -> float:
+        m = next(m for m in report.measurements if m.method == method and m.population == population)
+        return 1.0 / m.per_test
+
+    def batch_rate(mode: str) -> tuple[float, int]:
+        """Pairs per second at the largest batch size measured for ``mode``."""
+        row = max((t for t in report.throughput if t["mode"] == mode), key=lambda t: t["n"])
+        return float(row["rate"]), int(row["n"])
+
+    # Batch throughput (the targets' measure) from the throughput table: the largest
+    # batch of each method, where fixed per-call costs no longer count; the per-test
+    # times of the 'generic' population (smaller batches) are given alongside.
+    cert_small, flt_small, eig_small = rate("certified"), rate("float"), rate("numpy eigvals")
+    (cert, n_cert), (flt, _), (eig, n_eig) = (
+        batch_rate("certified"),
+        batch_rate("float"),
+        batch_rate("numpy eigvals"),
+    )
+    generic_cert = next(
+        m for m in report.measurements if m.method == "certified" and m.population == "generic"
+    )
+    wrong, small_n = generic_cert.wrong, generic_cert.n
+    report.targets.append(
+        Target(
+            "certified vs numpy batch eigvals",
+            ">= 100x, zero wrong",
+            cert / eig,
+            "x",
+            cert / eig >= 100 and wrong == 0,
+            f"(batches of {n_cert:.0e} and {n_eig:.0e}; at {small_n} pairs: "
+            f"{cert_small / eig_small:.1f}x; wrong: {wrong})",
+        )
+    )
+    report.targets.append(
+        Target(
+            "certified vs plain float kernel",
+            ">= 0.5x",
+            cert / flt,
+            "x",
+            cert / flt >= 0.5,
+            f"(at {small_n} pairs: {cert_small / flt_small:.2f}x)",
+        )
+    )
+    big = max((t for t in report.throughput if t["mode"] == "float"), key=lambda t: t["n"])
+    if report.bandwidth:
+        limit = big["n"] / report.bandwidth["pairs_per_s"]
+        ratio = (
+            big["seconds"] / limit
+            if big["n"] == report.bandwidth["pairs"]
+            else big["seconds"] / (big["n"] / report.bandwidth["pairs_per_s"])
+        )
+        report.targets.append(
+            Target(
+                "float kernel vs reading its inputs",
+                "<= 2x the bandwidth limit",
+                ratio,
+                "x",
+                ratio <= 2.0,
+                f"(at {big['n']} pairs)",
+            )
+        )
+    best = min(exact_per_pair.values())
+    which = min(exact_per_pair, key=exact_per_pair.get)  # type: ignore[arg-type]
+    sym = [m for m in report.measurements if m.method == "sympy det+discriminant"]
+    sympy_note = (
+        f"; sympy peer {1e6 * sum(m.seconds for m in sym) / max(sum(m.n for m in sym), 1):.0f} us"
+        if sym
+        else ""
+    )
+    report.targets.append(
+        Target(
+            "exact mode per pair (float input)",
+            "<= 20 us",
+            best * 1e6,
+            "us",
+            best <= 20e-6,
+            f"({which}; Python int {exact_per_pair['int'] * 1e6:.1f} us, "
+            f"python-flint fmpz {exact_per_pair['fmpz'] * 1e6:.1f} us{sympy_note})",
+        )
+    )
+    _kernel_targets(report)
+    if "generic" in report.escalation:
+        e = report.escalation["generic"]
+        report.targets.append(
+            Target(
+                "escalated past the float stage",
+                "< 1e-5",
+                e["rate"],
+                "",
+                e["rate"] < 1e-5,
+                f"({e['escalated']} of {e['pairs']} generic pairs; all types: "
+                f"{report.escalation.get('random', {}).get('rate', float('nan')):.2e})",
+            )
+        )
+    rows = {(r["population"], r["method"]): r for r in report.complete}
+    if rows:
+        env_c = rows[("environment", "certified, complete")]
+        env_k = rows[("environment", "certified, criterion alone")]
+        ratio = env_c["seconds"] / env_k["seconds"]
+        report.targets.append(
+            Target(
+                "complete decision, small ellipsoids vs one environment",
+                "<= 1.5x the criterion alone",
+                ratio,
+                "x",
+                ratio <= 1.5,
+                f"({env_c['stages']})",
+            )
+        )
+        sim = rows[("similar sizes", "certified, complete")]
+        rate_ = sim["n"] / sim["seconds"]
+        report.targets.append(
+            Target(
+                "complete decision, pairs of similar sizes",
+                ">= 1e6 pairs/s",
+                rate_,
+                "pairs/s",
+                rate_ >= 1e6,
+                f"({sim['stages']})",
+            )
+        )
+        frac = sim["exact_pairs"] / sim["n"]
+        report.targets.append(
+            Target(
+                "pairs of similar sizes reaching the exact pair stage",
+                "<= 1e-4",
+                frac,
+                "",
+                frac <= 1e-4,
+                f"({sim['exact_pairs']} of {sim['n']})",
+            )
+        )
+    if report.huge:
+        report.targets.append(
+            Target(
+                "1e8 pairs in chunks",
+                "peak memory < 2 GB",
+                report.huge["peak_rss"] / 2**30,
+                "GB",
+                report.huge["peak_rss"] < 2 * 2**30,
+            )
+        )
+
+
+def _kernel_targets(report: Report) -> None:
+    rows = {(r["input"], r["method"]): r for r in report.kernels}
+    if rows:
+        cert = rows[("distinct", "certified")]
+        bcast = rows[("broadcast", "certified")]
+        flt, fil = rows[("distinct", "float")], rows[("distinct", "filter")]
+        eig = rows[("distinct", "numpy batch eigvals (peer)")]
+        comp = rows[("distinct", "certified, complete decision")]
+        bcomp = rows[("broadcast", "certified, complete decision")]
+        n = cert["n"]
+        report.targets += [
+            Target(
+                "certified criterion, distinct (N, 4, 4) pairs",
+                ">= 6e7 pairs/s",
+                cert["rate"],
+                "pairs/s",
+                cert["rate"] >= 6e7,
+                f"(N = {n}; packed {rows[('distinct, packed', 'certified')]['rate']:.3g}; "
+                f"complete decision {comp['rate']:.3g} pairs/s)",
+            ),
+            Target(
+                "certified criterion, one matrix against a stack",
+                ">= 1.2e8 pairs/s",
+                bcast["rate"],
+                "pairs/s",
+                bcast["rate"] >= 1.2e8,
+                f"(N = {n}; complete decision {bcomp['rate']:.3g} pairs/s)",
+            ),
+            Target(
+                "certified criterion vs numpy batch eigvals, same pairs",
+                ">= 300x",
+                cert["rate"] / eig["rate"],
+                "x",
+                cert["rate"] / eig["rate"] >= 300,
+                f"(eigvals on {eig['n']} pairs: {eig['rate']:.3g} pairs/s, "
+                f"{eig.get('wrong')} differ from certified)",
+            ),
+            Target(
+                "filter vs float, distinct pairs",
+                "<= 1.5x the time",
+                flt["rate"] / fil["rate"],
+                "x",
+                flt["rate"] / fil["rate"] <= 1.5,
+                f"(float {flt['rate']:.3g}, filter {fil['rate']:.3g} pairs/s)",
+            ),
+            Target(
+                "certified criterion vs reading its inputs (distinct)",
+                ">= 0.6 of the bandwidth limit",
+                cert["fraction"],
+                "",
+                cert["fraction"] >= 0.6,
+                f"(limit {report.kernel_bandwidth['distinct']['pairs_per_s']:.3g} pairs/s at "
+                f"{report.kernel_bandwidth['distinct']['gbytes_per_s']:.1f} GB/s; "
+                f"float {flt['fraction']:.2f}, "
+                f"filter {fil['fraction']:.2f}, broadcast certified {bcast['fraction']:.2f})",
+            ),
+        ]
+    c = report.cold_start
+    if c:
+        fresh, warm = c["fresh"], c["warm"]
+        report.targets += [
+            Target(
+                "first array call after install (empty cache)",
+                "<= 5 s, or one line saying it compiles once",
+                fresh["first"],
+                "s",
+                fresh["first"] <= 5 or fresh["notice"],
+                f"(notice printed: {'yes' if fresh['notice'] else 'no'}; import {fresh['import']:.1f} s)",
+            ),
+            Target(
+                "first array call in later processes (cache warm)",
+                "<= 5 s",
+                warm["first"],
+                "s",
+                warm["first"] <= 5,
+                f"(import {warm['import']:.1f} s)",
+            ),
+        ]
+    else:
+        report.targets.append(
+            Target(
+                "first array call after install (empty cache)",
+                "<= 5 s, or one line saying it compiles once",
+                float("nan"),
+                "s",
+                False,
+                "(not measured in this profile: run the quick or full profile)",
+            )
+        )
+
+
+# -- the chunked run ---------------------------------------------------------------------------------
+
+
+def peak_rss() -> int:
+    """Peak resident set size of this process's own address space, in bytes.
+
+    On Linux ``VmHWM`` from ``/proc/self/status``: ``getrusage``'s ``ru_maxrss`` is
+    preserved across ``execve`` and inherited from the parent at ``fork``, so in a
+    subprocess started by a process holding large arrays it reports the parent's peak,
+    not the child's.  Elsewhere ``ru_maxrss`` (kilobytes on Linux, bytes on macOS)."""
+    try:
+        with open("/proc/self/status") as f:
+            for line in f:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) * 1024
+    except OSError:
+        pass
+    rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    return int(rss if sys.platform == "darwin" else rss * 1024)
+
+
+def huge_run(pairs: int = 10**8, chunk: int = 250_000, seed: int = 0) -> dict[str, Any]:
+    """Process ``pairs`` pairs in dask chunks (generated chunk by chunk, never all in
+    memory) and return the time, the counts and the peak RSS of this process."""
+    import dask.array as da
+
+    nchunks = -(-pairs // chunk)
+
+    def block(block_info: Any = None) -> np.ndarray:
+        k = block_info[None]["chunk-location"][0]
+        n = block_info[None]["chunk-shape"][0]
+        E, Q, _ = random_pairs(n, np.random.default_rng(seed + k), kinds=GENERIC_KINDS)
+        return np.concatenate([E[:, None], Q[:, None]], axis=1)
+
+    chunks = ((chunk,) * (pairs // chunk) + ((pairs % chunk,) if pairs % chunk else ()), (2,), (4,), (4,))
+    both = da.map_blocks(block, chunks=chunks, dtype=np.float64)
+    mode = CertifiedMode()
+    t = time.perf_counter()
+    codes = criterion_stack(both[:, 0], both[:, 1], mode=mode)
+    seconds = time.perf_counter() - t
+    return {
+        "pairs": pairs,
+        "chunk": chunk,
+        "chunks": nchunks,
+        "seconds": seconds,
+        "contact": int(np.count_nonzero(codes == 1)),
+        "stages": str(mode.counts),
+        "peak_rss": peak_rss(),
+    }
+
+
+def huge_run_subprocess(pairs: int, chunk: int) -> dict[str, Any]:
+    """:func:`huge_run` in a fresh interpreter, so that its peak RSS is its own."""
+    code = (
+        "import json, sys; from quadric_contact.interfaces.benchmark import huge_run; "
+        f"print(json.dumps(huge_run({pairs}, {chunk})))"
+    )
+    env = dict(os.environ)
+    src = str(Path(__file__).resolve().parents[2])
+    env["PYTHONPATH"] = src + os.pathsep + env.get("PYTHONPATH", "")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env)
+    return dict(json.loads(out.stdout.strip().splitlines()[-1]))
+
+
+# -- the run and the plot ---------------------------------------------------------------------------
+
+
+def run(
+    profile: str = "quick",
+    *,
+    seed: int = 0,
+    huge: bool = False,
+    huge_pairs: int = 10**8,
+    log: Callable[[str], None] = print,
+) -> Report:
+    """Measure everything of a profile (``"quick"`` or ``"full"``) and return the report."""
+    if profile not in PROFILES:
+        raise ValueError(f"profile must be one of {tuple(PROFILES)}")
+    cfg = PROFILES[profile]
+    rng = np.random.default_rng(seed)
+    report = Report(profile, machine_info())
+    for population, kinds in (("generic", GENERIC_KINDS), ("random", SAMPLE_KINDS)):
+        log(f"modes and peers on {cfg['pairs']} {population} pairs ...")
+        E, Q, _ = random_pairs(cfg["pairs"], rng, kinds=kinds)
+        criterion_stack(E[:100], Q[:100], mode="float")  # compile / load the kernels
+        truth = criterion_stack(E, Q, mode="exact")
+        _measure_modes(population, E, Q, truth, cfg, report)
+        _measure_peers(population, E, Q, truth, cfg, report)
+    log("hard cases ...")
+    _hard(report, cfg)
+    log("python-fcl ...")
+    _measure_fcl(rng, cfg, report)
+    log("throughput and bandwidth ...")
+    _throughput(report, cfg, rng)
+    log("escalation ...")
+    _escalation(report, cfg, rng)
+    log("exact mode per pair ...")
+    exact = _exact_timing(report, cfg, rng)
+    log(f"the complete decision on {cfg['complete_pairs']} pairs per population ...")
+    _complete(report, cfg, rng)
+    log(f"kernels at the memory limit on {cfg['kernel_pairs']} pairs ...")
+    _kernels(report, cfg, rng)
+    if cfg.get("cold_start"):
+        log("first use: a fresh process with an empty numba cache (compiles every kernel it needs) ...")
+        report.cold_start = cold_start()
+    if huge:
+        log(f"chunked run of {huge_pairs:.3g} pairs (in a subprocess) ...")
+        report.huge = huge_run_subprocess(huge_pairs, 250_000)
+    _targets(report, exact)
+    return report
+
+
+def plot(report: Report, path: Path) -> Path | None:
+    """Time per test against error rate (one point per method and population), and
+    throughput against batch size; returns the file written, or None without matplotlib."""
+    try:
+        plt = pyplot("benchmark plots")
+    except MissingDependencyError:
+        report.missing.append("matplotlib")
+        return None
+    fig, axes = plt.subplots(1, 3, figsize=(18, 5.5))
+    floor = 1e-6
+    for ax, population in zip(axes[:2], ("random", "hard"), strict=True):
+        for m in report.measurements:
+            if not m.population.startswith(population):
+                continue
+            err = max(m.wrong_rate, floor)
+            marker = "o" if m.kind == "mode" else "s"
+            ax.scatter(m.per_test, err, marker=marker, s=50)
+            label = m.method + (f" ({m.undecided_rate:.1%} undecided)" if m.undecided else "")
+            ax.annotate(label, (m.per_test, err), fontsize=7, xytext=(4, 3), textcoords="offset points")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_ylim(floor / 2, 1)
+        ax.set_xlabel("time per test (s)")
+        ax.set_ylabel(f"fraction wrong (0 drawn at {floor:g})")
+        ax.set_title(f"{population} pairs: what accuracy costs")
+        ax.grid(True, which="both", alpha=0.3)
+    ax = axes[2]
+    for name in sorted({t["mode"] for t in report.throughput}):
+        pts = [(t["n"], t["rate"]) for t in report.throughput if t["mode"] == name]
+        ax.plot(*zip(*pts, strict=True), marker="o", label=name)
+    if report.bandwidth:
+        ax.axhline(report.bandwidth["pairs_per_s"], color="k", linestyle="--", label="reading the inputs")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("batch size (pairs)")
+    ax.set_ylabel("pairs per second")
+    ax.set_title("throughput")
+    ax.legend(fontsize=8)
+    ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path

@@ -1,0 +1,184 @@
+"""``quadric-contact simulate [SCENE]``: run a scene, print its exact event timeline and work ledger."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import tempfile
+import warnings
+from pathlib import Path
+from typing import Any
+
+from quadric_contact.interfaces.cli.exits import EXIT_BAD_INPUT, EXIT_OK
+
+
+def register(sub: Any) -> None:
+    p = sub.add_parser(
+        "simulate",
+        help="run a scene: exact event times, only the requested effects, work ledger",
+        description="Run a scene file (TOML) or a built-in scene (default: the bee and the tree of "
+        "Example 17) and print the event timeline with exact event times and the work ledger. "
+        "Exit status: 0 done, 2 bad scene or option.",
+    )
+    p.add_argument(
+        "scene",
+        nargs="?",
+        default="bee_and_tree",
+        help="a scene file, a built-in scene name, or many_bodies (a generated scene: --bodies, --pieces)",
+    )
+    p.add_argument("--list", action="store_true", help="list the built-in scenes and exit")
+    p.add_argument(
+        "--effects",
+        help="comma-separated effects replacing the scene's "
+        "(zone, contact, contact_kind, relative_position, first_contact, smallness)",
+    )
+    p.add_argument("--json", action="store_true", help="print one JSON object instead of the timeline")
+    p.add_argument("--output", "-o", metavar="FILE", help="also write the JSON result to FILE")
+    p.add_argument("--plot", metavar="FILE.png", help="draw the pieces, planes and path coloured by state")
+    p.add_argument(
+        "--animate",
+        metavar="FILE.gif",
+        help="an animated GIF of the bodies moving, coloured by state, with the timeline",
+    )
+    p.add_argument("--frames", type=int, default=40, help="frames of the animation (default 40)")
+    p.add_argument("--places", type=int, help="decimal places of the event times (default: the scene's)")
+    p.add_argument(
+        "--broad-phase",
+        action="store_true",
+        help="prune planes, pieces and stretches of time with certified swept-volume bounds first "
+        "(same timelines; on by default for many_bodies)",
+    )
+    p.add_argument(
+        "--workers",
+        type=int,
+        default=None,
+        help="processes to share the ellipsoids (0: one per core; default 1)",
+    )
+    p.add_argument(
+        "--bodies", type=int, default=1000, help="many_bodies: number of ellipsoids (default 1000)"
+    )
+    p.add_argument("--pieces", type=int, default=16, help="many_bodies: pieces of the totem (default 16)")
+    p.add_argument("--seed", type=int, default=0, help="many_bodies: the seed of the generated scene")
+    p.add_argument(
+        "--on-not-small",
+        choices=("refuse", "warn"),
+        help="what to do when an ellipsoid is not small with respect to a piece (default: the scene's)",
+    )
+    p.add_argument(
+        "--full",
+        action="store_true",
+        help="evaluate every effect for every piece on every segment (to compare with the lazy plan)",
+    )
+    prog = p.add_mutually_exclusive_group()
+    prog.add_argument("--progress", dest="progress", action="store_true", default=None, help="show progress")
+    prog.add_argument("--no-progress", dest="progress", action="store_false", help="never show progress")
+    p.set_defaults(func=run)
+
+
+def _write_atomically(path: str, data: bytes) -> None:
+    target = Path(path)
+    folder = target.parent if str(target.parent) else Path(".")
+    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", dir=folder)
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+        os.replace(tmp, target)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def run(args: argparse.Namespace) -> int:
+    from quadric_contact.exact.errors import SceneError
+    from quadric_contact.scenes.scene import EFFECTS, builtin_scene_names, load_scene
+    from quadric_contact.scenes.simulate import Plan, simulate
+
+    if args.list:
+        from quadric_contact.scenes.manybody import GENERATED_SCENES
+        from quadric_contact.scenes.scene import builtin_scene
+
+        for name in builtin_scene_names():
+            s = builtin_scene(name, check_smallness=False)
+            print(f"{name:24s} {s.name}")
+        for name, what in GENERATED_SCENES.items():
+            print(f"{name:24s} {what}")
+        return EXIT_OK
+    effects = None
+    if args.effects is not None:
+        effects = [e.strip() for e in args.effects.split(",") if e.strip()]
+        bad = [e for e in effects if e not in EFFECTS]
+        if bad or not effects:
+            raise SceneError(
+                f"--effects: expected a comma-separated subset of {', '.join(EFFECTS)}, got {args.effects!r}"
+            )
+    if args.places is not None and not 0 <= args.places <= 1000:
+        raise SceneError(f"--places: expected an integer in [0, 1000], got {args.places}")
+    if args.frames < 2:
+        raise SceneError(f"--frames: expected at least 2, got {args.frames}")
+    if args.workers is not None and args.workers < 0:
+        raise SceneError(f"--workers: expected a number of processes >= 0, got {args.workers}")
+    for out in (args.output, args.plot, args.animate):
+        if out is not None:
+            folder = Path(out).parent
+            if str(folder) and not folder.is_dir():
+                raise SceneError(f"{out}: the folder {folder} does not exist")
+    from quadric_contact.scenes.manybody import GENERATED_SCENES, many_body_scene
+
+    broad_phase = args.broad_phase
+    if args.scene in GENERATED_SCENES and not Path(args.scene).exists():
+        if args.bodies < 1 or args.pieces < 1:
+            raise SceneError(
+                f"--bodies and --pieces: expected positive numbers, got {args.bodies}, {args.pieces}"
+            )
+        scene = many_body_scene(args.bodies, args.pieces, seed=args.seed, check_smallness=False)
+        broad_phase = True
+    else:
+        # load without checking smallness; the run checks it only if its effects need it
+        scene = load_scene(args.scene, check_smallness=False)
+    plan_effects = effects if effects is not None else list(scene.effects)
+    Plan.from_effects(plan_effects)  # validate before any work
+    if args.plot or args.animate:
+        from quadric_contact.exact.optional import pyplot
+
+        pyplot()  # fail early when matplotlib is missing
+    with warnings.catch_warnings():  # the report prints the scene's warnings itself
+        warnings.simplefilter("ignore")
+        result = simulate(
+            scene,
+            effects=effects,
+            full=args.full,
+            progress=args.progress,
+            on_not_small=args.on_not_small,
+            broad_phase=broad_phase and not args.full,
+            workers=1 if args.workers is None else args.workers,
+        )
+    places = args.places
+    payload = json.dumps(result.to_dict(places), indent=2) + "\n" if args.json or args.output else ""
+    png = None
+    if args.plot:
+        from quadric_contact.interfaces.plotting import render_png
+
+        png = render_png(result)
+    gif = None
+    if args.animate:
+        from quadric_contact.interfaces.animation import render_gif
+
+        gif = render_gif(result, frames=args.frames)
+    # everything succeeded: now write (each file appears whole or not at all)
+    if args.output:
+        _write_atomically(args.output, payload.encode())
+    if png is not None:
+        _write_atomically(args.plot, png)
+    if gif is not None:
+        _write_atomically(args.animate, gif)
+    if args.json:
+        sys.stdout.write(payload)
+    else:
+        print(result.format_text(places))
+        if args.plot:
+            print(f"plot written to {args.plot}")
+        if args.animate:
+            print(f"animation written to {args.animate}")
+    return EXIT_OK if result is not None else EXIT_BAD_INPUT

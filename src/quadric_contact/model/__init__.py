@@ -1,0 +1,1 @@
+"""The model: exact quadrics, the equation parser, classification, invariants, rigid motions."""

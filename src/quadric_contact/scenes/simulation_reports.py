@@ -1,0 +1,467 @@
+"""What a run of a scene reports: the plan, states, episodes, events, per-pair and
+whole-scene results (:func:`quadric_contact.scenes.simulate.simulate` builds them).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Any
+
+from quadric_contact.exact.algebraic import RealAlgebraic
+from quadric_contact.exact.errors import SceneError
+from quadric_contact.scenes.composite import Composite
+from quadric_contact.scenes.events import (
+    PieceValue,
+    ZoneValue,
+)
+from quadric_contact.scenes.ledger import Ledger
+from quadric_contact.scenes.scene_model import EFFECTS, Scene
+from quadric_contact.theory.results import Region
+
+__all__ = [
+    "Episode",
+    "Event",
+    "ObjectState",
+    "PairResult",
+    "Plan",
+    "SimulationResult",
+]
+
+TimePoint = Any  # Fraction or RealAlgebraic
+
+
+@dataclass(frozen=True)
+class Plan:
+    """What a run computes, derived from the requested effects.
+
+    Attributes
+    ----------
+    effects : tuple of str
+    pieces : bool
+        Pieces are evaluated at all (contact, kind, region or first contact asked for).
+    region, kind : bool
+        Keep the coefficient polynomials / classify the contact kind.
+    stop_at_first_contact : bool
+        Only ``first_contact`` (with ``smallness``) is asked for: stop each
+        (ellipsoid, object) at its first contact.
+    full : bool
+        Evaluate every effect for every piece on every segment (for comparison).
+    """
+
+    effects: tuple[str, ...]
+    pieces: bool
+    region: bool
+    kind: bool
+    stop_at_first_contact: bool
+    full: bool = False
+
+    @classmethod
+    def from_effects(cls, effects: Iterable[str], *, full: bool = False) -> Plan:
+        """The plan for a set of effects (:data:`~quadric_contact.scenes.scene.EFFECTS`).
+
+        Raises
+        ------
+        SceneError
+            An unknown effect, or none at all.
+
+        Examples
+        --------
+        >>> Plan.from_effects(["zone"]).pieces, Plan.from_effects(["first_contact"]).stop_at_first_contact
+        (False, True)
+        """
+        eff = tuple(dict.fromkeys(effects))
+        bad = [e for e in eff if e not in EFFECTS]
+        if bad:
+            raise SceneError(f"unknown effect(s) {bad}; expected some of {list(EFFECTS)}", bad)
+        if not eff:
+            raise SceneError(f"no effect requested; expected some of {list(EFFECTS)}")
+        pieces = bool({"contact", "contact_kind", "relative_position", "first_contact"} & set(eff))
+        stop = "first_contact" in eff and not (
+            {"zone", "contact", "contact_kind", "relative_position"} & set(eff)
+        )
+        return cls(
+            eff,
+            pieces or full,
+            "relative_position" in eff or full,
+            "contact_kind" in eff or full,
+            stop and not full,
+            full,
+        )
+
+    def restricted(self, effects: Iterable[str] | None) -> Plan:
+        """The plan for one ellipsoid or one (ellipsoid, piece) pair that asks for
+        ``effects`` only (None: no restriction): the effects both ask for.
+
+        Examples
+        --------
+        >>> Plan.from_effects(["zone", "contact"]).restricted(["contact", "relative_position"]).effects
+        ('contact',)
+        >>> Plan.from_effects(["contact"]).restricted(["zone"]).pieces
+        False
+        """
+        if effects is None or self.full:
+            return self
+        wanted = set(effects)
+        kept = tuple(e for e in self.effects if e in wanted)
+        if not kept:
+            return Plan((), False, False, False, False)
+        return Plan.from_effects(kept)
+
+    def describe(self) -> str:
+        """The plan in one sentence (printed with the timeline)."""
+        steps = ["Algorithm 1 (zones) on every separating plane the descent reaches"]
+        if self.pieces:
+            what = "Algorithm 2 (Corollary 10) on the pieces of the zone only"
+            if self.region:
+                what += ", Table 4 root signs"
+            if self.kind:
+                what += ", contact kind (Table 3)"
+            steps.append(what)
+        if self.stop_at_first_contact:
+            steps.append("stop at the first contact")
+        if self.full:
+            steps = ["every effect for every plane and piece on every segment (full evaluation)"]
+        return "; ".join(steps)
+
+
+@dataclass(frozen=True)
+class ObjectState:
+    """State of one ellipsoid against one object at a time point or on an interval.
+
+    ``zones``: (plane name, :class:`ZoneValue`) for the planes Algorithm 1
+    visited; ``pieces``: (piece name, :class:`PieceValue` or None when piece
+    states were not requested) for the pieces of the zone.
+    """
+
+    zones: tuple[tuple[str, ZoneValue], ...]
+    pieces: tuple[tuple[str, PieceValue | None], ...]
+
+    @property
+    def contact(self) -> bool | None:
+        """Transversal contact with some piece (None: undecided for some, none found)."""
+        vals = [v.contact for _, v in self.pieces if v is not None]
+        if any(v is True for v in vals):
+            return True
+        if any(v is None for v in vals):
+            return None
+        return False
+
+    @property
+    def touching(self) -> list[str]:
+        """Names of the pieces in transversal contact."""
+        return [n for n, v in self.pieces if v is not None and v.contact]
+
+    def summary(self, obj: Composite | None = None, *, with_zones: bool = True) -> str:
+        """One line: the zones visited and each evaluated piece's state (``obj``
+        glosses ``R-``/``R+`` as inside/outside)."""
+        parts = []
+        if with_zones and self.zones:
+            parts.append("zone " + ", ".join(f"[{n}] {z}" for n, z in self.zones))
+        evaluated = [(n, v) for n, v in self.pieces if v is not None]
+        inside = {p.name: p.inside for p in obj.pieces} if obj is not None else {}
+        if evaluated:
+            parts.append("; ".join(f"{n}: {v.describe(inside.get(n))}" for n, v in evaluated))
+        elif self.pieces:
+            parts.append("pieces in zone: " + ", ".join(n for n, _ in self.pieces))
+        else:
+            parts.append("no piece in zone")
+        return " | ".join(parts)
+
+    def category(self, obj: Composite) -> str:
+        """One word for plots: contact, inside, outside, undecided, or the zone."""
+        c = self.contact
+        evaluated = [(n, v) for n, v in self.pieces if v is not None]
+        if not evaluated:
+            return "zone " + "/".join(str(z.zone) for _, z in self.zones) if self.zones else "free"
+        if c:
+            return "contact"
+        if c is None:
+            return "undecided"
+        pieces = {p.name: p for p in obj.pieces}
+        regions = [v.region for n, v in evaluated if v.region is not None]
+        if regions and len(regions) == len(evaluated):
+            inside = [v.region == pieces[n].inside for n, v in evaluated]
+            if all(inside):
+                return "inside"
+            if not any(inside):
+                return "outside"
+            return "mixed"
+        return "no contact"
+
+    def to_dict(self) -> dict[str, Any]:
+        out: dict[str, Any] = {}
+        if self.zones:
+            out["zones"] = {
+                n: {"region": z.region.value, "zone": z.zone, "tangent": z.tangent} for n, z in self.zones
+            }
+        pieces: dict[str, Any] = {}
+        for n, v in self.pieces:
+            if v is None:
+                pieces[n] = "in zone"
+            else:
+                d: dict[str, Any] = {"contact": v.contact, "decided_by": v.decided_by}
+                if v.region is not None:
+                    d["region"] = v.region.value
+                if v.kind is not None:
+                    d["kind"] = v.kind
+                pieces[n] = d
+        out["pieces"] = pieces
+        return out
+
+
+@dataclass
+class Episode:
+    """A maximal stretch of time with one state: ``[start, end]`` closed or open
+    at each end (``closed_start``/``closed_end``); an instant has ``start == end``."""
+
+    start: TimePoint
+    end: TimePoint
+    state: ObjectState
+    closed_start: bool
+    closed_end: bool
+    sample: Fraction | None = None
+
+
+@dataclass
+class Event:
+    """The state changes at an exact time: ``before`` (on the interval just
+    before), ``at`` (at the instant), ``after`` (just after)."""
+
+    time: RealAlgebraic
+    before: ObjectState | None
+    at: ObjectState
+    after: ObjectState | None
+
+    def changes(self, obj: Composite | None = None) -> list[str]:
+        """Human-readable descriptions of what changed (``obj`` glosses R-/R+ as inside/outside)."""
+        inside = {p.name: p.inside for p in obj.pieces} if obj is not None else {}
+        out: list[str] = []
+        b = self.before or self.at
+        a = self.after or self.at
+
+        def describe(kind: str, name: str, x: str, y: str, z: str) -> None:
+            if x == y == z:
+                return
+            if x != z:
+                tail = f" (at the instant: {y})" if y not in (x, z) else ""
+                out.append(f"{kind}{name}: {x} -> {z}{tail}")
+            else:
+                out.append(f"{kind}{name}: {y} at the instant only (before and after: {x})")
+
+        zb, zt, za = dict(b.zones), dict(self.at.zones), dict(a.zones)
+        for name in dict.fromkeys([*zb, *zt, *za]):
+            x, y, z = (str(d[name]) if name in d else "not visited" for d in (zb, zt, za))
+            describe("zone of plane ", name, x, y, z)
+        pb, pt, pa = dict(b.pieces), dict(self.at.pieces), dict(a.pieces)
+        for name in dict.fromkeys([*pb, *pt, *pa]):
+            x, y, z = (_piece_text(d, name, inside.get(name)) for d in (pb, pt, pa))
+            describe("", name, x, y, z)
+        return out
+
+    def to_dict(self, places: int) -> dict[str, Any]:
+        return {
+            "time": self.time.to_dict(places),
+            "changes": self.changes(),
+            "before": None if self.before is None else self.before.to_dict(),
+            "at": self.at.to_dict(),
+            "after": None if self.after is None else self.after.to_dict(),
+        }
+
+
+@dataclass
+class PairResult:
+    """The timeline of one moving ellipsoid against one object."""
+
+    ellipsoid: str
+    object: Composite
+    episodes: list[Episode]
+    events: list[Event]
+    first_contact: tuple[RealAlgebraic, list[str]] | None
+    complete: bool = True
+    segments_done: int = 0
+
+    @property
+    def initial(self) -> ObjectState:
+        """The state at the start of the time span."""
+        return self.episodes[0].state
+
+    def state_at(self, t: Any) -> ObjectState:
+        """The state at a rational time ``t`` of the span (from the exact timeline).
+
+        Raises
+        ------
+        ValueError
+            ``t`` is outside the computed part of the span.
+
+        Examples
+        --------
+        Example 17's bee, inside the crown at ``t = 6``:
+
+        >>> from quadric_contact.scenes.scene import builtin_scene
+        >>> from quadric_contact.scenes.simulate import simulate
+        >>> pair = simulate(builtin_scene()).pair("bee", "tree")
+        >>> pair.state_at(6).summary(pair.object)
+        'zone [z - 6] R+ | crown: no contact, R- (inside)'
+        """
+        t = Fraction(t)
+        for ep in self.episodes:
+            lo = _as_root(ep.start).compare(t)  # start vs t
+            hi = _as_root(ep.end).compare(t)
+            after_start = lo < 0 or (lo == 0 and ep.closed_start)
+            before_end = hi > 0 or (hi == 0 and ep.closed_end)
+            if after_start and before_end:
+                return ep.state
+        raise ValueError(f"t = {t} is not in the computed part of the time span")
+
+    def to_dict(self, places: int, effects: Sequence[str]) -> dict[str, Any]:
+        out: dict[str, Any] = {
+            "ellipsoid": self.ellipsoid,
+            "object": self.object.name,
+            "complete": self.complete,
+        }
+        if self.complete:
+            out["events"] = [e.to_dict(places) for e in self.events]
+            out["episodes"] = [
+                {
+                    "start": _time_dict(ep.start, places),
+                    "end": _time_dict(ep.end, places),
+                    "closed": [ep.closed_start, ep.closed_end],
+                    "sample_time": None if ep.sample is None else str(ep.sample),
+                    "state": ep.state.to_dict(),
+                }
+                for ep in self.episodes
+            ]
+        if "first_contact" in effects:
+            out["first_contact"] = (
+                None
+                if self.first_contact is None
+                else {"time": self.first_contact[0].to_dict(places), "pieces": self.first_contact[1]}
+            )
+        return out
+
+
+def _piece_text(d: dict[str, PieceValue | None], name: str, inside: Region | None = None) -> str:
+    if name not in d:
+        return "not in zone"
+    v = d[name]
+    return "in zone" if v is None else v.describe(inside)
+
+
+def _as_root(t: TimePoint) -> RealAlgebraic:
+    return t if isinstance(t, RealAlgebraic) else RealAlgebraic(Fraction(t))
+
+
+def _time_dict(t: TimePoint, places: int) -> dict[str, Any]:
+    return _as_root(t).to_dict(places)
+
+
+def _fmt_time(t: TimePoint, places: int) -> str:
+    r = _as_root(t)
+    if r.is_rational:
+        v = r.lo
+        return str(v) if v.denominator == 1 else f"{r.decimal(places)} (= {v})"
+    return r.decimal(places)
+
+
+@dataclass
+class SimulationResult:
+    """Everything a run produced."""
+
+    scene: Scene
+    plan: Plan
+    pairs: list[PairResult]
+    ledger: Ledger
+    seconds: float
+    warnings: list[str] = field(default_factory=list)
+
+    def pair(self, ellipsoid: str, obj: str) -> PairResult:
+        """The timeline of one ellipsoid against one object (``KeyError`` if there is none)."""
+        for p in self.pairs:
+            if p.ellipsoid == ellipsoid and p.object.name == obj:
+                return p
+        raise KeyError((ellipsoid, obj))
+
+    def to_dict(self, places: int | None = None) -> dict[str, Any]:
+        """Everything as JSON-ready data (``quadric-contact simulate --json``); event
+        times with ``places`` decimals, their polynomials and isolating intervals."""
+        places = self.scene.places if places is None else places
+        out: dict[str, Any] = {
+            "scene": self.scene.name,
+            "source": self.scene.source,
+            "time_span": [str(self.scene.span[0]), str(self.scene.span[1])],
+            "effects": list(self.plan.effects),
+            "plan": self.plan.describe(),
+            "events": sum(len(p.events) for p in self.pairs),
+            "pairs": [p.to_dict(places, self.plan.effects) for p in self.pairs],
+            "ledger": self.ledger.to_dict(),
+            "seconds": round(self.seconds, 6),
+            "warnings": self.warnings,
+        }
+        if "smallness" in self.plan.effects:
+            out["smallness"] = [
+                {
+                    "ellipsoid": c.ellipsoid,
+                    "object": c.object,
+                    "piece": c.piece,
+                    "small": c.small,
+                    "report": None if c.report is None else str(c.report),
+                    "note": c.note,
+                }
+                for c in self.scene.smallness.values()
+            ]
+        return out
+
+    def format_text(self, places: int | None = None) -> str:
+        """The timeline as printed by ``quadric-contact simulate`` (event times to ``places`` decimals)."""
+        places = self.scene.places if places is None else places
+        lines = [self.scene.describe(), f"plan: {self.plan.describe()}"]
+        if "smallness" in self.plan.effects or any(c.small is False for c in self.scene.smallness.values()):
+            lines.append("smallness (Tables 1, 2):")
+            lines += [f"  {c}" for c in self.scene.smallness.values()]
+        for w in self.warnings:
+            lines.append(f"warning: {w}")
+        lines.append(
+            f"event times: exact real algebraic numbers, shown to {places} decimal places "
+            "(--places N; --json gives each one's polynomial and isolating interval)"
+        )
+        for p in self.pairs:
+            own = self.plan.restricted(self.scene.ellipsoid_effects.get(p.ellipsoid)).effects
+            show_zones = "zone" in own
+            show_timeline = bool({"zone", "contact", "contact_kind", "relative_position"} & set(own))
+            lines.append("")
+            lines.append(f"{p.ellipsoid} vs {p.object.name}")
+            if p.complete and show_timeline:
+                start = p.initial.summary(p.object, with_zones=show_zones)
+                lines.append(f"  t = {_fmt_time(self.scene.span[0], places)}: start: {start}")
+                for ev in p.events:
+                    changes = ev.changes(p.object)
+                    if not show_zones:
+                        changes = [c for c in changes if not c.startswith("zone of plane")]
+                        if not changes:
+                            continue
+                    head = f"  t = {_fmt_time(ev.time, places)}: "
+                    lines.append(head + changes[0])
+                    lines += [" " * len(head) + c for c in changes[1:]]
+                end = p.episodes[-1].state.summary(p.object, with_zones=show_zones)
+                lines.append(f"  t = {_fmt_time(self.scene.span[1], places)}: end: {end}")
+            if "first_contact" in own:
+                if p.first_contact is None:
+                    lines.append("  first contact: none in the time span")
+                else:
+                    t, names = p.first_contact
+                    extra = "" if p.complete else f" (stopped there, after {p.segments_done} segment(s))"
+                    lines.append(
+                        f"  first contact: t = {_fmt_time(t, places)} with {', '.join(names)}{extra}"
+                    )
+        lines.append("")
+        events = sum(len(p.events) for p in self.pairs)
+        touched = sum(1 for p in self.pairs if p.first_contact is not None)
+        lines.append(
+            f"events: {events} in {len(self.pairs)} (ellipsoid, object) pair(s); {touched} pair(s) in contact"
+        )
+        lines.append("work ledger (full = every effect for every piece on every segment):")
+        lines += ["  " + line for line in self.ledger.format().splitlines()]
+        lines.append(f"time: {self.seconds:.3f} s")
+        return "\n".join(lines)

@@ -1,0 +1,1 @@
+"""Testing support: hypothesis strategies, hard cases, random samples."""
