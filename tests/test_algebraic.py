@@ -23,7 +23,14 @@ from quadric_contact.exact.algebraic import (
     sign_at,
 )
 
-MODULES = ["algebraic", "invariants", "smallness", "geometric", "segre", "contact_kind"]
+MODULES = [
+    "exact.algebraic",
+    "model.invariants",
+    "theory.smallness",
+    "theory.geometric",
+    "theory.segre",
+    "theory.contact_kind",
+]
 
 
 @pytest.mark.parametrize("name", MODULES)

@@ -13,6 +13,7 @@ from hypothesis import strategies as st
 
 import quadric_contact as qc
 from quadric_contact import OverlapCode, Quadric
+from quadric_contact.exact.algebraic import real_roots
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.modes import MODES, FilterMode, RegionCode
 from quadric_contact.testing.hardcases import _LADDER_Q, TRANSLATION, _motion, _probe
@@ -125,7 +126,7 @@ def test_two_ellipsoids_containment_both_ways_and_touching_from_inside():
     roots = {
         name: sorted(
             r.sign()
-            for r, m in qc.algebraic.real_roots(
+            for r, m in real_roots(
                 list(qc.overlap(E, Q).polynomial.coefficients), multiplicities=True
             )
             for _ in range(m)

@@ -249,7 +249,9 @@ def test_no_proofs_dir_is_a_clear_error(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     import quadric_contact.paper.proving as proving
 
-    monkeypatch.setattr(proving, "__file__", str(tmp_path / "a" / "b" / "proving.py"))
+    # the module's place in a checkout: src/quadric_contact/paper/proving.py
+    checkout_place = tmp_path / "src" / "quadric_contact" / "paper" / "proving.py"
+    monkeypatch.setattr(proving, "__file__", str(checkout_place))
     monkeypatch.setattr(proving, "installed_proofs_dir", lambda: None)
     with pytest.raises(ProofsNotFoundError, match="--proofs-dir DIR") as info:
         find_proofs_dir()
@@ -270,7 +272,9 @@ def test_the_installed_proofs_are_found_outside_a_checkout(tmp_path, monkeypatch
     monkeypatch.chdir(elsewhere)
     import quadric_contact.paper.proving as proving
 
-    monkeypatch.setattr(proving, "__file__", str(tmp_path / "a" / "b" / "proving.py"))
+    # the module's place in a checkout: src/quadric_contact/paper/proving.py
+    checkout_place = tmp_path / "src" / "quadric_contact" / "paper" / "proving.py"
+    monkeypatch.setattr(proving, "__file__", str(checkout_place))
     monkeypatch.syspath_prepend(str(site))
     assert find_proofs_dir() == installed.resolve()
     try:
