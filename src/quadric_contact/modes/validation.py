@@ -21,18 +21,33 @@ def rows_view(stack: MatrixStack, rows: np.ndarray) -> np.ndarray:
     its rows in order (the common case of distinct pairs: no ``(n, 4, 4)`` copy), a gathered
     copy otherwise."""
     rows = np.asarray(rows)
-    n = len(stack)
-    every = rows.ndim == 1 and rows.size == n and n and rows[0] == 0 and rows[-1] == n - 1
-    if every and (n == 1 or bool((np.diff(rows) == 1).all())):
+    if _every_row(rows, len(stack)):
         return stack.floats
     return stack.rows_floats(rows)
+
+
+def _every_row(rows: np.ndarray, n: int) -> bool:
+    """Whether ``rows`` are ``0, 1, ..., n - 1`` in order."""
+    every = rows.ndim == 1 and rows.size == n and n and rows[0] == 0 and rows[-1] == n - 1
+    return bool(every and (n == 1 or bool((np.diff(rows) == 1).all())))
 
 
 def validate_rows(stack: MatrixStack, rows: np.ndarray, name: str | None = None) -> None:
     """Raise for the first matrix among ``rows`` with a non-finite entry or that is not symmetric."""
     if stack.checked or len(rows) == 0:
         return
-    sub = rows_view(stack, np.asarray(rows))
+    rows = np.asarray(rows)
+    if stack.packed is not None and stack._floats is None:
+        # packed entries are symmetric by construction: only finiteness is left to check, and
+        # it is read on the ten entries without unpacking the stack
+        finite = np.isfinite(stack.packed[rows]).all(axis=-1)
+        if finite.all():
+            if _every_row(rows, len(stack)):
+                stack.checked = True
+            return
+        k = int(np.argmin(finite))
+        rows = rows[k : k + 1]
+    sub = rows_view(stack, rows)
     flags = check_stack(sub)
     if not flags.any():
         if sub is stack.floats:
