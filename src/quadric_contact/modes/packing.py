@@ -28,6 +28,11 @@ __all__ = ["Packed", "pack", "unpack"]
 
 _I = np.array([i for i, _ in ENTRY_INDICES])
 _J = np.array([j for _, j in ENTRY_INDICES])
+# for every entry (i, j) of a 4x4 matrix, row-major, the packed entry that holds it: unpacking
+# is then one contiguous gather along the last axis (np.take), not a scatter
+_FULL = np.array(
+    [ENTRY_INDICES.index((min(i, j), max(i, j))) for i in range(4) for j in range(4)], dtype=np.intp
+)
 
 
 def pack(M: Any, *, check: bool = True) -> np.ndarray:
@@ -56,10 +61,7 @@ def unpack(P: Any) -> np.ndarray:
     arr = np.asarray(P)
     if arr.ndim < 1 or arr.shape[-1] != 10:
         raise ShapeError(f"unpack needs (..., 10) packed matrices, got shape {arr.shape}", P)
-    out = np.empty((*arr.shape[:-1], 4, 4), dtype=arr.dtype)
-    out[..., _I, _J] = arr
-    out[..., _J, _I] = arr
-    return out
+    return np.take(arr, _FULL, axis=-1).reshape(*arr.shape[:-1], 4, 4)
 
 
 class Packed:
