@@ -7,7 +7,7 @@ Run from the repository root::
 Prints one table per case, with the time per pair of each mode (wall clock, best of
 ``--repeat`` runs, all threads; and the process CPU time), the share of pairs each stage
 of the certified cascade decided, and the ratio to the criterion alone
-(``transversal_contact_batch(E, Q, mode="certified")``, which evaluates only the
+(``corollary_10(E, Q, mode="certified")``, which evaluates only the
 characteristic polynomial's criterion on stacks) on the same pairs:
 
 * ``broadcast``: many small ellipsoids (semi-axes 0.5-2, random rotations, centres in
@@ -39,11 +39,10 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
-from quadric_contact.modes.smallness_arrays import smallness_codes  # noqa: E402
-
 from quadric_contact import Quadric, RigidMotion  # noqa: E402
 from quadric_contact.modes import BallMode, CertifiedMode, FilterMode, FloatMode  # noqa: E402
-from quadric_contact.modes.batch import transversal_contact_batch  # noqa: E402
+from quadric_contact.modes.predicates import corollary_10  # noqa: E402
+from quadric_contact.modes.predicates import smallness as smallness_codes  # noqa: E402
 from quadric_contact.theory.smallness import smallness  # noqa: E402
 
 
@@ -98,7 +97,7 @@ def run_case(name: str, E: Any, Q: Any, args: argparse.Namespace) -> list[str]:
     n = len(E)
     rows: list[tuple[str, float, float, str]] = []
     criterion = CertifiedMode()
-    cw, cc, _ = timed(lambda: transversal_contact_batch(E, Q, mode=criterion), args.repeat)
+    cw, cc, _ = timed(lambda: corollary_10(E, Q, mode=criterion), args.repeat)
     rows.append(("criterion only (certified)", cw / n, cc / n, str(criterion.last)))
     for label, mode in (("float", FloatMode()), ("filter", FilterMode())):
         w, c, codes = timed(lambda m=mode: smallness_codes(E, Q, mode=m), args.repeat)
