@@ -13,8 +13,14 @@ reduced equations with symbolic (primed) parameters: (1) invariance: the
 invariants each row uses are unchanged by a symbolic translation and by the
 rotations about the three axes with a rational parameter (which generate the
 rigid motions); ``K`` and ``J'`` are not invariant in general, only on the
-rows that use them; (2) the printed invariant formula (``d'^2 = -a'^2 b'^2 c'^2
-det Q``, ``L^2 = -4 det Q / J``, ``M^2 = -K/J``, ...) holds on the reduced
+rows that use them: Section 2.4 lists them as invariants without a
+proviso, and a case analysis on the rank of ``Q00`` (diagonal after a
+rotation, which keeps both, as coefficients of ``det(Q - l diag(1, 1, 1,
+0))``) shows ``K`` invariant under translations exactly when ``det Q = det
+Q00 = 0`` and ``J'`` exactly when moreover ``J = K = 0`` (erratum
+``section-2-4-semi-invariants``); (2) the printed invariant formula
+(``d'^2 = -a'^2 b'^2 c'^2 det Q``,
+``L^2 = -4 det Q / J``, ``M^2 = -K/J``, ...) holds on the reduced
 equation; (3) the reduced equation is a multiple of the Table 1 standard form
 with ``a = a' d'`` (``a' sqrt L``, ``a' M``, ``a' sqrt d'``, ...) and
 ``alpha = alpha' delta'``, and each printed condition becomes the
@@ -351,4 +357,76 @@ def smallness_in_general_position(examples: int) -> Finding:
     search()
     return agrees(
         f"{counts[True]} small and {counts[False]} not small pairs, all as Table 1 (corrected) says"
+    )
+
+
+def _translated(Q: sp.Matrix, t: tuple[sp.Expr, ...]) -> sp.Matrix:
+    T = sp.eye(4)
+    T[0, 3], T[1, 3], T[2, 3] = -t[0], -t[1], -t[2]
+    return T.T * Q * T
+
+
+def _k_j_jprime(Q: sp.Matrix) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
+    """Section 2.4's ``K``, ``J`` and ``J'``, from their printed definitions."""
+    rest = [[r for r in range(4) if r != i] for i in range(3)]
+    K = sum(Q.extract(rows, rows).det() for rows in rest)
+    J = sum(Q.extract([i, j], [i, j]).det() for i in range(3) for j in range(i + 1, 3))
+    Jp = sum(Q[i, i] * Q[3, 3] - Q[i, 3] ** 2 for i in range(3))
+    return sp.expand(K), sp.expand(J), sp.expand(Jp)
+
+
+@proof.check(
+    "Section 2.4: K is invariant iff det Q = det Q00 = 0, J' iff moreover J = K = 0",
+    method=Method.CASES,
+    erratum="section-2-4-semi-invariants",
+)
+def k_and_j_prime_invariance() -> Finding:
+    lam = sp.Symbol("l")
+    G = sp.Matrix(4, 4, lambda i, j: sp.Symbol(f"q{min(i, j)}{max(i, j)}", real=True))
+    K, J, Jp = _k_j_jprime(G)
+    # rotations fixing the affine row keep diag(1, 1, 1, 0), so they keep every coefficient of
+    # det(G - l D); those coefficients are det G, -K, J', -q33: K and J' are rotation invariants
+    char = sp.Poly(sp.expand((G - lam * sp.diag(1, 1, 1, 0)).det()), lam)
+    ensure(char.coeff_monomial(lam) == -K and char.coeff_monomial(lam**2) == Jp, "K, J' from det(G - l D)")
+    # after a rotation Q00 = diag(m1, m2, m3); translations by t = (t1, t2, t3)
+    t = sp.symbols("t1:4", real=True)
+    m1, m2, m3, b1, b2, b3, c = sp.symbols("m1 m2 m3 b1 b2 b3 c", real=True)
+
+    def quadric(m: tuple[sp.Expr, ...], b: tuple[sp.Expr, ...]) -> sp.Matrix:
+        Q = sp.diag(*m, c)
+        for i in range(3):
+            Q[i, 3] = Q[3, i] = b[i]
+        return Q
+
+    def changes(Q: sp.Matrix) -> tuple[sp.Expr, sp.Expr]:
+        (k0, _, j0), (k1, _, j1) = _k_j_jprime(Q), _k_j_jprime(_translated(Q, t))
+        return sp.expand(k1 - k0), sp.expand(j1 - j0)
+
+    # det Q00 != 0: K moves (a non-zero polynomial in t)
+    dk, _ = changes(quadric((m1, m2, m3), (b1, b2, b3)))
+    square = m1 * m2 * m3 * (t[0] ** 2 + t[1] ** 2 + t[2] ** 2)
+    linear = 2 * (b1 * m2 * m3 * t[0] + b2 * m1 * m3 * t[1] + b3 * m1 * m2 * t[2])
+    ensure(sp.expand(dk - square + linear) == 0, f"rank 3: dK = {dk}")
+    # rank 2 (J = m1 m2 != 0): det Q = -m1 m2 b3^2, and K moves by -2 b3 m1 m2 t3: invariant iff
+    # det Q = 0; J' moves by m1 m2 (t1^2 + t2^2) + ... != 0 (J != 0)
+    Q2 = quadric((m1, m2, 0), (b1, b2, b3))
+    ensure(sp.expand(Q2.det() + m1 * m2 * b3**2) == 0, "rank 2: det Q = -m1 m2 b3^2")
+    dk, dj = changes(Q2)
+    ensure(dk == sp.expand(-2 * b3 * m1 * m2 * t[2]), f"rank 2: dK = {dk}")
+    ensure(sp.Poly(dj, *t).coeff_monomial(t[0] ** 2) == m1 * m2, f"rank 2: dJ' = {dj}")
+    # rank 1 (det Q = J = 0): K = -m1 (b2^2 + b3^2) does not move; J' moves by
+    # -2 m1 (b2 t2 + b3 t3): invariant iff b2 = b3 = 0 iff K = 0
+    Q1 = quadric((m1, 0, 0), (b1, b2, b3))
+    k1, j1, jp1 = _k_j_jprime(Q1)
+    dk, dj = changes(Q1)
+    ensure(sp.expand(Q1.det()) == 0 and j1 == 0, "rank 1: det Q = J = 0")
+    ensure(sp.expand(k1 + m1 * (b2**2 + b3**2)) == 0 and dk == 0, f"rank 1: K = {k1}, dK = {dk}")
+    ensure(dj == sp.expand(-2 * m1 * (b2 * t[1] + b3 * t[2])), f"rank 1: dJ' = {dj}")
+    # rank 0 (a plane): K = J = 0 and J' does not move
+    k0, j0, _ = _k_j_jprime(quadric((0, 0, 0), (b1, b2, b3)))
+    ensure(k0 == j0 == 0 and changes(quadric((0, 0, 0), (b1, b2, b3))) == (0, 0), "rank 0")
+    return differs(
+        "K and J' are invariants of the quadric",
+        "K is invariant under rigid motions exactly when det Q = det Q00 = 0, J' exactly when "
+        "moreover J = K = 0 (x^2 + y^2 - z: K moves; x^2 - y: J' moves)",
     )

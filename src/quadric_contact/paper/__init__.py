@@ -241,6 +241,21 @@ class Erratum:
 
 ERRATA: tuple[Erratum, ...] = (
     Erratum(
+        key="section-2-4-semi-invariants",
+        location="Section 2.4, the list of invariants (K and J')",
+        printed="K and J' are listed as invariants of the quadric, without a condition",
+        corrected="K is invariant under rigid motions only where det Q = det Q00 = 0, and J' only where "
+        "moreover J = K = 0 (the cases where Table 2 uses them: cylinders, parallel planes)",
+        evidence="case analysis on the rank of Q00 after a rotation (which keeps K and J', coefficients "
+        "of det(Q - l diag(1, 1, 1, 0))): under a symbolic translation K moves unless det Q = det Q00 = 0, "
+        "J' unless moreover J = K = 0 (proofs/theorem_05_table_2.py::k_and_j_prime_invariance); "
+        "translating x^2 + y^2 - z changes K, translating x^2 - y changes J' "
+        "(tests/test_invariants.py::test_k_and_j_prime_are_not_invariant_in_general)",
+        consequence="none for Table 2, which reads K and J' only where they are invariant; code that "
+        "used K or J' of other quadrics as invariants would depend on the placement",
+        confidence="high: the statement is the paper's own text, not a layout artefact",
+    ),
+    Erratum(
         key="delta4-term",
         location="Section 3.2, formula for Delta_4, fifth term",
         printed="-27*c0**2*c4**4",
