@@ -289,6 +289,12 @@ class MatrixStack:
             self._floats = np.ascontiguousarray(unpack(self.packed))
         return self._floats
 
+    @property
+    def packed_only(self) -> bool:
+        """Whether the stack holds packed entries that have not been unpacked (reading
+        :attr:`floats` would unpack all of them)."""
+        return self._floats is None
+
     def rows_floats(self, rows: np.ndarray) -> np.ndarray:
         """``floats[rows]`` (a new ``(k, 4, 4)`` array), without unpacking the rest of a packed stack."""
         if self._floats is None:

@@ -37,7 +37,7 @@ def validate_rows(stack: MatrixStack, rows: np.ndarray, name: str | None = None)
     if stack.checked or len(rows) == 0:
         return
     rows = np.asarray(rows)
-    if stack.packed is not None and stack._floats is None:
+    if stack.packed is not None and stack.packed_only:
         # packed entries are symmetric by construction: only finiteness is left to check, and
         # it is read on the ten entries without unpacking the stack
         finite = np.isfinite(stack.packed[rows]).all(axis=-1)
