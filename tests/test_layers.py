@@ -1,18 +1,44 @@
-"""The package's folders are its layers: each imports only from the layers below it.
+"""The package's imports: its folders are its layers, the code generator stays development
+time, and no import inside a function hides an import cycle.
 
-Every module's imports are read from its source (module level and inside
-functions).  A module in layer ``k`` may import the package's modules of layers
-``<= k`` only; ``codegen`` (development time) is imported by nothing at run time.
-Function-level imports of the package's own modules are listed: each one must
-be for a heavy optional dependency's sake, never to dodge a cycle.
+An AST scan of every module of ``src/quadric_contact`` (imports at module level and
+inside functions; an ``if TYPE_CHECKING:`` block is not run, so it does not count).
+
+* A module of layer ``k`` (the folders, lowest first, in :data:`ORDER`) imports the
+  package's modules of layers ``<= k`` only, and no layer below the interfaces imports
+  the top package (the curated public API, which imports almost everything).
+* Nothing imports :mod:`quadric_contact.codegen` but the ``codegen`` command of the
+  command line (which runs the generator on request); the run-time code reads
+  straight-line programs with :mod:`quadric_contact.exact.straight_line` and emits the
+  families' programs with :mod:`quadric_contact.families.family_emit`.
+* The graph of module-level imports has no cycle.
+* An import inside a function is fine for a heavy or optional dependency (sympy,
+  matplotlib, dask, numba, ...: not scanned here) or to keep a module light (the
+  command line imports its commands only when they run), but never to dodge a cycle:
+  for every function-level import of one of the package's modules, the imported
+  module must not reach the importer through module-level imports (else the import
+  could not move to the top of the file).
+
+Edges to the top package ``quadric_contact`` (the curated public API, which imports
+most modules) and from a module to its own enclosing packages are left out: Python
+has already started those packages when the module runs.
 """
 
 from __future__ import annotations
 
 import ast
+import os
+import subprocess
+import sys
+from collections.abc import Iterator
+from dataclasses import dataclass
 from pathlib import Path
 
-SRC = Path(__file__).resolve().parents[1] / "src" / "quadric_contact"
+import pytest
+
+SRC = Path(__file__).resolve().parents[1] / "src"
+PACKAGE = "quadric_contact"
+
 ORDER = [
     "_generated",
     "exact",
@@ -25,100 +51,209 @@ ORDER = [
     "testing",
     "interfaces",
 ]
+"""The layers, lowest first (the README's layout table)."""
 APART = {"codegen"}
-# top-level modules and the layer they count as
-TOP = {"__init__": "interfaces", "__main__": "interfaces"}
-# (importer, imported) pairs allowed although they go up a layer (each with its reason); empty is the goal
-ALLOWED_UPWARD: set[tuple[str, str]] = set()
+"""Development time only: checked by the code generator tests below, not ordered."""
+
+CODEGEN = f"{PACKAGE}.codegen"
+CODEGEN_IMPORTERS = {f"{PACKAGE}.interfaces.cli.codegen"}
+"""The only module allowed to import the generator: the ``quadric-contact codegen`` command."""
 
 
-def layer_of(module: str) -> str:
-    parts = module.split(".")
-    assert parts[0] == "quadric_contact", module
-    if len(parts) == 1:
-        return "interfaces"
-    head = parts[1]
-    if head in ORDER or head in APART:
-        return head
-    return TOP.get(head, head)
+@dataclass(frozen=True)
+class Import:
+    importer: str
+    line: int
+    target: str
+    in_function: bool
 
 
-def module_name(path: Path) -> str:
-    rel = path.relative_to(SRC.parent).with_suffix("")
-    parts = list(rel.parts)
-    if parts[-1] == "__init__":
-        parts = parts[:-1]
-    return ".".join(parts)
-
-
-def imports(path: Path) -> list[tuple[int, str, bool]]:
-    """(line, imported module, inside a function) for the package's own imports."""
-    tree = ast.parse(path.read_text())
-    me = module_name(path).split(".")
-    is_pkg = path.name == "__init__.py"
-    out = []
-
-    def visit(node: ast.AST, in_function: bool) -> None:
-        for child in ast.iter_child_nodes(node):
-            inner = in_function or isinstance(child, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda))
-            if isinstance(child, ast.ImportFrom):
-                if child.level:
-                    base = me if is_pkg else me[:-1]
-                    base = base[: len(base) - (child.level - 1)] if child.level > 1 else base
-                    target = ".".join(base + ([child.module] if child.module else []))
-                else:
-                    target = child.module or ""
-                if target.split(".")[0] == "quadric_contact":
-                    for alias in child.names:
-                        full = f"{target}.{alias.name}"
-                        candidate = SRC.parent / (full.replace(".", "/") + ".py")
-                        package = SRC.parent / full.replace(".", "/") / "__init__.py"
-                        known = candidate.exists() or package.exists()
-                        out.append((child.lineno, full if known else target, inner))
-            elif isinstance(child, ast.Import):
-                for alias in child.names:
-                    if alias.name.split(".")[0] == "quadric_contact":
-                        out.append((child.lineno, alias.name, inner))
-            visit(child, inner)
-
-    visit(tree, False)
+def _modules() -> dict[str, Path]:
+    out = {}
+    for path in sorted((SRC / PACKAGE).rglob("*.py")):
+        parts = list(path.relative_to(SRC).with_suffix("").parts)
+        if parts[-1] == "__init__":
+            parts = parts[:-1]
+        out[".".join(parts)] = path
     return out
 
 
-MODULES = sorted(p for p in SRC.rglob("*.py") if "_generated" not in p.parts or p.name != "__init__.py")
+MODULES = _modules()
 
 
-def violations() -> tuple[list[str], list[str]]:
-    upward, function_level = [], []
-    for path in MODULES:
-        me = module_name(path)
-        mine = layer_of(me)
-        for line, target, inner in imports(path):
-            theirs = layer_of(target)
-            where = f"{path.relative_to(SRC.parent)}:{line} imports {target}"
-            if inner and layer_of(target) != "interfaces":
-                function_level.append(where)
-            if theirs in APART and mine not in APART and mine != "interfaces":
-                upward.append(f"{where} (the code generator at run time)")
-                continue
-            if mine in APART or theirs in APART:
-                continue
-            if ORDER.index(theirs) > ORDER.index(mine) and (me, target) not in ALLOWED_UPWARD:
-                upward.append(f"{where} ({mine} -> {theirs})")
-    return upward, function_level
+def _ancestors(module: str) -> set[str]:
+    parts = module.split(".")
+    return {".".join(parts[:i]) for i in range(1, len(parts))}
 
 
-def test_every_module_has_a_layer():
-    for path in MODULES:
-        layer = layer_of(module_name(path))
-        assert layer in ORDER or layer in APART, f"{path}: no layer"
+def _targets(node: ast.Import | ast.ImportFrom, module: str) -> Iterator[str]:
+    """The package's modules an import statement runs (submodules named in a
+    ``from package import name`` included)."""
+    if isinstance(node, ast.Import):
+        names = [a.name for a in node.names]
+    else:
+        if node.level:
+            is_package = MODULES[module].name == "__init__.py"
+            base = module.split(".")
+            base = base[: len(base) - node.level + (1 if is_package else 0)]
+            source = ".".join([*base, *([node.module] if node.module else [])])
+        else:
+            source = node.module or ""
+        names = [f"{source}.{a.name}" if f"{source}.{a.name}" in MODULES else source for a in node.names]
+    for name in names:
+        if name == PACKAGE or not name.startswith(PACKAGE + "."):
+            continue
+        parts = name.split(".")
+        for i in range(2, len(parts) + 1):
+            prefix = ".".join(parts[:i])
+            if prefix in MODULES:
+                yield prefix
 
 
-def test_each_layer_imports_only_from_the_layers_below():
-    upward, _ = violations()
-    assert not upward, "imports that go up a layer:\n" + "\n".join(upward)
+def _is_type_checking(node: ast.AST) -> bool:
+    return isinstance(node, ast.If) and "TYPE_CHECKING" in ast.unparse(node.test)
 
 
-def test_the_formulas_import_nothing_of_the_package():
-    for path in (SRC / "_generated").glob("*.py"):
-        assert not imports(path), path
+def _imports() -> list[Import]:
+    found: list[Import] = []
+    for module, path in MODULES.items():
+        tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+
+        def walk(node: ast.AST, in_function: bool, module: str = module) -> None:
+            for child in ast.iter_child_nodes(node):
+                if _is_type_checking(child):
+                    continue
+                if isinstance(child, ast.Import | ast.ImportFrom):
+                    for target in set(_targets(child, module)):
+                        if target != module and target not in _ancestors(module):
+                            found.append(Import(module, child.lineno, target, in_function))
+                inner = in_function or isinstance(child, ast.FunctionDef | ast.AsyncFunctionDef | ast.Lambda)
+                walk(child, inner)
+
+        walk(tree, False)
+    return found
+
+
+IMPORTS = _imports()
+
+
+def _module_graph() -> dict[str, set[str]]:
+    graph: dict[str, set[str]] = {m: set() for m in MODULES}
+    for imp in IMPORTS:
+        if not imp.in_function:
+            graph[imp.importer].add(imp.target)
+    return graph
+
+
+GRAPH = _module_graph()
+
+
+def _reaches(start: str, goal: str) -> bool:
+    seen, todo = {start}, [start]
+    while todo:
+        for nxt in GRAPH[todo.pop()]:
+            if nxt == goal:
+                return True
+            if nxt not in seen:
+                seen.add(nxt)
+                todo.append(nxt)
+    return False
+
+
+def layer_of(module: str) -> str:
+    """The layer of a module: its folder; the top package and ``__main__`` count as interfaces."""
+    parts = module.split(".")
+    head = parts[1] if len(parts) > 1 else "interfaces"
+    return "interfaces" if head == "__main__" else head
+
+
+def test_every_module_has_a_layer() -> None:
+    lost = [m for m in MODULES if layer_of(m) not in ORDER and layer_of(m) not in APART]
+    assert lost == [], f"modules outside the layers: {lost}"
+
+
+def test_each_layer_imports_only_from_the_layers_below() -> None:
+    upward = [
+        f"{i.importer}:{i.line} imports {i.target} ({layer_of(i.importer)} -> {layer_of(i.target)})"
+        for i in IMPORTS
+        if layer_of(i.importer) in ORDER
+        and layer_of(i.target) in ORDER
+        and ORDER.index(layer_of(i.target)) > ORDER.index(layer_of(i.importer))
+    ]
+    assert upward == [], "imports that go up a layer:\n" + "\n".join(upward)
+
+
+def test_no_layer_imports_the_top_package() -> None:
+    """``from quadric_contact import X`` inside a layer would pull in the whole public API
+    (the scan of ``IMPORTS`` leaves the top package out, as every module's ancestor)."""
+    found = []
+    for module, path in MODULES.items():
+        if layer_of(module) == "interfaces":
+            continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            top = (isinstance(node, ast.ImportFrom) and node.level == 0 and node.module == PACKAGE) or (
+                isinstance(node, ast.Import) and any(a.name == PACKAGE for a in node.names)
+            )
+            if top:
+                found.append(f"{module}:{node.lineno}")
+    assert found == [], found
+
+
+def test_the_formulas_import_nothing_of_the_package() -> None:
+    assert [i for i in IMPORTS if layer_of(i.importer) == "_generated"] == []
+
+
+def test_the_scan_sees_the_imports() -> None:
+    """The scan is not vacuous: it finds known imports of both kinds."""
+    assert any(
+        i.importer == f"{PACKAGE}.exact.rational"
+        and i.target == f"{PACKAGE}.exact.reading"
+        and not i.in_function
+        for i in IMPORTS
+    )
+    assert any(i.importer in CODEGEN_IMPORTERS and i.target == CODEGEN and i.in_function for i in IMPORTS)
+    assert any(i.in_function for i in IMPORTS) and any(not i.in_function for i in IMPORTS)
+    assert _reaches(f"{PACKAGE}.families.family", f"{PACKAGE}.families.rational_functions")
+    assert not _reaches(f"{PACKAGE}.families.rational_functions", f"{PACKAGE}.families.family")
+
+
+def test_nothing_imports_the_code_generator_at_run_time() -> None:
+    offenders = [
+        f"{i.importer}:{i.line}"
+        for i in IMPORTS
+        if i.target == CODEGEN and i.importer not in CODEGEN_IMPORTERS
+    ]
+    assert offenders == [], f"the code generator is development time only; imported by {offenders}"
+
+
+def test_module_level_imports_have_no_cycle() -> None:
+    cyclic = sorted(m for m in MODULES if _reaches(m, m))
+    assert cyclic == [], f"modules on an import cycle: {cyclic}"
+
+
+def test_no_function_level_import_dodges_a_cycle() -> None:
+    dodging = sorted(
+        f"{i.importer}:{i.line} -> {i.target}"
+        for i in IMPORTS
+        if i.in_function and _reaches(i.target, i.importer)
+    )
+    assert dodging == [], (
+        "these imports inside functions hide an import cycle (the imported module imports the "
+        f"importer at module level); break the cycle instead: {dodging}"
+    )
+
+
+@pytest.mark.parametrize(
+    "modules",
+    [
+        # the modules that once imported the generator at run time
+        "quadric_contact.families.family_numeric, quadric_contact.modes.smallness_float, "
+        "quadric_contact.modes.batch, quadric_contact.testing.hardcases, "
+        "quadric_contact.interfaces.benchmark, quadric_contact.modes.float64",
+    ],
+)
+def test_importing_the_package_does_not_load_the_generator(modules: str) -> None:
+    code = f"import sys, quadric_contact, {modules}; print({CODEGEN!r} in sys.modules)"
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(SRC), os.environ.get("PYTHONPATH", "")])}
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env)
+    assert out.stdout.strip() == "False", out.stderr
