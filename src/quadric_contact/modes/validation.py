@@ -40,10 +40,10 @@ def validate_rows(stack: MatrixStack, rows: np.ndarray, name: str | None = None)
     if stack.packed is not None and stack.packed_only:
         # packed entries are symmetric by construction: only finiteness is left to check, and
         # it is read on the ten entries without unpacking the stack
-        finite = np.isfinite(stack.packed[rows]).all(axis=-1)
+        every = _every_row(rows, len(stack))
+        finite = np.isfinite(stack.packed if every else stack.packed[rows]).all(axis=-1)
         if finite.all():
-            if _every_row(rows, len(stack)):
-                stack.checked = True
+            stack.checked = every
             return
         k = int(np.argmin(finite))
         rows = rows[k : k + 1]
