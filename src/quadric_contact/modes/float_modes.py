@@ -32,6 +32,7 @@ from quadric_contact.modes.base import INVALID, MatrixStack, Pairs
 from quadric_contact.modes.decisions import UNCERTAIN_ROW, masks_from_invariant_signs, rows_from_masks
 from quadric_contact.modes.kernels_criterion import FALLBACK, NB, fast_codes
 from quadric_contact.modes.number_mode import NumberMode
+from quadric_contact.modes.rows import unique_rows
 from quadric_contact.modes.support import check_stack, region_codes_from_signs
 from quadric_contact.modes.threads import run_parallel
 from quadric_contact.modes.validation import (
@@ -181,8 +182,6 @@ def float_pairs(
 def _compact(stack: MatrixStack, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``(floats, used, index)``: the ``(k, 4, 4)`` matrices of the distinct ``rows``, the rows
     they are, and where each entry of ``rows`` finds its matrix among them."""
-    from quadric_contact.modes.rows import unique_rows
-
     used, index = unique_rows(rows, len(stack), return_inverse=True)
     return stack.rows_floats(used), used, index
 
@@ -471,8 +470,6 @@ def _used_rows(index: np.ndarray | None, m: int, n: int) -> np.ndarray:
     """The distinct rows of a stack that ``n`` pairs use (no sorting when they use them all)."""
     if index is None:
         return np.arange(m, dtype=np.intp) if m == n else np.zeros(1, dtype=np.intp)
-    from quadric_contact.modes.rows import unique_rows
-
     return unique_rows(index, m)
 
 

@@ -98,6 +98,7 @@ from quadric_contact._generated import kernels
 from quadric_contact.modes import errorbounds as eb
 from quadric_contact.modes._jit import HAVE_NUMBA, numba
 from quadric_contact.modes.base import INVALID, MatrixStack, Pairs
+from quadric_contact.modes.rows import unique_rows
 from quadric_contact.modes.smallness_tables import (
     E_SIDES,
     MAX_ALTERNATIVE,
@@ -1109,8 +1110,6 @@ def _row_map(index: np.ndarray | None, m: int, n: int) -> tuple[np.ndarray | Non
         if m == n:
             return None, empty, 1
         return np.zeros(1, dtype=np.intp), empty, 0
-    from quadric_contact.modes.rows import unique_rows
-
     rows, inverse = unique_rows(index, m, return_inverse=True)
     return rows, inverse, 0
 
