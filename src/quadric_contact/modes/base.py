@@ -370,7 +370,13 @@ class Pairs:
     def take(self, which: np.ndarray) -> Pairs:
         """The sub-batch of the pairs ``which`` (indices into ``range(n)``)."""
         which = np.asarray(which, dtype=np.intp)
-        return Pairs(self.E, self.Q, int(which.size), self.e_rows()[which], self.q_rows()[which])
+        return Pairs(
+            self.E,
+            self.Q,
+            int(which.size),
+            _rows_of(self.e_index, len(self.E), self.n, which),
+            _rows_of(self.q_index, len(self.Q), self.n, which),
+        )
 
     def kernel_indices(self) -> tuple[np.ndarray, np.ndarray, int, int]:
         """``(e_index, q_index, e_stride, q_stride)`` as the float kernels read them:
@@ -382,6 +388,16 @@ class Pairs:
         strides = [0 if (self.e_index is not None or len(self.E) == 1) else 1]
         strides.append(0 if (self.q_index is not None or len(self.Q) == 1) else 1)
         return out[0], out[1], strides[0], strides[1]
+
+
+def _rows_of(index: np.ndarray | None, m: int, n: int, which: np.ndarray) -> np.ndarray:
+    """``_rows(index, m, n)[which]`` without building the rows of the whole batch (the cascade
+    takes a few pairs out of millions)."""
+    if index is not None:
+        return np.asarray(index, dtype=np.intp)[which]
+    if m == n:
+        return which.copy()
+    return np.zeros(which.size, dtype=np.intp)
 
 
 def _rows(index: np.ndarray | None, m: int, n: int) -> np.ndarray:

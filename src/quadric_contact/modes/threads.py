@@ -11,6 +11,7 @@ thread of the pool runs in that thread, so that nested calls cannot wait on each
 from __future__ import annotations
 
 import contextlib
+import itertools
 import os
 import threading
 from collections.abc import Callable, Iterator
@@ -24,6 +25,8 @@ THREADS = max(1, min(os.cpu_count() or 1, int(os.environ.get("QUADRIC_CONTACT_TH
 """Threads used by default (all cores, or ``QUADRIC_CONTACT_THREADS``)."""
 MIN_PER_THREAD = 16384
 """A slice is never shorter than this: below it one thread does the work."""
+SLICES_PER_THREAD = 8
+"""Slices per thread of one call (the threads take them in turn)."""
 
 _local = threading.local()
 _pool: ThreadPoolExecutor | None = None
@@ -69,16 +72,27 @@ def threads_for(n: int, threads: int | None = None) -> int:
 
 def run_parallel(kernel: Callable[[int, int], object], n: int, threads: int | None = None) -> None:
     """Call ``kernel(lo, hi)`` on slices of ``range(n)``, on several threads when it pays (the
-    calling thread takes the first slice).  One thread inside :func:`single_threaded`."""
+    calling thread works too).  One thread inside :func:`single_threaded`.
+
+    The range is cut into :data:`SLICES_PER_THREAD` slices per thread, taken in turn by whichever
+    thread is free: a thread slowed down by the rest of the machine takes fewer of them, so the
+    call does not wait for the slowest half."""
     t = threads_for(n, threads)
     if t <= 1 or not HAVE_NUMBA:
         kernel(0, n)
         return
-    bounds = [n * k // t for k in range(t + 1)]
+    k = max(t, min(t * SLICES_PER_THREAD, n // MIN_PER_THREAD))
+    bounds = [n * i // k for i in range(k + 1)]
+    slices = itertools.count()  # next() on a count is atomic under the GIL
+
+    def work() -> None:
+        while (i := next(slices)) < k:
+            kernel(bounds[i], bounds[i + 1])
+
     pool = _get_pool()
-    futures: list[Future[object]] = [pool.submit(kernel, bounds[k], bounds[k + 1]) for k in range(1, t)]
+    futures: list[Future[object]] = [pool.submit(work) for _ in range(1, t)]
     try:
-        kernel(bounds[0], bounds[1])
+        work()
     finally:
         for f in futures:
             f.result()
