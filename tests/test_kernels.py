@@ -139,3 +139,22 @@ def test_the_first_compilation_says_so_once(monkeypatch, capsys):
     listener.on_start(event("quadric_contact.modes.separation"))
     err = capsys.readouterr().err
     assert err.count("compiling the numba kernels once") == 1
+
+
+@pytest.mark.parametrize("n", [0, 1, 16383, 16384 * 2 + 7, 10**6 + 3])
+@pytest.mark.parametrize("threads", [1, 2, 4])
+def test_run_parallel_covers_every_item_once(n: int, threads: int) -> None:
+    """The threads take the slices in turn: together they cover ``range(n)`` exactly once."""
+    import threading
+
+    from quadric_contact.modes.threads import run_parallel
+
+    seen = np.zeros(n, dtype=np.int64)
+    lock = threading.Lock()
+
+    def kernel(lo: int, hi: int) -> None:
+        with lock:
+            seen[lo:hi] += 1
+
+    run_parallel(kernel, n, threads=threads)
+    assert (seen == 1).all()
