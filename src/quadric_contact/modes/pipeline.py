@@ -218,8 +218,9 @@ def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
         which = which & todo
         k = int(np.count_nonzero(which))
         if k:
-            out[which] = values if np.isscalar(values) else np.asarray(values)[which]
-            todo[which] = False
+            # masked copies: one pass each, no gathered index (most pairs settle at once)
+            np.copyto(out, values, where=which, casting="unsafe")
+            np.logical_and(todo, np.logical_not(which), out=todo)
         counts.add(label, k)
 
     def settle_at(at: np.ndarray, values: Any, label: str) -> None:
@@ -231,9 +232,15 @@ def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
         counts.add(label, int(at.size))
 
     # 1. criterion: the root structure of P (validates the input on the way).
-    method = "criterion_region" if question == "region" else "criterion_contact"
-    crit, names, which = _staged(mode, method, pairs)
     klass, qsign, ellipsoid = _classes(mode, pairs)
+    ell = _is(ellipsoid, True)
+    signs_first = None  # the first stage's root-sign reading of every pair (contact question)
+    if question == "region":
+        crit, names, which = _staged(mode, "criterion_region", pairs)
+    elif question == "contact" and ell is not False:
+        crit, names, which, signs_first = _contact_with_signs(mode, pairs)
+    else:
+        crit, names, which = _staged(mode, "criterion_contact", pairs)
     labels = [f"criterion ({name})" for name in names]
     surfaceless = _is(klass, _CLASS_NO_SURFACE)
     if question == "region":
@@ -269,22 +276,14 @@ def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
     # 1b. two ellipsoids, all roots real: two positive roots of P (Wang-Wang-Kim, for every
     # pair, read off the criterion's root signs) mean E outside Q or touching it from outside:
     # no crossing, and E in the closed R+ of Q's canonical sign.
-    ell = _is(ellipsoid, True)
     if question == "region" and ell is not False:
         outside = (crit * qsign == RegionCode.R_PLUS) & ell
         for k, label in enumerate(labels):
             settle(False if k not in deciding else outside & (which == k), crit, label)
-    elif question == "contact" and ell is not False:
-        cand = np.flatnonzero(todo & all_real & ell)
-        if cand.size:
-            # the first stage of a cascade only: what it cannot read (a structural zero such as
-            # proportional quadratic parts, a tangency) goes on to smallness and separation,
-            # which settle it in binary64 more often than a slower stage here would
-            first = getattr(mode, "stages", (mode,))[0]
-            signs = first.criterion_region(_take(pairs, cand))
-            outside = signs * qsign[cand] == RegionCode.R_PLUS
-            label = f"criterion ({getattr(first, 'stage', first.name)})"
-            settle_at(cand[outside], ContactCode.NO_CONTACT, label)
+    elif signs_first is not None:
+        # the first stage's reading only (see _contact_with_signs)
+        outside = todo & all_real & ell & (signs_first * qsign == RegionCode.R_PLUS)
+        settle(outside, ContactCode.NO_CONTACT, labels[0])
 
     # 2. smallness: Corollary 10 and Table 4 where they apply.
     if question != "kind" and getattr(mode, "uses_smallness", False):
@@ -325,6 +324,34 @@ def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
     counts.undecided = int(np.count_nonzero(todo))
     mode._record(counts)
     return out
+
+
+def _contact_with_signs(
+    mode: NumberMode, pairs: Pairs
+) -> tuple[np.ndarray, list[str], np.ndarray, np.ndarray]:
+    """The criterion for the contact question, and the root-sign reading of step 1b, in one
+    pass over the pairs: the first stage of the cascade reads the region (its kernels compute
+    the contact code and the signs of the coefficients together); where that reading is
+    uncertain, the whole cascade decides the contact code alone.
+
+    Returns ``(contact codes, stage names, deciding stage, first-stage region codes)``.  Only
+    the first stage's sign reading is used by step 1b: what it cannot read (a structural zero
+    such as proportional quadratic parts, a tangency) goes on to smallness and separation,
+    which settle it in binary64 more often than a slower stage of the cascade would."""
+    first = getattr(mode, "stages", (mode,))[0]
+    signs = first.criterion_region(pairs)
+    crit = np.where(signs == RegionCode.CONTACT, ContactCode.CONTACT, ContactCode.NO_CONTACT).astype(np.int8)
+    # UNCERTAIN, and EXCLUDED (a type without a row of Table 4, or without real points: the
+    # reading does not say whether the roots are real there), go to the contact criterion
+    unsure = np.flatnonzero((signs == _UNC) | (signs == RegionCode.EXCLUDED))
+    names = [str(getattr(s, "stage", s.name)) for s in getattr(mode, "stages", (mode,))]
+    which = np.zeros(pairs.n, dtype=np.int8)
+    if unsure.size:
+        sub, sub_names, sub_which = _staged(mode, "criterion_contact", _take(pairs, unsure))
+        names = sub_names
+        crit[unsure] = sub
+        which[unsure] = sub_which
+    return crit, names, which, signs
 
 
 def _from_separation(sep: np.ndarray, question: str) -> np.ndarray:
@@ -446,8 +473,9 @@ def _decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
         which = which & todo
         k = int(np.count_nonzero(which))
         if k:
-            out[which] = values if np.isscalar(values) else np.asarray(values)[which]
-            todo[which] = False
+            # masked copies: one pass each, no gathered index (most pairs settle at once)
+            np.copyto(out, values, where=which, casting="unsafe")
+            np.logical_and(todo, np.logical_not(which), out=todo)
         counts.add(label, k)
 
     # 1. criterion: root structure and signs (validates the input on the way).
