@@ -238,7 +238,7 @@ def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
     if question == "region":
         crit, names, which = _staged(mode, "criterion_region", pairs)
     elif question == "contact" and ell is not False:
-        crit, names, which, signs_first = _contact_with_signs(mode, pairs)
+        crit, names, which, signs_first, deciding = _contact_with_signs(mode, pairs)
     else:
         crit, names, which = _staged(mode, "criterion_contact", pairs)
     labels = [f"criterion ({name})" for name in names]
@@ -249,7 +249,8 @@ def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
         none = ContactCode.NO_CONTACT if question == "contact" else ContactKindCode.NONE
         settle(surfaceless, none, "no real points (type)")
     plane = _is(klass, _CLASS_PLANE)
-    deciding = _deciding_stages(which, len(labels))
+    if signs_first is None:
+        deciding = _deciding_stages(which, len(labels))
     for k, label in enumerate(labels):
         if k not in deciding:
             counts.add(label, 0)
@@ -328,30 +329,34 @@ def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
 
 def _contact_with_signs(
     mode: NumberMode, pairs: Pairs
-) -> tuple[np.ndarray, list[str], np.ndarray, np.ndarray]:
+) -> tuple[np.ndarray, list[str], np.ndarray, np.ndarray, set[int]]:
     """The criterion for the contact question, and the root-sign reading of step 1b, in one
     pass over the pairs: the first stage of the cascade reads the region (its kernels compute
     the contact code and the signs of the coefficients together); where that reading is
     uncertain, the whole cascade decides the contact code alone.
 
-    Returns ``(contact codes, stage names, deciding stage, first-stage region codes)``.  Only
+    Returns ``(contact codes, stage names, deciding stage, first-stage region codes, the stages
+    that decided at least one pair)``.  Only
     the first stage's sign reading is used by step 1b: what it cannot read (a structural zero
     such as proportional quadratic parts, a tangency) goes on to smallness and separation,
     which settle it in binary64 more often than a slower stage of the cascade would."""
     first = getattr(mode, "stages", (mode,))[0]
     signs = first.criterion_region(pairs)
-    crit = np.where(signs == RegionCode.CONTACT, ContactCode.CONTACT, ContactCode.NO_CONTACT).astype(np.int8)
+    # ContactCode.CONTACT is 1 and NO_CONTACT 0: the comparison's bytes are the codes
+    crit = (signs == RegionCode.CONTACT).view(np.int8)
     # UNCERTAIN, and EXCLUDED (a type without a row of Table 4, or without real points: the
     # reading does not say whether the roots are real there), go to the contact criterion
     unsure = np.flatnonzero((signs == _UNC) | (signs == RegionCode.EXCLUDED))
     names = [str(getattr(s, "stage", s.name)) for s in getattr(mode, "stages", (mode,))]
     which = np.zeros(pairs.n, dtype=np.int8)
+    deciding = {0} if unsure.size < pairs.n else set()
     if unsure.size:
         sub, sub_names, sub_which = _staged(mode, "criterion_contact", _take(pairs, unsure))
         names = sub_names
         crit[unsure] = sub
         which[unsure] = sub_which
-    return crit, names, which, signs
+        deciding |= _deciding_stages(sub_which, len(names))
+    return crit, names, which, signs, deciding
 
 
 def _from_separation(sep: np.ndarray, question: str) -> np.ndarray:
