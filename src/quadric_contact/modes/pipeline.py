@@ -14,8 +14,10 @@ steps and the order in which they hand pairs on are written once, here:
    has one sign on all of space.  For two ellipsoids with all roots real, the root signs
    (Wang-Wang-Kim, for every pair) settle ``E`` outside ``Q`` or touching it from outside:
    two positive roots mean no crossing and ``E`` in the closed ``R+`` of ``Q``'s canonical
-   sign (the contact question asks the criterion's region reading of these pairs only, and
-   of a cascade only its first stage).  This is most pairs of an environment and of
+   sign.  For the contact question the first stage of a cascade reads the region of every
+   pair in the same pass as the contact code (its kernels compute both together); the rest
+   of the cascade decides the contact code where that reading is unsure, and only the first
+   stage's reading settles pairs here.  This is most pairs of an environment and of
    ellipsoids of similar sizes.
 2. **smallness** (:meth:`~quadric_contact.modes.number_mode.NumberMode.smallness`, where
    the mode offers it): all roots real and ``E`` small with respect to ``Q``
