@@ -105,3 +105,28 @@ def test_quadratic_number_errors():
         QuadraticNumber(0).inverse()
     with pytest.raises(ValueError):
         RealAlgebraic.sqrt(-1)
+
+
+def test_a_ball_is_read_at_its_own_precision():
+    """A ball computed at 300 bits around 1/3 does not meet a number 2^-200 away from 1/3 (read
+    at 53 bits, its bounds would be 2^-52 apart and meet it)."""
+    import flint
+
+    from quadric_contact.exact.algebraic import _overlaps
+    from quadric_contact.exact.precision import working_precision
+
+    with working_precision(300):
+        ball = flint.arb(1) / 3
+    assert not _overlaps(RealAlgebraic(Fraction(1, 3) + Fraction(1, 2**200)), ball)
+    assert _overlaps(RealAlgebraic(Fraction(1, 3)), ball)
+
+
+def test_a_value_between_two_close_conjugates_is_found():
+    """``1 + sqrt(2) / 2^80`` has the conjugate ``1 - sqrt(2) / 2^80``, 2^-78.5 away: the value is
+    told from it by narrowing both candidates to the enclosure's width (with the candidates
+    shrinking by a constant factor per doubling of the precision this took ~2^40 bits)."""
+    r = algebraic_value(lambda x: 1 + x / 2**80, [RealAlgebraic.sqrt(Fraction(2))])
+    t = sympy.Symbol("t")
+    minpoly = sympy.Poly(sympy.expand((t - 1) ** 2 - sympy.Rational(2, 2**160)), t)
+    assert r.minpoly == tuple(Fraction(int(c.p), int(c.q)) for c in reversed(minpoly.all_coeffs()))
+    assert algebraic_value(lambda y: y - 1, [r]).sign() == 1

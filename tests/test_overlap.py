@@ -451,34 +451,21 @@ def test_agreement_with_the_independent_decision(pair, motion):
     assert overlap_exact(e, q).code is independent(e, q)
 
 
-def _by_region(E: Quadric, Q: Quadric) -> OverlapCode:
-    """Overlap from the exact relative position of the surface of ``E`` (no touches among
-    random float pairs: ``R+`` is apart unless ``Q`` is an ellipsoid inside ``E``)."""
-    from quadric_contact.theory.regions import relative_position_exact
-    from quadric_contact.theory.results import Region
-
-    e, q = E.as_ellipsoid(), solid_of(Q)
-    region = relative_position_exact(e, q).region
-    if region is not Region.R_PLUS:
-        return O
-    center = q.center() if q.kind is K.ELLIPSOID else None
-    return O if center is not None and e.value_at(center) < 0 else S
-
-
 def test_agreement_with_the_independent_decision_on_random_float_pairs():
-    """Two ellipsoids against the extremes of ``f`` on ``E`` (no pencil); the other types against
-    the exact relative position (the extremes are slow on some float pairs of hyperboloids)."""
+    """Every pair against the extremes of ``f`` on ``E`` (no pencil), random float pairs of every
+    type included (pair 12 of the second batch, a hyperboloid of one sheet, took minutes in the
+    exact extremes before their enclosures were read at their own precision)."""
     from quadric_contact.testing.samples import random_pairs
 
     rng = np.random.default_rng(7)
     E, Q, _ = random_pairs(24, rng, kinds=(K.ELLIPSOID,), ellipsoid_axes=(0.5, 3.0), box=2.0)
     E2, Q2, _ = random_pairs(24, rng, box=1.0)
     seen = set()
-    for Es, Qs, decide in ((E, Q, independent), (E2, Q2, _by_region)):
+    for Es, Qs in ((E, Q), (E2, Q2)):
         got = qc.overlap(Es, Qs)
         for k in range(len(Es)):
             e, q = Quadric.from_matrix(Es[k]), Quadric.from_matrix(Qs[k])
-            want = decide(e, q)
+            want = independent(e, q)
             assert int(got[k]) == want, k
             seen.add(want)
     assert {S, O} <= seen

@@ -91,7 +91,8 @@ def _sign_rational(p: Any, x: Fraction) -> int:
     """Exact sign of an ``fmpq_poly`` at a rational."""
     if p.is_zero():
         return 0
-    return sign(fraction_of(p(fmpq_of(x))))
+    v = p(fmpq_of(x))  # an fmpq in lowest terms: its sign is its numerator's (no Fraction to build)
+    return int(v.p > 0) - int(v.p < 0)
 
 
 def _arb_interval(lo: Fraction, hi: Fraction) -> Any:
@@ -1049,8 +1050,10 @@ def algebraic_value(fn: Callable[..., Any], args: Sequence[Any]) -> RealAlgebrai
                 return hits[0]
             if not hits:  # pragma: no cover - would mean a wrong enclosure
                 raise AssertionError("value lost during algebraic evaluation")
-            for c in hits:
-                c.refine((c.hi - c.lo) / 4 if not c.is_rational else Fraction(1))
+            _narrow(hits, bits)
+            hits = [c for c in hits if _overlaps(c, x)]
+            if len(hits) == 1:
+                return hits[0]
         bits *= 2
 
 
@@ -1095,15 +1098,32 @@ def algebraic_sqrt(x: Any) -> RealAlgebraic:
         hits = [c for c in candidates if _overlaps(c, enc)]
         if len(hits) == 1:
             return hits[0]
-        for c in hits:
-            c.refine((c.hi - c.lo) / 4 if not c.is_rational else Fraction(1))
+        _narrow(hits, bits)
+        hits = [c for c in hits if _overlaps(c, enc)]
+        if len(hits) == 1:
+            return hits[0]
         bits *= 2
 
 
+def _narrow(hits: list[RealAlgebraic], bits: int) -> None:
+    """Narrow the candidate roots as far as an enclosure at ``bits`` bits is narrow (relative
+    width about ``2^-bits``): two roots closer than their isolating intervals are wide are then
+    told apart at this precision, instead of by doubling the precision while the intervals
+    shrink by a constant factor (exponential in the roots' separation)."""
+    for c in hits:
+        if not c.is_rational:
+            c.refine(max(abs(c.lo), abs(c.hi), Fraction(1)) / 2**bits)
+
+
 def _overlaps(c: RealAlgebraic, ball: Any) -> bool:
-    lo = fraction_of(ball.lower())
-    hi = fraction_of(ball.upper())
-    return not (c._hi < lo or hi < c._lo)
+    """The isolating interval of ``c`` meets the ball ``[mid - rad, mid + rad]``, read exactly.
+
+    Not ``ball.lower()``/``ball.upper()``: they round to the precision in force when they are
+    called, and a ball computed at thousands of bits read at 53 would be a 2^-52-wide interval
+    (two close roots would then overlap it at every precision)."""
+    mid = fraction_of(ball.mid())
+    rad = fraction_of(ball.rad())
+    return not (c._hi < mid - rad or mid + rad < c._lo)
 
 
 def evaluate_arb(fn: Callable[..., Any], args: Sequence[RealAlgebraic], bits: int) -> Any:
