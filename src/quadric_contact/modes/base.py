@@ -367,6 +367,14 @@ class Pairs:
     def q_rows(self) -> np.ndarray:
         return _rows(self.q_index, len(self.Q), self.n)
 
+    def e_rows_at(self, which: np.ndarray) -> np.ndarray:
+        """``e_rows()[which]``, without the rows of the whole batch."""
+        return _rows_of(self.e_index, len(self.E), self.n, np.asarray(which, dtype=np.intp))
+
+    def q_rows_at(self, which: np.ndarray) -> np.ndarray:
+        """``q_rows()[which]``, without the rows of the whole batch."""
+        return _rows_of(self.q_index, len(self.Q), self.n, np.asarray(which, dtype=np.intp))
+
     def take(self, which: np.ndarray) -> Pairs:
         """The sub-batch of the pairs ``which`` (indices into ``range(n)``)."""
         which = np.asarray(which, dtype=np.intp)
@@ -374,8 +382,8 @@ class Pairs:
             self.E,
             self.Q,
             int(which.size),
-            _rows_of(self.e_index, len(self.E), self.n, which),
-            _rows_of(self.q_index, len(self.Q), self.n, which),
+            self.e_rows_at(which),
+            self.q_rows_at(which),
         )
 
     def kernel_indices(self) -> tuple[np.ndarray, np.ndarray, int, int]:

@@ -77,10 +77,10 @@ class CertifiedMode(NumberMode):
         if method == "quick_smallness":
             method = "smallness"
             stages = stages[:-1] if len(stages) > 1 else stages
-        which = np.full(pairs.n, -1, dtype=np.int8)
         codes = getattr(stages[0], method)(pairs)
-        todo = np.flatnonzero(codes == _UNC)
-        which[codes != _UNC] = 0
+        unsure = codes == _UNC
+        todo = np.flatnonzero(unsure)
+        which = np.negative(unsure.view(np.int8))  # 0 decided by the first stage, -1 not yet
         for k, stage in enumerate(stages[1:], start=1):
             if todo.size == 0:
                 break

@@ -375,7 +375,7 @@ class FloatMode(NumberMode):
             if todo.size:
                 # Second pass with exact facts about the quadrics involved (once per quadric):
                 # structural zeros of c0, c1 and, for regions, the exact type.
-                used = np.unique(pairs.q_rows()[todo])
+                used = np.unique(pairs.q_rows_at(todo))
                 facts, exact_masks = exact_facts(pairs.Q, used)
                 flags = np.zeros(len(pairs.Q), dtype=np.int8)
                 flags[used] = facts
@@ -492,7 +492,7 @@ def exact_facts(Q: MatrixStack, rows: np.ndarray) -> tuple[np.ndarray, np.ndarra
 def _diagnose(pairs: Pairs, which: np.ndarray) -> np.ndarray:
     """Raise for the first really invalid pair among ``which``; return ``UNCERTAIN`` for
     pairs flagged only because a plain float test could not see ``E`` as an ellipsoid."""
-    e_rows, q_rows = pairs.e_rows()[which], pairs.q_rows()[which]
+    e_rows, q_rows = pairs.e_rows_at(which), pairs.q_rows_at(which)
     validate_rows(pairs.E, np.unique(e_rows))
     validate_rows(pairs.Q, np.unique(q_rows))
     for row in np.unique(e_rows):

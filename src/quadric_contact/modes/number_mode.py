@@ -108,21 +108,13 @@ class NumberMode(ABC):
     def criterion(self, pairs: Pairs) -> np.ndarray:
         """:class:`CriterionCode` of every pair (the raw criterion), recording its counts."""
         codes, names, which = self.staged("criterion_contact", pairs)
-        counts = StageCounts()
-        for k, name in enumerate(names):
-            counts.add(f"criterion ({name})", int(np.count_nonzero(which == k)))
-        counts.undecided = int(np.count_nonzero(which < 0))
-        self._record(counts)
+        self._record(_stage_counts("criterion", names, which))
         return codes
 
     def public_smallness(self, pairs: Pairs) -> np.ndarray:
         """:class:`SmallnessCode` of every pair, recording its counts."""
         codes, names, which = self.staged("smallness", pairs)
-        counts = StageCounts()
-        for k, name in enumerate(names):
-            counts.add(f"smallness ({name})", int(np.count_nonzero(which == k)))
-        counts.undecided = int(np.count_nonzero(which < 0))
-        self._record(counts)
+        self._record(_stage_counts("smallness", names, which))
         return codes
 
     # -- the stages -------------------------------------------------------------------------
@@ -158,8 +150,20 @@ class NumberMode(ABC):
         """Run the stage ``method``: ``(codes, stage names, index of the stage that decided
         each entry or -1)``.  A cascade (the certified mode) reports each of its stages."""
         codes = getattr(self, method)(pairs)
-        which = np.where(codes != 2, 0, -1).astype(np.int8)
+        which = np.negative((codes == 2).view(np.int8))  # 0 decided, -1 not
         return codes, [self.stage], which
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}()"
+
+
+def _stage_counts(step: str, names: list[str], which: np.ndarray) -> StageCounts:
+    """The counts of ``step`` from the deciding stage of every entry (``which``: stage index, or
+    -1 undecided), in one pass over the batch: nearly every entry is the first stage's (0)."""
+    later = which[np.flatnonzero(which)]  # the few entries not decided by the first stage
+    counts = StageCounts()
+    for k, name in enumerate(names):
+        k_count = which.size - later.size if k == 0 else np.count_nonzero(later == k)
+        counts.add(f"{step} ({name})", int(k_count))
+    counts.undecided = int(np.count_nonzero(later < 0))
+    return counts

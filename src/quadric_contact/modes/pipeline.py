@@ -383,7 +383,7 @@ def _exact_pairs(pairs: Pairs, rows: np.ndarray, question: str) -> np.ndarray:
     from quadric_contact.theory.contact_kind import analyze_contact
     from quadric_contact.theory.regions import relative_position_exact
 
-    e_rows, q_rows = pairs.e_rows()[rows], pairs.q_rows()[rows]
+    e_rows, q_rows = pairs.e_rows_at(rows), pairs.q_rows_at(rows)
     cache: dict[tuple[int, int], int] = {}
     out = np.empty(rows.size, dtype=np.int8)
     for t in range(rows.size):
@@ -532,7 +532,7 @@ def _exact_overlaps(pairs: Pairs, rows: np.ndarray) -> np.ndarray:
     from quadric_contact.modes.validation import exact_matrix
     from quadric_contact.theory.overlap import overlap_exact
 
-    e_rows, q_rows = pairs.e_rows()[rows], pairs.q_rows()[rows]
+    e_rows, q_rows = pairs.e_rows_at(rows), pairs.q_rows_at(rows)
     cache: dict[tuple[int, int], int] = {}
     out = np.empty(rows.size, dtype=np.int8)
     for t in range(rows.size):
