@@ -361,6 +361,13 @@ def machine_info() -> dict[str, Any]:
 
 EIG_TOL = 1e-9
 
+CRITERION_WHEN_ASKED = 1 / 11.6e6
+"""Seconds per pair of the certified criterion alone, one ellipsoid against a stack, when the
+complete decision was asked for: 11.6 M pairs/s measured on a 2-core machine of the kind this
+benchmark runs on (the same measurement put the numpy batch eigenvalues at 0.15-0.35 M pairs/s).
+The complete decision was asked to stay within 1.5x of that time; the table also holds it against
+the criterion alone of the same run, which has since become faster."""
+
 
 def peer_numpy_eigvals(E: np.ndarray, Q: np.ndarray, tol: float = EIG_TOL) -> np.ndarray:
     """Contact codes from the batched eigenvalues of ``-Q E^-1`` (same as of ``-E^-1 Q``)."""
@@ -1026,16 +1033,26 @@ def _targets(report: Report, exact_per_pair: dict[str, float]) -> None:
         env_c = rows[("environment", "certified, complete")]
         env_k = rows[("environment", "certified, criterion alone")]
         ratio = env_c["seconds"] / env_k["seconds"]
-        report.targets.append(
+        per_pair = env_c["seconds"] / env_c["n"]
+        report.targets += [
             Target(
                 "complete decision, small ellipsoids vs one environment",
-                "<= 1.5x the criterion alone",
+                "<= 1.5x the criterion alone of this run",
                 ratio,
                 "x",
                 ratio <= 1.5,
                 f"({env_c['stages']})",
-            )
-        )
+            ),
+            Target(
+                "complete decision, small ellipsoids vs one environment",
+                "<= 1.5x the certified criterion alone when the complete decision was asked for",
+                per_pair / CRITERION_WHEN_ASKED,
+                "x",
+                per_pair / CRITERION_WHEN_ASKED <= 1.5,
+                f"({per_pair * 1e9:.1f} ns per pair against {CRITERION_WHEN_ASKED * 1e9:.1f} ns, "
+                "11.6 M pairs/s on this kind of machine)",
+            ),
+        ]
         sim = rows[("similar sizes", "certified, complete")]
         rate_ = sim["n"] / sim["seconds"]
         report.targets.append(
