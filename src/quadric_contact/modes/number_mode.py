@@ -160,7 +160,9 @@ class NumberMode(ABC):
 def _stage_counts(step: str, names: list[str], which: np.ndarray) -> StageCounts:
     """The counts of ``step`` from the deciding stage of every entry (``which``: stage index, or
     -1 undecided), in one pass over the batch: nearly every entry is the first stage's (0)."""
-    later = which[np.flatnonzero(which)]  # the few entries not decided by the first stage
+    # the few entries not decided by the first stage (nonzero on a bool array: on int8 it is
+    # ten times slower)
+    later = which[np.flatnonzero(which != 0)] if np.count_nonzero(which) else which[:0]
     counts = StageCounts()
     for k, name in enumerate(names):
         k_count = which.size - later.size if k == 0 else np.count_nonzero(later == k)
