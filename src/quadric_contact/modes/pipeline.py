@@ -164,7 +164,7 @@ def _blend(out: np.ndarray, which: np.ndarray, values: Any) -> None:
     """``out[which] = values`` (int8 codes; ``values`` a scalar or one per entry of ``out``) by
     arithmetic, ``out += which * (values - out)``: numpy's masked assignment and ``copyto(...,
     where=)`` are not vectorised (about 1 ms per 1e6 entries, this about a tenth of that)."""
-    if np.isscalar(values) or isinstance(values, int):
+    if isinstance(values, (int, np.integer)):
         delta = np.subtract(np.int8(int(values)), out)
     else:
         delta = np.subtract(np.asarray(values, dtype=np.int8), out)
