@@ -158,3 +158,26 @@ def test_run_parallel_covers_every_item_once(n: int, threads: int) -> None:
 
     run_parallel(kernel, n, threads=threads)
     assert (seen == 1).all()
+
+
+def test_certified_ellipsoids_are_ellipsoids():
+    """The short ellipsoid test of classify: the same answer compiled and in numpy, never an
+    ellipsoid that is not one (exact type), the canonical sign of the invariant classification
+    where that is certain, and it certifies the ordinary ellipsoids of a stack (what it is for)."""
+    from quadric_contact.model.classification import QuadricKind
+    from quadric_contact.model.quadric import Quadric
+    from quadric_contact.modes.decisions import UNCERTAIN_ROW, row_of, rows_from_invariant_signs
+    from quadric_contact.modes.float_modes import certified_ellipsoid_signs, float_invariant_signs
+
+    rng = np.random.default_rng(11)
+    E, Q, _ = random_pairs(400, rng)
+    floats = [h for h in hard_cases() if not h.exact_input]
+    hard = np.array([m for h in floats for m in h.matrices()], dtype=float)
+    for M in (E, -E, Q, hard):
+        got = certified_ellipsoid_signs(M)
+        assert (got == certified_ellipsoid_signs(M, backend="numpy")).all()
+        rows = rows_from_invariant_signs(float_invariant_signs(M, filtered=True))
+        for k in np.flatnonzero(got):
+            assert Quadric.from_matrix(M[k]).kind is QuadricKind.ELLIPSOID
+            assert rows[k] in (row_of(QuadricKind.ELLIPSOID, int(got[k])), UNCERTAIN_ROW)
+    assert (certified_ellipsoid_signs(E) == 1).all() and (certified_ellipsoid_signs(-E) == -1).all()

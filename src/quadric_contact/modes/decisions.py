@@ -255,10 +255,10 @@ def rows_from_masks(masks: np.ndarray) -> np.ndarray:
     """The row of each single-bit mask, :data:`UNCERTAIN_ROW` for the others."""
     masks = np.asarray(masks, dtype=np.int64)
     single = (masks != 0) & ((masks & (masks - 1)) == 0)
-    rows = np.full(masks.shape, UNCERTAIN_ROW, dtype=np.int16)
-    if single.any():
-        rows[single] = np.log2(masks[single].astype(np.float64)).round().astype(np.int16)
-    return rows
+    # 2^r = 0.5 * 2^(r + 1) exactly in binary64 (r < 63): the exponent is the row, without
+    # gathering the single-bit masks out and scattering their rows back
+    row = np.frexp(masks.astype(np.float64))[1] - 1
+    return np.where(single, row, UNCERTAIN_ROW).astype(np.int16)
 
 
 def rows_from_invariant_signs(signs: np.ndarray) -> np.ndarray:

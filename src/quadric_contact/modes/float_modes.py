@@ -26,10 +26,11 @@ from typing import Any
 
 import numpy as np
 
+from quadric_contact.model.classification import QuadricKind
 from quadric_contact.modes import errorbounds as eb
 from quadric_contact.modes._jit import HAVE_NUMBA
 from quadric_contact.modes.base import INVALID, MatrixStack, Pairs
-from quadric_contact.modes.decisions import UNCERTAIN_ROW, masks_from_invariant_signs, rows_from_masks
+from quadric_contact.modes.decisions import UNCERTAIN_ROW, masks_from_invariant_signs, row_of, rows_from_masks
 from quadric_contact.modes.kernels_criterion import FALLBACK, NB, fast_codes
 from quadric_contact.modes.number_mode import NumberMode
 from quadric_contact.modes.rows import unique_rows
@@ -226,6 +227,10 @@ def stage_codes(E: np.ndarray, Q: np.ndarray, stage: str, *, backend: str = "num
     return np.where(bad | (q["ell"] == ELLIPSOID_NOT), INVALID, code).astype(np.int8)
 
 
+_ELLIPSOID_PLUS = np.int64(1) << row_of(QuadricKind.ELLIPSOID, 1)
+_ELLIPSOID_MINUS = np.int64(1) << row_of(QuadricKind.ELLIPSOID, -1)
+
+
 def float_invariant_signs(
     Q: np.ndarray, *, filtered: bool, rounded: bool = False, backend: str = "numba"
 ) -> np.ndarray:
@@ -240,6 +245,22 @@ def float_invariant_signs(
 
     flat = np.ascontiguousarray(Q).reshape(-1, 16)
     run_parallel(lambda lo, hi: invariant_signs_kernel(flat, lo, hi, K, filtered, out), Q.shape[0])
+    return out
+
+
+def certified_ellipsoid_signs(Q: np.ndarray, *, backend: str = "numba") -> np.ndarray:
+    """``(m,)`` int8: +1/-1 where the binary64 quadric ``Q[k]`` (not rounded from exact input) is
+    certainly an ellipsoid of that canonical sign, 0 where this short test cannot tell (the
+    invariant signs decide those)."""
+    if backend == "numpy" or not HAVE_NUMBA:
+        from quadric_contact.modes.numpy_fallback import numpy_ellipsoid_signs
+
+        return numpy_ellipsoid_signs(np.asarray(Q, dtype=np.float64))
+    from quadric_contact.modes.kernels_support import ellipsoid_signs_kernel
+
+    out = np.empty(Q.shape[0], dtype=np.int8)
+    flat = np.ascontiguousarray(Q).reshape(-1, 16)
+    run_parallel(lambda lo, hi: ellipsoid_signs_kernel(flat, lo, hi, out), Q.shape[0])
     return out
 
 
@@ -420,8 +441,21 @@ class FloatMode(NumberMode):
             return seen[2][index]
         validate_rows(Q, index)
         sub = Q.floats if rows is None else rows_view(Q, index)
-        signs = float_invariant_signs(sub, filtered=True, rounded=Q.rounded, backend=self.backend)
-        masks = masks_from_invariant_signs(signs)
+        if Q.rounded:
+            rest = None
+            masks = masks_from_invariant_signs(
+                float_invariant_signs(sub, filtered=True, rounded=True, backend=self.backend)
+            )
+        else:
+            # Most quadrics of a stack of pairs are ellipsoids: a short certified test settles
+            # them (a third of the invariants' work); the invariant signs decide the others.
+            ell = certified_ellipsoid_signs(sub, backend=self.backend)
+            masks = np.where(ell > 0, _ELLIPSOID_PLUS, np.where(ell < 0, _ELLIPSOID_MINUS, np.int64(0)))
+            rest = np.flatnonzero(ell == 0)
+            if rest.size:
+                masks[rest] = masks_from_invariant_signs(
+                    float_invariant_signs(sub[rest], filtered=True, rounded=False, backend=self.backend)
+                )
         if not self.filtered:
             unsure = np.flatnonzero(rows_from_masks(masks) == UNCERTAIN_ROW)
             if unsure.size:

@@ -13,7 +13,13 @@ from quadric_contact.modes._jit import HAVE_NUMBA, numba
 from quadric_contact.modes._jit import njit as _njit
 from quadric_contact.modes.decisions import ROWS, region_code_masked
 
-__all__ = ["check_stack_kernel", "invariant_signs_kernel", "read_all_kernel", "region_codes_kernel"]
+__all__ = [
+    "check_stack_kernel",
+    "ellipsoid_signs_kernel",
+    "invariant_signs_kernel",
+    "read_all_kernel",
+    "region_codes_kernel",
+]
 
 _UNC = 2
 _INPUT_MIN = eb.INPUT_MIN
@@ -25,6 +31,13 @@ _invariants_mag = _njit(kernels.quadric_invariants_magnitude, inline=True)
 _upper_full = _njit(blocks.upper_full, inline=True)
 _abs10 = _njit(blocks.abs_upper, inline=True)
 _outside = _njit(blocks.outside_count, inline=True)
+_row_maxima = _njit(blocks.row_maxima, inline=True)
+_smallest = _njit(blocks.smallest_nonzero, inline=True)
+_row_bound = _njit(blocks.row_bound, inline=True)
+_e_part = _njit(blocks.pencil_e_part, inline=True)
+_minors = _njit(kernels.leading_minors_3, inline=True)
+_SM2, _SM3 = eb.SEMI_MINORS
+_SP4 = eb.SEMI_PENCIL[4]
 
 
 @_njit(inline=True)
@@ -64,6 +77,33 @@ def _invariant_signs_impl(Q: Any, lo: int, hi: int, K: Any, filtered: bool, out:
         mags = _invariants_mag(a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8], a[9])
         for k in range(7):
             out[p, k] = _UNC if g != 0 else _sgn(v[k], K[k] * mags[k])
+
+
+def _ellipsoid_signs_impl(Q: Any, lo: int, hi: int, out: Any) -> None:
+    """For the flat ``(m, 16)`` binary64 quadrics ``Q[lo:hi]``: +1 or -1 where the quadric is
+    certainly an ellipsoid of that canonical sign (the sign of its definite quadratic part), 0
+    where this short test cannot tell.  The test is the semi-static screen's for ``E``
+    (:func:`~quadric_contact.modes.kernels_criterion._screen_core`): the input guard, Sylvester's
+    minors of the quadratic part against :data:`~quadric_contact.modes.errorbounds.SEMI_MINORS`
+    and ``det Q`` -- computed by the pencil's own program for ``c4`` -- below minus its bound
+    :data:`~quadric_contact.modes.errorbounds.SEMI_PENCIL` ``[4]`` times the product of the row
+    maxima.  A definite quadratic part with ``det Q < 0`` has inertia (3, 1) or (1, 3): a real
+    ellipsoid, whatever the rest of the invariants say."""
+    for p in range(lo, hi):
+        q = _upper_full(Q, p)
+        a = _abs10(q)
+        R = _row_maxima(a)
+        top = max(max(R[0], R[1]), max(R[2], R[3]))
+        guard = (top <= _INPUT_MAX) & (_smallest(a, _INPUT_MAX) >= _INPUT_MIN)
+        m2, m3 = _minors(q[0], q[1], q[2], q[4], q[5], q[7])
+        o = -1.0 if q[0] < 0.0 else 1.0
+        det = _e_part(q)[12]
+        W = _row_bound(R[0], R[1], R[2], R[3], 0.0, 0.0, 0.0, 0.0)
+        ok = (
+            guard & (q[0] != 0.0) & (m2 > _SM2 * (R[0] * R[1])) & (o * m3 > _SM3 * ((R[0] * R[1]) * R[2]))
+            & (det < -(_SP4 * W[4]))
+        )  # fmt: skip
+        out[p] = int(o) if ok else 0
 
 
 def _check_stack_impl(M: Any, lo: int, hi: int, out: Any) -> None:
@@ -114,6 +154,7 @@ def _read_all_impl(a: Any, lo: int, hi: int) -> float:
 
 
 invariant_signs_kernel = _njit(_invariant_signs_impl)
+ellipsoid_signs_kernel = _njit(_ellipsoid_signs_impl)
 check_stack_kernel = _njit(_check_stack_impl)
 region_codes_kernel = _njit(_region_codes_impl)
 read_all_kernel = numba.njit(nogil=True, cache=True)(_read_all_impl) if HAVE_NUMBA else _read_all_impl

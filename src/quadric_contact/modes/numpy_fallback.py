@@ -27,6 +27,7 @@ from quadric_contact.modes.support import region_codes_from_signs
 
 __all__ = [
     "filter_quantities",
+    "numpy_ellipsoid_signs",
     "numpy_invariant_signs",
     "numpy_pairs",
     "proportional_quadratic_parts",
@@ -241,6 +242,31 @@ def screen_quantities(Em: np.ndarray, Qm: np.ndarray) -> dict[str, Any]:
         bound = [(SD[j][0] * rho + SD[j][1]) * A[j] for j in range(3)]
     signs = [np.sign(v).astype(np.int8) for v in c] + [_numpy_sign(d[j], bound[j]) for j in range(3)]
     return {"c": c, "r": r, "rho": rho, "d": d, "bound": bound, "ok": ok, "signs": signs}
+
+
+def numpy_ellipsoid_signs(Qm: np.ndarray) -> np.ndarray:
+    """numpy variant of :func:`~quadric_contact.modes.kernels_support._ellipsoid_signs_impl`
+    (the same programs in the same order, hence the same bits): +1/-1 where the binary64
+    quadric ``Qm[k]`` is certainly an ellipsoid of that canonical sign, 0 where the test cannot
+    tell."""
+    q = [Qm[:, i, j] for i, j in ENTRY_INDICES]
+    with np.errstate(all="ignore"):
+        a = [np.abs(v) for v in q]
+        R = _row_maxima(a)
+        guard = _guard(a, R)
+        m2, m3 = kernels.leading_minors_3(q[0], q[1], q[2], q[4], q[5], q[7])
+        o = np.where(q[0] < 0, -1.0, 1.0)
+        det = blocks.pencil_e_part(tuple(q))[12]
+        W = blocks.row_bound(R[0], R[1], R[2], R[3], 0.0, 0.0, 0.0, 0.0)
+        SM2, SM3 = eb.SEMI_MINORS
+        ok = (
+            guard
+            & (q[0] != 0)
+            & (m2 > SM2 * (R[0] * R[1]))
+            & (o * m3 > SM3 * ((R[0] * R[1]) * R[2]))
+            & (det < -(eb.SEMI_PENCIL[4] * W[4]))
+        )
+    return np.where(ok, o, 0.0).astype(np.int8)
 
 
 def _row_maxima(a: list[np.ndarray]) -> list[np.ndarray]:
