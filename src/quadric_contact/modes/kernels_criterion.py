@@ -265,7 +265,57 @@ def _rows_of_block(idx: Any, stride: int, blo: int, m: int, rows: Any) -> None:
 # -- the kernels: one per (pairs / fixed Q / fixed E, float / screen, contact / region) ---------
 #
 # Made by the factories below with the two flags as constants of the closure (numba caches each
-# on disk), so that the straight-line loops carry no test of them.
+# on disk), so that the straight-line loops carry no test of them.  The three layouts share the
+# body of one pair (:func:`_one_pair`) and the writing of a block (:func:`_write_block`); they
+# differ only in what they read per pair and what they compute once.
+
+
+@njit(inline=True)
+def _one_pair(
+    filtered: bool, e: Any, q: Any, c: Any, R: Any, T: Any, eguard: bool, qguard: bool, plane: bool
+) -> Any:  # fmt: skip
+    """One pair: ``(table index or FALLBACK/INVALID index, signs of c0 .. c4)``.  ``R``, ``T``:
+    the row maxima of ``|E|`` and ``|Q|``; ``eguard``: ``E`` passes the input guard (read by the
+    screen only: plain float's bounds concern ``det Q`` alone); ``qguard``: ``Q`` passes it and
+    both matrices are symmetric.  With ``filtered`` a compile-time constant, LLVM drops what the
+    other branch needs (``E``'s row maxima and guard for plain float)."""
+    if filtered:
+        W = _row_bound(R[0], R[1], R[2], R[3], T[0], T[1], T[2], T[3])
+        ok, idx, s0, s1, s2, s3, s4 = _screen_core(e, R, c, W, plane, eguard & qguard)
+        x = idx if ok else _FALL_INDEX
+    else:
+        r0 = _SP0 * ((T[0] * T[1]) * (T[2] * T[3]))
+        fb, valid, idx, s0, s1, s2, s3, s4 = _float_core(e, q, c, r0, plane, qguard)
+        x = _FALL_INDEX if fb else (idx if valid else _INVALID_INDEX)
+    return x, s0, s1, s2, s3, s4
+
+
+@njit(inline=True)
+def _keep_signs(
+    region: bool, sb: Any, i: int, S: int, s0: float, s1: float, s2: float, s3: float, s4: float
+) -> None:  # fmt: skip
+    """Keep the signs of pair ``i`` for the region question."""
+    if region:
+        sb[i] = s0
+        sb[S + i] = s1
+        sb[2 * S + i] = s2
+        sb[3 * S + i] = s3
+        sb[4 * S + i] = s4
+
+
+@njit(inline=True)
+def _write_block(
+    region: bool, blo: int, m: int, xb: Any, sb: Any, S: int, qi: Any, qrows: Any, qmasks: Any, out: Any
+) -> None:  # fmt: skip
+    """The codes of the block ``blo .. blo + m``: contact codes, or region codes from the signs
+    and the Table 4 row and candidate mask of each pair's quadric (``qi``: its index in
+    ``qrows``/``qmasks``)."""
+    if region:
+        for i in range(m):
+            _region_out(blo + i, xb[i], sb, i, S, qrows[qi[i]], qmasks[qi[i]], out)
+    else:
+        for i in range(m):
+            out[blo + i] = _TABLE[int(xb[i])]
 
 
 def _make_pairs(filtered: bool, region: bool) -> Any:
@@ -289,42 +339,27 @@ def _make_pairs(filtered: bool, region: bool) -> Any:
             for i in range(m):
                 e = _load(eb_, i, S)
                 q = _load(qb_, i, S)
+                ae = _abs10(e)
+                R = _row_maxima(ae)
                 aq = _abs10(q)
                 T = _row_maxima(aq)
-                c = _pencil(e, q)
-                if filtered:
-                    ae = _abs10(e)
-                    R = _row_maxima(ae)
-                    guard = _guard_ok(ae, R) & _guard_ok(aq, T) & (asym[i] == 0.0)
-                    W = _row_bound(R[0], R[1], R[2], R[3], T[0], T[1], T[2], T[3])
-                    ok, idx, s0, s1, s2, s3, s4 = _screen_core(e, R, c, W, _plane(aq), guard)
-                    xb[i] = idx if ok else _FALL_INDEX
-                else:
-                    r0 = _SP0 * ((T[0] * T[1]) * (T[2] * T[3]))
-                    guard = _guard_ok(aq, T) & (asym[i] == 0.0)
-                    fb, valid, idx, s0, s1, s2, s3, s4 = _float_core(e, q, c, r0, _plane(aq), guard)
-                    xb[i] = _FALL_INDEX if fb else (idx if valid else _INVALID_INDEX)
-                if region:
-                    sb[i] = s0
-                    sb[S + i] = s1
-                    sb[2 * S + i] = s2
-                    sb[3 * S + i] = s3
-                    sb[4 * S + i] = s4
+                qguard = _guard_ok(aq, T) & (asym[i] == 0.0)
+                x, s0, s1, s2, s3, s4 = _one_pair(
+                    filtered, e, q, _pencil(e, q), R, T, _guard_ok(ae, R), qguard, _plane(aq)
+                )
+                xb[i] = x
+                _keep_signs(region, sb, i, S, s0, s1, s2, s3, s4)
             if region:
                 _rows_of_block(qidx, qs, blo, m, qi)
-                for i in range(m):
-                    _region_out(blo + i, xb[i], sb, i, S, qrows[qi[i]], qmasks[qi[i]], out)
-            else:
-                for i in range(m):
-                    out[blo + i] = _TABLE[int(xb[i])]
+            _write_block(region, blo, m, xb, sb, S, qi, qrows, qmasks, out)
 
     return kernel
 
 
 def _make_fixed_q(filtered: bool, region: bool) -> Any:
     def kernel(
-        E: Any, eidx: Any, es: int, epacked: bool, Qm: Any, qpacked: bool, lo: int, hi: int, row: int,
-        mask: int, out: Any,
+        E: Any, eidx: Any, es: int, epacked: bool, Qm: Any, qpacked: bool, lo: int, hi: int, qrows: Any,
+        qmasks: Any, out: Any,
     ) -> None:  # fmt: skip
         """Pairs ``lo .. hi`` of a stack of ``E`` against the one quadric ``Qm[0]``: its products,
         row maxima and guard are computed once, only ``E`` is read."""
@@ -336,9 +371,9 @@ def _make_fixed_q(filtered: bool, region: bool) -> Any:
         qguard = _guard_ok(aq, T) & (not qbad)
         plane = _plane(aq)
         qp = _q_part(q)
-        r0 = _SP0 * ((T[0] * T[1]) * (T[2] * T[3]))
         eb_ = np.empty(10 * S)
         asym = np.empty(S)
+        qi = np.zeros(S, np.intp)  # every pair's quadric is qrows[0]
         xb = np.empty(S)
         sb = np.empty(5 * S)
         for blo in range(lo, hi, S):
@@ -346,30 +381,15 @@ def _make_fixed_q(filtered: bool, region: bool) -> Any:
             _gather_block(E, eidx, es, epacked, blo, m, eb_, asym, True, S)
             for i in range(m):
                 e = _load(eb_, i, S)
-                c = _with_q(e, q, qp)
-                if filtered:
-                    ae = _abs10(e)
-                    R = _row_maxima(ae)
-                    guard = qguard & _guard_ok(ae, R) & (asym[i] == 0.0)
-                    W = _row_bound(R[0], R[1], R[2], R[3], T[0], T[1], T[2], T[3])
-                    ok, idx, s0, s1, s2, s3, s4 = _screen_core(e, R, c, W, plane, guard)
-                    xb[i] = idx if ok else _FALL_INDEX
-                else:
-                    guard = qguard & (asym[i] == 0.0)
-                    fb, valid, idx, s0, s1, s2, s3, s4 = _float_core(e, q, c, r0, plane, guard)
-                    xb[i] = _FALL_INDEX if fb else (idx if valid else _INVALID_INDEX)
-                if region:
-                    sb[i] = s0
-                    sb[S + i] = s1
-                    sb[2 * S + i] = s2
-                    sb[3 * S + i] = s3
-                    sb[4 * S + i] = s4
-            if region:
-                for i in range(m):
-                    _region_out(blo + i, xb[i], sb, i, S, row, mask, out)
-            else:
-                for i in range(m):
-                    out[blo + i] = _TABLE[int(xb[i])]
+                ae = _abs10(e)
+                R = _row_maxima(ae)
+                sym = asym[i] == 0.0
+                x, s0, s1, s2, s3, s4 = _one_pair(
+                    filtered, e, q, _with_q(e, q, qp), R, T, _guard_ok(ae, R), qguard & sym, plane
+                )
+                xb[i] = x
+                _keep_signs(region, sb, i, S, s0, s1, s2, s3, s4)
+            _write_block(region, blo, m, xb, sb, S, qi, qrows, qmasks, out)
 
     return kernel
 
@@ -386,7 +406,7 @@ def _make_fixed_e(filtered: bool, region: bool) -> Any:
         ebad = False if epacked else _gather_full(Em, 0, np.empty(10), 0, 1)
         ae = _abs10(e)
         R = _row_maxima(ae)
-        eguard = _guard_ok(ae, R) & (not ebad)
+        eguard = _guard_ok(ae, R)
         ep = _e_part(e)
         qb_ = np.empty(10 * S)
         asym = np.empty(S)
@@ -400,30 +420,15 @@ def _make_fixed_e(filtered: bool, region: bool) -> Any:
                 q = _load(qb_, i, S)
                 aq = _abs10(q)
                 T = _row_maxima(aq)
-                c = _with_e(e, q, ep)
-                if filtered:
-                    guard = eguard & _guard_ok(aq, T) & (asym[i] == 0.0)
-                    W = _row_bound(R[0], R[1], R[2], R[3], T[0], T[1], T[2], T[3])
-                    ok, idx, s0, s1, s2, s3, s4 = _screen_core(e, R, c, W, _plane(aq), guard)
-                    xb[i] = idx if ok else _FALL_INDEX
-                else:
-                    r0 = _SP0 * ((T[0] * T[1]) * (T[2] * T[3]))
-                    guard = _guard_ok(aq, T) & (asym[i] == 0.0) & (not ebad)
-                    fb, valid, idx, s0, s1, s2, s3, s4 = _float_core(e, q, c, r0, _plane(aq), guard)
-                    xb[i] = _FALL_INDEX if fb else (idx if valid else _INVALID_INDEX)
-                if region:
-                    sb[i] = s0
-                    sb[S + i] = s1
-                    sb[2 * S + i] = s2
-                    sb[3 * S + i] = s3
-                    sb[4 * S + i] = s4
+                qguard = _guard_ok(aq, T) & (asym[i] == 0.0) & (not ebad)
+                x, s0, s1, s2, s3, s4 = _one_pair(
+                    filtered, e, q, _with_e(e, q, ep), R, T, eguard, qguard, _plane(aq)
+                )
+                xb[i] = x
+                _keep_signs(region, sb, i, S, s0, s1, s2, s3, s4)
             if region:
                 _rows_of_block(qidx, qs, blo, m, qi)
-                for i in range(m):
-                    _region_out(blo + i, xb[i], sb, i, S, qrows[qi[i]], qmasks[qi[i]], out)
-            else:
-                for i in range(m):
-                    out[blo + i] = _TABLE[int(xb[i])]
+            _write_block(region, blo, m, xb, sb, S, qi, qrows, qmasks, out)
 
     return kernel
 
@@ -479,8 +484,7 @@ def fast_codes(
     if qidx.shape[0] == 0 and qs == 0 and (es != 0 or eidx.shape[0] > 0):
         # one quadric against a stack of ellipsoids (all of them, or a sub-batch by index)
         k = kernel("fixed_q", filtered, region)
-        row, mask = int(rows[0]), int(masks[0])
-        run(lambda lo, hi: k(E, eidx, es, epacked, Q, qpacked, lo, hi, row, mask, out), n)
+        run(lambda lo, hi: k(E, eidx, es, epacked, Q, qpacked, lo, hi, rows, masks, out), n)
     elif eidx.shape[0] == 0 and qidx.shape[0] == 0 and es == 0 and qs != 0:
         k = kernel("fixed_e", filtered, region)
         run(lambda lo, hi: k(E, epacked, Q, qidx, qs, qpacked, lo, hi, rows, masks, out), n)
