@@ -35,7 +35,7 @@ from quadric_contact.modes.number_mode import NumberMode
 from quadric_contact.modes.support import region_from_signs
 from quadric_contact.modes.validation import raise_not_ellipsoid, validate_rows
 
-__all__ = ["BallMode", "ExactMode", "MpmathMode", "ObjectMode", "integer_rows"]
+__all__ = ["BallMode", "ExactMode", "MpmathMode", "ObjectMode", "dyadic_rows", "integer_rows"]
 
 _UNC = 2
 
@@ -79,9 +79,7 @@ class ObjectMode(NumberMode):
         validate_rows(pairs.E, ue, "E")
         validate_rows(pairs.Q, uq, "Q")
         with self.context():
-            e_cols = [c[ie] for c in self.convert(pairs.E, ue)]
-            q_cols = [c[iq] for c in self.convert(pairs.Q, uq)]
-            c = list(formulas.pencil_coefficients(*e_cols, *q_cols))
+            e_cols, c = self.pencil(pairs, ue, ie, uq, iq)
             if self.structural:
                 # The exact structural zeros the filter reads: c0 = 0 (det Q = 0), c1 = 0
                 # (rank Q <= 2), and Delta_4 = 0 for proportional quadratic parts.
@@ -101,6 +99,15 @@ class ObjectMode(NumberMode):
             if self.structural:
                 sd[_proportional_exact(pairs, e_rows, q_rows), 2] = 0
         return ell, sc, sd, e_rows
+
+    def pencil(
+        self, pairs: Pairs, ue: np.ndarray, ie: np.ndarray, uq: np.ndarray, iq: np.ndarray
+    ) -> tuple[list[np.ndarray], list[np.ndarray]]:
+        """``(E columns, [c0 .. c4])`` per pair in this mode's numbers, for the pairs
+        ``(ue[ie], uq[iq])``: the generated expansion of ``det(lambda E + Q)``."""
+        e_cols = [c[ie] for c in self.convert(pairs.E, ue)]
+        q_cols = [c[iq] for c in self.convert(pairs.Q, uq)]
+        return e_cols, list(formulas.pencil_coefficients(*e_cols, *q_cols))
 
     def _finish(self, pairs: Pairs, ell: np.ndarray, codes: np.ndarray, e_rows: np.ndarray) -> np.ndarray:
         bad = ell == ELLIPSOID_NOT
@@ -199,6 +206,24 @@ def integer_rows(stack: MatrixStack, rows: np.ndarray) -> list[np.ndarray]:
             for k, v in enumerate(fr):
                 out[k][r] = v.numerator * (d // v.denominator)
         return out
+    return _dyadic_integers(*dyadic_rows(stack, rows))
+
+
+def _dyadic_integers(m: np.ndarray, shift: np.ndarray) -> list[np.ndarray]:
+    """The ten columns of Python integers ``m * 2^shift``."""
+    small = (shift <= 10).all(axis=1)
+    ints = np.empty(m.shape, dtype=object)
+    if small.any():  # 53 + 10 bits fit in int64
+        ints[small] = (m[small] << shift[small]).astype(object)
+    big = ~small
+    if big.any():
+        ints[big] = m[big].astype(object) << shift[big].astype(object)
+    return [ints[:, k] for k in range(10)]
+
+
+def dyadic_rows(stack: MatrixStack, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The integers of :func:`integer_rows` for a binary64 stack as ``m * 2^shift``:
+    two ``(k, 10)`` int64 arrays, ``|m| < 2^53`` and ``shift >= 0`` (``0`` where ``m = 0``)."""
     f = stack.rows_floats(np.asarray(rows))
     upper = np.stack([f[:, i, j] for i, j in ENTRY_INDICES], axis=1)
     mant, ex = np.frexp(upper)
@@ -207,14 +232,7 @@ def integer_rows(stack: MatrixStack, rows: np.ndarray) -> list[np.ndarray]:
     emin = e.min(axis=1, keepdims=True)
     emin = np.where(emin == np.iinfo(np.int32).max, 0, emin)
     shift = np.where(m == 0, 0, e - emin)
-    small = (shift <= 10).all(axis=1)
-    ints = np.empty(upper.shape, dtype=object)
-    if small.any():  # 53 + 10 bits fit in int64
-        ints[small] = (m[small] << shift[small]).astype(object)
-    big = ~small
-    if big.any():
-        ints[big] = m[big].astype(object) << shift[big].astype(object)
-    return [ints[:, k] for k in range(10)]
+    return m, shift
 
 
 def _gcd(a: int, b: int) -> int:
@@ -229,8 +247,12 @@ class ExactMode(ObjectMode):
     Parameters
     ----------
     backend : {"int", "fmpz"}
-        Python integers (default, measured faster for the sizes that occur) or
-        python-flint ``fmpz``.
+        ``"int"`` (default): the pencil coefficients ``c0 .. c4`` in compiled multi-digit
+        integer arithmetic (:mod:`quadric_contact.modes.exact_pencil`: the same expansion,
+        equal values; numba), then ``Delta_2 .. Delta_4`` on Python integers.  ``"fmpz"``:
+        the generated formulas on python-flint ``fmpz`` throughout.  On 2000 random float
+        pairs (``criterion_stack``, best of 3, indicative): ``"int"`` 13 us a pair, where
+        Python integers throughout took 22 us; ``"fmpz"`` 32 us.
     """
 
     name = "exact"
@@ -253,6 +275,28 @@ class ExactMode(ObjectMode):
             to = np.frompyfunc(flint.fmpz, 1, 1)
             cols = [to(c) for c in cols]
         return cols
+
+    def pencil(
+        self, pairs: Pairs, ue: np.ndarray, ie: np.ndarray, uq: np.ndarray, iq: np.ndarray
+    ) -> tuple[list[np.ndarray], list[np.ndarray]]:
+        """Backend ``"int"``: the coefficients in compiled multi-digit integer arithmetic
+        (:mod:`quadric_contact.modes.exact_pencil`, the same expansion, equal values),
+        read from the binary64 entries as ``m * 2^shift``; backend ``"fmpz"``: the
+        generated expansion on ``fmpz``."""
+        from quadric_contact.modes import exact_pencil
+
+        if self.backend != "int" or not exact_pencil.HAVE_KERNEL:
+            return super().pencil(pairs, ue, ie, uq, iq)
+        if pairs.E.exact is None and pairs.Q.exact is None:
+            me, se = dyadic_rows(pairs.E, ue)
+            mq, sq = dyadic_rows(pairs.Q, uq)
+            c = exact_pencil.pencil_coefficients_dyadic(me[ie], se[ie], mq[iq], sq[iq])
+            e_cols = [col[ie] for col in _dyadic_integers(me, se)]
+            return e_cols, c
+        e_cols = [col[ie] for col in integer_rows(pairs.E, ue)]
+        q_cols = [col[iq] for col in integer_rows(pairs.Q, uq)]
+        c = exact_pencil.pencil_coefficients_int(np.stack(e_cols, axis=1), np.stack(q_cols, axis=1))
+        return e_cols, c
 
     def signs(self, values: np.ndarray) -> np.ndarray:
         return _exact_sign(values)
