@@ -20,9 +20,10 @@ from typing import Any
 
 import numpy as np
 
-from quadric_contact._generated import formulas, kernels
+from quadric_contact._generated import blocks, formulas, kernels
 from quadric_contact.exact.entries import ENTRY_INDICES
 from quadric_contact.exact.precision import working_precision
+from quadric_contact.modes import errorbounds as eb
 from quadric_contact.modes.base import MatrixStack, Pairs
 from quadric_contact.modes.decisions import (
     ELLIPSOID_NOT,
@@ -68,6 +69,10 @@ class ObjectMode(NumberMode):
         """``(Delta_2, Delta_3, Delta_4)`` or positive multiples of them."""
         return tuple(formulas.paper_deltas(*c))
 
+    def delta_signs(self, c: list[np.ndarray]) -> np.ndarray:
+        """``(n, 3)`` int8 signs of :meth:`deltas` (``UNCERTAIN`` where the mode cannot tell)."""
+        return np.stack([self.signs(x) for x in self.deltas(c)], axis=1)
+
     # -- shared -------------------------------------------------------------------------
 
     def _pair_signs(self, pairs: Pairs) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -95,7 +100,7 @@ class ObjectMode(NumberMode):
             flip = sa < 0
             sc[flip, 1] = _neg(sc[flip, 1])
             sc[flip, 3] = _neg(sc[flip, 3])
-            sd = np.stack([self.signs(x) for x in self.deltas(c)], axis=1)
+            sd = self.delta_signs(c)
             if self.structural:
                 sd[_proportional_exact(pairs, e_rows, q_rows), 2] = 0
         return ell, sc, sd, e_rows
@@ -181,6 +186,65 @@ def _neg(s: np.ndarray) -> np.ndarray:
     return np.where(s == _UNC, _UNC, -s).astype(np.int8)
 
 
+_RHO_EXACT = 2.0**-52
+"""A bound of the relative error of an exact integer coefficient converted to binary64: Python's
+``int`` to ``float`` rounds correctly (``u = 2^-53``); a column of mixed integer types goes
+through ``int`` first."""
+assert _RHO_EXACT <= eb.RHO_MAX
+
+
+def filtered_delta_signs(c: list[np.ndarray]) -> np.ndarray:
+    """``(n, 3)`` int8 signs of the compact ``Delta_2, Delta_3, 27 Delta_4`` of exact coefficients
+    ``c0 .. c4`` (object arrays of integers), from their binary64 roundings: ``UNCERTAIN`` where
+    the rigorous bound does not settle the sign.
+
+    Each coefficient rounds to binary64 with relative error at most ``u`` (:data:`_RHO_EXACT`
+    bounds it); one power of two per pair (exact) brings the largest to ``[1/2, 1)``.  The compact
+    programs and their magnitude programs then run in binary64 and the relative form of the
+    screen's bound (:data:`~quadric_contact.modes.errorbounds.SEMI_DELTA`, derived there from the
+    programs' rounding counts for coefficients known to within a relative ``rho <= RHO_MAX``)
+    bounds the error; it holds when every non-zero scaled coefficient is at least
+    :data:`~quadric_contact.modes.errorbounds.COEFFICIENT_MIN` (no subnormal intermediate).  A
+    coefficient beyond binary64's range, or a pair outside that guard, is ``UNCERTAIN``."""
+    n = len(c[0])
+    out = np.full((n, 3), _UNC, dtype=np.int8)
+    if n == 0:
+        return out
+    cols_in = [np.asarray(x, dtype=object) for x in c]
+    try:
+        if not all(type(v) is int for x in cols_in for v in x):
+            raise OverflowError  # other types (fmpz, a Fraction zero): one by one
+        a = np.stack([x.astype(np.float64) for x in cols_in], axis=1)
+    except OverflowError:
+        a = np.stack([_float_or_inf(x) for x in cols_in], axis=1)
+    with np.errstate(all="ignore"):
+        top = np.abs(a).max(axis=1)
+        exponent = np.frexp(top)[1]  # top in [2^(e-1), 2^e)
+        a = np.ldexp(a, -exponent[:, None])  # exact: a power of two, no result below 2^-1022
+        mag = np.abs(a)
+        low = np.where(mag != 0, mag, 1.0).min(axis=1)
+        ok = np.isfinite(top) & (low >= eb.COEFFICIENT_MIN)
+        cols = [a[:, k] for k in range(5)]
+        d = kernels.paper_deltas_compact(*cols)
+        A = blocks.paper_deltas_compact_magnitude(*(mag[:, k] for k in range(5)))
+        for j, ((R, G), dj, Aj) in enumerate(zip(eb.SEMI_DELTA, d, A, strict=True)):
+            bound = (R * _RHO_EXACT + G) * Aj
+            sign = np.where(dj > bound, 1, np.where(dj < -bound, -1, np.where(bound == 0, 0, _UNC)))
+            out[:, j] = np.where(ok, sign, _UNC)
+    return out
+
+
+def _float_or_inf(x: np.ndarray) -> np.ndarray:
+    """Binary64 roundings of the integers ``x``, infinity for those beyond its range."""
+    big = 2**1023
+
+    def one(v: Any) -> float:
+        v = v if isinstance(v, Fraction) else int(v)  # Fraction: a structural zero put in
+        return float(v) if -big < v < big else float("inf")
+
+    return np.frompyfunc(one, 1, 1)(x).astype(np.float64)
+
+
 def _exact_sign(x: np.ndarray) -> np.ndarray:
     return (np.asarray(x > 0, dtype=np.int8) - np.asarray(x < 0, dtype=np.int8)).astype(np.int8)
 
@@ -252,7 +316,9 @@ class ExactMode(ObjectMode):
         equal values; numba), then ``Delta_2 .. Delta_4`` on Python integers.  ``"fmpz"``:
         the generated formulas on python-flint ``fmpz`` throughout.  On 2000 random float
         pairs (``criterion_stack``, best of 3, indicative): ``"int"`` 13 us a pair, where
-        Python integers throughout took 22 us; ``"fmpz"`` 32 us.
+        Python integers throughout took 22 us; ``"fmpz"`` 32 us.  Both read the Delta signs
+        in binary64 with a rigorous bound first (:func:`filtered_delta_signs`), the integers
+        only where that cannot tell: ``"int"`` 8-10 us a pair.
     """
 
     name = "exact"
@@ -304,6 +370,18 @@ class ExactMode(ObjectMode):
     def deltas(self, c: list[np.ndarray]) -> tuple[np.ndarray, ...]:
         # Exact arithmetic may use the short form (27 Delta_4 = 4 I^3 - J^2): same signs.
         return tuple(kernels.paper_deltas_compact(*c))
+
+    def delta_signs(self, c: list[np.ndarray]) -> np.ndarray:
+        """The signs of the Deltas of the exact coefficients: binary64 first, with a rigorous
+        bound (:func:`filtered_delta_signs`), the exact integers where that cannot tell (near
+        a multiple root: tangencies).  Exact either way; the integer Deltas of coefficients of
+        hundreds of bits were most of the exact stage's time."""
+        sd = filtered_delta_signs(c)
+        todo = np.flatnonzero((sd == _UNC).any(axis=1))
+        if todo.size:
+            sub = [x[todo] for x in c]
+            sd[todo] = np.stack([self.signs(x) for x in self.deltas(sub)], axis=1)
+        return sd
 
     def number(self, value: float) -> Any:
         return Fraction(value)
