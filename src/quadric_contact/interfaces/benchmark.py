@@ -1010,7 +1010,7 @@ def _targets(report: Report, exact_per_pair: dict[str, float]) -> None:
             best * 1e6,
             "us",
             best <= 20e-6,
-            f"({which}; int: compiled pencil and Python-int Deltas {exact_per_pair['int'] * 1e6:.1f} us, "
+            f"({which}; int: compiled pencil, bounded binary64 Deltas {exact_per_pair['int'] * 1e6:.1f} us, "
             f"python-flint fmpz {exact_per_pair['fmpz'] * 1e6:.1f} us{sympy_note})",
         )
     )
