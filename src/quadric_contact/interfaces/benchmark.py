@@ -653,7 +653,7 @@ def _hard(report: Report, cfg: dict[str, Any]) -> None:
             row.setdefault("fcl GJK (ellipsoid rungs)", 0)
 
 
-def read_bandwidth(E: np.ndarray, Q: np.ndarray, repeat: int = 5) -> dict[str, float]:
+def read_bandwidth(E: np.ndarray, Q: np.ndarray, repeat: int = 15) -> dict[str, float]:
     """The time to read every byte of ``E`` and ``Q`` once (a compiled, threaded sum):
     no kernel that reads its inputs can be faster."""
     from quadric_contact.modes.float64 import read_all
