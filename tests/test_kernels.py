@@ -181,3 +181,23 @@ def test_certified_ellipsoids_are_ellipsoids():
             assert Quadric.from_matrix(M[k]).kind is QuadricKind.ELLIPSOID
             assert rows[k] in (row_of(QuadricKind.ELLIPSOID, int(got[k])), UNCERTAIN_ROW)
     assert (certified_ellipsoid_signs(E) == 1).all() and (certified_ellipsoid_signs(-E) == -1).all()
+
+
+def test_exact_facts_agree_with_the_integers():
+    """The facts of certified ellipsoids (no integers) are those the exact invariant signs give."""
+    from quadric_contact.modes.batch import as_stack
+    from quadric_contact.modes.decisions import masks_from_invariant_signs
+    from quadric_contact.modes.float_modes import exact_facts
+    from quadric_contact.modes.objects import ExactMode
+
+    rng = np.random.default_rng(12)
+    E, Q, _ = random_pairs(300, rng)
+    for M in (E, -E, Q):
+        stack = as_stack(M, "Q")
+        rows = np.arange(len(M))
+        flags, masks = exact_facts(stack, rows)
+        signs = ExactMode().invariant_signs(stack, rows)
+        det_zero = signs[:, 6] == 0
+        rank_le_2 = det_zero & (signs[:, 5] == 0)
+        assert (flags == (det_zero.astype(np.int8) | (rank_le_2.astype(np.int8) << 1))).all()
+        assert (masks == masks_from_invariant_signs(signs)).all()

@@ -509,18 +509,29 @@ def _used_rows(index: np.ndarray | None, m: int, n: int) -> np.ndarray:
 
 def exact_facts(Q: MatrixStack, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Exact facts about the quadrics ``rows``, from their exact invariant signs (integer
-    arithmetic, once per quadric): ``(flags, masks)`` with bit 0 of ``flags`` set when
+    arithmetic, once per quadric; a quadric certified an ellipsoid in binary64 needs none): ``(flags, masks)`` with bit 0 of ``flags`` set when
     ``det Q = 0`` (then ``c0 = 0`` for every ``E``) and bit 1 when ``rank Q <= 2`` (then
     ``c1 = 0`` too; for a symmetric matrix the rank is 4 minus the number of trailing zeros
     of ``E1 .. E4``), and ``masks`` their Table 4 rows."""
     from quadric_contact.modes.objects import ExactMode
 
-    signs = ExactMode().invariant_signs(Q, np.asarray(rows, dtype=np.intp))
-    det_zero = signs[:, 6] == 0
-    flags = (det_zero.astype(np.int8) | ((det_zero & (signs[:, 5] == 0)).astype(np.int8) << 1)).astype(
-        np.int8
-    )
-    return flags, masks_from_invariant_signs(signs)
+    rows = np.asarray(rows, dtype=np.intp)
+    flags = np.zeros(rows.size, dtype=np.int8)
+    masks = np.zeros(rows.size, dtype=np.int64)
+    todo = np.arange(rows.size)
+    if not Q.rounded and rows.size:
+        # A quadric the short certified test finds an ellipsoid has det Q != 0 and rank 4 (no
+        # flag) and its type is known: the integers are needed only for the others (the
+        # environment of a simulation is asked about on every call).
+        ell = certified_ellipsoid_signs(Q.rows_floats(rows))
+        masks = np.where(ell > 0, _ELLIPSOID_PLUS, np.where(ell < 0, _ELLIPSOID_MINUS, np.int64(0)))
+        todo = np.flatnonzero(ell == 0)
+    if todo.size:
+        signs = ExactMode().invariant_signs(Q, rows[todo])
+        det_zero = signs[:, 6] == 0
+        flags[todo] = det_zero.astype(np.int8) | ((det_zero & (signs[:, 5] == 0)).astype(np.int8) << 1)
+        masks[todo] = masks_from_invariant_signs(signs)
+    return flags, masks
 
 
 def _diagnose(pairs: Pairs, which: np.ndarray) -> np.ndarray:
