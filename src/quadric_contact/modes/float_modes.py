@@ -509,10 +509,10 @@ def _used_rows(index: np.ndarray | None, m: int, n: int) -> np.ndarray:
 
 def exact_facts(Q: MatrixStack, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Exact facts about the quadrics ``rows``, from their exact invariant signs (integer
-    arithmetic, once per quadric; a quadric certified an ellipsoid in binary64 needs none): ``(flags, masks)`` with bit 0 of ``flags`` set when
-    ``det Q = 0`` (then ``c0 = 0`` for every ``E``) and bit 1 when ``rank Q <= 2`` (then
-    ``c1 = 0`` too; for a symmetric matrix the rank is 4 minus the number of trailing zeros
-    of ``E1 .. E4``), and ``masks`` their Table 4 rows."""
+    arithmetic, once per quadric; a quadric certified an ellipsoid in binary64 needs none):
+    ``(flags, masks)`` with bit 0 of ``flags`` set when ``det Q = 0`` (then ``c0 = 0`` for every
+    ``E``) and bit 1 when ``rank Q <= 2`` (then ``c1 = 0`` too; for a symmetric matrix the rank
+    is 4 minus the number of trailing zeros of ``E1 .. E4``), and ``masks`` their Table 4 rows."""
     from quadric_contact.modes.objects import ExactMode
 
     rows = np.asarray(rows, dtype=np.intp)
