@@ -39,6 +39,7 @@ from quadric_contact.modes import errorbounds as eb
 from quadric_contact.modes._jit import njit
 from quadric_contact.modes.base import INVALID
 from quadric_contact.modes.decisions import CONTACT_TABLE, ROWS, region_code_masked
+from quadric_contact.modes.kernels_support import certified_ellipsoid
 
 __all__ = ["FALLBACK", "NB", "fast_codes", "kernel"]
 
@@ -60,7 +61,6 @@ _C_MIN = eb.COEFFICIENT_MIN
 _C_MAX = eb.SEMI_COEFFICIENT_MAX
 _RHO_MAX = eb.RHO_MAX
 _TINY = 2.0**-1000
-_SM2, _SM3 = eb.SEMI_MINORS
 
 _gather_full = njit(blocks.gather_full, inline=True)
 _gather_packed = njit(blocks.gather_packed, inline=True)
@@ -138,10 +138,8 @@ def _screen_core(e: Any, R: Any, c: Any, W: Any, plane: bool, guard: bool) -> An
     r2 = _SP2 * W[2]
     r3 = _SP3 * W[3]
     r4 = _SP4 * W[4]
-    # E is certainly an ellipsoid (Sylvester; det E < 0)
-    m2, m3 = _minors(e[0], e[1], e[2], e[4], e[5], e[7])
-    o = -1.0 if e[0] < 0.0 else 1.0
-    ell = (e[0] != 0.0) & (m2 > _SM2 * (R[0] * R[1])) & (o * m3 > _SM3 * ((R[0] * R[1]) * R[2])) & (c4 < -r4)
+    # E is certainly an ellipsoid (Sylvester; det E = c4 < 0)
+    ell, o = certified_ellipsoid(e, R, c4, r4)
     x1 = o * c1
     x3 = o * c3
     a0, a1, a2, a3, a4 = abs(c0), abs(c1), abs(c2), abs(c3), abs(c4)

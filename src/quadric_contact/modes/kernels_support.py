@@ -14,6 +14,7 @@ from quadric_contact.modes._jit import njit as _njit
 from quadric_contact.modes.decisions import ROWS, region_code_masked
 
 __all__ = [
+    "certified_ellipsoid",
     "check_stack_kernel",
     "ellipsoid_signs_kernel",
     "invariant_signs_kernel",
@@ -79,6 +80,20 @@ def _invariant_signs_impl(Q: Any, lo: int, hi: int, K: Any, filtered: bool, out:
             out[p, k] = _UNC if g != 0 else _sgn(v[k], K[k] * mags[k])
 
 
+@_njit(inline=True)
+def certified_ellipsoid(e: Any, R: Any, det: float, det_bound: float) -> Any:
+    """``(ok, o)``: the binary64 matrix with upper entries ``e`` and row maxima ``R`` is certainly
+    an ellipsoid, ``o`` the sign of its quadratic part.  Sylvester's minors of the quadratic part
+    against their bounds :data:`~quadric_contact.modes.errorbounds.SEMI_MINORS` (definite, of
+    sign ``o``) and ``det`` below ``-det_bound``: inertia (3, 1) or (1, 3).  Valid for input that
+    passes the input guard (the caller's)."""
+    m2, m3 = _minors(e[0], e[1], e[2], e[4], e[5], e[7])
+    o = -1.0 if e[0] < 0.0 else 1.0
+    definite = (e[0] != 0.0) & (m2 > _SM2 * (R[0] * R[1])) & (o * m3 > _SM3 * ((R[0] * R[1]) * R[2]))
+    ok = definite & (det < -det_bound)
+    return ok, o
+
+
 def _ellipsoid_signs_impl(Q: Any, lo: int, hi: int, out: Any) -> None:
     """For the flat ``(m, 16)`` binary64 quadrics ``Q[lo:hi]``: +1 or -1 where the quadric is
     certainly an ellipsoid of that canonical sign (the sign of its definite quadratic part), 0
@@ -95,15 +110,9 @@ def _ellipsoid_signs_impl(Q: Any, lo: int, hi: int, out: Any) -> None:
         R = _row_maxima(a)
         top = max(max(R[0], R[1]), max(R[2], R[3]))
         guard = (top <= _INPUT_MAX) & (_smallest(a, _INPUT_MAX) >= _INPUT_MIN)
-        m2, m3 = _minors(q[0], q[1], q[2], q[4], q[5], q[7])
-        o = -1.0 if q[0] < 0.0 else 1.0
-        det = _e_part(q)[12]
         W = _row_bound(R[0], R[1], R[2], R[3], 0.0, 0.0, 0.0, 0.0)
-        ok = (
-            guard & (q[0] != 0.0) & (m2 > _SM2 * (R[0] * R[1])) & (o * m3 > _SM3 * ((R[0] * R[1]) * R[2]))
-            & (det < -(_SP4 * W[4]))
-        )  # fmt: skip
-        out[p] = int(o) if ok else 0
+        ell, o = certified_ellipsoid(q, R, _e_part(q)[12], _SP4 * W[4])
+        out[p] = int(o) if (guard & ell) else 0
 
 
 def _check_stack_impl(M: Any, lo: int, hi: int, out: Any) -> None:

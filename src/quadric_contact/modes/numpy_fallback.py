@@ -212,15 +212,7 @@ def screen_quantities(Em: np.ndarray, Qm: np.ndarray) -> dict[str, Any]:
         r = [SP[k] * W[k] for k in range(5)]
         r[0] = np.where(plane, 0.0, r[0])
         r[1] = np.where(plane, 0.0, r[1])
-        m2, m3 = kernels.leading_minors_3(e[0], e[1], e[2], e[4], e[5], e[7])
-        o = np.where(e[0] < 0, -1.0, 1.0)
-        SM2, SM3 = eb.SEMI_MINORS
-        ell = (
-            (e[0] != 0)
-            & (m2 > SM2 * (R[0] * R[1]))
-            & (o * m3 > SM3 * ((R[0] * R[1]) * R[2]))
-            & (c[4] < -r[4])
-        )
+        ell, o = _certified_ellipsoid(e, R, c[4], r[4])
         c[1] = o * c[1]
         c[3] = o * c[3]
         a = [np.abs(v) for v in c]
@@ -254,19 +246,20 @@ def numpy_ellipsoid_signs(Qm: np.ndarray) -> np.ndarray:
         a = [np.abs(v) for v in q]
         R = _row_maxima(a)
         guard = _guard(a, R)
-        m2, m3 = kernels.leading_minors_3(q[0], q[1], q[2], q[4], q[5], q[7])
-        o = np.where(q[0] < 0, -1.0, 1.0)
-        det = blocks.pencil_e_part(tuple(q))[12]
         W = blocks.row_bound(R[0], R[1], R[2], R[3], 0.0, 0.0, 0.0, 0.0)
-        SM2, SM3 = eb.SEMI_MINORS
-        ok = (
-            guard
-            & (q[0] != 0)
-            & (m2 > SM2 * (R[0] * R[1]))
-            & (o * m3 > SM3 * ((R[0] * R[1]) * R[2]))
-            & (det < -(eb.SEMI_PENCIL[4] * W[4]))
-        )
-    return np.where(ok, o, 0.0).astype(np.int8)
+        ell, o = _certified_ellipsoid(q, R, blocks.pencil_e_part(tuple(q))[12], eb.SEMI_PENCIL[4] * W[4])
+    return np.where(guard & ell, o, 0.0).astype(np.int8)
+
+
+def _certified_ellipsoid(
+    e: list[np.ndarray], R: list[np.ndarray], det: np.ndarray, det_bound: np.ndarray | float
+) -> tuple[np.ndarray, np.ndarray]:
+    """numpy variant of :func:`~quadric_contact.modes.kernels_support.certified_ellipsoid`."""
+    m2, m3 = kernels.leading_minors_3(e[0], e[1], e[2], e[4], e[5], e[7])
+    o = np.where(e[0] < 0, -1.0, 1.0)
+    SM2, SM3 = eb.SEMI_MINORS
+    definite = (e[0] != 0) & (m2 > SM2 * (R[0] * R[1])) & (o * m3 > SM3 * ((R[0] * R[1]) * R[2]))
+    return definite & (det < -det_bound), o
 
 
 def _row_maxima(a: list[np.ndarray]) -> list[np.ndarray]:
