@@ -376,15 +376,17 @@ class Pairs:
         return _rows_of(self.q_index, len(self.Q), self.n, np.asarray(which, dtype=np.intp))
 
     def take(self, which: np.ndarray) -> Pairs:
-        """The sub-batch of the pairs ``which`` (indices into ``range(n)``)."""
+        """The sub-batch of the pairs ``which`` (indices into ``range(n)``).  A single matrix
+        stays unindexed (no index of zeros to build and read back)."""
         which = np.asarray(which, dtype=np.intp)
-        return Pairs(
-            self.E,
-            self.Q,
-            int(which.size),
-            self.e_rows_at(which),
-            self.q_rows_at(which),
-        )
+
+        def index(own: np.ndarray | None, m: int) -> np.ndarray | None:
+            if own is None and m == 1:
+                return None  # the one matrix
+            return _rows_of(own, m, self.n, which)
+
+        return Pairs(self.E, self.Q, int(which.size), index(self.e_index, len(self.E)),
+                     index(self.q_index, len(self.Q)))  # fmt: skip
 
     def kernel_indices(self) -> tuple[np.ndarray, np.ndarray, int, int]:
         """``(e_index, q_index, e_stride, q_stride)`` as the float kernels read them:

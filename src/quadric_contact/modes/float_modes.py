@@ -231,6 +231,11 @@ _ELLIPSOID_PLUS = np.int64(1) << row_of(QuadricKind.ELLIPSOID, 1)
 _ELLIPSOID_MINUS = np.int64(1) << row_of(QuadricKind.ELLIPSOID, -1)
 
 
+def _ellipsoid_masks(ell: np.ndarray) -> np.ndarray:
+    """Table 4 candidate masks from :func:`certified_ellipsoid_signs` (0 where it cannot tell)."""
+    return np.where(ell > 0, _ELLIPSOID_PLUS, np.where(ell < 0, _ELLIPSOID_MINUS, np.int64(0)))
+
+
 def float_invariant_signs(
     Q: np.ndarray, *, filtered: bool, rounded: bool = False, backend: str = "numba"
 ) -> np.ndarray:
@@ -450,7 +455,7 @@ class FloatMode(NumberMode):
             # Most quadrics of a stack of pairs are ellipsoids: a short certified test settles
             # them (a third of the invariants' work); the invariant signs decide the others.
             ell = certified_ellipsoid_signs(sub, backend=self.backend)
-            masks = np.where(ell > 0, _ELLIPSOID_PLUS, np.where(ell < 0, _ELLIPSOID_MINUS, np.int64(0)))
+            masks = _ellipsoid_masks(ell)
             rest = np.flatnonzero(ell == 0)
             if rest.size:
                 masks[rest] = masks_from_invariant_signs(
@@ -524,7 +529,7 @@ def exact_facts(Q: MatrixStack, rows: np.ndarray) -> tuple[np.ndarray, np.ndarra
         # flag) and its type is known: the integers are needed only for the others (the
         # environment of a simulation is asked about on every call).
         ell = certified_ellipsoid_signs(Q.rows_floats(rows))
-        masks = np.where(ell > 0, _ELLIPSOID_PLUS, np.where(ell < 0, _ELLIPSOID_MINUS, np.int64(0)))
+        masks = _ellipsoid_masks(ell)
         todo = np.flatnonzero(ell == 0)
     if todo.size:
         signs = ExactMode().invariant_signs(Q, rows[todo])

@@ -144,22 +144,6 @@ def _q_used(pairs: Pairs) -> tuple[np.ndarray, np.ndarray | None]:
     return unique_rows(pairs.q_index, len(pairs.Q), return_inverse=True)
 
 
-def _take(pairs: Pairs, which: np.ndarray) -> Pairs:
-    """``pairs.take(which)`` (``which`` increasing), keeping a single matrix unindexed (no index
-    array of zeros to build and to read back)."""
-    which = np.asarray(which, dtype=np.intp)
-
-    def index(own: np.ndarray | None, m: int) -> np.ndarray | None:
-        if own is not None:
-            return np.asarray(own, dtype=np.intp)[which]
-        if m == pairs.n:
-            return which  # pair p uses row p
-        return None  # the one matrix
-
-    return Pairs(pairs.E, pairs.Q, int(which.size), index(pairs.e_index, len(pairs.E)),
-                 index(pairs.q_index, len(pairs.Q)))  # fmt: skip
-
-
 def _blend(out: np.ndarray, which: np.ndarray, values: Any) -> None:
     """``out[which] = values`` (int8 codes; ``values`` a scalar or one per entry of ``out``) by
     arithmetic, ``out += which * (values - out)``: numpy's masked assignment and ``copyto(...,
@@ -307,7 +291,7 @@ def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
         names = []
         if cand.size:
             try:
-                sm, names, which = _staged(mode, "quick_smallness", _take(pairs, cand))
+                sm, names, which = _staged(mode, "quick_smallness", pairs.take(cand))
             except NotImplementedError:
                 names = []
         if names:
@@ -328,7 +312,7 @@ def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
     # 3. separation: definite members, or four simple real roots without one.
     rest = np.flatnonzero(todo)
     if rest.size:
-        sep, names, which = _staged(mode, "separation", _take(pairs, rest))
+        sep, names, which = _staged(mode, "separation", pairs.take(rest))
         values = _from_separation(sep, question)
         for k, name in enumerate(names):
             hit = np.flatnonzero((which == k) & (values != _UNC))
@@ -367,7 +351,7 @@ def _contact_with_signs(
     which = np.zeros(pairs.n, dtype=np.int8)
     deciding = {0} if unsure.size < pairs.n else set()
     if unsure.size:
-        sub, sub_names, sub_which = _staged(mode, "criterion_contact", _take(pairs, unsure))
+        sub, sub_names, sub_which = _staged(mode, "criterion_contact", pairs.take(unsure))
         names = sub_names
         crit[unsure] = sub
         which[unsure] = sub_which
@@ -512,7 +496,7 @@ def _decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
     # 2. separation: definite members, or four simple real roots without one.
     rest = np.flatnonzero(todo)
     if rest.size:
-        sep, names, which = _staged(mode, "separation", _take(pairs, rest))
+        sep, names, which = _staged(mode, "separation", pairs.take(rest))
         sep_side = np.where((sep == SEP_MINUS) | (sep == SEP_PLUS), sep * qsign[rest], sep)
         values = np.full(rest.size, _UNC, dtype=np.int8)
         values[(sep_side == CROSSING) | (sep_side == SEP_MINUS)] = OverlapCode.OVERLAPPING
