@@ -184,7 +184,11 @@ def test_certified_ellipsoids_are_ellipsoids():
 
 
 def test_exact_facts_agree_with_the_integers():
-    """The facts of certified ellipsoids (no integers) are those the exact invariant signs give."""
+    """The facts of certified ellipsoids (no integers) are the exact ones: ``det Q = 0`` and
+    ``rank Q <= 2`` from the exact null space, the masks from the exact invariant signs."""
+    from fractions import Fraction
+
+    from quadric_contact.exact.linalg import nullspace
     from quadric_contact.modes.batch import as_stack
     from quadric_contact.modes.decisions import masks_from_invariant_signs
     from quadric_contact.modes.float_modes import exact_facts
@@ -196,8 +200,7 @@ def test_exact_facts_agree_with_the_integers():
         stack = as_stack(M, "Q")
         rows = np.arange(len(M))
         flags, masks = exact_facts(stack, rows)
-        signs = ExactMode().invariant_signs(stack, rows)
-        det_zero = signs[:, 6] == 0
-        rank_le_2 = det_zero & (signs[:, 5] == 0)
-        assert (flags == (det_zero.astype(np.int8) | (rank_le_2.astype(np.int8) << 1))).all()
-        assert (masks == masks_from_invariant_signs(signs)).all()
+        exact = [[[Fraction(v) for v in r] for r in m] for m in M]
+        rank = np.array([4 - len(nullspace(m, zero=Fraction(0), one=Fraction(1))) for m in exact])
+        assert (flags == ((rank < 4).astype(np.int8) | ((rank <= 2).astype(np.int8) << 1))).all()
+        assert (masks == masks_from_invariant_signs(ExactMode().invariant_signs(stack, rows))).all()
