@@ -6,7 +6,8 @@ loops over a block vectorise) and check symmetry on the way, the loads, the row 
 and the row bound of the semi-static filter (``24 W_k`` bounds the magnitude program of
 ``c_k``, checked by ``verify_row_bound``), ``pencil_coefficients`` cut in two for a fixed
 matrix (the same expressions, so the same bits), the magnitude companion of
-``paper_deltas_compact``, and BLOCK_COUNTS, the rounding counts of the straight-line
+``paper_deltas_compact`` and both in one program that shares their products (the same
+bits as the two), and BLOCK_COUNTS, the rounding counts of the straight-line
 functions here (as ``kernels.ROUNDING_COUNTS``).  Compiled by numba into the kernels of
 :mod:`quadric_contact.modes`.
 """
@@ -314,6 +315,99 @@ def paper_deltas_compact_magnitude(c0, c1, c2, c3, c4):
     Delta3 = 4*c2*c2*c2*c4 + c3*c3*u + 2*c3*c4*w + 2*c4*c4*v
     Delta4_27 = 4*I*I*I + J*J
     return (Delta2, Delta3, Delta4_27)
+
+
+def paper_deltas_compact_and_magnitude(c0, c1, c2, c3, c4):
+    """``paper_deltas_compact`` and its magnitude companion at the absolute values of the arguments,
+    ``(values..., magnitudes...)``: the same operations as the two programs, with the
+    absolute value of a computed product standing for the same product of absolute values."""
+    _v1 = 12 * c0
+    _v2 = _v1 * c4
+    _v3 = 3 * c1
+    _v4 = _v3 * c3
+    _v5 = _v2 - _v4
+    _m6 = abs(_v2) + abs(_v4)
+    _v7 = c2 * c2
+    _v8 = _v5 + _v7
+    _m9 = _m6 + abs(_v7)
+    _v10 = 72 * c0
+    _v11 = _v10 * c2
+    _v12 = _v11 * c4
+    _v13 = 27 * c0
+    _v14 = _v13 * c3
+    _v15 = _v14 * c3
+    _v16 = _v12 - _v15
+    _m17 = abs(_v12) + abs(_v15)
+    _v18 = 27 * c1
+    _v19 = _v18 * c1
+    _v20 = _v19 * c4
+    _v21 = _v16 - _v20
+    _m22 = _m17 + abs(_v20)
+    _v23 = 9 * c1
+    _v24 = _v23 * c2
+    _v25 = _v24 * c3
+    _v26 = _v21 + _v25
+    _m27 = _m22 + abs(_v25)
+    _v28 = 2 * c2
+    _v29 = _v28 * c2
+    _v30 = _v29 * c2
+    _v31 = _v26 - _v30
+    _m32 = _m27 + abs(_v30)
+    _v33 = (-3) * c1
+    _v34 = _v33 * c3
+    _v35 = c2 * c2
+    _v36 = _v34 + _v35
+    _m37 = abs(_v34) + abs(_v35)
+    _v38 = 8 * c0
+    _v39 = _v38 * c2
+    _v40 = 9 * c1
+    _v41 = _v40 * c1
+    _v42 = _v39 - _v41
+    _m43 = abs(_v39) + abs(_v41)
+    _v44 = (-3) * c0
+    _v45 = _v44 * c3
+    _v46 = 7 * c1
+    _v47 = _v46 * c2
+    _v48 = _v45 + _v47
+    _m49 = abs(_v45) + abs(_v47)
+    _v50 = (-8) * c2
+    _v51 = _v50 * c4
+    _v52 = 3 * c3
+    _v53 = _v52 * c3
+    _v54 = _v51 + _v53
+    _m55 = abs(_v51) + abs(_v53)
+    _v56 = (-4) * c2
+    _v57 = _v56 * c2
+    _v58 = _v57 * c2
+    _v59 = _v58 * c4
+    _v60 = c3 * c3
+    _v61 = _v60 * _v36
+    _m62 = abs(_v60) * _m37
+    _v63 = _v59 + _v61
+    _m64 = abs(_v59) + _m62
+    _v65 = 2 * c3
+    _v66 = _v65 * c4
+    _v67 = _v66 * _v48
+    _m68 = abs(_v66) * _m49
+    _v69 = _v63 + _v67
+    _m70 = _m64 + _m68
+    _v71 = 2 * c4
+    _v72 = _v71 * c4
+    _v73 = _v72 * _v42
+    _m74 = abs(_v72) * _m43
+    _v75 = _v69 + _v73
+    _m76 = _m70 + _m74
+    _v77 = 4 * _v8
+    _m78 = 4 * _m9
+    _v79 = _v77 * _v8
+    _m80 = _m78 * _m9
+    _v81 = _v79 * _v8
+    _m82 = _m80 * _m9
+    _v83 = _v31 * _v31
+    _m84 = _m32 * _m32
+    _v85 = _v81 - _v83
+    _m86 = _m82 + _m84
+    return (_v54, _v75, _v85, _m55, _m76, _m86)
 
 
 BLOCK_COUNTS = {

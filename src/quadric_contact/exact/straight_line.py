@@ -6,7 +6,8 @@ assignments of expressions built from names, integer constants, binary ``+ - *``
 and unary minus, and a tuple return.  This module reads such a function
 (:func:`_straight_line`), prints its expressions back byte for byte
 (:func:`_print_expr`), derives its magnitude companion
-(:func:`emit_magnitude_function`: every minus turned into a plus), counts the
+(:func:`emit_magnitude_function`: every minus turned into a plus) and both in one
+program that shares their products (:func:`emit_value_and_magnitude_function`), counts the
 rounded operations on every path from the inputs (:func:`rounding_counts`, what the
 error bounds of :mod:`quadric_contact.modes.errorbounds` are built from) and runs it
 without compiling it (:func:`_interpret`).
@@ -24,7 +25,12 @@ import copy
 from collections.abc import Sequence
 from typing import Any
 
-__all__ = ["EXACT_INTEGER_MAX", "emit_magnitude_function", "rounding_counts"]
+__all__ = [
+    "EXACT_INTEGER_MAX",
+    "emit_magnitude_function",
+    "emit_value_and_magnitude_function",
+    "rounding_counts",
+]
 
 # The straight-line functions have a tiny grammar: assignments of expressions built
 # from names, integer constants, binary + - * and unary minus, and a tuple return.
@@ -121,6 +127,66 @@ def emit_magnitude_function(fdef: ast.FunctionDef) -> list[str]:
     return out
 
 
+def emit_value_and_magnitude_function(fdef: ast.FunctionDef) -> list[str]:
+    """``NAME_and_magnitude``: the values of a generated straight-line function and of its
+    magnitude companion (at the absolute values of the same arguments) in one program, returned
+    as ``(values..., magnitudes...)``, with the same bits as the two programs.
+
+    The value program is copied operation by operation (one temporary per operation, in the same
+    order and association).  The magnitude of a product of two operands whose magnitudes are
+    their absolute values -- arguments, constants and such products -- is the absolute value of
+    the computed product: rounding to nearest is symmetric, ``|fl(x y)| = fl(|x| |y|)``.  Only the
+    other products (a sum times something) and the sums are computed again, so for a program
+    that adds up products of its arguments, as the Delta forms do, the companion costs additions
+    and a few products instead of as many products again."""
+    args, assignments, returned = _straight_line(fdef)
+    lines: list[str] = []
+    count = 0
+    # name -> (value text, magnitude text, magnitude is the absolute value of the value)
+    env: dict[str, tuple[str, str, bool]] = {a: (a, f"abs({a})", True) for a in args}
+
+    def temp(kind: str, text: str) -> str:
+        nonlocal count
+        count += 1
+        name = f"_{kind}{count}"
+        lines.append(f"    {name} = {text}")
+        return name
+
+    def walk(node: ast.expr) -> tuple[str, str, bool]:
+        if isinstance(node, ast.Name):
+            return env[node.id]
+        if isinstance(node, ast.Constant) and type(node.value) is int:
+            return (str(node.value), str(abs(node.value)), True)
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
+            if isinstance(node.operand, ast.Constant):
+                value, mag, exact = walk(node.operand)
+                return (f"(-{value})", mag, exact)
+            value, mag, exact = walk(node.operand)
+            return (temp("v", f"-{value}"), mag, exact)
+        if isinstance(node, ast.BinOp) and type(node.op) in _PRECEDENCE:
+            lv, lm, le = walk(node.left)
+            rv, rm, re_ = walk(node.right)
+            value = temp("v", f"{lv} {_SYMBOL[type(node.op)]} {rv}")
+            if isinstance(node.op, ast.Mult):
+                if le and re_:
+                    return (value, f"abs({value})", True)
+                return (value, temp("m", f"{lm} * {rm}"), False)
+            return (value, temp("m", f"{lm} + {rm}"), False)
+        raise AssertionError(f"unexpected syntax in a generated straight-line function: {ast.dump(node)}")
+
+    for target, expr in assignments:
+        env[target] = walk(expr)
+    values = [env[r][0] for r in returned]
+    mags = [env[r][1] for r in returned]
+    head = [
+        f"def {fdef.name}_and_magnitude({', '.join(args)}):",
+        f'    """``{fdef.name}`` and its magnitude companion at the absolute values of the arguments,',
+        "    ``(values..., magnitudes...)``: the same operations as the two programs, with the",
+        '    absolute value of a computed product standing for the same product of absolute values."""',
+    ]
+    return [*head, *lines, f"    return ({', '.join(values + mags)})"]
+
+
 EXACT_INTEGER_MAX = 2**53
 """Integers up to this magnitude are binary64 numbers; a larger literal may be rounded."""
 
@@ -162,8 +228,9 @@ def rounding_counts(fdef: ast.FunctionDef, input_roundings: int = 0) -> list[tup
 
 
 def _interpret(fdef: ast.FunctionDef, values: Sequence[Any]) -> tuple[dict[str, Any], list[Any]]:
-    """Run a straight-line function of the grammar above on ``values`` without compiling
-    it: every assignment, and the outputs."""
+    """Run a straight-line function of the grammar above (and ``abs`` of one operand, as the
+    fused value-and-magnitude programs use it) on ``values`` without compiling it: every
+    assignment, and the outputs."""
     args, assignments, returned = _straight_line(fdef)
     env: dict[str, Any] = dict(zip(args, values, strict=True))
 
@@ -174,6 +241,11 @@ def _interpret(fdef: ast.FunctionDef, values: Sequence[Any]) -> tuple[dict[str, 
             return node.value
         if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
             return -walk(node.operand)
+        if (
+            isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == "abs"
+            and len(node.args) == 1 and not node.keywords
+        ):  # fmt: skip
+            return abs(walk(node.args[0]))  # the fused value-and-magnitude programs
         if isinstance(node, ast.BinOp):
             left, right = walk(node.left), walk(node.right)
             if isinstance(node.op, ast.Mult):

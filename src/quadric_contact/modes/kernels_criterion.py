@@ -78,8 +78,7 @@ _with_q = njit(blocks.pencil_with_q_part, inline=True)
 _e_part = njit(blocks.pencil_e_part, inline=True)
 _with_e = njit(blocks.pencil_with_e_part, inline=True)
 _deltas = njit(formulas.paper_deltas, inline=True)
-_compact = njit(kernels.paper_deltas_compact, inline=True)
-_compact_mag = njit(blocks.paper_deltas_compact_magnitude, inline=True)
+_compact_both = njit(blocks.paper_deltas_compact_and_magnitude, inline=True)
 _minors = njit(kernels.leading_minors_3, inline=True)
 
 
@@ -152,8 +151,8 @@ def _screen_core(e: Any, R: Any, c: Any, W: Any, plane: bool, guard: bool) -> An
         r4 / (a4 + _TINY),
     )
     ok = guard & ell & rng & (rho <= _RHO_MAX)
-    d2, d3, d4 = _compact(c0, x1, c2, x3, c4)
-    A2, A3, A4 = _compact_mag(a0, a1, a2, a3, a4)
+    # the Delta forms and their magnitude programs at |c| (sharing the products: the same bits)
+    d2, d3, d4, A2, A3, A4 = _compact_both(c0, x1, c2, x3, c4)
     d4 = 0.0 if plane else d4
     A4 = 0.0 if plane else A4
     idx = (

@@ -227,8 +227,8 @@ def screen_quantities(Em: np.ndarray, Qm: np.ndarray) -> dict[str, Any]:
             r[4] / (a[4] + tiny),
         )
         ok = guard & ell & rng & (rho <= eb.RHO_MAX)
-        d = list(kernels.paper_deltas_compact(*c))
-        A = list(blocks.paper_deltas_compact_magnitude(*a))
+        both = blocks.paper_deltas_compact_and_magnitude(*c)  # the magnitudes at a = |c|
+        d, A = list(both[:3]), list(both[3:])
         d[2] = np.where(plane, 0.0, d[2])
         A[2] = np.where(plane, 0.0, A[2])
         bound = [(SD[j][0] * rho + SD[j][1]) * A[j] for j in range(3)]

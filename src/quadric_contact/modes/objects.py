@@ -225,8 +225,8 @@ def filtered_delta_signs(c: list[np.ndarray]) -> np.ndarray:
         low = np.where(mag != 0, mag, 1.0).min(axis=1)
         ok = np.isfinite(top) & (low >= eb.COEFFICIENT_MIN)
         cols = [a[:, k] for k in range(5)]
-        d = kernels.paper_deltas_compact(*cols)
-        A = blocks.paper_deltas_compact_magnitude(*(mag[:, k] for k in range(5)))
+        both = blocks.paper_deltas_compact_and_magnitude(*cols)  # the magnitudes at |cols|
+        d, A = both[:3], both[3:]
         for j, ((R, G), dj, Aj) in enumerate(zip(eb.SEMI_DELTA, d, A, strict=True)):
             bound = (R * _RHO_EXACT + G) * Aj
             sign = np.where(dj > bound, 1, np.where(dj < -bound, -1, np.where(bound == 0, 0, _UNC)))
