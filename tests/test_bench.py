@@ -32,7 +32,7 @@ def test_bench_smoke_profile_writes_table_json_and_reports_targets(tmp_path, cap
         # the kernel targets: the criterion alone at the memory limit, first use
         "certified criterion, distinct (N, 4, 4) pairs",
         "certified criterion, one matrix against a stack",
-        "certified criterion vs numpy batch eigvals, same pairs",
+        "certified criterion vs numpy batch eigvals, one matrix against a stack",
         "filter vs float, distinct pairs",
         "certified criterion vs reading its inputs (distinct)",
         "first array call after install (empty cache)",

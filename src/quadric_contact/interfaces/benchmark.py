@@ -821,7 +821,8 @@ def kernel_population(n: int, rng: np.random.Generator) -> tuple[np.ndarray, np.
 def _kernels(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> None:
     """The criterion alone (float, filter, certified; float64 and packed input) and the complete
     decision on distinct pairs and on one matrix against the stack (broadcasting), each against
-    the time it takes to read its inputs once, and numpy's batch eigenvalues on the same pairs."""
+    the time it takes to read its inputs once, and numpy's batch eigenvalues on the same pairs
+    (distinct, and one matrix against the stack: the issue's ratio) against the certified codes."""
     from quadric_contact.modes.packing import Packed, pack
     from quadric_contact.modes.predicates import transversal_contact
 
@@ -842,7 +843,6 @@ def _kernels(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> N
         ("certified", CertifiedMode(), criterion_stack),
         ("certified, complete decision", CertifiedMode(), transversal_contact),
     ]
-    truth = None
     for label, (e, q) in inputs.items():
         limit = report.kernel_bandwidth["broadcast" if label.startswith("broadcast") else "distinct"]
         packed = "packed" in label
@@ -850,9 +850,7 @@ def _kernels(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> N
         for name, mode, fn in methods:
             if packed and name in ("float", "filter"):
                 continue
-            seconds, codes = _best_of(functools.partial(fn, e, q, mode=mode), repeat)
-            if label == "distinct" and name == "certified":
-                truth = codes
+            seconds, _ = _best_of(functools.partial(fn, e, q, mode=mode), repeat)
             report.kernels.append(
                 {
                     "input": label,
@@ -864,18 +862,21 @@ def _kernels(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> N
                 }
             )
     m = min(n, 200_000)
-    seconds, eig = _best_of(functools.partial(peer_numpy_eigvals, E[:m], Q[:m]), 1)
-    report.kernels.append(
-        {
-            "input": "distinct",
-            "method": "numpy batch eigvals (peer)",
-            "n": m,
-            "seconds": seconds,
-            "rate": m / seconds,
-            "fraction": None,
-            "wrong": None if truth is None else int(np.count_nonzero(eig != truth[:m])),
-        }
-    )
+    peers = {"distinct": Q[:m], "broadcast": np.broadcast_to(Q[0], (m, 4, 4))}
+    for label, q in peers.items():
+        seconds, eig = _best_of(functools.partial(peer_numpy_eigvals, E[:m], q), 1)
+        ref = criterion_stack(E[:m], q, mode=CertifiedMode())
+        report.kernels.append(
+            {
+                "input": label,
+                "method": "numpy batch eigvals (peer)",
+                "n": m,
+                "seconds": seconds,
+                "rate": m / seconds,
+                "fraction": None,
+                "wrong": int(np.count_nonzero(eig != ref)),
+            }
+        )
 
 
 COLD_START_CODE = """
@@ -1095,6 +1096,7 @@ def _kernel_targets(report: Report) -> None:
         bcast = rows[("broadcast", "certified")]
         flt, fil = rows[("distinct", "float")], rows[("distinct", "filter")]
         eig = rows[("distinct", "numpy batch eigvals (peer)")]
+        beig = rows[("broadcast", "numpy batch eigvals (peer)")]
         comp = rows[("distinct", "certified, complete decision")]
         bcomp = rows[("broadcast", "certified, complete decision")]
         n = cert["n"]
@@ -1117,13 +1119,16 @@ def _kernel_targets(report: Report) -> None:
                 f"(N = {n}; complete decision {bcomp['rate']:.3g} pairs/s)",
             ),
             Target(
-                "certified criterion vs numpy batch eigvals, same pairs",
+                "certified criterion vs numpy batch eigvals, one matrix against a stack",
                 ">= 300x",
-                cert["rate"] / eig["rate"],
+                bcast["rate"] / beig["rate"],
                 "x",
-                cert["rate"] / eig["rate"] >= 300,
-                f"(eigvals on {eig['n']} pairs: {eig['rate']:.3g} pairs/s, "
-                f"{eig.get('wrong')} differ from certified)",
+                bcast["rate"] / beig["rate"] >= 300,
+                f"(the issue's 75x is this ratio: 11.6 M/s for one matrix against 1e6 over "
+                f"0.15 M/s; eigvals on {beig['n']} of the same pairs: {beig['rate']:.3g} pairs/s, "
+                f"{beig.get('wrong')} differ from certified; on distinct pairs "
+                f"{cert['rate'] / eig['rate']:.0f}x, eigvals {eig['rate']:.3g} pairs/s, "
+                f"{eig.get('wrong')} differ)",
             ),
             Target(
                 "filter vs float, distinct pairs",

@@ -22,6 +22,7 @@ from quadric_contact.modes.decisions import UNCERTAIN_ROW
 from quadric_contact.modes.float_modes import FilterMode
 from quadric_contact.modes.number_mode import NumberMode
 from quadric_contact.modes.objects import BallMode, ExactMode
+from quadric_contact.modes.rows import set_rows
 
 __all__ = ["CertifiedMode"]
 
@@ -79,7 +80,7 @@ class CertifiedMode(NumberMode):
             stages = stages[:-1] if len(stages) > 1 else stages
         codes = getattr(stages[0], method)(pairs)
         unsure = codes == _UNC
-        todo = np.flatnonzero(unsure)
+        todo = set_rows(unsure)
         which = np.negative(unsure.view(np.int8))  # 0 decided by the first stage, -1 not yet
         for k, stage in enumerate(stages[1:], start=1):
             if todo.size == 0:

@@ -33,7 +33,7 @@ from quadric_contact.modes.base import INVALID, MatrixStack, Pairs
 from quadric_contact.modes.decisions import UNCERTAIN_ROW, masks_from_invariant_signs, row_of, rows_from_masks
 from quadric_contact.modes.kernels_criterion import FALLBACK, NB, fast_codes
 from quadric_contact.modes.number_mode import NumberMode
-from quadric_contact.modes.rows import unique_rows
+from quadric_contact.modes.rows import set_rows, unique_rows
 from quadric_contact.modes.support import check_stack, region_codes_from_signs
 from quadric_contact.modes.threads import run_parallel
 from quadric_contact.modes.validation import (
@@ -328,7 +328,7 @@ class FloatMode(NumberMode):
                 E, Q, epacked, qpacked, pairs.kernel_indices(), pairs.n, filtered=self.filtered, qrows=qrows,
                 qmasks=qmasks, run=functools.partial(run_parallel, threads=self.threads),
             )  # fmt: skip
-            fall = np.flatnonzero(codes == FALLBACK)
+            fall = set_rows(codes == FALLBACK)
             if fall.size:
                 codes[fall] = self._general(pairs.take(fall), qrows, qmasks, None, screen_done=True)
             return codes
@@ -397,7 +397,7 @@ class FloatMode(NumberMode):
         if invalid.any():
             codes[invalid] = _diagnose(pairs, np.flatnonzero(invalid))
         if self.filtered:
-            todo = np.flatnonzero(codes == _UNC)
+            todo = set_rows(codes == _UNC)
             if todo.size:
                 # Second pass with exact facts about the quadrics involved (once per quadric):
                 # structural zeros of c0, c1 and, for regions, the exact type.
