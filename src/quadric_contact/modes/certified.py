@@ -82,9 +82,12 @@ class CertifiedMode(NumberMode):
         unsure = codes == _UNC
         todo = set_rows(unsure)
         which = np.negative(unsure.view(np.int8))  # 0 decided by the first stage, -1 not yet
+        skip = _skipped_on_binary64(stages, method, pairs)
         for k, stage in enumerate(stages[1:], start=1):
             if todo.size == 0:
                 break
+            if stage in skip:
+                continue
             sub = getattr(stage, method)(pairs.take(todo))
             codes[todo] = sub
             done = sub != _UNC
@@ -122,6 +125,22 @@ class CertifiedMode(NumberMode):
 
     def __repr__(self) -> str:
         return f"CertifiedMode(stages={self.stages!r})"
+
+
+_CRITERION = frozenset({"criterion_contact", "criterion_region"})
+
+
+def _skipped_on_binary64(stages: tuple[NumberMode, ...], method: str, pairs: Pairs) -> tuple[NumberMode, ...]:
+    """The middle stages that would only cost time on this batch: binary64 input, a criterion
+    method, the last stage exact (it decides whatever they would have, for less: see
+    :attr:`BallMode.before_exact_on_binary64`)."""
+    if method not in _CRITERION or pairs.E.rounded or pairs.Q.rounded:
+        return ()
+    if not isinstance(stages[-1], ExactMode):
+        return ()
+    return tuple(
+        s for s in stages[1:-1] if isinstance(s, BallMode) and method not in s.before_exact_on_binary64
+    )
 
 
 def _stage(mode: NumberMode) -> str:

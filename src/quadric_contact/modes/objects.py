@@ -421,6 +421,12 @@ class BallMode(ObjectMode):
     name = "ball"
     stage = "ball"
     certified = True
+    before_exact_on_binary64: frozenset[str] = frozenset()
+    """The methods worth running on binary64 input before the exact stage of a cascade: none of
+    the criterion's.  The exact stage reads binary64 input with its compiled pencil and binary64
+    Delta signs (:meth:`ExactMode.delta_signs`) and costs less than 128-bit balls, whether a few
+    pairs reach it (5 pairs of the environment population: 0.51 ms against 0.68 ms) or many
+    (17619 pairs the filter left of 2e5 random pairs: 270 ms against 665 ms)."""
 
     def __init__(self, prec: int = 128) -> None:
         super().__init__()
