@@ -105,19 +105,21 @@ def _smallest5(a0: float, a1: float, a2: float, a3: float, a4: float) -> float:
 
 
 @njit(inline=True)
-def _sidx(d: float, b: float) -> float:
-    """Table index ``0, 1, 2, 3`` of the sign of ``d`` known to within ``b`` (3: uncertain).
-    Branch-free."""
+def _sidx(d: float, b: float, k: float) -> float:
+    """``k`` times the table index ``0, 1, 2, 3`` of the sign of ``d`` known to within ``b``
+    (3: uncertain); ``k`` a power of two (the place of this Delta in the index), folded into
+    the constants rather than multiplied.  Branch-free."""
     pos = d > b
     neg = d < -b
     unc = (not pos) & (not neg) & (b != 0.0)
-    return 1.0 + (1.0 if pos else 0.0) - (1.0 if neg else 0.0) + (2.0 if unc else 0.0)
+    return k + (k if pos else 0.0) - (k if neg else 0.0) + (2.0 * k if unc else 0.0)
 
 
 @njit(inline=True)
-def _psidx(d: float) -> float:
-    """Table index of the plain sign of ``d`` (a NaN reads as zero, as ``_psgn`` does)."""
-    return 1.0 + (1.0 if d > 0.0 else 0.0) - (1.0 if d < 0.0 else 0.0)
+def _psidx(d: float, k: float) -> float:
+    """``k`` times the table index of the plain sign of ``d`` (a NaN reads as zero, as ``_psgn``
+    does)."""
+    return k + (k if d > 0.0 else 0.0) - (k if d < 0.0 else 0.0)
 
 
 @njit(inline=True)
@@ -139,8 +141,9 @@ def _screen_core(e: Any, R: Any, c: Any, W: Any, plane: bool, guard: bool) -> An
     r4 = _SP4 * W[4]
     # E is certainly an ellipsoid (Sylvester; det E = c4 < 0)
     ell, o = certified_ellipsoid(e, R, c4, r4)
-    x1 = o * c1
-    x3 = o * c3
+    # o c1, o c3 for o = +-1, as a choice rather than a product (the multipliers are the busy units)
+    x1 = -c1 if o < 0.0 else c1
+    x3 = -c3 if o < 0.0 else c3
     a0, a1, a2, a3, a4 = abs(c0), abs(c1), abs(c2), abs(c3), abs(c4)
     # Every coefficient in range (a NaN or an infinity fails the sum); rho the largest r_k / |c_k|:
     # |c_k| + 2^-1000 is |c_k| itself when it is at least COEFFICIENT_MIN, and a zero coefficient
@@ -156,9 +159,9 @@ def _screen_core(e: Any, R: Any, c: Any, W: Any, plane: bool, guard: bool) -> An
     d4 = 0.0 if plane else d4
     A4 = 0.0 if plane else A4
     idx = (
-        _sidx(d2, (_SR2 * rho + _SG2) * A2)
-        + 4.0 * _sidx(d3, (_SR3 * rho + _SG3) * A3)
-        + 16.0 * _sidx(d4, (_SR4 * rho + _SG4) * A4)
+        _sidx(d2, (_SR2 * rho + _SG2) * A2, 1.0)
+        + _sidx(d3, (_SR3 * rho + _SG3) * A3, 4.0)
+        + _sidx(d4, (_SR4 * rho + _SG4) * A4, 16.0)
     )
     return ok, idx, _sgnf(c0), _sgnf(x1), _sgnf(c2), _sgnf(x3), _sgnf(c4)
 
@@ -189,12 +192,11 @@ def _float_core(e: Any, q: Any, c: Any, r0: float, plane: bool, guard: bool) -> 
         & (abs(c4) <= 1.7976931348623157e308)
     )  # fmt: skip
     fallback = facts | (prop & (not plane)) | (not fin) | (not guard)
-    o = -1.0 if e00 < 0.0 else 1.0
-    x1 = o * c1
-    x3 = o * c3
+    x1 = -c1 if e00 < 0.0 else c1
+    x3 = -c3 if e00 < 0.0 else c3
     d2, d3, d4 = _deltas(c0, x1, c2, x3, c4)
     d4 = 0.0 if plane else d4
-    idx = _psidx(d2) + 4.0 * _psidx(d3) + 16.0 * _psidx(d4)
+    idx = _psidx(d2, 1.0) + _psidx(d3, 4.0) + _psidx(d4, 16.0)
     return fallback, valid, idx, _sgnf(c0), _sgnf(x1), _sgnf(c2), _sgnf(x3), _sgnf(c4)
 
 
