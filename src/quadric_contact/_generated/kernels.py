@@ -14,9 +14,13 @@ number type and compiles with numba unchanged.
 
 def leading_minors_3(a00, a01, a02, a11, a12, a22):
     """(m2, m3): leading principal minors of orders 2 and 3 of the symmetric 3x3 matrix
-    with upper entries aij (Sylvester's criterion; order 1 is a00 itself)."""
-    m2 = a00*a11 - a01*a01
-    m3 = a00*a11*a22 - a00*a12*a12 - a01*a01*a22 + 2*a01*a02*a12 - a02*a02*a11
+    with upper entries aij (Sylvester's criterion; order 1 is a00 itself); m3 by Laplace
+    along the third row from the 2x2 minors of the first two, the pencil's Et01, Et02, Et12."""
+    t01 = a00*a11 - a01*a01
+    t02 = a00*a12 - a01*a02
+    t12 = a01*a12 - a02*a11
+    m2 = t01
+    m3 = a02*t12 - a12*t02 + a22*t01
     return (m2, m3)
 
 
@@ -120,8 +124,11 @@ def paper_deltas_magnitude(c0, c1, c2, c3, c4):
 def leading_minors_3_magnitude(a00, a01, a02, a11, a12, a22):
     """Magnitude companion of ``leading_minors_3``: call it with the absolute values of the
     arguments; same operations in the same order, with every minus turned into a plus."""
-    m2 = a00*a11 + a01*a01
-    m3 = a00*a11*a22 + a00*a12*a12 + a01*a01*a22 + 2*a01*a02*a12 + a02*a02*a11
+    t01 = a00*a11 + a01*a01
+    t02 = a00*a12 + a01*a02
+    t12 = a01*a12 + a02*a11
+    m2 = t01
+    m3 = a02*t12 + a12*t02 + a22*t01
     return (m2, m3)
 
 
@@ -159,9 +166,9 @@ ROUNDING_COUNTS = {
         'module': ('kernels',),
         'outputs': ('m2', 'm3'),
         'degree': (2, 3),
-        'value': (2, 6),
-        'value_rounded_inputs': (4, 9),
-        'magnitude': (2, 6),
+        'value': (2, 5),
+        'value_rounded_inputs': (4, 8),
+        'magnitude': (2, 5),
     },
     'quadric_invariants': {
         'module': ('kernels',),

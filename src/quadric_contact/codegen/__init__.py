@@ -395,14 +395,32 @@ def _principal_minor_sum(M: sp.Matrix, order: int) -> sp.Expr:
 
 def derive_leading_minors_3() -> tuple[list[sp.Symbol], list[tuple[str, sp.Expr]]]:
     """Leading principal minors of orders 2 and 3 of a symmetric 3x3 matrix ``a``
-    (Sylvester's criterion; the order-1 minor is the entry ``a00`` itself)."""
+    (Sylvester's criterion; the order-1 minor is the entry ``a00`` itself), as a program with
+    three intermediates: the 2x2 minors ``t01, t02, t12`` of the first two rows (columns
+    ``01, 02, 12``), which are the pencil's ``Et01, Et02, Et12`` with the same expressions (so a
+    compiler computes them once for both), ``m2 = t01`` and ``m3`` by Laplace along the third
+    row, ``a22 t01 - a12 t02 + a02 t12``: three products instead of the ten of the expanded
+    determinant.  Use :func:`leading_minors_expanded` for the polynomials."""
     syms = {ij: sp.Symbol(f"a{ij[0]}{ij[1]}") for ij in QUADRATIC_PART_INDICES}
-    A = sp.Matrix(3, 3, lambda i, j: syms[(min(i, j), max(i, j))])
+    a = lambda i, j: syms[(min(i, j), max(i, j))]  # noqa: E731
     args = [syms[ij] for ij in QUADRATIC_PART_INDICES]
+    t01, t02, t12 = sp.symbols("t01 t02 t12")
     return args, [
-        ("m2", sp.expand(A[:2, :2].det(method="berkowitz"))),
-        ("m3", sp.expand(A.det(method="berkowitz"))),
+        ("t01", a(0, 0) * a(1, 1) - a(0, 1) * a(1, 0)),
+        ("t02", a(0, 0) * a(1, 2) - a(0, 1) * a(0, 2)),
+        ("t12", a(0, 1) * a(1, 2) - a(0, 2) * a(1, 1)),
+        ("m2", t01),
+        ("m3", a(2, 2) * t01 - a(1, 2) * t02 + a(0, 2) * t12),
     ]
+
+
+def leading_minors_expanded() -> dict[str, sp.Expr]:
+    """``m2``, ``m3`` of :func:`derive_leading_minors_3` as polynomials in the entries."""
+    _, program = derive_leading_minors_3()
+    env: dict[sp.Symbol, sp.Expr] = {}
+    for name, expr in program:
+        env[sp.Symbol(name)] = sp.expand(expr.xreplace(env))
+    return {name: env[sp.Symbol(name)] for name in ("m2", "m3")}
 
 
 def derive_quadric_invariants() -> tuple[list[sp.Symbol], list[tuple[str, sp.Expr]]]:
@@ -436,9 +454,9 @@ def verify_invariants() -> None:
     for name, k in (("trA", 1), ("JA", 2), ("detA", 3)):
         if sp.expand(got[name] - ca.coeff_monomial(t ** (3 - k))) != 0:
             raise AssertionError(f"{name} differs from the characteristic polynomial of the quadratic part")
-    _, minors = derive_leading_minors_3()
+    minors = leading_minors_expanded()
     A = sp.Matrix(3, 3, lambda i, j: sp.Symbol(f"a{min(i, j)}{max(i, j)}"))
-    if sp.expand(dict(minors)["m3"] - A.det()) != 0 or sp.expand(dict(minors)["m2"] - A[:2, :2].det()) != 0:
+    if sp.expand(minors["m3"] - A.det()) != 0 or sp.expand(minors["m2"] - A[:2, :2].det()) != 0:
         raise AssertionError("leading minors differ from sympy's determinants")
 
 
@@ -480,12 +498,19 @@ def verify_compact_deltas() -> None:
 
 
 def _emit_function(
-    name: str, args: Sequence[sp.Symbol], outputs: Sequence[tuple[str, sp.Expr]], doc: str
+    name: str,
+    args: Sequence[sp.Symbol],
+    outputs: Sequence[tuple[str, sp.Expr]],
+    doc: str,
+    returned: Sequence[str] | None = None,
 ) -> list[str]:
+    """A straight-line function: one assignment per ``outputs`` entry, returning ``returned``
+    (by default every assigned name)."""
     lines = [f"def {name}({', '.join(str(a) for a in args)}):", f'    """{doc}"""']
     for out_name, expr in outputs:
         lines.append(f"    {out_name} = {_emit_expression(expr)}")
-    lines.append(f"    return ({', '.join(n for n, _ in outputs)}{',' if len(outputs) == 1 else ''})")
+    names = list(returned) if returned is not None else [n for n, _ in outputs]
+    lines.append(f"    return ({', '.join(names)}{',' if len(names) == 1 else ''})")
     return lines
 
 
@@ -506,7 +531,9 @@ def _kernel_value_functions() -> list[str]:
         args,
         minors,
         "(m2, m3): leading principal minors of orders 2 and 3 of the symmetric 3x3 matrix\n"
-        "    with upper entries aij (Sylvester's criterion; order 1 is a00 itself).",
+        "    with upper entries aij (Sylvester's criterion; order 1 is a00 itself); m3 by Laplace\n"
+        "    along the third row from the 2x2 minors of the first two, the pencil's Et01, Et02, Et12.",
+        returned=("m2", "m3"),
     )
     out += ["", ""]
     cargs, compact = derive_compact_deltas()
@@ -729,7 +756,7 @@ def verify_minor_row_bounds() -> None:
     R = ROW_SYMBOLS[0]
     args, minors = derive_leading_minors_3()
     A = sp.Matrix(3, 3, lambda i, j: sp.Symbol(f"a{min(i, j)}{max(i, j)}"))
-    text = "\n".join(_emit_function("leading_minors_3", args, minors, ""))
+    text = "\n".join(_emit_function("leading_minors_3", args, minors, "", returned=("m2", "m3")))
     mag_text = "\n".join(emit_magnitude_function(_functions(text)["leading_minors_3"]))
     _, magnitude = _interpret(_functions(mag_text)["leading_minors_3_magnitude"], list(args))
     for size, mag in ((2, magnitude[0]), (3, magnitude[1])):
