@@ -204,3 +204,26 @@ def test_exact_facts_agree_with_the_integers():
         rank = np.array([4 - len(nullspace(m, zero=Fraction(0), one=Fraction(1))) for m in exact])
         assert (flags == ((rank < 4).astype(np.int8) | ((rank <= 2).astype(np.int8) << 1))).all()
         assert (masks == masks_from_invariant_signs(ExactMode().invariant_signs(stack, rows))).all()
+
+
+@pytest.mark.skipif(not HAVE_NUMBA, reason="numba not installed")
+def test_cached_kernels_are_keyed_on_every_source_they_inline(tmp_path):
+    """numba keys a cached kernel on its own file; a kernel whose generated programs or inlined
+    helpers changed must not load stale machine code (old formulas with new error bounds)."""
+    import shutil
+    from pathlib import Path
+
+    from quadric_contact.modes import _jit
+    from quadric_contact.modes.kernels_criterion import kernel
+
+    k = kernel("fixed_q", True, False)
+    holder = getattr(k._cache, "_cache_file", k._cache)
+    assert holder._source_stamp[1] == _jit._sources_digest()
+    package = Path(_jit.__file__).resolve().parents[1]
+    for folder in ("modes", "_generated"):
+        shutil.copytree(package / folder, tmp_path / folder, ignore=shutil.ignore_patterns("__pycache__"))
+    before = _jit._sources_digest(tmp_path)
+    assert before == _jit._sources_digest()
+    blocks = tmp_path / "_generated" / "blocks.py"
+    blocks.write_text(blocks.read_text().replace("Delta2 = ", "Delta2 =  ", 1))
+    assert _jit._sources_digest(tmp_path) != before

@@ -13,7 +13,44 @@ except ImportError:  # pragma: no cover
     numba = None  # type: ignore[assignment,unused-ignore]
     HAVE_NUMBA = False
 
-__all__ = ["HAVE_NUMBA", "njit"]
+__all__ = ["HAVE_NUMBA", "njit", "stamp_with_sources"]
+
+
+def _sources_digest(root: Any = None) -> str:
+    """A digest of the sources the compiled kernels are made of: every module of
+    :mod:`quadric_contact.modes` and :mod:`quadric_contact._generated` (the kernels inline the
+    generated programs and each other's helpers)."""
+    import hashlib
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1] if root is None else Path(root)
+    digest = hashlib.sha256()
+    for folder in ("modes", "_generated"):
+        for path in sorted((root / folder).glob("*.py")):
+            digest.update(path.name.encode())
+            digest.update(path.read_bytes())
+    return digest.hexdigest()
+
+
+_SOURCES: str | None = None
+
+
+def stamp_with_sources(dispatcher: Any) -> None:
+    """numba keys a cached kernel on its own source file only, so a kernel whose file did not
+    change but whose inlined helpers or generated programs did (new formulas, new error-bound
+    constants) would load stale machine code.  The cache's source stamp is widened to the
+    digest of every source the kernels are made of; an older cache entry then no longer
+    matches and is compiled again.  (If a numba version keeps its stamp elsewhere, nothing is
+    changed.)"""
+    global _SOURCES
+    cache = getattr(dispatcher, "_cache", None)
+    # numba 0.68 keeps the stamp on the index file of the cache; look on the cache itself too
+    holder = getattr(cache, "_cache_file", cache)
+    if holder is None or not hasattr(holder, "_source_stamp"):
+        return
+    if _SOURCES is None:
+        _SOURCES = _sources_digest()
+    holder._source_stamp = (holder._source_stamp, _SOURCES)
 
 
 def njit(fn: Callable[..., Any] | None = None, *, inline: bool = False, cache: bool = True) -> Any:
@@ -22,14 +59,18 @@ def njit(fn: Callable[..., Any] | None = None, *, inline: bool = False, cache: b
 
     ``error_model="numpy"``: division follows IEEE 754 (no zero check raising
     ``ZeroDivisionError``, whose branch would keep the loops from vectorising); the
-    kernels guard every quotient they use."""
+    kernels guard every quotient they use.  A cached kernel is keyed on every source it is
+    made of (:func:`stamp_with_sources`), not only its own file."""
 
     def wrap(f: Callable[..., Any]) -> Any:
         if not HAVE_NUMBA:
             return f
         if inline:
             return numba.njit(inline="always", error_model="numpy")(f)
-        return numba.njit(nogil=True, cache=cache, error_model="numpy")(f)
+        dispatcher = numba.njit(nogil=True, cache=cache, error_model="numpy")(f)
+        if cache:
+            stamp_with_sources(dispatcher)
+        return dispatcher
 
     return wrap(fn) if fn is not None else wrap
 

@@ -96,7 +96,7 @@ import numpy as np
 
 from quadric_contact._generated import kernels
 from quadric_contact.modes import errorbounds as eb
-from quadric_contact.modes._jit import HAVE_NUMBA, numba
+from quadric_contact.modes._jit import HAVE_NUMBA, numba, stamp_with_sources
 from quadric_contact.modes.base import INVALID, MatrixStack, Pairs
 from quadric_contact.modes.rows import unique_rows
 from quadric_contact.modes.smallness_tables import (
@@ -969,7 +969,9 @@ def _make_twins() -> None:
         code = types.FunctionType(fn.__code__, scope, fn.__name__, fn.__defaults__, fn.__closure__)
         code.__qualname__ = fn.__qualname__
         code.__module__ = fn.__module__
-        return numba.njit(**options, **extra)(code)
+        dispatcher = numba.njit(**options, **extra)(code)
+        stamp_with_sources(dispatcher)  # keyed on every source it inlines, as _jit.njit does
+        return dispatcher
 
     def select_compiled(c: Any, a: Any, b: Any) -> Any:  # pragma: no cover - compiled
         return select_intrinsic(c, a, b)
