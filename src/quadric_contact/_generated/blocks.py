@@ -306,13 +306,23 @@ def pencil_with_e_part(e, q, ep):
 def paper_deltas_compact_magnitude(c0, c1, c2, c3, c4):
     """Magnitude companion of ``paper_deltas_compact``: call it with the absolute values of the
     arguments; same operations in the same order, with every minus turned into a plus."""
-    I = 12*c0*c4 + 3*c1*c3 + c2*c2
-    J = 72*c0*c2*c4 + 27*c0*c3*c3 + 27*c1*c1*c4 + 9*c1*c2*c3 + 2*c2*c2*c2
-    u = 3*c1*c3 + c2*c2
-    v = 8*c0*c2 + 9*c1*c1
-    w = 3*c0*c3 + 7*c1*c2
-    Delta2 = 8*c2*c4 + 3*c3*c3
-    Delta3 = 4*c2*c2*c2*c4 + c3*c3*u + 2*c3*c4*w + 2*c4*c4*v
+    p13 = c1*c3
+    s2 = c2*c2
+    s3 = c3*c3
+    s1 = c1*c1
+    p12 = c1*c2
+    p24 = c2*c4
+    p34 = c3*c4
+    s4 = c4*c4
+    u = 3*p13 + s2
+    I = 12*c0*c4 + u
+    v = 8*c0*c2 + 9*s1
+    w = 3*c0*c3 + 7*p12
+    h = 72*c0*c4 + 2*s2
+    g = c0*s3 + c4*s1
+    J = c2*h + 9*c3*p12 + 27*g
+    Delta2 = 8*p24 + 3*s3
+    Delta3 = 4*p24*s2 + 2*p34*w + s3*u + 2*s4*v
     Delta4_27 = 4*I*I*I + J*J
     return (Delta2, Delta3, Delta4_27)
 
@@ -321,93 +331,81 @@ def paper_deltas_compact_and_magnitude(c0, c1, c2, c3, c4):
     """``paper_deltas_compact`` and its magnitude companion at the absolute values of the arguments,
     ``(values..., magnitudes...)``: the same operations as the two programs, with the
     absolute value of a computed product standing for the same product of absolute values."""
-    _v1 = 12 * c0
-    _v2 = _v1 * c4
-    _v3 = 3 * c1
-    _v4 = _v3 * c3
-    _v5 = _v2 - _v4
-    _m6 = abs(_v2) + abs(_v4)
-    _v7 = c2 * c2
-    _v8 = _v5 + _v7
-    _m9 = _m6 + abs(_v7)
-    _v10 = 72 * c0
-    _v11 = _v10 * c2
-    _v12 = _v11 * c4
-    _v13 = 27 * c0
-    _v14 = _v13 * c3
-    _v15 = _v14 * c3
-    _v16 = _v12 - _v15
-    _m17 = abs(_v12) + abs(_v15)
-    _v18 = 27 * c1
-    _v19 = _v18 * c1
-    _v20 = _v19 * c4
-    _v21 = _v16 - _v20
-    _m22 = _m17 + abs(_v20)
-    _v23 = 9 * c1
-    _v24 = _v23 * c2
-    _v25 = _v24 * c3
-    _v26 = _v21 + _v25
-    _m27 = _m22 + abs(_v25)
-    _v28 = 2 * c2
-    _v29 = _v28 * c2
-    _v30 = _v29 * c2
-    _v31 = _v26 - _v30
-    _m32 = _m27 + abs(_v30)
-    _v33 = (-3) * c1
-    _v34 = _v33 * c3
-    _v35 = c2 * c2
-    _v36 = _v34 + _v35
-    _m37 = abs(_v34) + abs(_v35)
-    _v38 = 8 * c0
-    _v39 = _v38 * c2
-    _v40 = 9 * c1
-    _v41 = _v40 * c1
-    _v42 = _v39 - _v41
-    _m43 = abs(_v39) + abs(_v41)
-    _v44 = (-3) * c0
-    _v45 = _v44 * c3
-    _v46 = 7 * c1
-    _v47 = _v46 * c2
-    _v48 = _v45 + _v47
-    _m49 = abs(_v45) + abs(_v47)
-    _v50 = (-8) * c2
-    _v51 = _v50 * c4
-    _v52 = 3 * c3
-    _v53 = _v52 * c3
-    _v54 = _v51 + _v53
-    _m55 = abs(_v51) + abs(_v53)
-    _v56 = (-4) * c2
-    _v57 = _v56 * c2
-    _v58 = _v57 * c2
-    _v59 = _v58 * c4
-    _v60 = c3 * c3
-    _v61 = _v60 * _v36
-    _m62 = abs(_v60) * _m37
-    _v63 = _v59 + _v61
-    _m64 = abs(_v59) + _m62
-    _v65 = 2 * c3
-    _v66 = _v65 * c4
-    _v67 = _v66 * _v48
-    _m68 = abs(_v66) * _m49
-    _v69 = _v63 + _v67
-    _m70 = _m64 + _m68
-    _v71 = 2 * c4
-    _v72 = _v71 * c4
-    _v73 = _v72 * _v42
-    _m74 = abs(_v72) * _m43
-    _v75 = _v69 + _v73
-    _m76 = _m70 + _m74
-    _v77 = 4 * _v8
-    _m78 = 4 * _m9
-    _v79 = _v77 * _v8
-    _m80 = _m78 * _m9
-    _v81 = _v79 * _v8
-    _m82 = _m80 * _m9
-    _v83 = _v31 * _v31
-    _m84 = _m32 * _m32
-    _v85 = _v81 - _v83
-    _m86 = _m82 + _m84
-    return (_v54, _v75, _v85, _m55, _m76, _m86)
+    _v1 = c1 * c3
+    _v2 = c2 * c2
+    _v3 = c3 * c3
+    _v4 = c1 * c1
+    _v5 = c1 * c2
+    _v6 = c2 * c4
+    _v7 = c3 * c4
+    _v8 = c4 * c4
+    _v9 = (-3) * _v1
+    _v10 = _v9 + _v2
+    _m11 = abs(_v9) + abs(_v2)
+    _v12 = 12 * c0
+    _v13 = _v12 * c4
+    _v14 = _v13 + _v10
+    _m15 = abs(_v13) + _m11
+    _v16 = 8 * c0
+    _v17 = _v16 * c2
+    _v18 = 9 * _v4
+    _v19 = _v17 - _v18
+    _m20 = abs(_v17) + abs(_v18)
+    _v21 = (-3) * c0
+    _v22 = _v21 * c3
+    _v23 = 7 * _v5
+    _v24 = _v22 + _v23
+    _m25 = abs(_v22) + abs(_v23)
+    _v26 = 72 * c0
+    _v27 = _v26 * c4
+    _v28 = 2 * _v2
+    _v29 = _v27 - _v28
+    _m30 = abs(_v27) + abs(_v28)
+    _v31 = c0 * _v3
+    _v32 = c4 * _v4
+    _v33 = _v31 + _v32
+    _m34 = abs(_v31) + abs(_v32)
+    _v35 = c2 * _v29
+    _m36 = abs(c2) * _m30
+    _v37 = 9 * c3
+    _v38 = _v37 * _v5
+    _v39 = _v35 + _v38
+    _m40 = _m36 + abs(_v38)
+    _v41 = 27 * _v33
+    _m42 = 27 * _m34
+    _v43 = _v39 - _v41
+    _m44 = _m40 + _m42
+    _v45 = (-8) * _v6
+    _v46 = 3 * _v3
+    _v47 = _v45 + _v46
+    _m48 = abs(_v45) + abs(_v46)
+    _v49 = (-4) * _v6
+    _v50 = _v49 * _v2
+    _v51 = 2 * _v7
+    _v52 = _v51 * _v24
+    _m53 = abs(_v51) * _m25
+    _v54 = _v50 + _v52
+    _m55 = abs(_v50) + _m53
+    _v56 = _v3 * _v10
+    _m57 = abs(_v3) * _m11
+    _v58 = _v54 + _v56
+    _m59 = _m55 + _m57
+    _v60 = 2 * _v8
+    _v61 = _v60 * _v19
+    _m62 = abs(_v60) * _m20
+    _v63 = _v58 + _v61
+    _m64 = _m59 + _m62
+    _v65 = 4 * _v14
+    _m66 = 4 * _m15
+    _v67 = _v65 * _v14
+    _m68 = _m66 * _m15
+    _v69 = _v67 * _v14
+    _m70 = _m68 * _m15
+    _v71 = _v43 * _v43
+    _m72 = _m44 * _m44
+    _v73 = _v69 - _v71
+    _m74 = _m70 + _m72
+    return (_v47, _v63, _v73, _m48, _m64, _m74)
 
 
 BLOCK_COUNTS = {
@@ -419,7 +417,7 @@ BLOCK_COUNTS = {
     'paper_deltas_compact': {
         'outputs': ('Delta2', 'Delta3', 'Delta4_27'),
         'degree': (2, 4, 6),
-        'value': (3, 8, 16),
-        'magnitude': (3, 8, 16),
+        'value': (3, 9, 16),
+        'magnitude': (3, 9, 16),
     },
 }

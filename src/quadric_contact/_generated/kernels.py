@@ -27,13 +27,23 @@ def leading_minors_3(a00, a01, a02, a11, a12, a22):
 def paper_deltas_compact(c0, c1, c2, c3, c4):
     """Delta_2, Delta_3 and 27 Delta_4 (same signs as paper_deltas) in about 60 operations,
     for exact arithmetic; 27 Delta_4 = 4 I^3 - J^2 with the invariants I, J of the quartic."""
-    I = 12*c0*c4 - 3*c1*c3 + c2*c2
-    J = 72*c0*c2*c4 - 27*c0*c3*c3 - 27*c1*c1*c4 + 9*c1*c2*c3 - 2*c2*c2*c2
-    u = -3*c1*c3 + c2*c2
-    v = 8*c0*c2 - 9*c1*c1
-    w = -3*c0*c3 + 7*c1*c2
-    Delta2 = -8*c2*c4 + 3*c3*c3
-    Delta3 = -4*c2*c2*c2*c4 + c3*c3*u + 2*c3*c4*w + 2*c4*c4*v
+    p13 = c1*c3
+    s2 = c2*c2
+    s3 = c3*c3
+    s1 = c1*c1
+    p12 = c1*c2
+    p24 = c2*c4
+    p34 = c3*c4
+    s4 = c4*c4
+    u = -3*p13 + s2
+    I = 12*c0*c4 + u
+    v = 8*c0*c2 - 9*s1
+    w = -3*c0*c3 + 7*p12
+    h = 72*c0*c4 - 2*s2
+    g = c0*s3 + c4*s1
+    J = c2*h + 9*c3*p12 - 27*g
+    Delta2 = -8*p24 + 3*s3
+    Delta3 = -4*p24*s2 + 2*p34*w + s3*u + 2*s4*v
     Delta4_27 = 4*I*I*I - J*J
     return (Delta2, Delta3, Delta4_27)
 

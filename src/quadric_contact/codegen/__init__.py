@@ -461,25 +461,38 @@ def verify_invariants() -> None:
 
 
 def derive_compact_deltas() -> tuple[list[sp.Symbol], list[tuple[str, sp.Expr]]]:
-    """A short straight-line program with the signs of ``(Delta_2, Delta_3, Delta_4)``,
-    for exact arithmetic (about 60 operations instead of 160): ``Delta_3`` grouped by
-    ``c3`` and ``c4``, and ``27 Delta_4 = 4 I^3 - J^2`` with the invariants ``I, J`` of
-    the quartic (the discriminant identity).  Checked against :func:`derive_paper_deltas`
-    by :func:`verify_compact_deltas`.  Not for floating point: ``4 I^3 - J^2`` cancels far
-    more than the expanded form, so its rounding bound is much weaker."""
+    """A short straight-line program with the signs of ``(Delta_2, Delta_3, Delta_4)``
+    (about 60 operations instead of 160): ``Delta_3`` grouped by ``c3`` and ``c4``, and
+    ``27 Delta_4 = 4 I^3 - J^2`` with the invariants ``I, J`` of the quartic (the discriminant
+    identity), the products of two coefficients computed once (``s_k = c_k^2``, ``p_jk = c_j
+    c_k``; ``I = 12 c0 c4 + u``, ``J = c2 h - 27 g + 9 c3 p12``): 32 products, 41 with the
+    magnitude program sharing them (:func:`~quadric_contact.exact.straight_line.
+    emit_value_and_magnitude_function`), against 48.  Checked against
+    :func:`derive_paper_deltas` by :func:`verify_compact_deltas`.  In floating point
+    ``4 I^3 - J^2`` cancels far more than the expanded form, so its rounding bound is weaker:
+    the screen uses it with that bound (``errorbounds.SEMI_DELTA``), the filter the expanded
+    form."""
     c0, c1, c2, c3, c4 = coefficient_symbols(4)
-    I, J, u, v, w = sp.symbols("I J u v w")  # noqa: E741 - the classical names
+    names = "p13 s2 s3 s1 p12 p24 p34 s4 u I v w h g J"
+    p13, s2, s3, s1, p12, p24, p34, s4, u, I, v, w, h, g, J = sp.symbols(names)  # noqa: E741
     program = [
-        ("I", 12 * c0 * c4 - 3 * c1 * c3 + c2 * c2),
-        (
-            "J",
-            72 * c0 * c2 * c4 - 27 * c0 * c3 * c3 - 27 * c1 * c1 * c4 + 9 * c1 * c2 * c3 - 2 * c2 * c2 * c2,
-        ),
-        ("u", c2 * c2 - 3 * c1 * c3),
-        ("v", 8 * c0 * c2 - 9 * c1 * c1),
-        ("w", 7 * c1 * c2 - 3 * c0 * c3),
-        ("Delta2", 3 * c3 * c3 - 8 * c2 * c4),
-        ("Delta3", c3 * c3 * u + 2 * c4 * c4 * v + 2 * c3 * c4 * w - 4 * c2 * c2 * c2 * c4),
+        ("p13", c1 * c3),
+        ("s2", c2 * c2),
+        ("s3", c3 * c3),
+        ("s1", c1 * c1),
+        ("p12", c1 * c2),
+        ("p24", c2 * c4),
+        ("p34", c3 * c4),
+        ("s4", c4 * c4),
+        ("u", s2 - 3 * p13),
+        ("I", 12 * c0 * c4 + u),
+        ("v", 8 * c0 * c2 - 9 * s1),
+        ("w", 7 * p12 - 3 * c0 * c3),
+        ("h", 72 * c0 * c4 - 2 * s2),
+        ("g", c0 * s3 + s1 * c4),
+        ("J", c2 * h - 27 * g + 9 * c3 * p12),
+        ("Delta2", 3 * s3 - 8 * p24),
+        ("Delta3", s3 * u + 2 * s4 * v + 2 * p34 * w - 4 * s2 * p24),
         ("Delta4_27", 4 * I * I * I - J * J),
     ]
     return [c0, c1, c2, c3, c4], [(name, sp.expand(expr)) for name, expr in program]
