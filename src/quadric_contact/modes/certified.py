@@ -74,14 +74,21 @@ class CertifiedMode(NumberMode):
         """Run ``method`` down the cascade: each stage gets what the previous ones left
         ``UNCERTAIN``.  ``quick_smallness`` leaves out the last (exact) stage: the pipeline
         sends what smallness cannot settle quickly to the separation certificate."""
+        return self.staged_rows(method, pairs)[:3]
+
+    def staged_rows(
+        self, method: str, pairs: Pairs
+    ) -> tuple[np.ndarray, list[str], np.ndarray, np.ndarray | None]:
         stages = self.stages
         if method == "quick_smallness":
             method = "smallness"
             stages = stages[:-1] if len(stages) > 1 else stages
-        codes = getattr(stages[0], method)(pairs)
-        unsure = codes == _UNC
-        todo = set_rows(unsure)
-        which = np.negative(unsure.view(np.int8))  # 0 decided by the first stage, -1 not yet
+        codes, maybe = stages[0].with_candidates(method, pairs)
+        # the entries the first stage left: among ``maybe`` when it says where they can be
+        todo = set_rows(codes == _UNC) if maybe is None else maybe[codes[maybe] == _UNC]
+        later = todo
+        which = np.zeros(pairs.n, dtype=np.int8)  # 0 decided by the first stage
+        which[todo] = -1  # not yet
         skip = _skipped_on_binary64(stages, method, pairs)
         for k, stage in enumerate(stages[1:], start=1):
             if todo.size == 0:
@@ -93,7 +100,7 @@ class CertifiedMode(NumberMode):
             done = sub != _UNC
             which[todo[done]] = k
             todo = todo[~done]
-        return codes, [_stage(s) for s in stages], which
+        return codes, [_stage(s) for s in stages], which, later
 
     def _first_decisive(self, method: str, pairs: Pairs) -> np.ndarray:
         return self.staged(method, pairs)[0]

@@ -199,7 +199,7 @@ def stage_codes(E: np.ndarray, Q: np.ndarray, stage: str, *, backend: str = "num
     e0 = np.zeros(0, dtype=np.intp)
     if stage == "screen":
         if backend == "numba" and HAVE_NUMBA:
-            out = fast_codes(
+            out, _ = fast_codes(
                 E.reshape(-1, 16), Q.reshape(-1, 16), False, False, (e0, e0, 1, 1), n, filtered=True,
                 qrows=None, qmasks=None, run=lambda k, m: k(0, m),
             )  # fmt: skip
@@ -317,22 +317,25 @@ class FloatMode(NumberMode):
         """The fast kernels apply: compiled, binary64 input (not rounded exact input)."""
         return self.backend == "numba" and HAVE_NUMBA and not (pairs.E.rounded or pairs.Q.rounded)
 
-    def _kernel(self, pairs: Pairs, qtypes: Any, qflags: np.ndarray | None) -> np.ndarray:
+    def _kernel(
+        self, pairs: Pairs, qtypes: Any, qflags: np.ndarray | None
+    ) -> tuple[np.ndarray, np.ndarray | None]:
         """Codes of every pair: the fast kernels first when they apply (and no exact facts are
-        given), the general ones for what they leave."""
+        given), the general ones for what they leave.  Also the pairs that may be ``INVALID``
+        or ``UNCERTAIN`` (increasing; None: any of them): the screen answers only what it is
+        sure of, so for the filter they are among those it left to the general kernels."""
         qrows, qmasks = qtypes if qtypes is not None else (None, None)
         if qflags is None and self._fast(pairs):
             E, epacked = pairs.E.kernel_array()
             Q, qpacked = pairs.Q.kernel_array()
-            codes = fast_codes(
+            codes, fall = fast_codes(
                 E, Q, epacked, qpacked, pairs.kernel_indices(), pairs.n, filtered=self.filtered, qrows=qrows,
                 qmasks=qmasks, run=functools.partial(run_parallel, threads=self.threads),
             )  # fmt: skip
-            fall = set_rows(codes == FALLBACK)
             if fall.size:
                 codes[fall] = self._general(pairs.take(fall), qrows, qmasks, None, screen_done=True)
-            return codes
-        return self._general(pairs, qrows, qmasks, qflags, screen_done=False)
+            return codes, (fall if self.filtered else None)
+        return self._general(pairs, qrows, qmasks, qflags, screen_done=False), None
 
     def _general(
         self, pairs: Pairs, qrows: Any, qmasks: Any, qflags: np.ndarray | None, *, screen_done: bool
@@ -391,13 +394,18 @@ class FloatMode(NumberMode):
             flags[maybe] = exact_facts(Q, maybe)[0]
         return flags
 
-    def _codes(self, pairs: Pairs, qtypes: Any) -> np.ndarray:
-        codes = self._kernel(pairs, qtypes, None)
-        invalid = codes == INVALID
-        if invalid.any():
-            codes[invalid] = _diagnose(pairs, np.flatnonzero(invalid))
+    def _codes(self, pairs: Pairs, qtypes: Any) -> tuple[np.ndarray, np.ndarray | None]:
+        """The criterion codes and the pairs that may be ``UNCERTAIN`` (see :meth:`_kernel`)."""
+        codes, maybe = self._kernel(pairs, qtypes, None)
+
+        def where(value: int) -> np.ndarray:
+            return set_rows(codes == value) if maybe is None else maybe[codes[maybe] == value]
+
+        invalid = where(INVALID)
+        if invalid.size:
+            codes[invalid] = _diagnose(pairs, invalid)
         if self.filtered:
-            todo = set_rows(codes == _UNC)
+            todo = where(_UNC)
             if todo.size:
                 # Second pass with exact facts about the quadrics involved (once per quadric):
                 # structural zeros of c0, c1 and, for regions, the exact type.
@@ -411,18 +419,28 @@ class FloatMode(NumberMode):
                     masks[used] = exact_masks
                     types = (rows_from_masks(masks), masks)
                 if flags.any() or types is not None:
-                    again = self._kernel(pairs.take(todo), types, flags)
+                    again, _ = self._kernel(pairs.take(todo), types, flags)
                     codes[todo] = np.where(again == INVALID, _UNC, again)
-        return codes
+        return codes, maybe
 
     def criterion_contact(self, pairs: Pairs) -> np.ndarray:
-        return self._codes(pairs, None)
+        return self._codes(pairs, None)[0]
 
     def criterion_region(self, pairs: Pairs) -> np.ndarray:
+        return self._codes(pairs, self._region_types(pairs))[0]
+
+    def _region_types(self, pairs: Pairs) -> tuple[np.ndarray, np.ndarray]:
         used = _used_rows(pairs.q_index, len(pairs.Q), pairs.n)
         masks = np.zeros(len(pairs.Q), dtype=np.int64)
         masks[used] = self.classify(pairs.Q, used)
-        return self._codes(pairs, (rows_from_masks(masks), masks))
+        return rows_from_masks(masks), masks
+
+    def with_candidates(self, method: str, pairs: Pairs) -> tuple[np.ndarray, np.ndarray | None]:
+        if method == "criterion_contact":
+            return self._codes(pairs, None)
+        if method == "criterion_region":
+            return self._codes(pairs, self._region_types(pairs))
+        return super().with_candidates(method, pairs)
 
     def separation(self, pairs: Pairs) -> np.ndarray:
         from quadric_contact.modes.separation import separation_float

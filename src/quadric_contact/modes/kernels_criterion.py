@@ -210,17 +210,16 @@ _INVALID_INDEX = 65.0
 
 
 @njit(inline=True)
-def _region_out(p: int, idx: float, sb: Any, i: int, S: int, row: int, mask: int, out: Any) -> None:
-    """The region code of pair ``p`` (column ``i``)."""
+def _region_out(idx: float, sb: Any, i: int, S: int, row: int, mask: int) -> int:
+    """The region code of the pair in column ``i``."""
     code = _TABLE[int(idx)]
     if code in (FALLBACK, INVALID):
-        out[p] = code
-        return
+        return int(code)
     region = region_code_masked(
         code, int(sb[i]), int(sb[S + i]), int(sb[2 * S + i]), int(sb[3 * S + i]), int(sb[4 * S + i]),
         row, mask, ROWS,
     )  # fmt: skip
-    out[p] = FALLBACK if region == _UNC else region
+    return FALLBACK if region == _UNC else int(region)
 
 
 @njit(inline=True)
@@ -304,24 +303,31 @@ def _keep_signs(
 
 @njit(inline=True)
 def _write_block(
-    region: bool, blo: int, m: int, xb: Any, sb: Any, S: int, qi: Any, qrows: Any, qmasks: Any, out: Any
-) -> None:  # fmt: skip
+    region: bool, blo: int, m: int, xb: Any, sb: Any, S: int, qi: Any, qrows: Any, qmasks: Any, out: Any,
+    fb: Any, lo: int, nfb: int,
+) -> int:  # fmt: skip
     """The codes of the block ``blo .. blo + m``: contact codes, or region codes from the signs
     and the Table 4 row and candidate mask of each pair's quadric (``qi``: its index in
-    ``qrows``/``qmasks``)."""
-    if region:
-        for i in range(m):
-            _region_out(blo + i, xb[i], sb, i, S, qrows[qi[i]], qmasks[qi[i]], out)
-    else:
-        for i in range(m):
-            out[blo + i] = _TABLE[int(xb[i])]
+    ``qrows``/``qmasks``).  The pairs left to the general kernels (:data:`FALLBACK`) are listed
+    in ``fb[lo:]`` as they are written (``nfb`` so far; returned updated), so that the caller
+    need not search the batch for them."""
+    for i in range(m):
+        if region:
+            code = _region_out(xb[i], sb, i, S, qrows[qi[i]], qmasks[qi[i]])
+        else:
+            code = int(_TABLE[int(xb[i])])
+        out[blo + i] = code
+        if code == FALLBACK:
+            fb[lo + nfb] = blo + i
+            nfb += 1
+    return nfb
 
 
 def _make_pairs(filtered: bool, region: bool) -> Any:
     def kernel(
         E: Any, Q: Any, eidx: Any, qidx: Any, es: int, qs: int, epacked: bool, qpacked: bool, lo: int,
-        hi: int, qrows: Any, qmasks: Any, out: Any,
-    ) -> None:  # fmt: skip
+        hi: int, qrows: Any, qmasks: Any, out: Any, fb: Any,
+    ) -> int:  # fmt: skip
         """Pairs ``lo .. hi``: ``E[eidx[p]]`` (or ``E[p * es]`` when ``eidx`` is empty) against
         ``Q[...]`` likewise; ``E``, ``Q`` flat ``(m, 16)`` matrices or packed ``(m, 10)``."""
         S = NB
@@ -331,6 +337,7 @@ def _make_pairs(filtered: bool, region: bool) -> Any:
         qi = np.empty(S, np.intp)
         xb = np.empty(S)
         sb = np.empty(5 * S)
+        nfb = 0
         for blo in range(lo, hi, S):
             m = min(S, hi - blo)
             _gather_block(E, eidx, es, epacked, blo, m, eb_, asym, True, S)
@@ -350,7 +357,8 @@ def _make_pairs(filtered: bool, region: bool) -> Any:
                 _keep_signs(region, sb, i, S, s0, s1, s2, s3, s4)
             if region:
                 _rows_of_block(qidx, qs, blo, m, qi)
-            _write_block(region, blo, m, xb, sb, S, qi, qrows, qmasks, out)
+            nfb = _write_block(region, blo, m, xb, sb, S, qi, qrows, qmasks, out, fb, lo, nfb)
+        return nfb
 
     return kernel
 
@@ -358,8 +366,8 @@ def _make_pairs(filtered: bool, region: bool) -> Any:
 def _make_fixed_q(filtered: bool, region: bool) -> Any:
     def kernel(
         E: Any, eidx: Any, es: int, epacked: bool, Qm: Any, qpacked: bool, lo: int, hi: int, qrows: Any,
-        qmasks: Any, out: Any,
-    ) -> None:  # fmt: skip
+        qmasks: Any, out: Any, fb: Any,
+    ) -> int:  # fmt: skip
         """Pairs ``lo .. hi`` of a stack of ``E`` against the one quadric ``Qm[0]``: its products,
         row maxima and guard are computed once, only ``E`` is read."""
         S = NB
@@ -375,6 +383,7 @@ def _make_fixed_q(filtered: bool, region: bool) -> Any:
         qi = np.zeros(S, np.intp)  # every pair's quadric is qrows[0]
         xb = np.empty(S)
         sb = np.empty(5 * S)
+        nfb = 0
         for blo in range(lo, hi, S):
             m = min(S, hi - blo)
             _gather_block(E, eidx, es, epacked, blo, m, eb_, asym, True, S)
@@ -388,7 +397,8 @@ def _make_fixed_q(filtered: bool, region: bool) -> Any:
                 )
                 xb[i] = x
                 _keep_signs(region, sb, i, S, s0, s1, s2, s3, s4)
-            _write_block(region, blo, m, xb, sb, S, qi, qrows, qmasks, out)
+            nfb = _write_block(region, blo, m, xb, sb, S, qi, qrows, qmasks, out, fb, lo, nfb)
+        return nfb
 
     return kernel
 
@@ -396,8 +406,8 @@ def _make_fixed_q(filtered: bool, region: bool) -> Any:
 def _make_fixed_e(filtered: bool, region: bool) -> Any:
     def kernel(
         Em: Any, epacked: bool, Q: Any, qidx: Any, qs: int, qpacked: bool, lo: int, hi: int, qrows: Any,
-        qmasks: Any, out: Any,
-    ) -> None:  # fmt: skip
+        qmasks: Any, out: Any, fb: Any,
+    ) -> int:  # fmt: skip
         """Pairs ``lo .. hi`` of the one ellipsoid ``Em[0]`` against a stack of ``Q``: its
         products, row maxima and guard are computed once, only ``Q`` is read."""
         S = NB
@@ -412,6 +422,7 @@ def _make_fixed_e(filtered: bool, region: bool) -> Any:
         qi = np.empty(S, np.intp)
         xb = np.empty(S)
         sb = np.empty(5 * S)
+        nfb = 0
         for blo in range(lo, hi, S):
             m = min(S, hi - blo)
             _gather_block(Q, qidx, qs, qpacked, blo, m, qb_, asym, True, S)
@@ -427,7 +438,8 @@ def _make_fixed_e(filtered: bool, region: bool) -> Any:
                 _keep_signs(region, sb, i, S, s0, s1, s2, s3, s4)
             if region:
                 _rows_of_block(qidx, qs, blo, m, qi)
-            _write_block(region, blo, m, xb, sb, S, qi, qrows, qmasks, out)
+            nfb = _write_block(region, blo, m, xb, sb, S, qi, qrows, qmasks, out, fb, lo, nfb)
+        return nfb
 
     return kernel
 
@@ -465,8 +477,9 @@ def fast_codes(
     qrows: np.ndarray | None,
     qmasks: np.ndarray | None,
     run: Any,
-) -> np.ndarray:
-    """Codes of ``n`` pairs (or :data:`FALLBACK`) from the fast kernels.
+) -> tuple[np.ndarray, np.ndarray]:
+    """Codes of ``n`` pairs (or :data:`FALLBACK`) from the fast kernels, and the pairs marked
+    :data:`FALLBACK` (increasing), listed by the kernels as they write them.
 
     ``E``, ``Q``: flat ``(m, 16)`` or packed ``(m, 10)`` binary64 arrays (C-contiguous);
     ``indices``: ``(e_index, q_index, e_stride, q_stride)`` as the kernels read them (an empty
@@ -476,18 +489,32 @@ def fast_codes(
     eidx, qidx, es, qs = indices
     out = np.empty(n, dtype=np.int8)
     if n == 0:
-        return out
+        return out, np.zeros(0, dtype=np.intp)
+    fb = np.empty(n, dtype=np.intp)  # slice lo .. hi lists its fallbacks in fb[lo:]
+    found: dict[int, int] = {}
     region = qrows is not None
     rows = np.zeros(1, dtype=np.int16) if qrows is None else np.ascontiguousarray(qrows, dtype=np.int16)
     masks = np.zeros(1, dtype=np.int64) if qmasks is None else np.ascontiguousarray(qmasks, dtype=np.int64)
     if qidx.shape[0] == 0 and qs == 0 and (es != 0 or eidx.shape[0] > 0):
         # one quadric against a stack of ellipsoids (all of them, or a sub-batch by index)
         k = kernel("fixed_q", filtered, region)
-        run(lambda lo, hi: k(E, eidx, es, epacked, Q, qpacked, lo, hi, rows, masks, out), n)
+
+        def go(lo: int, hi: int) -> None:
+            found[lo] = k(E, eidx, es, epacked, Q, qpacked, lo, hi, rows, masks, out, fb)
+
     elif eidx.shape[0] == 0 and qidx.shape[0] == 0 and es == 0 and qs != 0:
         k = kernel("fixed_e", filtered, region)
-        run(lambda lo, hi: k(E, epacked, Q, qidx, qs, qpacked, lo, hi, rows, masks, out), n)
+
+        def go(lo: int, hi: int) -> None:
+            found[lo] = k(E, epacked, Q, qidx, qs, qpacked, lo, hi, rows, masks, out, fb)
+
     else:
         k = kernel("pairs", filtered, region)
-        run(lambda lo, hi: k(E, Q, eidx, qidx, es, qs, epacked, qpacked, lo, hi, rows, masks, out), n)
-    return out
+
+        def go(lo: int, hi: int) -> None:
+            found[lo] = k(E, Q, eidx, qidx, es, qs, epacked, qpacked, lo, hi, rows, masks, out, fb)
+
+    run(go, n)
+    parts = [fb[lo : lo + c] for lo, c in sorted(found.items()) if c]
+    fall = np.concatenate(parts) if parts else np.zeros(0, dtype=np.intp)
+    return out, fall

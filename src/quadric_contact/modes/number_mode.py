@@ -107,14 +107,14 @@ class NumberMode(ABC):
 
     def criterion(self, pairs: Pairs) -> np.ndarray:
         """:class:`CriterionCode` of every pair (the raw criterion), recording its counts."""
-        codes, names, which = self.staged("criterion_contact", pairs)
-        self._record(_stage_counts("criterion", names, which))
+        codes, names, which, later = self.staged_rows("criterion_contact", pairs)
+        self._record(_stage_counts("criterion", names, which, later))
         return codes
 
     def public_smallness(self, pairs: Pairs) -> np.ndarray:
         """:class:`SmallnessCode` of every pair, recording its counts."""
-        codes, names, which = self.staged("smallness", pairs)
-        self._record(_stage_counts("smallness", names, which))
+        codes, names, which, later = self.staged_rows("smallness", pairs)
+        self._record(_stage_counts("smallness", names, which, later))
         return codes
 
     # -- the stages -------------------------------------------------------------------------
@@ -146,6 +146,12 @@ class NumberMode(ABC):
         :meth:`smallness`; the certified cascade leaves out its slow exact stage)."""
         return self.smallness(pairs)
 
+    def with_candidates(self, method: str, pairs: Pairs) -> tuple[np.ndarray, np.ndarray | None]:
+        """``getattr(self, method)(pairs)`` and the entries that may be ``UNCERTAIN``
+        (increasing, a superset), or None when any may be: where a cascade looks for the
+        entries of its next stage without searching the whole batch."""
+        return getattr(self, method)(pairs), None
+
     def staged(self, method: str, pairs: Pairs) -> tuple[np.ndarray, list[str], np.ndarray]:
         """Run the stage ``method``: ``(codes, stage names, index of the stage that decided
         each entry or -1)``.  A cascade (the certified mode) reports each of its stages."""
@@ -153,16 +159,29 @@ class NumberMode(ABC):
         which = np.negative((codes == 2).view(np.int8))  # 0 decided, -1 not
         return codes, [self.stage], which
 
+    def staged_rows(
+        self, method: str, pairs: Pairs
+    ) -> tuple[np.ndarray, list[str], np.ndarray, np.ndarray | None]:
+        """:meth:`staged` and the entries not decided by the first stage (a superset, or None
+        when not known), so that the counts need not search the batch."""
+        return (*self.staged(method, pairs), None)
+
     def __repr__(self) -> str:
         return f"{type(self).__name__}()"
 
 
-def _stage_counts(step: str, names: list[str], which: np.ndarray) -> StageCounts:
+def _stage_counts(
+    step: str, names: list[str], which: np.ndarray, rows: np.ndarray | None = None
+) -> StageCounts:
     """The counts of ``step`` from the deciding stage of every entry (``which``: stage index, or
-    -1 undecided), in one pass over the batch: nearly every entry is the first stage's (0)."""
-    # the few entries not decided by the first stage (nonzero on a bool array: on int8 it is
-    # ten times slower)
-    later = which[np.flatnonzero(which != 0)] if np.count_nonzero(which) else which[:0]
+    -1 undecided): nearly every entry is the first stage's (0).  ``rows``: a superset of the
+    entries that are not (then the batch is not searched)."""
+    if rows is not None:
+        later = which[rows]
+        later = later[later != 0]
+    else:
+        # one pass over the batch (nonzero on a bool array: on int8 it is ten times slower)
+        later = which[np.flatnonzero(which != 0)] if np.count_nonzero(which) else which[:0]
     counts = StageCounts()
     for k, name in enumerate(names):
         k_count = which.size - later.size if k == 0 else np.count_nonzero(later == k)
