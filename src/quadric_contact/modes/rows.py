@@ -2,7 +2,8 @@
 
 ``np.unique`` sorts (``O(n log n)``); the row indices of pairs are bounded by the length
 ``m`` of the stack they index, so marking the rows used in a boolean array of length ``m``
-finds them in ``O(n + m)``, in increasing order as ``np.unique`` gives them.
+finds them in ``O(n + m)``, in increasing order as ``np.unique`` gives them.  For a few rows
+of a long stack (``16 n < m``: the pairs a stage left, out of millions) sorting is the cheaper.
 """
 
 from __future__ import annotations
@@ -35,6 +36,12 @@ def unique_rows(
     (array([0, 2, 5]), array([2, 1, 2, 0]))
     """
     index = np.asarray(index, dtype=np.intp).reshape(-1)
+    if 16 * index.size < m:
+        # a few rows of a long stack: sorting them costs less than marking the whole stack
+        if not return_inverse:
+            return np.unique(index)
+        rows, inverse = np.unique(index, return_inverse=True)
+        return rows, inverse.astype(np.intp, copy=False).reshape(-1)
     seen = np.zeros(m, dtype=np.bool_)
     seen[index] = True
     rows = np.flatnonzero(seen)

@@ -26,7 +26,7 @@ THREADS = max(1, min(os.cpu_count() or 1, int(os.environ.get("QUADRIC_CONTACT_TH
 MIN_PER_THREAD = 16384
 """A slice is never shorter than this: below it one thread does the work."""
 SLICES_PER_THREAD = 8
-"""Slices per thread of one call (the threads take them in turn)."""
+"""Sets the share of what is left that each slice of one call takes (see :func:`_slices`)."""
 
 _local = threading.local()
 _pool: ThreadPoolExecutor | None = None
@@ -70,19 +70,33 @@ def threads_for(n: int, threads: int | None = None) -> int:
     return max(1, min(t, n // MIN_PER_THREAD))
 
 
+def _slices(n: int, t: int) -> list[int]:
+    """Bounds of the slices of ``range(n)`` for ``t`` threads, shrinking as they go (guided
+    scheduling): each takes a share of what is left, ``1 / (SLICES_PER_THREAD / 2 * t)`` of it
+    and never under :data:`MIN_PER_THREAD`, so the threads start on long slices and end on short
+    ones: the last thread to finish waits for a short slice, not an eighth of the batch."""
+    bounds = [0]
+    share = max(1, SLICES_PER_THREAD * t // 2)
+    while bounds[-1] < n:
+        rest = n - bounds[-1]
+        size = max(MIN_PER_THREAD, rest // share)
+        bounds.append(bounds[-1] + min(size, rest))
+    return bounds
+
+
 def run_parallel(kernel: Callable[[int, int], object], n: int, threads: int | None = None) -> None:
     """Call ``kernel(lo, hi)`` on slices of ``range(n)``, on several threads when it pays (the
     calling thread works too).  One thread inside :func:`single_threaded`.
 
-    The range is cut into :data:`SLICES_PER_THREAD` slices per thread, taken in turn by whichever
-    thread is free: a thread slowed down by the rest of the machine takes fewer of them, so the
-    call does not wait for the slowest half."""
+    The range is cut into slices (:func:`_slices`) taken in turn by whichever thread is free: a
+    thread slowed down by the rest of the machine takes fewer of them, so the call does not
+    wait for the slowest half."""
     t = threads_for(n, threads)
     if t <= 1 or not HAVE_NUMBA:
         kernel(0, n)
         return
-    k = max(t, min(t * SLICES_PER_THREAD, n // MIN_PER_THREAD))
-    bounds = [n * i // k for i in range(k + 1)]
+    bounds = _slices(n, t)
+    k = len(bounds) - 1
     slices = itertools.count()  # next() on a count is atomic under the GIL
 
     def work() -> None:
