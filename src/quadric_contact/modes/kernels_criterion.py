@@ -340,8 +340,15 @@ def _make_pairs(filtered: bool, region: bool) -> Any:
         nfb = 0
         for blo in range(lo, hi, S):
             m = min(S, hi - blo)
-            _gather_block(E, eidx, es, epacked, blo, m, eb_, asym, True, S)
-            _gather_block(Q, qidx, qs, qpacked, blo, m, qb_, asym, False, S)
+            if eidx.shape[0] == 0 and qidx.shape[0] == 0 and not epacked and not qpacked:
+                # the common case (two full stacks, rows p * stride): both sides in one loop
+                for t in range(m):
+                    bad_e = _gather_full(E, (blo + t) * es, eb_, t, S)
+                    bad_q = _gather_full(Q, (blo + t) * qs, qb_, t, S)
+                    asym[t] = 1.0 if (bad_e | bad_q) else 0.0
+            else:
+                _gather_block(E, eidx, es, epacked, blo, m, eb_, asym, True, S)
+                _gather_block(Q, qidx, qs, qpacked, blo, m, qb_, asym, False, S)
             for i in range(m):
                 e = _load(eb_, i, S)
                 q = _load(qb_, i, S)
