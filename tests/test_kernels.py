@@ -160,6 +160,21 @@ def test_run_parallel_covers_every_item_once(n: int, threads: int) -> None:
     assert (seen == 1).all()
 
 
+@pytest.mark.parametrize("n", [0, 1, 16384, 40000, 2_000_000])
+def test_slices_shrink_and_cover_the_batch(n: int) -> None:
+    """Guided slices: they tile ``range(n)``, no slice but the last is under MIN_PER_THREAD,
+    and they never grow, so the last slice a thread takes is a short one."""
+    from quadric_contact.modes.threads import MIN_PER_THREAD, _slices
+
+    bounds = _slices(n, 2)
+    sizes = np.diff(bounds)
+    assert bounds[0] == 0 and bounds[-1] == n and (sizes > 0).all()
+    assert (sizes[:-1] >= MIN_PER_THREAD).all()
+    assert (np.diff(sizes[:-1]) <= 0).all()
+    if n >= 10 * MIN_PER_THREAD:
+        assert sizes[-1] <= MIN_PER_THREAD < sizes[0]
+
+
 def test_certified_ellipsoids_are_ellipsoids():
     """The short ellipsoid test of classify: the same answer compiled and in numpy, never an
     ellipsoid that is not one (exact type), the canonical sign of the invariant classification

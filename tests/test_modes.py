@@ -270,6 +270,38 @@ def test_certified_mode_exposes_who_decided_what(sample):
     assert "filter" in str(mode.last)
 
 
+def test_binary64_criterion_goes_from_the_filter_to_the_exact_stage(monkeypatch):
+    """On binary64 input the exact stage decides what the filter leaves (it costs less than
+    the balls there); on rounded exact input the ball stage still takes its turn.  Either way
+    the answers are the exact ones."""
+    from fractions import Fraction
+
+    from quadric_contact.modes.objects import BallMode
+
+    asked = []
+    ball = BallMode.criterion_contact
+
+    def spy(self, pairs):
+        asked.append(pairs.n)
+        return ball(self, pairs)
+
+    monkeypatch.setattr(BallMode, "criterion_contact", spy)
+    hard = [c for c in hard_cases(["dyadic-tangent"]) if not c.exact_input]
+    He = np.stack([c.matrices()[0] for c in hard])
+    Hq = np.stack([c.matrices()[1] for c in hard])
+    mode = CertifiedMode()
+    got = transversal_contact_batch(He, Hq, mode=mode)
+    assert mode.last.escalated > 0
+    assert mode.last.decided["ball"] == 0 and mode.last.decided["exact"] == mode.last.escalated
+    assert asked == []
+    assert (got == transversal_contact_batch(He, Hq, mode="exact")).all()
+    third = np.vectorize(lambda x: Fraction(x) / 3, otypes=[object])
+    Fe, Fq = third(He), third(Hq)
+    got = transversal_contact_batch(Fe, Fq, mode=mode)
+    assert mode.last.escalated > 0 and asked == [mode.last.escalated]
+    assert (got == transversal_contact_batch(Fe, Fq, mode="exact")).all()
+
+
 def test_stage_counts_merge():
     a = StageCounts({"filter": 3}, 1)
     a.merge(StageCounts({"filter": 2, "exact": 1}))
