@@ -141,6 +141,51 @@ def test_the_first_compilation_says_so_once(monkeypatch, capsys):
     assert err.count("compiling the numba kernels once") == 1
 
 
+def test_kernels_compile_in_a_thread_of_their_own():
+    """The compiler runs on a fresh Python stack whatever the depth of the caller (see
+    :func:`~quadric_contact.modes._jit.compile_on_a_fresh_stack`): the compile event is seen
+    in the compiler's thread, not the caller's; a kernel that calls another compiles it in
+    that same thread (no wait on the compiler's lock); errors reach the caller."""
+    import threading
+
+    from numba.core import event
+
+    from quadric_contact.modes._jit import njit
+
+    if not HAVE_NUMBA:
+        pytest.skip("numba not installed")
+
+    @njit(cache=False)
+    def inner(x):
+        return 2 * x
+
+    @njit(cache=False)
+    def outer(x):
+        return inner(x) + 1
+
+    @njit(cache=False)
+    def broken(x):
+        return x.no_such_attribute
+
+    threads: list[str] = []
+
+    class Seen(event.Listener):
+        def on_start(self, ev):
+            threads.append(threading.current_thread().name)
+
+        def on_end(self, ev):
+            pass
+
+    with event.install_listener("numba:compile", Seen()):
+        assert outer(20) == 41
+        assert outer(1.5) == 4.0
+    assert len(threads) >= 4  # outer and inner, for two signatures
+    assert set(threads) == {"quadric-contact compiler"}
+    assert threading.current_thread().name not in threads
+    with pytest.raises(Exception, match="no_such_attribute"):
+        broken(1)
+
+
 @pytest.mark.parametrize("n", [0, 1, 16383, 16384 * 2 + 7, 10**6 + 3])
 @pytest.mark.parametrize("threads", [1, 2, 4])
 def test_run_parallel_covers_every_item_once(n: int, threads: int) -> None:
