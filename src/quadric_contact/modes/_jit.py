@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import threading
 from collections.abc import Callable
 from typing import Any
 
@@ -73,8 +74,6 @@ def compile_on_a_fresh_stack(dispatcher: Any) -> None:
     for its argument types (compiling, or loading the cache entry); a kernel that calls
     another compiles it through ``compile``, inside the same thread, so the compiler's
     lock (held by the compiling thread) is never waited for by a thread it waits on."""
-    import threading
-
     compile_for_args = dispatcher._compile_for_args
 
     def compile_elsewhere(*args: Any, **kws: Any) -> Any:
