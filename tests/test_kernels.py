@@ -281,8 +281,16 @@ def test_cached_kernels_are_keyed_on_every_source_they_inline(tmp_path):
     package = Path(_jit.__file__).resolve().parents[1]
     for folder in ("modes", "_generated"):
         shutil.copytree(package / folder, tmp_path / folder, ignore=shutil.ignore_patterns("__pycache__"))
+    (tmp_path / "theory").mkdir()
+    shutil.copy(package / "theory" / "decision.py", tmp_path / "theory" / "decision.py")
     before = _jit._sources_digest(tmp_path)
     assert before == _jit._sources_digest()
     blocks = tmp_path / "_generated" / "blocks.py"
     blocks.write_text(blocks.read_text().replace("Delta2 = ", "Delta2 =  ", 1))
+    assert _jit._sources_digest(tmp_path) != before
+    # the decision table the kernels read as constants is part of their source
+    before = _jit._sources_digest(tmp_path)
+    table = tmp_path / "theory" / "decision.py"
+    text = table.read_text()
+    table.write_text(text.replace("UNCERTAIN = 0, 1, 2", "UNCERTAIN =  0, 1, 2", 1))
     assert _jit._sources_digest(tmp_path) != before

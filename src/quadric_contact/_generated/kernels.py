@@ -62,6 +62,29 @@ def quadric_invariants(q00, q01, q02, q03, q11, q12, q13, q22, q23, q33):
     return (trA, JA, detA, E1, E2, E3, E4)
 
 
+def leading_minors_4(m00, m01, m02, m03, m11, m12, m13, m22, m23, m33):
+    """(d1, d2, d3, d4): leading principal minors of the symmetric 4x4 matrix with upper entries
+    mij (Sylvester's criterion: is a member of the pencil definite?); d3 by Laplace along the
+    third row, d4 by Laplace along the first two rows, from the 2x2 minors of both row pairs."""
+    u01 = m00*m11 - m01*m01
+    u02 = m00*m12 - m01*m02
+    u03 = m00*m13 - m01*m03
+    u12 = m01*m12 - m02*m11
+    u13 = m01*m13 - m03*m11
+    u23 = m02*m13 - m03*m12
+    d1 = m00
+    d2 = u01
+    d3 = m02*u12 - m12*u02 + m22*u01
+    v01 = m02*m13 - m03*m12
+    v02 = m02*m23 - m03*m22
+    v03 = m02*m33 - m03*m23
+    v12 = m12*m23 - m13*m22
+    v13 = m12*m33 - m13*m23
+    v23 = m22*m33 - m23*m23
+    d4 = u01*v23 - u02*v13 + u03*v12 + u12*v03 - u13*v02 + u23*v01
+    return (d1, d2, d3, d4)
+
+
 def pencil_coefficients_magnitude(e00, e01, e02, e03, e11, e12, e13, e22, e23, e33, q00, q01, q02, q03, q11, q12, q13, q22, q23, q33):
     """Magnitude companion of ``pencil_coefficients``: call it with the absolute values of the
     arguments; same operations in the same order, with every minus turned into a plus."""
@@ -155,6 +178,28 @@ def quadric_invariants_magnitude(q00, q01, q02, q03, q11, q12, q13, q22, q23, q3
     return (trA, JA, detA, E1, E2, E3, E4)
 
 
+def leading_minors_4_magnitude(m00, m01, m02, m03, m11, m12, m13, m22, m23, m33):
+    """Magnitude companion of ``leading_minors_4``: call it with the absolute values of the
+    arguments; same operations in the same order, with every minus turned into a plus."""
+    u01 = m00*m11 + m01*m01
+    u02 = m00*m12 + m01*m02
+    u03 = m00*m13 + m01*m03
+    u12 = m01*m12 + m02*m11
+    u13 = m01*m13 + m03*m11
+    u23 = m02*m13 + m03*m12
+    d1 = m00
+    d2 = u01
+    d3 = m02*u12 + m12*u02 + m22*u01
+    v01 = m02*m13 + m03*m12
+    v02 = m02*m23 + m03*m22
+    v03 = m02*m33 + m03*m23
+    v12 = m12*m23 + m13*m22
+    v13 = m12*m33 + m13*m23
+    v23 = m22*m33 + m23*m23
+    d4 = u01*v23 + u02*v13 + u03*v12 + u12*v03 + u13*v02 + u23*v01
+    return (d1, d2, d3, d4)
+
+
 ROUNDING_COUNTS = {
     'pencil_coefficients': {
         'module': ('formulas',),
@@ -187,5 +232,13 @@ ROUNDING_COUNTS = {
         'value': (2, 6, 6, 3, 12, 21, 19),
         'value_rounded_inputs': (3, 8, 9, 4, 14, 24, 23),
         'magnitude': (2, 6, 6, 3, 12, 21, 19),
+    },
+    'leading_minors_4': {
+        'module': ('kernels',),
+        'outputs': ('d1', 'd2', 'd3', 'd4'),
+        'degree': (1, 2, 3, 4),
+        'value': (0, 2, 5, 10),
+        'value_rounded_inputs': (1, 4, 8, 14),
+        'magnitude': (0, 2, 5, 10),
     },
 }

@@ -414,6 +414,44 @@ def derive_leading_minors_3() -> tuple[list[sp.Symbol], list[tuple[str, sp.Expr]
     ]
 
 
+def derive_leading_minors_4() -> tuple[list[sp.Symbol], list[tuple[str, sp.Expr]]]:
+    """The leading principal minors ``d1 .. d4`` of a symmetric 4x4 matrix ``m`` (Sylvester's
+    criterion, which decides whether a member ``s E + Q`` of the pencil is definite), as a
+    program: the six 2x2 minors of the first two rows (``u01 .. u23``, columns ``jk``), ``d3`` by
+    Laplace along the third row from three of them, the six 2x2 minors of the last two rows
+    (``v01 .. v23``) and ``d4`` by Laplace's expansion along the first two rows."""
+    m, args = symmetric_matrix("m")
+    u = {(j, k): sp.Symbol(f"u{j}{k}") for j in range(4) for k in range(j + 1, 4)}
+    v = {(j, k): sp.Symbol(f"v{j}{k}") for j in range(4) for k in range(j + 1, 4)}
+    program: list[tuple[str, sp.Expr]] = []
+    for (j, k), name in u.items():
+        program.append((str(name), m[0, j] * m[1, k] - m[0, k] * m[1, j]))
+    program.append(("d1", m[0, 0]))
+    program.append(("d2", u[(0, 1)]))
+    program.append(("d3", m[2, 2] * u[(0, 1)] - m[2, 1] * u[(0, 2)] + m[2, 0] * u[(1, 2)]))
+    for (j, k), name in v.items():
+        program.append((str(name), m[2, j] * m[3, k] - m[2, k] * m[3, j]))
+    # Laplace along rows 0, 1: sum over column pairs (j, k) of sign * u_jk * v_(complement)
+    d4 = (
+        u[(0, 1)] * v[(2, 3)] - u[(0, 2)] * v[(1, 3)] + u[(0, 3)] * v[(1, 2)]
+        + u[(1, 2)] * v[(0, 3)] - u[(1, 3)] * v[(0, 2)] + u[(2, 3)] * v[(0, 1)]
+    )  # fmt: skip
+    program.append(("d4", d4))
+    return args, program
+
+
+def verify_leading_minors_4() -> None:
+    """Raise AssertionError unless ``d1 .. d4`` are sympy's determinants of the leading blocks."""
+    m, args = symmetric_matrix("m")
+    _, program = derive_leading_minors_4()
+    env: dict[sp.Symbol, sp.Expr] = {}
+    for name, expr in program:
+        env[sp.Symbol(name)] = sp.expand(expr.xreplace(env))
+    for k in range(1, 5):
+        if sp.expand(env[sp.Symbol(f"d{k}")] - m[:k, :k].det(method="berkowitz")) != 0:
+            raise AssertionError(f"d{k} differs from the determinant of the leading {k}x{k} block")
+
+
 def leading_minors_expanded() -> dict[str, sp.Expr]:
     """``m2``, ``m3`` of :func:`derive_leading_minors_3` as polynomials in the entries."""
     _, program = derive_leading_minors_3()
@@ -534,6 +572,7 @@ FILTERED_FUNCTIONS: tuple[tuple[str, str, tuple[str, ...]], ...] = (
     ("formulas", "paper_deltas", ("Delta2", "Delta3", "Delta4")),
     ("kernels", "leading_minors_3", ("m2", "m3")),
     ("kernels", "quadric_invariants", ("trA", "JA", "detA", "E1", "E2", "E3", "E4")),
+    ("kernels", "leading_minors_4", ("d1", "d2", "d3", "d4")),
 )
 
 
@@ -569,6 +608,17 @@ def _kernel_value_functions() -> list[str]:
         "(trA, JA, detA, E1, E2, E3, E4) of the symmetric Q with upper entries qij: trace, sum of\n"
         "    principal 2x2 minors and determinant of the quadratic part, and the sums of the principal\n"
         "    minors of each order of Q.",
+    )
+    out += ["", ""]
+    args, minors4 = derive_leading_minors_4()
+    out += _emit_function(
+        "leading_minors_4",
+        args,
+        minors4,
+        "(d1, d2, d3, d4): leading principal minors of the symmetric 4x4 matrix with upper entries\n"
+        "    mij (Sylvester's criterion: is a member of the pencil definite?); d3 by Laplace along the\n"
+        "    third row, d4 by Laplace along the first two rows, from the 2x2 minors of both row pairs.",
+        returned=("d1", "d2", "d3", "d4"),
     )
     return out
 
@@ -636,6 +686,7 @@ def emit_kernels(formulas_text: str | None = None) -> str:
 def regenerate_kernels(path: Path = KERNELS_PATH, check: bool = False) -> bool:
     """Write (or with ``check=True`` only compare) ``_generated/kernels.py``."""
     verify_invariants()
+    verify_leading_minors_4()
     verify_compact_deltas()
     text = emit_kernels()
     current = path.read_text() if path.exists() else None

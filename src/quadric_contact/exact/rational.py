@@ -416,7 +416,7 @@ def coprime_fraction(n: int, d: int) -> Fraction:
     (True, True)
     """
     if _FROM_COPRIME is not None:
-        return _FROM_COPRIME(n, d)  # type: ignore[no-any-return]
+        return _FROM_COPRIME(n, d)
     f = object.__new__(Fraction)
     f._numerator = n  # type: ignore[attr-defined]
     f._denominator = d  # type: ignore[attr-defined]

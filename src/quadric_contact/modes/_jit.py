@@ -20,7 +20,8 @@ __all__ = ["HAVE_NUMBA", "compile_on_a_fresh_stack", "njit", "stamp_with_sources
 def _sources_digest(root: Any = None) -> str:
     """A digest of the sources the compiled kernels are made of: every module of
     :mod:`quadric_contact.modes` and :mod:`quadric_contact._generated` (the kernels inline the
-    generated programs and each other's helpers)."""
+    generated programs and each other's helpers), and the decision table of
+    :mod:`quadric_contact.theory.decision`."""
     import hashlib
     from pathlib import Path
 
@@ -30,7 +31,14 @@ def _sources_digest(root: Any = None) -> str:
         for path in sorted((root / folder).glob("*.py")):
             digest.update(path.name.encode())
             digest.update(path.read_bytes())
+    # the decision table, which the kernels read as constants
+    for path in _KERNEL_SOURCES_ELSEWHERE:
+        digest.update(path.encode())
+        digest.update((root / path).read_bytes())
     return digest.hexdigest()
+
+
+_KERNEL_SOURCES_ELSEWHERE = ("theory/decision.py",)
 
 
 _SOURCES: str | None = None

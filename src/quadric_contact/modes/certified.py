@@ -72,17 +72,13 @@ class CertifiedMode(NumberMode):
 
     def staged(self, method: str, pairs: Pairs) -> tuple[np.ndarray, list[str], np.ndarray]:
         """Run ``method`` down the cascade: each stage gets what the previous ones left
-        ``UNCERTAIN``.  ``quick_smallness`` leaves out the last (exact) stage: the pipeline
-        sends what smallness cannot settle quickly to the separation certificate."""
+        ``UNCERTAIN``."""
         return self.staged_rows(method, pairs)[:3]
 
     def staged_rows(
         self, method: str, pairs: Pairs
     ) -> tuple[np.ndarray, list[str], np.ndarray, np.ndarray | None]:
         stages = self.stages
-        if method == "quick_smallness":
-            method = "smallness"
-            stages = stages[:-1] if len(stages) > 1 else stages
         codes, maybe = stages[0].with_candidates(method, pairs)
         # the entries the first stage left: among ``maybe`` when it says where they can be
         todo = set_rows(codes == _UNC) if maybe is None else maybe[codes[maybe] == _UNC]

@@ -49,6 +49,7 @@ __all__ = [
     "DELTA_RELATIVE",
     "INPUT_MAX",
     "INPUT_MIN",
+    "MEMBER_MINORS_ERRBOUND",
     "MINORS_ERRBOUND",
     "PENCIL_ERRBOUND",
     "RHO_MAX",
@@ -261,11 +262,33 @@ def _member_errbound(k: int, rounded: bool) -> float:
     return round_up(numerator / (1 - _U) ** (nm + (2 + r) * k) / (1 - _U))
 
 
+def _member_minor_errbound(k: int, rounded: bool) -> float:
+    """As :func:`_member_errbound`, for the leading principal minor ``d_k`` (degree ``k``) of the
+    program ``leading_minors_4`` run on the member's computed entries."""
+    rc = _counts("leading_minors_4")
+    j = rc["outputs"].index(f"d{k}")
+    n, nm, d = rc["value"][j], rc["magnitude"][j], rc["degree"][j]
+    assert d == k
+    r = 1 if rounded else 0
+    a = (1 + _U) ** (2 + r) - 1
+    numerator = (1 + gamma(n)) * (1 + a) ** k - 1
+    return round_up(numerator / (1 - _U) ** (nm + (2 + r) * k) / (1 - _U))
+
+
 MEMBER_ERRBOUND = {
     rounded: tuple(_member_errbound(k, rounded) for k in range(1, 5)) for rounded in (False, True)
 }
 """``K_k`` for ``E1 .. E4`` of a member ``s E + Q`` (keyed by "inputs are rounded"):
 ``|E_k^ - E_k(s E + Q)| <= fl(K_k * M_k)`` with ``M_k`` the magnitude program at ``W^``."""
+
+MEMBER_MINORS_ERRBOUND = {
+    rounded: tuple(_member_minor_errbound(k, rounded) for k in range(1, 5)) for rounded in (False, True)
+}
+"""``K_k`` for the leading principal minors ``d1 .. d4`` of a member ``s E + Q`` (Sylvester's
+criterion, :func:`~quadric_contact._generated.kernels.leading_minors_4`), keyed by "inputs are
+rounded": ``|d_k^ - d_k(s E + Q)| <= fl(K_k * M_k)`` with ``M_k`` the magnitude program at ``W^``
+(the same argument as for ``E1 .. E4``: the member's entries carry ``(1 + u)^(2 + r)`` each, the
+program ``k`` of them on every path)."""
 
 
 def _check_member_guard() -> None:
@@ -278,6 +301,9 @@ def _check_member_guard() -> None:
     paths = max(kernels.quadric_invariants_magnitude(*([1] * 10)))
     assert math.log2(paths) + 4 * INPUT_MAX_EXPONENT + 1 < 1023
     assert 4 * (INPUT_MIN_EXPONENT - 52) + math.log2(min(MEMBER_ERRBOUND[False])) >= -1022
+    paths = max(kernels.leading_minors_4_magnitude(*([1] * 10)))
+    assert math.log2(paths) + 4 * INPUT_MAX_EXPONENT + 1 < 1023
+    assert 4 * (INPUT_MIN_EXPONENT - 52) + math.log2(min(MEMBER_MINORS_ERRBOUND[False][1:])) >= -1022
 
 
 _check_member_guard()

@@ -310,6 +310,9 @@ class FloatMode(NumberMode):
         if self.backend not in BACKENDS:
             raise ValueError(f"backend must be one of {BACKENDS}, got {backend!r}")
         self.threads = threads
+        if not self.filtered:
+            # binary64's reading of non-real roots is confirmed by the filter's (see the pipeline)
+            self.guard = FilterMode(self.backend, threads)
         # what classify remembers within one decision (None: nothing, not remembering)
         self._classified: tuple[MatrixStack, np.ndarray, np.ndarray] | tuple[()] | None = None
 

@@ -36,9 +36,10 @@ class NumberMode(ABC):
       nature of the roots of ``P``, Corollary 10 / Remark 9, and the Table 4 reading
       of their signs; Theorem 14 for planes), with no smallness test;
     * :meth:`classify`: the type of each quadric;
-    * :meth:`smallness`: Definition 1 through Tables 1-2 (corrected);
-    * :meth:`separation`: the smallness-free separation certificate
-      (:mod:`quadric_contact.modes.separation`).
+    * :meth:`smallness`: Definition 1 through Tables 1-2 (corrected), a public report, not
+      a step of the decision;
+    * :meth:`separation`: the pencil's signature sequence, looked up in the decision table
+      (:mod:`quadric_contact.modes.separation`, :mod:`quadric_contact.theory.decision`).
 
     Every public call records which stage settled how many entries in :attr:`last`
     and adds it to :attr:`counts` (thread-safe).
@@ -52,16 +53,16 @@ class NumberMode(ABC):
     complete : bool
         True if the mode ends with the exact scalar predicates for what its stages leave
         (``certified``, ``exact``): it never answers ``UNCERTAIN``.
-    uses_smallness : bool
-        The pipeline tries Corollary 10 through :meth:`smallness` before the separation
-        certificate (not for ``exact``, whose separation is cheaper than exact smallness).
+    guard : NumberMode or None
+        A plain mode's certified reading of the criterion: the pipeline confirms with it the
+        crossings the plain mode reads from non-real roots (None: not needed).
     """
 
     name: str = "mode"
     stage: str = "mode"
     certified: bool = False
     complete: bool = False
-    uses_smallness: bool = True
+    guard: NumberMode | None = None
 
     def __init__(self) -> None:
         self.counts = StageCounts()
@@ -140,11 +141,6 @@ class NumberMode(ABC):
     def smallness(self, pairs: Pairs) -> np.ndarray:
         """:class:`SmallnessCode` of every pair (Tables 1-2, corrected)."""
         raise NotImplementedError(f"{type(self).__name__} does not decide smallness on arrays")
-
-    def quick_smallness(self, pairs: Pairs) -> np.ndarray:
-        """The smallness the pipeline tries before the separation certificate (by default
-        :meth:`smallness`; the certified cascade leaves out its slow exact stage)."""
-        return self.smallness(pairs)
 
     def with_candidates(self, method: str, pairs: Pairs) -> tuple[np.ndarray, np.ndarray | None]:
         """``getattr(self, method)(pairs)`` and the entries that may be ``UNCERTAIN``

@@ -325,7 +325,6 @@ class ExactMode(ObjectMode):
     stage = "exact"
     certified = True
     complete = True
-    uses_smallness = False
 
     def __init__(self, backend: str = "int") -> None:
         super().__init__()

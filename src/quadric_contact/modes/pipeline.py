@@ -19,19 +19,22 @@ steps and the order in which they hand pairs on are written once, here:
    of the cascade decides the contact code where that reading is unsure, and only the first
    stage's reading settles pairs here.  This is most pairs of an environment and of
    ellipsoids of similar sizes.
-2. **smallness** (:meth:`~quadric_contact.modes.number_mode.NumberMode.smallness`, where
-   the mode offers it): all roots real and ``E`` small with respect to ``Q``
-   (Tables 1-2, corrected) means no transversal contact (Corollary 10), and unless
-   ``E`` is small only in the enclosing sense, Table 4 names the region
-   (Theorem 13).
-3. **separation** (:mod:`quadric_contact.modes.separation`): a definite member of
-   the pencil proves strict separation (S-lemma), four simple real roots without
-   one prove a crossing; no smallness and no type of ``Q`` needed.
-4. **exact pair**: what no earlier step settled (tangencies, multiple roots) is
-   decided by the exact scalar predicates, pair by pair, in the modes that always
+   In the plain modes a crossing read from non-real roots that the certified filter cannot
+   confirm goes on to step 2 (a symmetric placement's multiple root looks non-real after
+   rounding; step 2 finds its definite member if it has one).
+2. **separation** (:mod:`quadric_contact.modes.separation`): the pencil's signature sequence,
+   looked up in the decision table (:mod:`quadric_contact.theory.decision`): a definite member
+   proves strict separation, four simple real roots without one prove a crossing; no smallness
+   and no type of ``Q`` needed.
+3. **exact pair**: what no earlier step settled (tangencies, multiple roots) is
+   decided by the exact scalar predicates, pair by pair (the same table, with exact facts,
+   then the exact geometric decision for a singular intersection), in the modes that always
    decide exactly (``certified``, ``exact``).  The modes that abstain (``filter``,
    ``ball``) answer ``UNCERTAIN`` there; the plain ones (``float``, ``mpmath``)
-   have answered everything at step 3.
+   have answered everything at step 2.
+
+Smallness (Definition 1, Tables 1-2) is not a step: the decision does not need it.  It stays a
+public report (:func:`quadric_contact.smallness`) and, with Corollary 10, a cross-check.
 
 The question "do the solids overlap?" (:func:`decide_overlap`) uses the same steps: the
 criterion (non-real roots: the surfaces cross; a plane's side by Theorem 14; for two
@@ -284,30 +287,12 @@ def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
         outside = todo & all_real & ell & (signs_first * qsign == int(RegionCode.R_PLUS))
         settle(outside, ContactCode.NO_CONTACT, labels[0])
 
-    # 2. smallness: Corollary 10 and Table 4 where they apply.
-    if question != "kind" and getattr(mode, "uses_smallness", False):
-        table = _is(klass, _CLASS_TABLE)
-        cand = np.flatnonzero(todo & all_real & table) if table is not False else np.zeros(0, dtype=np.intp)
-        names = []
-        if cand.size:
-            try:
-                sm, names, which = _staged(mode, "quick_smallness", pairs.take(cand))
-            except NotImplementedError:
-                names = []
-        if names:
-            from quadric_contact.modes.base import SmallnessCode
-
-            for k, name in enumerate(names):
-                hit = which == k
-                if question == "contact":
-                    small = hit & (
-                        (sm == int(SmallnessCode.SMALL)) | (sm == int(SmallnessCode.SMALL_ENCLOSING))
-                    )
-                    settle_at(cand[small], ContactCode.NO_CONTACT, f"smallness ({name})")
-                else:
-                    side = (crit[cand] == int(RegionCode.R_MINUS)) | (crit[cand] == int(RegionCode.R_PLUS))
-                    small = hit & (sm == int(SmallnessCode.SMALL)) & side
-                    settle_at(cand[small], crit[cand[small]], f"smallness ({name})")
+    # 1c. plain modes: a crossing read from non-real roots that a certified reading cannot
+    # confirm waits for the separation stage.
+    if question != "kind":
+        crossing = int(RegionCode.CONTACT) if question == "region" else int(ContactCode.CONTACT)
+        said = np.flatnonzero(~todo & (out == crossing))
+        _confirm_crossings(mode, pairs, said, out, todo, counts, labels[0])
 
     # 3. separation: definite members, or four simple real roots without one.
     rest = np.flatnonzero(todo)
@@ -327,6 +312,31 @@ def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
     return out
 
 
+def _confirm_crossings(
+    mode: NumberMode,
+    pairs: Pairs,
+    said: np.ndarray,
+    out: np.ndarray,
+    todo: np.ndarray,
+    counts: StageCounts,
+    label: str,
+) -> None:
+    """Plain modes: the pairs ``said`` were settled because the criterion read non-real roots of
+    ``P``.  Those the mode's certified guard (:attr:`NumberMode.guard`) does not confirm are
+    opened again for the separation stage: rounding turns the multiple root of a symmetric
+    placement into a non-real pair, and a definite member, which the separation stage finds,
+    says the surfaces do not meet."""
+    guard = getattr(mode, "guard", None)
+    if guard is None or said.size == 0:
+        return
+    sure = guard.criterion_contact(pairs.take(said))
+    reopen = said[sure != int(ContactCode.CONTACT)]
+    if reopen.size:
+        out[reopen] = _UNC
+        todo[reopen] = True
+        counts.decided[label] -= int(reopen.size)
+
+
 def _contact_with_signs(
     mode: NumberMode, pairs: Pairs
 ) -> tuple[np.ndarray, list[str], np.ndarray, np.ndarray, set[int]]:
@@ -338,7 +348,7 @@ def _contact_with_signs(
     Returns ``(contact codes, stage names, deciding stage, first-stage region codes, the stages
     that decided at least one pair)``.  Only
     the first stage's sign reading is used by step 1b: what it cannot read (a structural zero
-    such as proportional quadratic parts, a tangency) goes on to smallness and separation,
+    such as proportional quadratic parts, a tangency) goes on to the separation stage,
     which settle it in binary64 more often than a slower stage of the cascade would."""
     first = getattr(mode, "stages", (mode,))[0]
     signs = first.criterion_region(pairs)
@@ -492,6 +502,8 @@ def _decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
         label = f"criterion ({name})"
         settle(here & (crit == int(RegionCode.CONTACT)), OverlapCode.OVERLAPPING, label)
         settle(here & (side == int(RegionCode.R_MINUS)) & (plane | ellipsoid), OverlapCode.OVERLAPPING, label)
+    said = np.flatnonzero(~todo & (crit == int(RegionCode.CONTACT)))
+    _confirm_crossings(mode, pairs, said, out, todo, counts, f"criterion ({names[0]})")
 
     # 2. separation: definite members, or four simple real roots without one.
     rest = np.flatnonzero(todo)

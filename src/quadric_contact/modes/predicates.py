@@ -27,6 +27,7 @@ than the geometry (for teaching, and for callers who know their pairs are small)
 
 from __future__ import annotations
 
+import copy
 from typing import Any, overload
 
 import numpy as np
@@ -86,7 +87,21 @@ __all__ = [
 ScalarInput = Quadric | str
 
 
+_COMPLETE: dict[str, NumberMode] = {}
+
+
 def _mode(mode: str | NumberMode) -> NumberMode:
+    """The mode of a call.  A complete mode named by a string (``certified``, ``exact``) decides
+    a single pair by the exact scalar path, where its instance only counts: one instance per
+    name serves every such call (nobody holds it to read the counts)."""
+    if isinstance(mode, str):
+        m = _COMPLETE.get(mode)
+        if m is not None:
+            return m
+        m = get_mode(mode)
+        if m.complete:
+            _COMPLETE[mode] = m
+        return m
     return get_mode(mode)
 
 
@@ -246,9 +261,12 @@ def transversal_contact(
 
 
 def _with_mode(result: Any, name: str) -> Any:
-    from dataclasses import replace
-
-    return replace(result, mode=name)
+    """The result as decided by mode ``name`` (a copy; results are frozen)."""
+    if result.mode == name:
+        return result
+    new = copy.copy(result)
+    object.__setattr__(new, "mode", name)
+    return new
 
 
 # -- relative position ---------------------------------------------------------------------------

@@ -67,6 +67,7 @@ from quadric_contact.modes import errorbounds as eb
 from quadric_contact.modes._jit import HAVE_NUMBA
 from quadric_contact.modes._jit import njit as _njit
 from quadric_contact.modes.base import Pairs
+from quadric_contact.theory import decision
 
 __all__ = [
     "CROSSING",
@@ -88,6 +89,9 @@ UNCERTAIN = 2
 _pencil = _njit(formulas.pencil_coefficients, inline=True)
 _invariants = _njit(kernels.quadric_invariants, inline=True)
 _invariants_mag = _njit(kernels.quadric_invariants_magnitude, inline=True)
+_minors4 = _njit(kernels.leading_minors_4, inline=True)
+_minors4_mag = _njit(kernels.leading_minors_4_magnitude, inline=True)
+_critical = _njit(decision.critical_points, inline=True)
 _INPUT_MIN = eb.INPUT_MIN
 _INPUT_MAX = eb.INPUT_MAX
 _SAMPLE_MIN = eb.SAMPLE_MIN
@@ -304,21 +308,113 @@ def _member_count(s: float, e: Any, q: Any, K: Any, certified: bool) -> int:
     )
 
 
+_REGION_OF = decision.REGION_OF
+_table_index = _njit(decision.table_index, inline=True)
+_SURFACE_UNKNOWN = int(decision.Surface.UNKNOWN)
+_PLANE_UNKNOWN = int(decision.Plane.UNKNOWN)
+_POSITIVE, _NEGATIVE = int(decision.Definite.POSITIVE), int(decision.Definite.NEGATIVE)
+_NONE, _DEF_UNKNOWN = int(decision.Definite.NONE), int(decision.Definite.UNKNOWN)
+_SIMPLE, _NONREAL = int(decision.Roots.SIMPLE), int(decision.Roots.NONREAL)
+_ROOTS_UNKNOWN = int(decision.Roots.UNKNOWN)
+
+
 @_njit(inline=True)
 def decide_from_counts(n12: int, n23: int, n34: int, certified: bool) -> int:
-    """The separation code from ``n+`` at the three sample points (-1: uncertain)."""
+    """The separation code from ``n+`` at the three sample points (-1: uncertain), looked up
+    in the decision table (:data:`quadric_contact.theory.decision.REGION_OF`).
+
+    The counts are facts about the pencil: a count of 4 (0) is a positive (negative) definite
+    member; ``1, n12, n23, n34, 3`` moving by exactly one at each step proves four simple real
+    roots, one in each interval, so the three points sampled every gap and a definite member
+    would have been seen.  Otherwise the roots and the members of unsampled gaps are unknown
+    to a certified mode; a plain mode takes binary64's reading as it is: no definite member,
+    and roots that are non-real or simple as far as it can see (both mean a crossing)."""
     if n12 == 4 or n23 == 4 or n34 == 4:
-        return SEP_PLUS
-    if n12 == 0 or n23 == 0 or n34 == 0:
-        return SEP_MINUS
-    steps = abs(n12 - 1) == 1 and abs(n23 - n12) == 1 and abs(n34 - n23) == 1 and abs(3 - n34) == 1
-    if n12 >= 0 and n23 >= 0 and n34 >= 0 and steps:
-        return CROSSING
-    return UNCERTAIN if certified else CROSSING
+        definite, roots = _POSITIVE, _ROOTS_UNKNOWN
+    elif n12 == 0 or n23 == 0 or n34 == 0:
+        definite, roots = _NEGATIVE, _ROOTS_UNKNOWN
+    else:
+        steps = abs(n12 - 1) == 1 and abs(n23 - n12) == 1 and abs(n34 - n23) == 1 and abs(3 - n34) == 1
+        if n12 >= 0 and n23 >= 0 and n34 >= 0 and steps:
+            definite, roots = _NONE, _SIMPLE
+        elif certified:
+            definite, roots = _DEF_UNKNOWN, _ROOTS_UNKNOWN
+        else:
+            definite, roots = _NONE, _NONREAL
+    return _REGION_OF[_table_index(_SURFACE_UNKNOWN, roots, definite, _PLANE_UNKNOWN)]
 
 
 @_njit(inline=True)
-def _separation_one(e: Any, q: Any, K: Any, certified: bool) -> int:
+def _definite_from_signs(s1: int, s2: int, s3: int, s4: int) -> int:
+    """:class:`~quadric_contact.theory.decision.Definite` from the three-valued signs of the
+    leading principal minors ``d1 .. d4`` (Sylvester: positive definite iff all are positive,
+    negative definite iff they alternate ``-, +, -, +``; exact both ways)."""
+    pos = (s1 == 1 or s1 == UNCERTAIN) and (s2 == 1 or s2 == UNCERTAIN)
+    pos = pos and (s3 == 1 or s3 == UNCERTAIN) and (s4 == 1 or s4 == UNCERTAIN)
+    neg = (s1 == -1 or s1 == UNCERTAIN) and (s2 == 1 or s2 == UNCERTAIN)
+    neg = neg and (s3 == -1 or s3 == UNCERTAIN) and (s4 == 1 or s4 == UNCERTAIN)
+    certain = s1 != UNCERTAIN and s2 != UNCERTAIN and s3 != UNCERTAIN and s4 != UNCERTAIN
+    if not pos and not neg:
+        return _NONE
+    if pos and not neg and certain:
+        return _POSITIVE
+    if neg and not pos and certain:
+        return _NEGATIVE
+    return _DEF_UNKNOWN
+
+
+@_njit(inline=True)
+def _member_definite(s: float, e: Any, q: Any, KD: Any, certified: bool) -> int:
+    """Is the member ``s E + Q`` definite?  Sylvester's minors of its computed entries against
+    :data:`~quadric_contact.modes.errorbounds.MEMBER_MINORS_ERRBOUND` (certified), or their plain
+    signs."""
+    if certified and s != 0.0 and not (_SAMPLE_MIN <= abs(s) <= _SAMPLE_MAX):
+        return _DEF_UNKNOWN
+    m0 = s * e[0] + q[0]
+    m1 = s * e[1] + q[1]
+    m2 = s * e[2] + q[2]
+    m3 = s * e[3] + q[3]
+    m4 = s * e[4] + q[4]
+    m5 = s * e[5] + q[5]
+    m6 = s * e[6] + q[6]
+    m7 = s * e[7] + q[7]
+    m8 = s * e[8] + q[8]
+    m9 = s * e[9] + q[9]
+    d = _minors4(m0, m1, m2, m3, m4, m5, m6, m7, m8, m9)
+    if not certified:
+        return _definite_from_signs(
+            _sign(d[0], 0.0, False), _sign(d[1], 0.0, False), _sign(d[2], 0.0, False), _sign(d[3], 0.0, False)
+        )
+    a = abs(s)
+    w0 = a * abs(e[0]) + abs(q[0])
+    w1 = a * abs(e[1]) + abs(q[1])
+    w2 = a * abs(e[2]) + abs(q[2])
+    w3 = a * abs(e[3]) + abs(q[3])
+    w4 = a * abs(e[4]) + abs(q[4])
+    w5 = a * abs(e[5]) + abs(q[5])
+    w6 = a * abs(e[6]) + abs(q[6])
+    w7 = a * abs(e[7]) + abs(q[7])
+    w8 = a * abs(e[8]) + abs(q[8])
+    w9 = a * abs(e[9]) + abs(q[9])
+    ok = (
+        _guarded(m0) and _guarded(m1) and _guarded(m2) and _guarded(m3) and _guarded(m4)
+        and _guarded(m5) and _guarded(m6) and _guarded(m7) and _guarded(m8) and _guarded(m9)
+        and _guarded(w0) and _guarded(w1) and _guarded(w2) and _guarded(w3) and _guarded(w4)
+        and _guarded(w5) and _guarded(w6) and _guarded(w7) and _guarded(w8) and _guarded(w9)
+    )  # fmt: skip
+    if not ok:
+        return _DEF_UNKNOWN
+    mag = _minors4_mag(w0, w1, w2, w3, w4, w5, w6, w7, w8, w9)
+    return _definite_from_signs(
+        _sign(d[0], KD[0] * mag[0], True),
+        _sign(d[1], KD[1] * mag[1], True),
+        _sign(d[2], KD[2] * mag[2], True),
+        _sign(d[3], KD[3] * mag[3], True),
+    )
+
+
+@_njit(inline=True)
+def _separation_one(e: Any, q: Any, K: Any, KD: Any, certified: bool) -> int:
     if e[0] < 0.0:
         for k in range(10):
             e[k] = -e[k]
@@ -330,17 +426,28 @@ def _separation_one(e: Any, q: Any, K: Any, certified: bool) -> int:
                                  q[0], q[1], q[2], q[3], q[4], q[5], q[6], q[7], q[8], q[9])  # fmt: skip
     if c4 == 0.0:
         return UNCERTAIN if certified else CROSSING
-    r0, r1, r2, r3, ok = quartic_roots(c0, c1, c2, c3, c4)
+    # Sample points: the critical points of P, one in each gap when the four roots are real and
+    # simple (the scalar path's points, theory.decision.critical_points); else between approximate
+    # roots.
+    s1, s2, s3, ok = _critical(c1 / c4, c2 / c4, c3 / c4, 1.0)
     if not ok:
-        return UNCERTAIN if certified else CROSSING
-    # The likeliest certificate first: outside (R+) is the gap between the two largest roots.
-    n34 = _member_count(0.5 * (r2 + r3), e, q, K, certified)
-    if n34 == 4:
+        r0, r1, r2, r3, ok = quartic_roots(c0, c1, c2, c3, c4)
+        if not ok:
+            return UNCERTAIN if certified else CROSSING
+        s1, s2, s3 = 0.5 * (r0 + r1), 0.5 * (r1 + r2), 0.5 * (r2 + r3)
+    # The likeliest certificates first, by Sylvester's minors: outside (R+) in the last gap,
+    # inside (R-) in the first.
+    d = _member_definite(s3, e, q, KD, certified)
+    if d == _POSITIVE:
         return SEP_PLUS
-    n12 = _member_count(0.5 * (r0 + r1), e, q, K, certified)
-    if n12 == 0:
+    d = _member_definite(s1, e, q, KD, certified)
+    if d == _NEGATIVE:
         return SEP_MINUS
-    n23 = _member_count(0.5 * (r1 + r2), e, q, K, certified)
+    # No definite member there: the inertia at each point tells whether the roots are four and
+    # simple (then every gap was sampled) or whether a definite member may hide elsewhere.
+    n12 = _member_count(s1, e, q, K, certified)
+    n23 = _member_count(s2, e, q, K, certified)
+    n34 = _member_count(s3, e, q, K, certified)
     return decide_from_counts(n12, n23, n34, certified)
 
 
@@ -354,6 +461,7 @@ def _separation_impl(
     lo: int,
     hi: int,
     K: Any,
+    KD: Any,
     certified: bool,
     out: Any,
 ) -> None:
@@ -382,7 +490,7 @@ def _separation_impl(
         q[7] = Q[iq, 2, 2]
         q[8] = Q[iq, 2, 3]
         q[9] = Q[iq, 3, 3]
-        out[p] = _separation_one(e, q, K, certified)
+        out[p] = _separation_one(e, q, K, KD, certified)
 
 
 _separation_kernel = _njit(_separation_impl)
@@ -402,13 +510,14 @@ def separation_float(
         return out
     rounded = pairs.E.rounded or pairs.Q.rounded
     K = np.array(eb.MEMBER_ERRBOUND[rounded])
+    KD = np.array(eb.MEMBER_MINORS_ERRBOUND[rounded])
     eidx, qidx, es, qs = pairs.kernel_indices()
     E, Q = pairs.E.floats, pairs.Q.floats
     if backend == "numpy" or not HAVE_NUMBA:
-        _separation_impl(E, Q, eidx, qidx, es, qs, 0, n, K, certified, out)
+        _separation_impl(E, Q, eidx, qidx, es, qs, 0, n, K, KD, certified, out)
         return out
     run_parallel(
-        lambda lo, hi: _separation_kernel(E, Q, eidx, qidx, es, qs, lo, hi, K, certified, out), n, threads
+        lambda lo, hi: _separation_kernel(E, Q, eidx, qidx, es, qs, lo, hi, K, KD, certified, out), n, threads
     )
     return out
 

@@ -5,7 +5,7 @@ One table, written once, decides transversal contact and the region for every pa
 Its inputs are four facts about the pencil ``lambda E + Q`` and ``P(lambda) = det(lambda E + Q)``
 that any number mode can read (exactly, with a certified error bound, or in plain binary64);
 the exact scalar path, every number mode and the compiled kernels all look their answer up
-here.  The argument is :mod:`quadric_contact_proofs.beyond_signature_decision`; in short:
+here.  The argument is :mod:`quadric_contact_proofs.twmw_2009_signature_decision`; in short:
 
 * ``E`` has no real point at infinity, so the surfaces share a real point iff the forms
   ``X^T E X`` and ``X^T Q X`` have a common non-trivial real zero;  by Finsler-Calabi (four
@@ -49,6 +49,7 @@ from typing import Any
 
 import numpy as np
 
+from quadric_contact._generated.kernels import leading_minors_4
 from quadric_contact.exact.algebraic import rational_between, real_roots
 from quadric_contact.exact.linalg import nullspace
 from quadric_contact.model.classification import NO_REAL_POINTS, QuadricKind
@@ -242,37 +243,16 @@ facts, ``UNKNOWN`` ones included (indexed by :func:`table_index`)."""
 # -- the facts, exactly ------------------------------------------------------------------------
 
 
-def _minors(m: tuple[int, ...]) -> tuple[int, int, int, int]:
-    """The leading principal minors of the symmetric matrix with upper entries ``m``
-    (``a00 a01 a02 a03 a11 a12 a13 a22 a23 a33``), exactly."""
-    a00, a01, a02, a03, a11, a12, a13, a22, a23, a33 = m
-    # 2x2 minors of the first two rows (columns jk), reused by the 3x3 and 4x4 determinants
-    m01 = a00 * a11 - a01 * a01
-    m02 = a00 * a12 - a02 * a01
-    m03 = a00 * a13 - a03 * a01
-    m12 = a01 * a12 - a02 * a11
-    m13 = a01 * a13 - a03 * a11
-    m23 = a02 * a13 - a03 * a12
-    d3 = a02 * m12 - a12 * m02 + a22 * m01
-    # 2x2 minors of the last two rows
-    n01 = a02 * a13 - a12 * a03
-    n02 = a02 * a23 - a22 * a03
-    n03 = a02 * a33 - a23 * a03
-    n12 = a12 * a23 - a22 * a13
-    n13 = a12 * a33 - a23 * a13
-    n23 = a22 * a33 - a23 * a23
-    d4 = m01 * n23 - m02 * n13 + m03 * n12 + m12 * n03 - m13 * n02 + m23 * n01
-    return a00, m01, d3, d4
-
-
 def definiteness(m: tuple[int, ...]) -> Definite:
     """Is the symmetric matrix (upper entries ``m``, exact) positive or negative definite?
-    Sylvester's criterion on its leading principal minors, exact both ways.
+    Sylvester's criterion on its leading principal minors (the generated program the kernels
+    run in binary64, :func:`~quadric_contact._generated.kernels.leading_minors_4`), exact both
+    ways.
 
     >>> definiteness((2, 1, 0, 0, 2, 0, 0, 1, 0, 3)), definiteness((-1, 0, 0, 0, -1, 0, 0, -1, 0, 1))
     (<Definite.POSITIVE: 0>, <Definite.NONE: 2>)
     """
-    d1, d2, d3, d4 = _minors(m)
+    d1, d2, d3, d4 = leading_minors_4(*m)
     if d2 > 0 and d4 > 0:
         if d1 > 0 and d3 > 0:
             return Definite.POSITIVE
@@ -312,7 +292,6 @@ class Pencil:
             nk *= n
             dk //= d
         return (total > 0) - (total < 0)
-
 
 
 def critical_points(c1: float, c2: float, c3: float, c4: float) -> tuple[float, float, float, bool]:
@@ -518,9 +497,7 @@ def _definite_gram(g: list[list[Fraction]]) -> bool:
 def _det(a: list[list[Fraction]]) -> Fraction:
     if len(a) == 1:
         return Fraction(a[0][0])
-    return sum(
-        ((-1) ** j) * a[0][j] * _det([row[:j] + row[j + 1 :] for row in a[1:]]) for j in range(len(a))
-    )
+    return sum(((-1) ** j) * a[0][j] * _det([row[:j] + row[j + 1 :] for row in a[1:]]) for j in range(len(a)))
 
 
 @dataclass(frozen=True)

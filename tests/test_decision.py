@@ -1,0 +1,209 @@
+"""The decision table (quadric_contact.theory.decision): one table for the scalar path, every
+number mode and the kernels, checked against the exact extremes of X^T Q X on E and against
+the paper's criterion where E is small."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from itertools import product
+
+import numpy as np
+import pytest
+
+import quadric_contact as qc
+from quadric_contact.modes import ContactCode, RegionCode
+from quadric_contact.modes import separation as sep
+from quadric_contact.testing.hardcases import hard_cases
+from quadric_contact.testing.samples import random_pairs
+from quadric_contact.testing.symmetric import axis_family
+from quadric_contact.theory import decision as dec
+from quadric_contact.theory.decision import Definite, Plane, Roots, Rule, Surface
+from quadric_contact.theory.geometric import decide_geometrically
+from quadric_contact.theory.pencil import characteristic_polynomial
+
+
+def test_codes_are_the_array_codes():
+    assert (dec.NO_CONTACT, dec.CONTACT, dec.UNCERTAIN) == (
+        ContactCode.NO_CONTACT,
+        ContactCode.CONTACT,
+        ContactCode.UNCERTAIN,
+    )
+    assert (dec.R_MINUS, dec.R_CONTACT, dec.R_PLUS, dec.UNCERTAIN) == (
+        RegionCode.R_MINUS,
+        RegionCode.CONTACT,
+        RegionCode.R_PLUS,
+        RegionCode.UNCERTAIN,
+    )
+    assert (sep.SEP_MINUS, sep.CROSSING, sep.SEP_PLUS, sep.UNCERTAIN) == (-1, 0, 1, 2)
+
+
+def test_known_facts_index_the_rule_they_name():
+    """Every combination of known, consistent facts: the table holds decide_facts' answer."""
+    for s, r, d, p in product(range(3), range(4), range(3), range(2)):
+        if dec._consistent(s, r, d, p):
+            k = dec.table_index(s, r, d, p)
+            assert (dec.CONTACT_OF[k], dec.REGION_OF[k], dec.RULE_OF[k]) == dec.decide_facts(s, r, d, p)
+
+
+def test_unknown_facts_answer_only_where_every_completion_agrees():
+    unknown = dec.table_index(Surface.UNKNOWN, Roots.UNKNOWN, Definite.UNKNOWN, Plane.UNKNOWN)
+    assert dec.CONTACT_OF[unknown] == dec.UNCERTAIN and dec.REGION_OF[unknown] == dec.UNCERTAIN
+    # a definite member decides whatever else is unknown
+    for definite, region in ((Definite.POSITIVE, dec.R_PLUS), (Definite.NEGATIVE, dec.R_MINUS)):
+        k = dec.table_index(Surface.UNKNOWN, Roots.UNKNOWN, definite, Plane.UNKNOWN)
+        assert (dec.CONTACT_OF[k], dec.REGION_OF[k]) == (dec.NO_CONTACT, region)
+    # non-real roots exclude a definite member: a crossing though definiteness is unread
+    k = dec.table_index(Surface.UNKNOWN, Roots.NONREAL, Definite.UNKNOWN, Plane.UNKNOWN)
+    assert (dec.CONTACT_OF[k], dec.REGION_OF[k], dec.RULE_OF[k]) == (
+        dec.CONTACT,
+        dec.R_CONTACT,
+        Rule.NONREAL_ROOTS,
+    )
+    # four simple roots and no member definite: a crossing, whatever the type of Q
+    k = dec.table_index(Surface.UNKNOWN, Roots.SIMPLE, Definite.NONE, Plane.UNKNOWN)
+    assert dec.CONTACT_OF[k] == dec.CONTACT
+    # a multiple root without a definite member: only the exact analysis can tell
+    k = dec.table_index(Surface.REAL, Roots.MULTIPLE, Definite.NONE, Plane.OTHER)
+    assert dec.RULE_OF[k] == Rule.ESCALATE and dec.CONTACT_OF[k] == dec.UNCERTAIN
+
+
+def test_the_separation_kernel_reads_the_table():
+    """The kernels' counts-to-answer step is a lookup in the same table (plain Python run of
+    the compiled function, so the test needs no compiler)."""
+    assert sep._REGION_OF is dec.REGION_OF  # the kernels' constant is the table itself
+    f = getattr(sep.decide_from_counts, "py_func", sep.decide_from_counts)
+    assert f(2, 3, 4, True) == sep.SEP_PLUS and f(0, 1, 2, True) == sep.SEP_MINUS
+    assert f(2, 1, 2, True) == sep.CROSSING  # 1, 2, 1, 2, 3: four simple roots
+    assert f(2, 2, 2, True) == sep.UNCERTAIN and f(2, 2, 2, False) == sep.CROSSING
+    assert f(-1, 3, 2, True) == sep.UNCERTAIN
+
+
+def _exact_pairs(seed: int, n: int) -> list[tuple[np.ndarray, np.ndarray]]:
+    E, Q, _ = random_pairs(n, np.random.default_rng(seed))
+    return [(E[i], Q[i]) for i in range(n)]
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_the_decision_equals_the_exact_extremes(seed):
+    """Against the exact extremes of X^T Q X on E (theory.geometric), which decide without the
+    pencil's signatures: random pairs of every type."""
+    for E, Q in _exact_pairs(seed, 12):
+        P = characteristic_polynomial(E, Q)
+        d = dec.decide_pencil(P)
+        geo = decide_geometrically(P.E, P.Q)
+        if d.transversal is not None:
+            assert d.transversal == geo.transversal, (E, Q, d, geo)
+        if d.region_value is not None:
+            assert d.region_value == geo.region, (E, Q, d, geo)
+
+
+def test_symmetric_placements_decided_without_escalating_where_kernels_lie_at_infinity():
+    """A sphere on the axis of a cylinder: the double root of the symmetry has its member's
+    kernel at infinity, so the table decides a crossing without the geometric analysis; inside,
+    a definite member.  The exact extremes agree."""
+    Q = qc.Quadric.from_equation("x**2 + y**2 - 1")
+    inside = dec.decide_exact(qc.Quadric.sphere(Fraction(1, 2), (0, 0, 1)), Q)
+    assert inside.rule is Rule.NEGATIVE_MEMBER and inside.transversal is False
+    E = qc.Quadric.sphere(Fraction(3, 2), (0, 0, 1))
+    crossing = dec.decide_exact(E, Q)
+    assert crossing.rule is Rule.HARMLESS_ROOTS and 2 in crossing.facts.multiplicities
+    assert crossing.transversal is decide_geometrically(E, Q).transversal is True
+
+
+def test_the_paper_route_agrees_where_e_is_small():
+    """Corollary 10 (the paper's route, with the exact smallness of Tables 1-2) and the table
+    give the same answer wherever the paper's route decides."""
+    seen = 0
+    for E, Q in _exact_pairs(7, 40):
+        try:
+            paper = qc.transversal_contact(E, Q, method="theory")
+        except qc.ExcludedQuadricError:
+            continue
+        if not paper.decided:
+            continue
+        seen += 1
+        assert paper.transversal == qc.transversal_contact(E, Q).transversal
+    assert seen >= 10
+
+
+def test_float_mode_is_right_on_symmetric_placements():
+    """The float mode reads the same table in binary64; symmetric placements (multiple roots
+    that rounding turns non-real) are answered as the exact decision answers them, scalar and
+    stack alike."""
+    family = axis_family()
+    E = np.stack([p.E for p in family])
+    Q = np.stack([p.Q for p in family])
+    exact = qc.transversal_contact(E, Q, mode="exact")
+    region = qc.relative_position(E, Q, mode="exact")
+    assert set(exact.tolist()) == {0, 1}  # both answers occur
+    assert (qc.transversal_contact(E, Q, mode="float") == exact).all()
+    assert (qc.relative_position(E, Q, mode="float") == region).all()
+    for k in range(0, len(family), 7):
+        one = qc.transversal_contact(family[k].E, family[k].Q, mode="float")
+        assert one.transversal == bool(exact[k]), family[k].name
+
+
+def test_the_symmetric_family_is_hard_for_the_raw_criterion():
+    """The raw float criterion (non-real roots read from rounded discriminants) calls some of
+    these placements crossings although they are apart: the family exercises the fault."""
+    family = axis_family()
+    E = np.stack([p.E for p in family])
+    Q = np.stack([p.Q for p in family])
+    exact = qc.transversal_contact(E, Q, mode="exact")
+    raw = qc.corollary_10(E, Q, mode="float")
+    assert np.count_nonzero((raw == 1) & (exact == 0)) > 0
+
+
+def test_float_mode_is_right_on_the_ladders_down_to_1e_12():
+    """The hard-case ladders (binary64 rounding of exact placements at distances 1e-2 .. 1e-16
+    from tangency): down to 1e-12 the float mode gives the exact answer for the rounded input."""
+    cases = [
+        c
+        for c in hard_cases(("ladder",))
+        if c.direction != "tangent" and c.distance is not None and float(c.distance) >= 1e-12
+    ]
+    assert len(cases) > 50
+    pairs = [c.matrices() for c in cases]
+    E = np.stack([e for e, _ in pairs])
+    Q = np.stack([q for _, q in pairs])
+    exact = qc.transversal_contact(E, Q, mode="exact")
+    got = qc.transversal_contact(E, Q, mode="float")
+    wrong = [c.id for c, a, b in zip(cases, got, exact, strict=True) if a != b]
+    assert wrong == []
+
+
+def test_scalar_and_stack_read_the_same_facts_through_the_same_table():
+    """The kernels' Sylvester test and the scalar path's read the same generated program; on
+    the same pairs, a definite member found by the certified kernel is the one the exact facts
+    report (same sign), and a crossing it certifies is a crossing of the exact decision."""
+    from quadric_contact.modes.batch import as_stack, make_pairs
+
+    E, Q, _ = random_pairs(60, np.random.default_rng(11))
+    pairs, _ = make_pairs(as_stack(E, "E"), as_stack(Q, "Q"))
+    codes = sep.separation_float(pairs, certified=True, backend="numpy")
+    for i in range(60):
+        exact = dec.decide_exact(E[i], Q[i])
+        if codes[i] != sep.UNCERTAIN:
+            assert codes[i] == exact.region, (i, codes[i], exact)
+        if exact.rule in (Rule.POSITIVE_MEMBER, Rule.NEGATIVE_MEMBER):
+            assert codes[i] in (exact.region, sep.UNCERTAIN)
+
+
+def test_definiteness_is_sylvester_on_the_generated_program():
+    from quadric_contact._generated.kernels import leading_minors_4
+
+    rng = np.random.default_rng(5)
+    for _ in range(200):
+        a = rng.integers(-5, 6, size=(4, 4))
+        m = a @ a.T * rng.choice([-1, 1]) + rng.integers(-3, 4) * np.eye(4, dtype=int)
+        upper = tuple(int(m[i, j]) for i in range(4) for j in range(i, 4))
+        eig = np.linalg.eigvalsh(m.astype(float))
+        got = dec.definiteness(upper)
+        if eig.min() > 1e-9:
+            assert got is Definite.POSITIVE
+        elif eig.max() < -1e-9:
+            assert got is Definite.NEGATIVE
+        elif eig.min() < -1e-9 and eig.max() > 1e-9:
+            assert got is Definite.NONE
+        d = leading_minors_4(*upper)
+        assert d[3] == round(np.linalg.det(m.astype(float)))
