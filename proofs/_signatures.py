@@ -84,7 +84,7 @@ def _flint(M: Sequence[Sequence[Any]]) -> Any:
 
 
 def _sign(v: Any) -> int:
-    return (v > 0) - (v < 0)
+    return 1 if v > 0 else (-1 if v < 0 else 0)
 
 
 def inertia(M: Sequence[Sequence[Any]]) -> tuple[int, int, int]:
@@ -106,7 +106,8 @@ def _exact_sign(value: sp.Expr) -> int:
     r = surds[0]
     poly = sp.Poly(value, r)
     ensure(poly.degree() <= 1, f"linear in the surd: {value}")
-    b, a = (poly.all_coeffs() + [0])[:2] if poly.degree() == 1 else (0, poly.all_coeffs()[0])
+    coeffs = poly.all_coeffs()
+    b, a = coeffs if len(coeffs) == 2 else (0, coeffs[0])
     a, b, d = sp.Rational(a), sp.Rational(b), sp.Rational(r.base)
     sa, sb = _sign(a), _sign(b)
     if sa == 0 or sb == 0 or sa == sb:
