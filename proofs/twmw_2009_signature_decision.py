@@ -57,7 +57,14 @@ on ``E``): ``l_eps E + Q + eps I`` is positive definite, and ``l_eps`` stays bet
 ``-(q + eps|X|^2)/e(X)`` and ``(q + eps|Y|^2)/(-e(Y))`` for any fixed ``X``, ``Y`` with ``e(X) > 0 > e(Y)``,
 so it is bounded; a limit point ``l0`` gives ``l0 E + Q`` positive semidefinite.  So ``f >= 0`` on
 ``E`` iff some member is positive semidefinite (and ``f <= 0`` iff some is negative semidefinite).
-A semidefinite member that is not definite is singular: ``l0`` is a root of ``P``.
+A semidefinite member that is not definite is singular: ``l0`` is a root of ``P``.  Its kernel
+``K`` holds a real point of ``E``: were ``E`` definite on ``K``, the perturbation argument of
+``_real_pencils`` (b) would move the ``g`` zero eigenvalues of ``l0 E + Q`` to the sign of the
+member on one side of ``l0`` (for a positive semidefinite member: right of ``l0`` when ``E`` is
+positive on ``K``, left when negative, ``K`` a line then), making a neighbouring gap definite;
+so ``E`` restricted to ``K`` is indefinite or singular and ``K`` holds a real ``X != 0`` with
+``X^T E X = 0``, a point of ``E`` by (a), where the surfaces are tangent; by (d), ``l0`` is a
+multiple root.
 (c) The inertia of ``l E + Q`` is constant between real roots and ``n_+ = 1`` left of them, ``3``
 right of them (``_real_pencils``: ``M(l)/|l| -> -+E``); a root of multiplicity ``m`` whose member
 has a kernel of dimension ``g <= m`` moves ``n_+`` by at most ``g``, by ``m`` modulo 2 (the sign of
@@ -83,8 +90,9 @@ vector in the kernel of a member at a non-real ``mu`` is 0 (the imaginary part o
 Hence with no real multiple root whose kernel holds a real point of ``E`` ("no real singular
 point"), a common point is a crossing, and the surfaces cross iff no gap is definite.
 (e) Non-real roots: by (c) no member is definite or semidefinite, so by (b) the surfaces cross.
-This is the sufficient half of Corollary 10 (proved independently in Remark 9 of this package,
-for any ellipsoid), here needing no smallness either.
+(Also directly: a pencil with a definite member is simultaneously diagonalisable by a congruence,
+so all its roots are real.)  This is the sufficient half of Corollary 10, which Remark 9's module
+proves independently for any ellipsoid; it needs no smallness.
 (f) Structural roots.  For a plane, parallel planes or a cylinder (Table 1 and the plane), ``ker Q``
 is spanned by vectors at infinity (check ``structural_kernels``), on which ``X^T E X > 0`` by (a):
 the root 0, however multiple, has no real singular point, and (d) applies to it.  Cones and
@@ -116,7 +124,9 @@ eigenvalues, in canonical form moved by rational congruences and rigid motions
 included (``random_pairs``); exact tangencies and the near-tangent ladders of
 ``testing/hardcases.py`` (``near_tangent``); spheres and spheroids on the axes of circular
 cylinders, cones, hyperboloids and paraboloids (``symmetric_family``); small pairs, where the
-paper's criterion applies and must agree (``small_pairs``).
+paper's criterion applies and must agree (``small_pairs``); and the package's own exact predicates
+(``transversal_contact``, ``relative_position``, ``overlap``) against the signatures on all of these
+(``package_decision``, and in ``random_pairs``).
 """
 
 from __future__ import annotations
@@ -136,7 +146,7 @@ from quadric_contact.paper.proving import Finding, Method, Proof, agrees, ensure
 from ._real_pencils import SegreType, derive_root_signs, ellipsoid_form, pair_block, real_block, segre_types
 from ._real_pencils import inertia as sympy_inertia
 from ._real_pencils import standard_matrix as table_1_matrix
-from ._signatures import ROWS, TOUCHING, TRANSVERSAL, agree, overlap_from
+from ._signatures import COINCIDENT, ROWS, TOUCHING, TRANSVERSAL, agree, overlap_from
 
 F = Fraction
 K = QuadricKind
@@ -545,6 +555,8 @@ def random_pairs(examples: int) -> Finding:
         d, t = agree(E, Q)
         seen[f"{d.contact}"] = seen.get(d.contact, 0) + 1
         _check_overlap(E, Q, d.contact)
+        problem = package_disagreement(E, Q)
+        ensure(problem in (None, REFUSED), f"the package's exact predicates: {problem}")
 
     search()
     return agrees(", ".join(f"{n} {c}" for c, n in sorted(seen.items())) + ": the signatures agree")
@@ -665,4 +677,83 @@ def small_pairs() -> Finding:
     return agrees(
         f"{seen['non-real']} small pairs with non-real roots, all transversal; {seen['real']} with real "
         "roots, none transversal: the criterion and the signatures agree where E is small"
+    )
+
+
+# -- the package's own decision, against the signatures ------------------------------------------------
+
+
+REFUSED = "refused"
+
+
+def package_disagreement(E: Quadric, Q: Quadric) -> str | None:
+    """The package's exact predicates (``transversal_contact``, ``relative_position``, ``overlap`` in
+    exact mode) against the signature decision: None when they agree, :data:`REFUSED` when the package
+    refuses the type of ``Q`` (cones, intersecting planes, imaginary and double quadrics) or ``Q`` is a
+    multiple of ``E``, else what differs."""
+    from quadric_contact import overlap, relative_position, transversal_contact
+    from quadric_contact.exact.errors import ExcludedQuadricError
+    from quadric_contact.theory.overlap import SOLID_KINDS, solid_of
+
+    from ._signatures import signature_decision
+
+    d = signature_decision(E, Q)
+    if d.contact == COINCIDENT:
+        return REFUSED
+    try:
+        contact = transversal_contact(E, Q, mode="exact")
+        region = relative_position(E, Q, mode="exact")
+    except ExcludedQuadricError:
+        return REFUSED
+    problems = []
+    if bool(contact.transversal) != (d.contact == TRANSVERSAL):
+        problems.append(f"transversal_contact says {contact.transversal} ({contact.decided_by})")
+    if region.region is not d.region:
+        problems.append(f"relative_position says {region.region} ({region.decided_by})")
+    if Q.kind in SOLID_KINDS:
+        q = solid_of(Q)
+        want = overlap_from(signature_decision(E, q), E, q)
+        got = overlap(E, Q, mode="exact")
+        if got.code != want:
+            problems.append(f"overlap says {got.code!r} ({got.decided_by}), the signatures {want!r}")
+    if not problems:
+        return None
+    return (
+        f"E = {E.equation()}, Q = {Q.equation()}: signatures {d.contact} {d.region} ({d.row}); "
+        + "; ".join(problems)
+    )
+
+
+def package_pairs() -> Iterator[tuple[str, Quadric, Quadric]]:
+    """The pairs of the cross-checks above: one placement of every Segre type in every order and sign
+    characteristic, the symmetric family, the exact hard cases and every row's example."""
+    from quadric_contact.testing.hardcases import hard_cases
+
+    yield from segre_cases(1, seed=1)
+    yield from symmetric_pairs()
+    for case in hard_cases(("ladder-exact", "dyadic-tangent", "example-11", "delta4-zero")):
+        yield (case.id, *case.input_quadrics())
+    for name, (E, Q) in ROW_EXAMPLES.items():
+        yield name, E, Q
+        yield name, E, -Q
+
+
+@proof.check(
+    "the package's exact transversal_contact, relative_position and overlap equal the signature decision",
+    method=Method.CROSS_CHECK,
+    full=True,
+    size="about 1100 pairs: every Segre type, order and sign, the symmetric family, the exact hard cases",
+)
+def package_decision() -> Finding:
+    checked, refused, wrong = 0, 0, []
+    for _, E, Q in package_pairs():
+        checked += 1
+        problem = package_disagreement(E, Q)
+        refused += problem == REFUSED
+        if problem not in (None, REFUSED):
+            wrong.append(problem)
+    ensure(not wrong, f"{len(wrong)} of {checked} pairs: " + " | ".join(wrong[:5]))
+    return agrees(
+        f"{checked - refused} pairs: the package's exact predicates agree with the signatures ({refused} "
+        "more refused by the package: Q of a type outside Table 1 and the plane, or a multiple of E)"
     )
