@@ -120,7 +120,7 @@ every row of the decision and both regions, decided by the plain exact implement
 ``rows_realised``.  In the full profile, cross-checks of the same comparison: every Segre type a
 pencil with an ellipsoid can have, with every sign characteristic and order of its real
 eigenvalues, in canonical form moved by rational congruences and rigid motions
-(``segre_types``); random exact pairs with every type of ``Q``, cones and intersecting planes
+(``segre_types_sweep``); random exact pairs with every type of ``Q``, cones and intersecting planes
 included (``random_pairs``); exact tangencies and the near-tangent ladders of
 ``testing/hardcases.py`` (``near_tangent``); spheres and spheroids on the axes of circular
 cylinders, cones, hyperboloids and paraboloids (``symmetric_family``); small pairs, where the
