@@ -44,15 +44,22 @@ def test_sphere_crossing_and_clear_of_an_ellipsoid():
 def test_plane_uses_theorem_14_without_smallness():
     E = Quadric.ellipsoid(5, 1, 1)  # large: no smallness needed for a plane
     r = transversal_contact(E, "x - 6")
-    assert r.decided_by == "Theorem 14" and not r
+    assert r.decided_by == "signature sequence" and not r
+    assert str(r.geometric).startswith("the member") and "negative definite" in r.reason  # x < 6 on E
+    assert transversal_contact(E, "x - 6", method="theory").decided_by == "Theorem 14"
     r = transversal_contact(E, "x - 4")
     assert bool(r) and r.decided_by == "Remark 9"
+    # touching: all roots real and no definite member; Theorem 14 names it
+    r = transversal_contact(E, "x - 5")
+    assert not r and r.decided_by == "Theorem 14"
 
 
 @pytest.mark.parametrize("eq", ["x**2 + y**2 + z**2 + 1", "x**2 + y**2 + 1", "x**2 + 4"])
 def test_quadrics_without_real_points_are_never_touched(eq):
     r = transversal_contact(Quadric.sphere(1), eq)
-    assert r.decided and not r and r.decided_by == "no real points"
+    # no common point, so some member of the pencil is definite (Finsler-Calabi)
+    assert r.decided and not r and r.decided_by == "signature sequence"
+    assert transversal_contact(Quadric.sphere(1), eq, method="theory").decided_by == "no real points"
 
 
 def test_result_reports_what_it_looked_at():

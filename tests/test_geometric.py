@@ -24,6 +24,7 @@ from quadric_contact import (
 )
 from quadric_contact.model.classification import TABLE_1_KINDS
 from quadric_contact.testing.strategies import ellipsoids, quadrics, rigid_motions, tangent_pairs
+from quadric_contact.theory.decision import Roots
 from quadric_contact.theory.geometric import decide_geometrically
 
 F = Fraction
@@ -189,26 +190,29 @@ def test_against_remark_9_and_sampling(pair):
 
 
 def test_used_by_the_predicates_when_not_small():
-    """The counterexample to Table 1: not small, real-rooted P; the predicates fall back on
-    a decision that needs no smallness (the separation certificate) and say so, and the
-    geometric decision agrees and counts the two curves."""
+    """The counterexample to Table 1: not small, real-rooted P; the decision needs no
+    smallness (four simple roots, no definite member) and says so, and the geometric decision
+    agrees and counts the two curves."""
     q = Quadric.hyperboloid_one_sheet(1, 1, 10)
     e = Quadric.ellipsoid(F(1, 10), 1, 1, center=(F(17, 20), 0, 0))
     r = transversal_contact(e, q)
-    assert r.transversal is True and r.decided_by == "separation certificate"
-    assert r.smallness.small is False and r.geometric.simple
+    assert r.transversal is True and r.decided_by == "signature sequence"
+    assert r.smallness is None and r.geometric.facts.roots is Roots.SIMPLE
     geo = decide_geometrically(e, q)
     assert geo.transversal is True and geo.curves == 2
     pos = relative_position(e, q)
-    assert pos.region is CONTACT and pos.decided_by == "separation certificate"
+    assert pos.region is CONTACT and pos.decided_by == "signature sequence"
     assert transversal_contact(e, q, method="theory").transversal is None
+    # the paper's route, told the pair is not small, falls back on the separation certificate
+    r = transversal_contact(e, q, small=False)
+    assert r.transversal is True and r.decided_by == "separation certificate" and r.geometric.simple
 
 
 def test_used_for_excluded_quadrics():
     cone = Quadric.from_equation("x**2 + y**2 - z**2")
     inside = Quadric.sphere(1, (0, 0, 3))
     r = transversal_contact(inside, cone)
-    assert r.transversal is False and r.decided_by == "separation certificate"
+    assert r.transversal is False and r.decided_by == "signature sequence"
     assert decide_geometrically(inside, cone).region is R_MINUS
     assert relative_position(inside, cone).region is R_MINUS
     assert relative_position(inside, -cone).region is R_PLUS
@@ -218,8 +222,11 @@ def test_used_for_excluded_quadrics():
 
 def test_enclosing_case_uses_a_smallness_free_region():
     pos = relative_position(Quadric.sphere(2), Quadric.sphere(1))
-    assert pos.region is R_PLUS and pos.decided_by == "separation certificate"
-    assert pos.contact.decided_by == "Corollary 10"
+    assert pos.region is R_PLUS and pos.decided_by == "signature sequence"
+    # the paper's route: Corollary 10 holds (Q small w.r.t. E), Table 4 does not apply there
+    paper = transversal_contact(Quadric.sphere(2), Quadric.sphere(1), method="theory")
+    assert paper.decided_by == "Corollary 10"
+    assert relative_position(Quadric.sphere(2), Quadric.sphere(1), method="theory").region is None
     assert decide_geometrically(Quadric.sphere(2), Quadric.sphere(1)).region is R_PLUS
 
 

@@ -75,7 +75,9 @@ def test_negated_q_swaps_regions():
 def test_plane_regions_by_theorem_14(z, region):
     r = relative_position(Quadric.sphere(Fraction(1, 2), (0, 0, z)), "z")
     assert r == region
-    assert r.decided_by in ("Theorem 14", "Remark 9")
+    assert r.decided_by in ("signature sequence", "Remark 9")
+    paper = relative_position(Quadric.sphere(Fraction(1, 2), (0, 0, z)), "z", method="theory")
+    assert paper == region and paper.decided_by in ("Theorem 14", "Remark 9")
 
 
 def test_contact_reported_as_region():

@@ -405,3 +405,22 @@ def near_midpoint(lo: Fraction, hi: Fraction) -> Fraction:
     if lo < cand < hi:
         return cand
     return mid
+
+
+def coprime_fraction(n: int, d: int) -> Fraction:
+    """``Fraction(n, d)`` for integers already in lowest terms with ``d > 0`` (as
+    ``float.as_integer_ratio`` gives them), without the gcd: a fifth of the time, which the
+    exact path pays twenty times a pair on binary64 input.
+
+    >>> coprime_fraction(3, 4) == Fraction(3, 4), hash(coprime_fraction(-1, 8)) == hash(Fraction(-1, 8))
+    (True, True)
+    """
+    if _FROM_COPRIME is not None:
+        return _FROM_COPRIME(n, d)  # type: ignore[no-any-return]
+    f = object.__new__(Fraction)
+    f._numerator = n  # type: ignore[attr-defined]
+    f._denominator = d  # type: ignore[attr-defined]
+    return f
+
+
+_FROM_COPRIME = getattr(Fraction, "_from_coprime_ints", None)

@@ -33,7 +33,7 @@ from quadric_contact.exact.errors import (
     QuadricContactError,
     ShapeError,
 )
-from quadric_contact.exact.rational import as_square_matrix, common_denominator, to_fraction
+from quadric_contact.exact.rational import as_square_matrix, common_denominator, coprime_fraction, to_fraction
 from quadric_contact.model.classification import QuadricKind, classify, principal_minor_sums_3
 from quadric_contact.model.motions import RigidMotion, rotation_from_quaternion
 
@@ -656,7 +656,11 @@ class Quadric:
     # -- arithmetic and comparison -----------------------------------------------
 
     def __neg__(self) -> Quadric:
-        return Quadric._from_upper(tuple(-v for v in self._u))
+        neg = Quadric._from_upper(tuple(-v for v in self._u))
+        if self._ints is not None:  # the same common denominator, negated integers
+            ints, den = self._ints
+            neg._ints = (tuple(-v for v in ints), den)
+        return neg
 
     def scaled(self, factor: Any) -> Quadric:
         """``factor * Q`` (same surface; a negative factor swaps R- and R+)."""
@@ -729,7 +733,7 @@ def _from_float_array(
     ratios = [v.as_integer_ratio() for v in upper]
     den = max(d for _, d in ratios)
     ints = tuple(n * (den // d) for n, d in ratios)
-    return tuple(Fraction(n, d) for n, d in ratios), (ints, den)
+    return tuple(coprime_fraction(n, d) for n, d in ratios), (ints, den)
 
 
 def _rotation(rotation: Any) -> Any:

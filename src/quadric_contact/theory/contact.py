@@ -1,6 +1,13 @@
 """Transversal contact (Theorem 2, Corollary 10, Remark 9, Theorem 14).
 
-The decision, for an ellipsoid ``E`` and a quadric ``Q``:
+The decision (``method="auto"``, the default) is the table of
+:mod:`quadric_contact.theory.decision`, read off the signatures of the pencil: a definite
+member means no contact, non-real roots or four simple roots without a definite member mean
+transversal contact, for every pair, small or not; a singular intersection (a multiple root
+without a definite member) goes to the exact geometric decision.
+
+The paper's route stays here under its own name (``method="theory"``, or a caller's
+``small=`` assertion), for an ellipsoid ``E`` and a quadric ``Q``:
 
 1. ``P`` has a non-real root: transversal contact, for *any* pair
    (Remark 9).  In the paper's terms: ``Delta_4 < 0`` or ``Delta_4 = 0`` and
@@ -12,10 +19,9 @@ The decision, for an ellipsoid ``E`` and a quadric ``Q``:
 4. All roots real and ``E`` small with respect to ``Q`` (Tables 1, 2, or the
    caller's assertion): no transversal contact (Theorem 2).
 5. All roots real and ``E`` not known to be small: the paper does not decide
-   (Remark 9).  With ``method="auto"`` the exact separation certificate
-   (:mod:`quadric_contact.theory.certificate`: a definite member of the pencil, or four
-   simple real roots without one) settles it, and where it cannot (a tangency, a
-   multiple root) the exact geometric decision does; the result says which.  With
+   (Remark 9).  With a ``small=False`` assertion and ``method="auto"`` the exact separation
+   certificate (:mod:`quadric_contact.theory.certificate`) settles it, and where it cannot (a
+   tangency, a multiple root) the exact geometric decision does; the result says which.  With
    ``method="theory"`` the result is undecided.
 """
 
@@ -27,11 +33,11 @@ from quadric_contact.exact.errors import ExcludedQuadricError
 from quadric_contact.model.classification import NO_REAL_POINTS, REFUSED_KINDS, QuadricKind
 from quadric_contact.model.quadric import Quadric
 from quadric_contact.theory.certificate import separation_certificate
+from quadric_contact.theory.decision import PencilDecision, Rule, decide_pencil
 from quadric_contact.theory.pencil import CharacteristicPolynomial, characteristic_polynomial
 from quadric_contact.theory.results import ContactResult, Region
 
-__all__ = ["decide_transversal", "refuse", "transversal_contact_exact"]
-
+__all__ = ["decide_pencil_checked", "decide_transversal", "refuse", "transversal_contact_exact"]
 
 
 def refuse(Q: Quadric, what: str = "Q") -> None:
@@ -110,19 +116,60 @@ def decide_transversal(
     """
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
+    if method == "auto" and small is None:
+        return _signature_route(P)
+    return paper_route(P, small=small, method=method)
+
+
+def decide_pencil_checked(P: CharacteristicPolynomial) -> PencilDecision:
+    """:func:`~quadric_contact.theory.decision.decide_pencil` after refusing the types no
+    predicate answers for.  A refused ``Q`` (a double plane, the zero matrix) has rank at most
+    one, so ``lambda^3`` divides ``P``; only then is its type read."""
+    C = P.integer_coefficients
+    if C[0] == 0 and C[1] == 0 and C[2] == 0:
+        refuse(P.Q)
+    return decide_pencil(P)
+
+
+def _nonreal_reason(P: CharacteristicPolynomial) -> str:
+    return (
+        f"P has {2 * P.structure.nonreal_pairs} non-real roots ({_corollary_10_reading(P)}): "
+        "transversal contact for any pair"
+    )
+
+
+def _signature_route(P: CharacteristicPolynomial) -> ContactResult:
+    """The table of :mod:`quadric_contact.theory.decision`, then the exact geometric decision
+    for a singular intersection."""
+    d = decide_pencil_checked(P)
+    if d.transversal is not None:
+        reason = _nonreal_reason(P) if d.rule is Rule.NONREAL_ROOTS else str(d)
+        return ContactResult(d.transversal, d.decided_by, reason, P, None, d)
+    geo = _geometric(P.E, P.Q)
+    return ContactResult(
+        geo.transversal,
+        "geometric decision",
+        f"{d}; decided by the exact extremes of X^T Q X on E ({geo})",
+        P,
+        None,
+        geo,
+    )
+
+
+def paper_route(
+    P: CharacteristicPolynomial, *, small: bool | None = None, method: str = "theory"
+) -> ContactResult:
+    """The paper's decision: Remark 9, Theorem 14, Corollary 10 with the smallness of
+    Tables 1-2 (decided, or asserted by the caller); where it does not apply, undecided
+    (``method="theory"``) or, with ``method="auto"``, the separation certificate and the
+    exact geometric decision."""
     refuse(P.Q)
     if P.Q.kind in NO_REAL_POINTS:
         return ContactResult(False, "no real points", f"Q is {P.Q.kind.value}: it has no real surface", P)
     structure = P.structure
     reading = _corollary_10_reading(P)
     if not structure.all_real:
-        return ContactResult(
-            True,
-            "Remark 9",
-            f"P has {2 * structure.nonreal_pairs} non-real roots ({reading}): "
-            "transversal contact for any pair",
-            P,
-        )
+        return ContactResult(True, "Remark 9", _nonreal_reason(P), P)
     kind = P.Q.kind
     if kind is QuadricKind.PLANE:
         return ContactResult(

@@ -34,6 +34,7 @@ from quadric_contact.model.classification import NO_REAL_POINTS, TABLE_1_KINDS, 
 from quadric_contact.model.quadric import Quadric
 from quadric_contact.theory.certificate import separation_certificate
 from quadric_contact.theory.contact import _geometric, decide_transversal, refuse
+from quadric_contact.theory.decision import PencilDecision
 from quadric_contact.theory.pencil import CharacteristicPolynomial, characteristic_polynomial
 from quadric_contact.theory.results import Region, RegionResult
 
@@ -164,6 +165,8 @@ def decide_region(
     -------
     RegionResult
     """
+    if method == "auto" and small is None:
+        return _region_by_signatures(P)
     Q = P.Q
     kind = Q.kind
     refuse(Q)
@@ -231,6 +234,31 @@ def decide_region(
         contact,
         expected,
     )
+
+
+def _region_by_signatures(P: CharacteristicPolynomial) -> RegionResult:
+    """The region from the table of :mod:`quadric_contact.theory.decision`: a definite member
+    names it strictly, a crossing is ``contact``; a plane that touches ``E`` is on the side its
+    root signs name (Theorem 14, for any ellipsoid), and a singular intersection is decided by
+    the exact geometric decision."""
+    contact = decide_transversal(P)
+    Q = P.Q
+    expected = {r.value: p for r, p in region_patterns(Q.kind, Q.canonical_sign).items()}
+    d = contact.geometric
+    if contact.transversal:
+        return RegionResult(Region.CONTACT, contact.decided_by, contact.reason, P, contact, expected)
+    if isinstance(d, PencilDecision):
+        if d.region_value is not None:
+            return RegionResult(d.region_value, d.decided_by, str(d), P, contact, expected)
+        # a touching plane (Rule.PLANE_TOUCHING): Theorem 14 reads the side off the root signs
+        pattern = P.signs.pattern
+        for region_value, p in expected.items():
+            if p == pattern:
+                return RegionResult(
+                    Region(region_value), "Theorem 14", f"{d}; root signs {pattern}", P, contact, expected
+                )
+        raise AssertionError(f"a touching plane with root signs {pattern} outside Theorem 14's rows")
+    return RegionResult(d.region, contact.decided_by, contact.reason, P, contact, expected)
 
 
 def relative_position_exact(

@@ -99,9 +99,9 @@ class ContactResult:
     >>> from quadric_contact import transversal_contact
     >>> r = transversal_contact("(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1", "x**2 + y**2 - 0.25*(z-3)**2 - 1")
     >>> r.transversal, r.decided_by
-    (False, 'Corollary 10')
+    (False, 'signature sequence')
     >>> r.reason
-    'all roots of P are real (Delta4 > 0) and E is small with respect to Q (Theorem 2)'
+    'the member 160/9 E + Q is positive definite: X^T Q X > 0 on E (R+, strictly)'
     >>> f"{float(r.delta4):.6g}", r.root_signs.pattern
     ('6.90965e+08', '-+++')
     """
