@@ -107,3 +107,14 @@ def test_an_irrational_double_root_is_decided_in_its_quadratic_field():
     Q = Quadric.from_matrix([[0, 1, 0, 0], [1, 1, 0, 0], [0, 0, 2, 1], [0, 0, 1, 1]])
     d, _ = S.agree(Quadric.sphere(1), Q)
     assert d.pattern == "2,2" and d.contact == S.TOUCHING and not d.witness.is_Rational
+
+
+P = importlib.import_module(f"{PACKAGE_NAME}.twmw_2009_signature_decision")
+
+
+@pytest.mark.parametrize("name", sorted(P.ROW_EXAMPLES))
+def test_the_package_decision_table_agrees_on_every_row(name):
+    E, Q = P.ROW_EXAMPLES[name]
+    for q in (Q, -Q):
+        problem = P.package_disagreement(E, q)
+        assert problem in (None, P.REFUSED), problem
