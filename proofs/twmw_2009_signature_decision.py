@@ -101,6 +101,11 @@ then (g).
 (g) Other multiple roots with real singular points: the intersection is singular and (b) decides
 exactly: touching iff a member at a multiple root is semidefinite, else crossing.  The exact Segre
 analysis of the package (``theory/segre.py``, ``theory/geometric.py``) classifies the curve further.
+An irrational multiple root always comes with a real singular point: ``P = c g^2`` with ``g`` an
+irreducible quadratic, of type ``[(11)(11)]_2`` or ``[2(11)]_2`` (``[22]_2`` has no ellipsoid); in
+the first, ``E`` splits E-orthogonally over the two kernels as (2, 0) and (1, 1), and the (1, 1)
+kernel holds isotropic vectors; in the second the kernel at the block of size 2 is spanned by an
+E-neutral vector (``_real_pencils`` (b)).
 (h) Region and overlap.  Without crossing, the sign of ``f`` at any point of ``E`` (or the sign of
 the definite or semidefinite member) is the region.  For the solids: the components of
 ``{q > 0}`` are unbounded for every type of Table 1 and the plane, with ``Q`` signed as its solid,
@@ -125,7 +130,9 @@ included (``random_pairs``); exact tangencies and the near-tangent ladders of
 ``testing/hardcases.py`` (``near_tangent``); spheres and spheroids on the axes of circular
 cylinders, cones, hyperboloids and paraboloids (``symmetric_family``); small pairs, where the
 paper's criterion applies and must agree (``small_pairs``); and the package's own exact predicates
-(``transversal_contact``, ``relative_position``, ``overlap``) against the signatures on all of these
+(``transversal_contact``, ``relative_position``, ``overlap``) and its decision table
+(:func:`quadric_contact.theory.decision.decide_exact`: its answers, its row for each pair and the
+exact inertia of the member it names as witness) against the signatures on all of these
 (``package_decision``, and in ``random_pairs``).
 """
 
