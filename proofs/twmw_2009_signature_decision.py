@@ -125,12 +125,13 @@ every row of the decision and both regions, decided by the plain exact implement
 ``rows_realised``.  In the full profile, cross-checks of the same comparison: every Segre type a
 pencil with an ellipsoid can have, with every sign characteristic and order of its real
 eigenvalues, in canonical form moved by rational congruences and rigid motions
-(``segre_types_sweep``); random exact pairs with every type of ``Q``, cones and intersecting planes
-included (``random_pairs``); exact tangencies and the near-tangent ladders of
-``testing/hardcases.py`` (``near_tangent``); spheres and spheroids on the axes of circular
-cylinders, cones, hyperboloids and paraboloids (``symmetric_family``); small pairs, where the
-paper's criterion applies and must agree (``small_pairs``); and the package's own exact predicates
-(``transversal_contact``, ``relative_position``, ``overlap``) and its decision table
+(``segre_types_sweep``); random exact pairs with every type of ``Q``, cones, intersecting and
+double planes and quadrics without real points included (``random_pairs``); exact tangencies and
+the near-tangent ladders of ``testing/hardcases.py`` (``near_tangent``); spheres and spheroids on
+the axes of circular cylinders, cones, hyperboloids and paraboloids (``symmetric_family``); small
+pairs, where the paper's criterion applies and must agree (``small_pairs``); and the package's
+own exact predicates (``transversal_contact``, ``relative_position``, ``overlap``) and its decision
+table
 (:func:`quadric_contact.theory.decision.decide_exact`: its answers, its row for each pair and the
 exact inertia of the member it names as witness) against the signatures on all of these
 (``package_decision``, and in ``random_pairs``).
@@ -537,10 +538,11 @@ def segre_types_sweep() -> Finding:
 
 
 @proof.search(
-    "random exact pairs, every type of Q (cones, intersecting planes too): signatures = extremes; overlap",
+    "random exact pairs, every type of Q (cones, imaginary quadrics too): signatures = extremes; overlap",
     examples=0,
     large=400,
-    detail="ellipsoids of semi-axes 1/4..3 against Table 1 quadrics, planes, cones, intersecting planes",
+    detail="ellipsoids of semi-axes 1/4..3 against Table 1 quadrics, planes, cones, intersecting, double and "
+    "imaginary planes, imaginary ellipsoids and cylinders",
     method=Method.CROSS_CHECK,
 )
 def random_pairs(examples: int) -> Finding:
@@ -552,7 +554,18 @@ def random_pairs(examples: int) -> Finding:
     seen: dict[str, int] = {}
     extra = st.builds(
         lambda eq, m: _q(eq).moved(m),
-        st.sampled_from(["x**2 + y**2 - z**2", "4*x**2 + y**2 - 9*z**2", "x**2 - 4*y**2", "x*y - z"]),
+        st.sampled_from(
+            [
+                "x**2 + y**2 - z**2",
+                "4*x**2 + y**2 - 9*z**2",
+                "x**2 - 4*y**2",
+                "x*y - z",
+                "(x - 1/2)**2",
+                "x**2 + y**2 + z**2 + 1",
+                "x**2 + 2*y**2 + 1",
+                "x**2 + 1",
+            ]
+        ),
         rigid_motions(bound=3),
     )
 
