@@ -24,6 +24,7 @@ from quadric_contact.theory.smallness import smallness
 F = Fraction
 load_proofs(Path(__file__).resolve().parents[1] / "proofs")
 S = importlib.import_module(f"{PACKAGE_NAME}._signatures")
+P = importlib.import_module(f"{PACKAGE_NAME}.twmw_2009_signature_decision")
 
 
 @st.composite
@@ -60,6 +61,9 @@ def test_where_e_is_small_the_criterion_and_the_signatures_agree(pair):
     else:
         assert code is CriterionCode.ALL_REAL
         assert d.contact != S.TRANSVERSAL, (d, truth)  # Theorem 2: all roots real and small, no crossing
+    # the package's decision table and exact predicates say the same
+    problem = P.package_disagreement(E, Q)
+    assert problem in (None, P.REFUSED), problem
 
 
 def test_a_small_sphere_on_the_axis_of_a_cylinder_is_inside_it():
@@ -107,9 +111,6 @@ def test_an_irrational_double_root_is_decided_in_its_quadratic_field():
     Q = Quadric.from_matrix([[0, 1, 0, 0], [1, 1, 0, 0], [0, 0, 2, 1], [0, 0, 1, 1]])
     d, _ = S.agree(Quadric.sphere(1), Q)
     assert d.pattern == "2,2" and d.contact == S.TOUCHING and not d.witness.is_Rational
-
-
-P = importlib.import_module(f"{PACKAGE_NAME}.twmw_2009_signature_decision")
 
 
 @pytest.mark.parametrize("name", sorted(P.ROW_EXAMPLES))
