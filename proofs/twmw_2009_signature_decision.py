@@ -127,8 +127,10 @@ pencil with an ellipsoid can have, with every sign characteristic and order of i
 eigenvalues, in canonical form moved by rational congruences and rigid motions
 (``segre_types_sweep``); random exact pairs with every type of ``Q``, cones, intersecting and
 double planes and quadrics without real points included (``random_pairs``); exact tangencies and
-the near-tangent ladders of ``testing/hardcases.py`` (``near_tangent``); spheres and spheroids on
-the axes of circular cylinders, cones, hyperboloids and paraboloids (``symmetric_family``); small
+the near-tangent ladders of ``testing/hardcases.py`` (``near_tangent``, and every family with the
+binary64 ladders in ``hard_cases_all``); spheres and spheroids on the axes of circular cylinders,
+cones, hyperboloids and paraboloids (``symmetric_family``, and at scales 1/1000 .. 1000 in
+``extreme_scales``); small
 pairs, where the paper's criterion applies and must agree (``small_pairs``); and the package's
 own exact predicates (``transversal_contact``, ``relative_position``, ``overlap``) and its decision
 table
@@ -676,6 +678,57 @@ def symmetric_family() -> Finding:
         seen[f"{d.contact} ({d.row})"] = seen.get(f"{d.contact} ({d.row})", 0) + 1
         _check_overlap(E, Q, d.contact)
     return agrees("; ".join(f"{n} {c}" for c, n in sorted(seen.items())))
+
+
+@proof.check(
+    "every hard case, the binary64 ladders down to 1e-16 included: signatures = extremes; the package agrees",
+    method=Method.CROSS_CHECK,
+    full=True,
+    size="the 1268 pairs of testing/hardcases.py, every family",
+)
+def hard_cases_all() -> Finding:
+    from quadric_contact.testing.hardcases import hard_cases
+
+    seen: dict[str, int] = {}
+    for case in hard_cases():
+        E, Q = case.input_quadrics()
+        d, _ = agree(E, Q)
+        problem = package_disagreement(E, Q)
+        ensure(problem in (None, REFUSED), f"{case.id}: {problem}")
+        seen[d.contact] = seen.get(d.contact, 0) + 1
+    return agrees(
+        ", ".join(f"{n} {c}" for c, n in sorted(seen.items())) + ": the signatures and the package agree"
+    )
+
+
+def extreme_pairs() -> Iterator[tuple[Quadric, Quadric]]:
+    """Spheres and spheroids of radius 1/1000 .. 1000 on the axes of the circular quadrics, at heights
+    0, 1/1000 and 1000, and just inside, on and outside a tangency (radius 999/1000, 1, 1001/1000)."""
+    radii = (F(1, 1000), F(999, 1000), F(1), F(1001, 1000), F(1000))
+    for equation in SYMMETRIC.values():
+        Q = _q(equation)
+        for r, z, ratio in itertools.product(radii, (F(0), F(1, 1000), F(1000)), (F(1), F(3))):
+            E = Quadric.ellipsoid(r, r, r * ratio, center=(0, 0, z))
+            yield E, Q
+            yield E, -Q
+
+
+@proof.check(
+    "symmetric pairs at extreme scales (radii 1/1000 .. 1000): signatures = extremes; the package agrees",
+    method=Method.CROSS_CHECK,
+    full=True,
+    size="300 pairs: 5 circular quadrics and their negatives, 5 radii, 3 heights, 2 axis ratios",
+)
+def extreme_scales() -> Finding:
+    seen: dict[str, int] = {}
+    for E, Q in extreme_pairs():
+        d, _ = agree(E, Q)
+        problem = package_disagreement(E, Q)
+        ensure(problem in (None, REFUSED), f"{problem}")
+        seen[d.contact] = seen.get(d.contact, 0) + 1
+    return agrees(
+        ", ".join(f"{n} {c}" for c, n in sorted(seen.items())) + ": the signatures and the package agree"
+    )
 
 
 @proof.check(
