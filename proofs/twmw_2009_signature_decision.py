@@ -124,18 +124,17 @@ every row of the decision and both regions, decided by the plain exact implement
 (:func:`~quadric_contact.theory.geometric.decide_geometrically`, Lagrange conditions, no pencil):
 ``rows_realised``.  In the full profile, cross-checks of the same comparison: every Segre type a
 pencil with an ellipsoid can have, with every sign characteristic and order of its real
-eigenvalues, in canonical form moved by rational congruences and rigid motions
-(``segre_types_sweep``); random exact pairs with every type of ``Q``, cones, intersecting and
-double planes and quadrics without real points included (``random_pairs``); exact tangencies and
-the near-tangent ladders of ``testing/hardcases.py`` (``near_tangent``, and every family with the
-binary64 ladders in ``hard_cases_all``); spheres and spheroids on the axes of circular cylinders,
-cones, hyperboloids and paraboloids (``symmetric_family``, and at scales 1/1000 .. 1000 in
-``extreme_scales``); small
-pairs, where the paper's criterion applies and must agree (``small_pairs``); and the package's
-own exact predicates (``transversal_contact``, ``relative_position``, ``overlap``) and its decision
-table
-(:func:`quadric_contact.theory.decision.decide_exact`: its answers, its row for each pair and the
-exact inertia of the member it names as witness) against the signatures on all of these
+eigenvalues, in canonical form moved by rational congruences and rigid motions, the package's
+Segre symbol of each pair being the type built (``segre_types_sweep``); random exact pairs with
+every type of ``Q``, cones, intersecting and double planes and quadrics without real points
+included (``random_pairs``); exact tangencies and the near-tangent ladders of
+``testing/hardcases.py`` (``near_tangent``, and every family with the binary64 ladders in
+``hard_cases_all``); spheres and spheroids on the axes of circular cylinders, cones, hyperboloids
+and paraboloids (``symmetric_family``, and at scales 1/1000 .. 1000 in ``extreme_scales``); small
+pairs, where the paper's criterion applies and must agree (``small_pairs``); and the package's own
+exact predicates (``transversal_contact``, ``relative_position``, ``overlap``) and its decision
+table (:func:`quadric_contact.theory.decision.decide_exact`: its answers, its row for each pair
+and the exact inertia of the member it names as witness) against the signatures on all of these
 (``package_decision``, and in ``random_pairs``).
 """
 
@@ -153,7 +152,15 @@ from quadric_contact import Quadric, paper
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.paper.proving import Finding, Method, Proof, agrees, ensure, search_settings
 
-from ._real_pencils import SegreType, derive_root_signs, ellipsoid_form, pair_block, real_block, segre_types
+from ._real_pencils import (
+    SegreType,
+    derive_root_signs,
+    ellipsoid_form,
+    package_segre,
+    pair_block,
+    real_block,
+    segre_types,
+)
 from ._real_pencils import inertia as sympy_inertia
 from ._real_pencils import standard_matrix as table_1_matrix
 from ._signatures import COINCIDENT, ROWS, TOUCHING, TRANSVERSAL, agree, overlap_from
@@ -509,6 +516,7 @@ def segre_cases(motions: int, seed: int = 0) -> Iterator[tuple[str, Quadric, Qua
                 if (Q1 + shift * E1).is_zero_matrix:  # [(1111)]_1: Q a multiple of E, not 0
                     shift += 1
                 E2, Q2 = H.T * E1 * H, H.T * (Q1 + shift * E1) * H
+                ensure(package_segre(E2, Q2) == t.symbol, f"{t.symbol} {label}: the type is kept")
                 yield f"{t.symbol} {label}", _quadric(E2), _quadric(Q2)
 
 
