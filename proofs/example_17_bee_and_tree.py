@@ -333,7 +333,6 @@ def algorithms() -> Finding:
         ensure((zone_pkg, contact_pkg) == (zone_expected, contact_expected), f"{name}: package {zone_pkg}")
         done.append(f"{name}: zone {zone_found}, {'contact' if found else 'no contact'}")
     return agrees(
-        "; ".join(done)
-        + " (printed pseudo-code and quadric_contact.scenes.composite agree; each answer "
+        "; ".join(done) + " (printed pseudo-code and quadric_contact.scenes.composite agree; each answer "
         "certified without the pencil)"
     )
