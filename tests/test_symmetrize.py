@@ -15,9 +15,7 @@ import quadric_contact as qc
 # as numpy's R @ D @ R.T often leaves it
 A = 0.1
 B = float(np.nextafter(A, 1.0))
-LOPSIDED = np.array(
-    [[1.0, A, 0.0, 0.0], [B, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, -1.0]]
-)
+LOPSIDED = np.array([[1.0, A, 0.0, 0.0], [B, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, -1.0]])
 MEAN = (Fraction(A) + Fraction(B)) / 2
 BALL = np.diag([1.0, 1.0, 1.0, -16.0])  # radius 4: holds the ellipsoid above
 
