@@ -46,7 +46,7 @@ FURTHER_RESULTS: tuple[str, ...] = ("Wang-Wang-Kim 2001",)
 """Results from outside the paper that the package relies on and proves in ``proofs/``
 alongside the paper's (after them, in this order): the separation condition of two
 ellipsoids of Wang, Wang and Kim (CAGD 18, 2001), on which
-:func:`quadric_contact.theory.overlap` decides two ellipsoids."""
+:func:`quadric_contact.overlap` decides two ellipsoids."""
 
 PRINTED: dict[str, str] = {
     # Section 3.2, the two members of the discrimination system used by Corollary 10.
