@@ -111,5 +111,19 @@ html_theme_options = {
     "navigation_with_keys": False,
     "show_toc_level": 2,
     "secondary_sidebar_items": ["page-toc"],
+    "header_links_before_dropdown": 4,
+}
+# the section navigation where a section has pages of its own (the API reference, the
+# notebooks); the single pages have none to show
+html_sidebars = {
+    "*": [],
+    "api/**": ["sidebar-nav-bs"],
+    "api/index": ["sidebar-nav-bs"],
+    "notebooks/*": ["sidebar-nav-bs"],
+    "notebooks": ["sidebar-nav-bs"],
 }
 html_show_sourcelink = False
+html_favicon = "_static/favicon.svg"
+# the theme's colour mode when the reader has not chosen one (its default, empty, makes the
+# theme's script log an error on every page)
+html_context = {"default_mode": "light"}
