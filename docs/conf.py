@@ -39,6 +39,8 @@ extensions = [
 ]
 
 root_doc = "index"
+# root-sign patterns such as ---+ and -0++ are text, not dashes to be typeset
+smartquotes = False
 exclude_patterns = [
     "_build",
     "_generated",

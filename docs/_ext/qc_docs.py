@@ -29,8 +29,16 @@ DOCS = Path(__file__).resolve().parents[1]
 ROOT = DOCS.parent
 
 
+def _plain(text: str) -> str:
+    """The registry's text as Markdown that shows it as written: ``-27*c0**2*c3**4`` is a
+    formula, not emphasis, and ``$`` no mathematics."""
+    for char in "\\`*_[]<>$":
+        text = text.replace(char, "\\" + char)
+    return text
+
+
 def _cell(text: str) -> str:
-    return " ".join(text.split()).replace("|", "\\|")
+    return _plain(" ".join(text.split())).replace("|", "\\|")
 
 
 def errata_table() -> str:
@@ -51,13 +59,13 @@ def errata_entries() -> str:
     out = [f"The registry holds {len(ERRATA)} errata.\n"]
     for e in ERRATA:
         out.append(f"({e.key})=\n## `{e.key}`\n")
-        out.append(f"**Where.** {e.location}\n")
-        out.append(f"**Printed.** {e.printed}\n")
-        out.append(f"**Corrected.** {e.corrected}\n")
-        out.append(f"**Evidence.** {e.evidence}\n")
-        out.append(f"**Consequence.** {e.consequence}\n")
+        out.append(f"**Where.** {_plain(e.location)}\n")
+        out.append(f"**Printed.** {_plain(e.printed)}\n")
+        out.append(f"**Corrected.** {_plain(e.corrected)}\n")
+        out.append(f"**Evidence.** {_plain(e.evidence)}\n")
+        out.append(f"**Consequence.** {_plain(e.consequence)}\n")
         if e.confidence:
-            out.append(f"**Confidence that the printed paper is wrong.** {e.confidence}\n")
+            out.append(f"**Confidence that the printed paper is wrong.** {_plain(e.confidence)}\n")
     return "\n".join(out)
 
 
