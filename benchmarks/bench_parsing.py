@@ -8,7 +8,7 @@ Measures the time per text of
   with implicit multiplication, ``^``, rationalised decimals, then
   ``sympy.Poly``), kept here, and only here, as a private copy,
 
-on the equations of the README and of the built-in scenes, on random quadrics
+on the equations of the README, the documentation and the built-in scenes, on random quadrics
 (printed in several spellings), and on numbers (``to_fraction`` against the old
 ``Fraction``-then-``sympify`` path).  Both readers must give the same exact
 matrix for every text, or the run stops.  Last, the slowest inputs the bounds
@@ -114,12 +114,12 @@ def _old_number(text: str) -> Fraction:
 
 
 def readme_equations() -> list[str]:
-    """Equation strings of the README and of the built-in scenes."""
-    found = re.findall(
-        r'(?:from_equation|analyze_contact|plane_side)\((?:[a-z]+, )?"([^"]+)"',
-        (ROOT / "README.md").read_text(),
-    )
-    found += re.findall(r'analyze_contact\("[^"]+", "([^"]+)"\)', (ROOT / "README.md").read_text())
+    """Equation strings of the README, of the documentation's pages and of the built-in scenes."""
+    texts = [(ROOT / "README.md").read_text()] + [p.read_text() for p in sorted((ROOT / "docs").glob("*.md"))]
+    found = []
+    for text in texts:
+        found += re.findall(r'(?:from_equation|analyze_contact|plane_side)\((?:[a-z]+, )?"([^"]+)"', text)
+        found += re.findall(r'analyze_contact\("[^"]+", "([^"]+)"\)', text)
     folder = resources.files("quadric_contact").joinpath("scenes")
     for f in folder.iterdir():
         if f.name.endswith(".toml"):

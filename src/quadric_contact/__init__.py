@@ -51,7 +51,7 @@ from quadric_contact.modes import (
     RegionCode,
     SmallnessCode,
 )
-from quadric_contact.modes.packing import Packed, pack, unpack
+from quadric_contact.modes.packing import Packed, pack, symmetrize, unpack
 from quadric_contact.modes.predicates import (
     CriterionResult,
     contact_kind,
@@ -159,6 +159,7 @@ __all__ = [
     "segre_symbol",
     "simulate",
     "smallness",
+    "symmetrize",
     "transversal_contact",
     "unpack",
 ]

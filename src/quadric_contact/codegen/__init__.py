@@ -504,9 +504,9 @@ def derive_compact_deltas() -> tuple[list[sp.Symbol], list[tuple[str, sp.Expr]]]
     ``27 Delta_4 = 4 I^3 - J^2`` with the invariants ``I, J`` of the quartic (the discriminant
     identity), the products of two coefficients computed once (``s_k = c_k^2``, ``p_jk = c_j
     c_k``; ``I = 12 c0 c4 + u``, ``J = c2 h - 27 g + 9 c3 p12``): 32 products, 41 with the
-    magnitude program sharing them (:func:`~quadric_contact.exact.straight_line.
-    emit_value_and_magnitude_function`), against 48.  Checked against
-    :func:`derive_paper_deltas` by :func:`verify_compact_deltas`.  In floating point
+    magnitude program sharing them
+    (:func:`~quadric_contact.exact.straight_line.emit_value_and_magnitude_function`), against
+    48.  Checked against :func:`derive_paper_deltas` by :func:`verify_compact_deltas`.  In floating point
     ``4 I^3 - J^2`` cancels far more than the expanded form, so its rounding bound is weaker:
     the screen uses it with that bound (``errorbounds.SEMI_DELTA``), the filter the expanded
     form."""

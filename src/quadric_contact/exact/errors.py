@@ -43,9 +43,19 @@ class ShapeError(QuadricContactError, ValueError):
     """A matrix does not have the required shape (4x4, or a stack (..., 4, 4))."""
 
 
+SYMMETRIZE_HINT = (
+    "to use the symmetric part (M + M^T)/2, which has the same quadratic form, say so: "
+    "Quadric.from_matrix(M, symmetrize=True) for one matrix, quadric_contact.symmetrize(M) "
+    "for a stack (numpy's R @ D @ R.T is often asymmetric in the last bit)"
+)
+"""How to symmetrise, appended to every :class:`NotSymmetricError` about an input matrix."""
+
+
 class NotSymmetricError(QuadricContactError, ValueError):
     """A matrix that must be symmetric is not; ``.details['entry']`` is the
-    first ``(i, j)`` with ``M[i, j] != M[j, i]``."""
+    first ``(i, j)`` with ``M[i, j] != M[j, i]``.  The message says how to
+    symmetrise explicitly (:data:`SYMMETRIZE_HINT`); nothing is symmetrised
+    unless asked."""
 
 
 class EquationError(QuadricContactError, ValueError):
@@ -97,7 +107,7 @@ class SceneError(QuadricContactError, ValueError):
 
 class MissingDependencyError(QuadricContactError, ImportError):
     """An optional dependency needed for the requested feature is not installed
-    (for instance matplotlib for plots: ``pip install 'quadric-contact[plot]'``)."""
+    (for instance matplotlib for plots: ``pip install ".[plot]"`` from a checkout)."""
 
 
 class ProofsNotFoundError(QuadricContactError, FileNotFoundError):

@@ -60,7 +60,8 @@ def require(module: str, *, extra: str, purpose: str, package: str | None = None
     except ImportError as exc:
         name = package or module.split(".")[0]
         raise MissingDependencyError(
-            f"{purpose} need {name}: pip install 'quadric-contact[{extra}]' (or pip install {name})",
+            f'{purpose} need {name}: pip install ".[{extra}]" from a checkout'
+            f" (pip install 'quadric-contact[{extra}]' from an index, or pip install {name})",
             name,
             module=module,
             extra=extra,

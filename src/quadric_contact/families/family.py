@@ -604,6 +604,7 @@ class Family:
         self.reference = self._find_reference(at)
         ref = [self.reference[p] for p in parameters]
         E0 = Quadric.from_matrix(_matrix(self._e, ref))
+        #: Whether ``E`` was negated so that ``det E < 0``, as the paper assumes.
         self.e_flipped = E0.as_ellipsoid() is not E0
         if self.e_flipped:
             self._e = [-v for v in self._e]

@@ -101,7 +101,7 @@ class _Decider:
     """Decides the answer at binary64 points of a two-parameter family (see the module docstring).
 
     The pairs go to the certified mode's stack questions exactly as
-    :func:`~quadric_contact.relative_position` and :func:`~quadric_contact.theory.contact_kind`
+    :func:`~quadric_contact.relative_position` and :func:`~quadric_contact.contact_kind`
     send a stack (:func:`~quadric_contact.modes.batch.run_stack`); only the conversion of the
     input is done here, from the exact entries, with the binary64 roundings the float
     stages read (as :func:`~quadric_contact.modes.batch.as_stack` makes them for exact input).

@@ -1,6 +1,6 @@
 """Rigid motions with rational entries.
 
-A rotation matrix built from a *rational quaternion* ``q = (w, x, y, z)`` by
+A rotation matrix built from a *rational quaternion* ``q = (w, x, y, z)`` by::
 
     R = (1 / |q|^2) [[w²+x²-y²-z², 2(xy-wz),     2(xz+wy)],
                      [2(xy+wz),     w²-x²+y²-z², 2(yz-wx)],

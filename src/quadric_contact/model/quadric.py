@@ -24,6 +24,7 @@ from typing import Any
 
 from quadric_contact.exact.entries import ENTRY_INDICES
 from quadric_contact.exact.errors import (
+    SYMMETRIZE_HINT,
     EquationError,
     NonFiniteError,
     NotAnEllipsoidError,
@@ -158,8 +159,8 @@ class Quadric:
             for j in range(i + 1, 4):
                 if m[i][j] != m[j][i]:
                     raise NotSymmetricError(
-                        f"matrix is not symmetric: M[{i},{j}] = {m[i][j]} but M[{j},{i}] = {m[j][i]}"
-                        " (pass symmetrize=True to use (M + M^T)/2)",
+                        f"matrix is not symmetric: M[{i},{j}] = {m[i][j]} but M[{j},{i}] = {m[j][i]};"
+                        f" {SYMMETRIZE_HINT}",
                         matrix,
                         entry=(i, j),
                     )
@@ -231,7 +232,9 @@ class Quadric:
         for i in range(3):
             for j in range(i + 1, 3):
                 if A[i][j] != A[j][i]:
-                    raise NotSymmetricError(f"a is not symmetric at ({i},{j})", a, entry=(i, j))
+                    raise NotSymmetricError(
+                        f"a is not symmetric at ({i},{j}): {A[i][j]} but {A[j][i]}", a, entry=(i, j)
+                    )
         bb = [to_fraction(t) for t in b]
         if len(bb) != 3:
             raise ShapeError("b must have 3 entries", b)

@@ -3,18 +3,14 @@
 A number mode chooses the arithmetic of every stage of the decision
 (:mod:`~quadric_contact.modes.pipeline`), never the question:
 
-=============  ===================================================  ==========================
-mode           what it computes with                                answers
-=============  ===================================================  ==========================
-``certified``  ``filter``, then ``ball``, then ``exact``; the exact  always, never wrong
-               scalar predicates for what the stages leave
-``filter``     binary64 + rigorous error bound                      where sure, else UNCERTAIN
-``float``      plain binary64 (exact structural zeros)              always, may be wrong
-``ball``       python-flint ``arb`` balls at ``prec`` bits           where sure, else UNCERTAIN
-``mpmath``     mpmath ``mpf`` at ``dps`` digits (exact structural    always, may be wrong
-               zeros)
-``exact``      integers, exact rationals                            always, never wrong
-=============  ===================================================  ==========================
+* ``certified``: ``filter``, then ``ball``, then ``exact``, and the exact scalar
+  predicates for what the stages leave; always answers, never wrong;
+* ``filter``: binary64 with a rigorous error bound; answers where sure, else UNCERTAIN;
+* ``float``: plain binary64 (with the exact structural zeros); always answers, may be wrong;
+* ``ball``: python-flint ``arb`` balls at ``prec`` bits; answers where sure, else UNCERTAIN;
+* ``mpmath``: mpmath ``mpf`` at ``dps`` digits (with the exact structural zeros); always
+  answers, may be wrong;
+* ``exact``: integers and exact rationals; always answers, never wrong.
 
 A mode is an object; pass a name or an instance (to set options or to read
 its :attr:`~NumberMode.counts` afterwards)::

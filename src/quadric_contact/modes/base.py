@@ -93,7 +93,7 @@ class CriterionCode(IntEnum):
 
 
 class ContactKindCode(IntEnum):
-    """Codes of the array predicate :func:`~quadric_contact.theory.contact_kind` (the rows of Table 3).
+    """Codes of the array predicate :func:`~quadric_contact.contact_kind` (the rows of Table 3).
 
     ``NONE`` no contact, ``TRANSVERSAL`` the surfaces cross, ``UNCERTAIN`` (abstaining
     modes only), ``TANGENT_POINT``, ``TWO_TANGENT_POINTS``, ``TANGENT_CURVE``.

@@ -25,7 +25,12 @@ from typing import Any
 
 import numpy as np
 
-from quadric_contact.exact.errors import NotANumberError, NotSymmetricError, ShapeError
+from quadric_contact.exact.errors import (
+    SYMMETRIZE_HINT,
+    NotANumberError,
+    NotSymmetricError,
+    ShapeError,
+)
 from quadric_contact.modes import (
     MatrixStack,
     NumberMode,
@@ -196,7 +201,7 @@ def _object_upper(arr: np.ndarray, name: str) -> list[tuple[Fraction, ...]]:
                 if rows[i][j] != rows[j][i]:
                     raise NotSymmetricError(
                         f"{name}[{k}] is not symmetric: "
-                        f"M[{i},{j}] = {rows[i][j]} but M[{j},{i}] = {rows[j][i]}",
+                        f"M[{i},{j}] = {rows[i][j]} but M[{j},{i}] = {rows[j][i]}; {SYMMETRIZE_HINT}",
                         m,
                         entry=(i, j),
                         index=k,

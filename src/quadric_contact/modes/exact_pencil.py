@@ -1,4 +1,4 @@
-"""The pencil coefficients ``c0 .. c4`` of ``det(lambda E + Q)`` exactly, in compiled code,
+"""The pencil coefficients ``c0, ..., c4`` of ``det(lambda E + Q)`` exactly, in compiled code,
 for integer matrices (the exact mode's binary64 input once scaled to integers).
 
 The exact mode scales each binary64 matrix to integers (:func:`~quadric_contact.modes.objects.integer_rows`);

@@ -2,7 +2,7 @@
 semi-static screen of the certified ``filter``.
 
 Both read the input once, in blocks of :data:`NB` pairs small enough for the L1 cache:
-a gather (:mod:`quadric_contact._generated.blocks`) copies each block into column
+a gather (``quadric_contact._generated.blocks``) copies each block into column
 buffers, one row per upper entry (transposing the ``(n, 4, 4)`` or packed ``(n, 10)``
 layout to structure-of-arrays) and checks symmetry on the way; a straight-line loop over
 the block, which LLVM vectorises, computes everything; a short scalar loop writes the

@@ -15,7 +15,7 @@ rounded to binary64, whose bounds need the constants for rounded inputs:
   (``rank Q <= 2``) from per-quadric flags, ``Delta_4 = 0`` for proportional quadratic parts.
 
 Layout: blocks of :data:`NB` pairs gathered into column buffers by the generated gathers
-(:mod:`quadric_contact._generated.blocks`), straight-line loops that vectorise (each reads
+(``quadric_contact._generated.blocks``), straight-line loops that vectorise (each reads
 buffers it does not write), then the decisions in a scalar loop.
 """
 

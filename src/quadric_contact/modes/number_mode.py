@@ -65,7 +65,9 @@ class NumberMode(ABC):
     guard: NumberMode | None = None
 
     def __init__(self) -> None:
+        #: What every call so far settled, stage by stage (added up; thread-safe).
         self.counts = StageCounts()
+        #: What the last call settled, stage by stage.
         self.last = StageCounts()
         self._lock = threading.Lock()
 

@@ -17,14 +17,16 @@ True
 
 from __future__ import annotations
 
+from fractions import Fraction
 from typing import Any
 
 import numpy as np
 
 from quadric_contact.exact.entries import ENTRY_INDICES
-from quadric_contact.exact.errors import NotSymmetricError, ShapeError
+from quadric_contact.exact.errors import SYMMETRIZE_HINT, NotSymmetricError, ShapeError
+from quadric_contact.exact.rational import to_fraction
 
-__all__ = ["Packed", "pack", "unpack"]
+__all__ = ["Packed", "pack", "symmetrize", "unpack"]
 
 _I = np.array([i for i, _ in ENTRY_INDICES])
 _J = np.array([j for _, j in ENTRY_INDICES])
@@ -51,9 +53,77 @@ def pack(M: Any, *, check: bool = True) -> np.ndarray:
     if check and not (arr == np.swapaxes(arr, -1, -2)).all():
         bad = np.argwhere(~(arr == np.swapaxes(arr, -1, -2)).all(axis=(-1, -2)).reshape(-1))
         raise NotSymmetricError(
-            f"matrix {int(bad[0, 0])} of the stack is not symmetric", M, index=int(bad[0, 0])
+            f"matrix {int(bad[0, 0])} of the stack is not symmetric; {SYMMETRIZE_HINT}",
+            M,
+            index=int(bad[0, 0]),
         )
     return np.ascontiguousarray(arr[..., _I, _J])
+
+
+def symmetrize(M: Any) -> np.ndarray:
+    """The symmetric part ``(M + M^T) / 2`` of a matrix or a stack ``(..., 4, 4)``, exactly.
+
+    The symmetric part has the same quadratic form ``X^T M X`` as ``M``.  Nothing is
+    symmetrised unless this is called (or ``Quadric.from_matrix(M, symmetrize=True)``
+    for one matrix): an asymmetric input is refused with :class:`NotSymmetricError`.
+
+    Parameters
+    ----------
+    M : array-like, shape (4, 4) or (..., 4, 4)
+        Numbers of any form the predicates take (binary64, integers, Fractions,
+        decimal strings).
+
+    Returns
+    -------
+    numpy.ndarray, shape of ``M``
+        float64 when ``M`` is binary64 and every mean is a binary64 number (always the
+        case for a symmetric stack); otherwise an object array of exact
+        :class:`~fractions.Fraction` means, which the predicates read exactly.  The mean
+        of two neighbouring binary64 numbers (``R @ D @ R.T`` differing in the last bit)
+        lies halfway between them and is not binary64: it stays exact.
+
+    Raises
+    ------
+    ShapeError
+        If ``M`` is not ``(..., 4, 4)``.
+    NotANumberError, NonFiniteError, NotRationalError
+        For an entry that is not a finite rational number (non-binary64 input).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> M = np.array([[1.0, 2.0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, -1]])
+    >>> symmetrize(M)[0]
+    array([1., 1., 0., 0.])
+    >>> a = 0.1
+    >>> b = np.nextafter(a, 1.0)
+    >>> S = symmetrize(np.array([[1, a, 0, 0], [b, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, -1]]))
+    >>> S.dtype, S[0, 1] == S[1, 0] == (Fraction(a) + Fraction(b)) / 2
+    (dtype('O'), True)
+    """
+    arr = np.asarray(M)
+    if arr.ndim < 2 or arr.shape[-2:] != (4, 4):
+        raise ShapeError(f"symmetrize needs (..., 4, 4) matrices, got shape {arr.shape}", M)
+    if arr.dtype.kind == "f" and arr.dtype.itemsize <= 8:
+        floats = arr.astype(np.float64)
+        transposed = np.swapaxes(floats, -1, -2)
+        differ = (floats != transposed) & np.isfinite(floats) & np.isfinite(transposed)
+        out = floats.copy()
+        if not differ.any():
+            return out
+        where = np.argwhere(differ)
+        means = [(Fraction(floats[tuple(k)]) + Fraction(transposed[tuple(k)])) / 2 for k in where]
+        if all(Fraction(float(m)) == m for m in means):
+            for k, m in zip(where, means, strict=True):
+                out[tuple(k)] = float(m)
+            return out
+        exact = out.astype(object)
+        for k, m in zip(where, means, strict=True):
+            exact[tuple(k)] = m
+        return exact
+    exact = np.frompyfunc(to_fraction, 1, 1)(arr.astype(object) if arr.dtype.kind != "O" else arr)
+    exact = np.asarray(exact, dtype=object)
+    return (exact + np.swapaxes(exact, -1, -2)) / 2
 
 
 def unpack(P: Any) -> np.ndarray:

@@ -3,19 +3,16 @@
 The exact scalar decision (:func:`quadric_contact.theory.smallness.smallness`) compares the
 *squares* of the two positive sides of every inequality of the corrected Table 1
 row of ``Q`` (and, for two ellipsoids, of the enclosing alternative).  Each square
-is a product of integer powers of a few positive *primitives* of one matrix:
+is a product of integer powers of a few positive *primitives* of one matrix (of the matrix
+with its canonical sign, all absolute values):
 
-=========  ===================================================================
-primitive  value (of the matrix with its canonical sign; absolute values)
-=========  ===================================================================
-``P``      ``|det M|``                                     (``E4`` of the invariants)
-``A3``     ``|det M00|``                                   (``detA``)
-``J2``     ``|J|``, sum of the principal 2x2 minors of M00  (``JA``)
-``K3``     ``|E3|`` = ``|K|`` when ``det M00 = 0``            (``E3``)
-``J1``     ``|E2|`` = ``|J'|`` when M00 has rank 1          (``E2``)
-``T``      ``|tr M00|``                                   (``trA``)
-``L1..L3`` ``|lambda_i|``, the eigenvalues of M00 in increasing order
-=========  ===================================================================
+* ``P``: ``|det M|`` (``E4`` of the invariants);
+* ``A3``: ``|det M00|`` (``detA``);
+* ``J2``: ``|J|``, the sum of the principal 2x2 minors of M00 (``JA``);
+* ``K3``: ``|E3|`` = ``|K|`` when ``det M00 = 0`` (``E3``);
+* ``J1``: ``|E2|`` = ``|J'|`` when M00 has rank 1 (``E2``);
+* ``T``: ``|tr M00|`` (``trA``);
+* ``L1..L3``: ``|lambda_i|``, the eigenvalues of M00 in increasing order.
 
 With ``d^2 = -det Q / det Q00`` and so on (:func:`quadric_contact.theory.smallness.table_2_parameters`),
 for instance the curvature side of an ellipsoid ``Q`` is

@@ -46,7 +46,7 @@ FURTHER_RESULTS: tuple[str, ...] = ("Wang-Wang-Kim 2001", "Tu-Wang-Mourrain-Wang
 """Results from outside the paper that the package relies on and proves in ``proofs/``
 alongside the paper's (after them, in this order): the separation condition of two
 ellipsoids of Wang, Wang and Kim (CAGD 18, 2001), on which
-:func:`quadric_contact.theory.overlap` decides two ellipsoids; the decision of contact,
+:func:`quadric_contact.overlap` decides two ellipsoids; the decision of contact,
 region and overlap of an ellipsoid and any quadric from the signature sequence of the pencil
 (after Tu, Wang, Mourrain and Wang, CAGD 26, 2009), which needs no smallness: beyond the
 paper."""

@@ -112,7 +112,7 @@ PACKAGE_NAME = "quadric_contact_proofs"
 each other's private helpers relatively, ``from ._pencils import ...``), and
 under which the wheel installs it."""
 
-OPTIONAL_DEPENDENCIES = {"hypothesis": "pip install 'quadric-contact[test]'"}
+OPTIONAL_DEPENDENCIES = {"hypothesis": 'pip install ".[test]"'}
 """Packages a check may declare in ``requires`` (beyond the package's own
 dependencies), with how to install them."""
 

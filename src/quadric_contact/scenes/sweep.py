@@ -311,8 +311,8 @@ def _run_on_dask(
         from dask.distributed import Client, LocalCluster, as_completed
     except ImportError as exc:  # pragma: no cover - depends on the environment
         raise MissingDependencyError(
-            "a sweep on a cluster needs dask.distributed: pip install 'quadric-contact[dask]' "
-            "(or run it serially)"
+            'a sweep on a cluster needs dask.distributed: pip install ".[dask]" from a checkout '
+            "(or run it serially: quadric-contact sweep --serial, run_sweep(..., serial=True))"
         ) from exc
     cluster = None
     own = client is None

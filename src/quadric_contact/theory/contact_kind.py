@@ -364,7 +364,7 @@ def analyze_contact(E: Any, Q: Any, *, small: bool | None = None) -> ContactAnal
 
 def contact_kind_exact(E: Any, Q: Any, *, small: bool | None = None) -> ContactKind:
     """The kind of contact (a row of Table 3) between ``E`` and ``Q``, decided exactly for
-    one pair (the scalar path of :func:`quadric_contact.theory.contact_kind` in the ``certified``
+    one pair (the scalar path of :func:`quadric_contact.contact_kind` in the ``certified``
     and ``exact`` modes).
 
     See :func:`analyze_contact` for the evidence behind the answer.

@@ -4,7 +4,7 @@ The predicates of the paper ask about *surfaces*: do they cross, on which side o
 is the surface of ``E``.  Users of HOOMD-blue (``test_overlap`` of two ellipsoids),
 FCL/coal (``collide``) and hard-particle Monte Carlo ask about *solids*: an ellipsoid
 inside another overlaps it although the surfaces do not cross.  This module answers that
-question exactly for one pair (:func:`overlap_exact`); :func:`quadric_contact.theory.overlap`
+question exactly for one pair (:func:`overlap_exact`); :func:`quadric_contact.overlap`
 answers it for single pairs and stacks in every number mode.
 
 The solids
@@ -12,31 +12,27 @@ The solids
 The solid of the ellipsoid ``E`` is its inside.  The solid of ``Q`` is its region
 ``R- = {X^T Q X <= 0}`` for ``Q`` with the sign of its standard form of Table 1
 (:attr:`~quadric_contact.Quadric.canonical_sign`; the matrix as given for the two types
-whose two sides are congruent, the plane and the hyperbolic paraboloid):
+whose two sides are congruent, the plane and the hyperbolic paraboloid); type of ``Q``,
+its standard form (Table 1), its solid ``R-``:
 
-======================  =============================================  ==========================
-type of ``Q``           standard form (Table 1)                        its solid ``R-``
-======================  =============================================  ==========================
-ellipsoid               ``x^2/a^2 + y^2/b^2 + z^2/c^2 - 1``            the inside
-hyperboloid, one sheet  ``x^2/a^2 + y^2/b^2 - z^2/c^2 - 1``            the inside of the tube
-hyperboloid, two sheets ``x^2/a^2 + y^2/b^2 - z^2/c^2 + 1``            the two cups
-elliptic paraboloid     ``x^2/a^2 + y^2/b^2 - z``                      the inside (``z >= ..``)
-hyperbolic paraboloid   the matrix as given                            ``X^T Q X <= 0`` (one side)
-elliptic cylinder       ``x^2/a^2 + y^2/b^2 - 1``                      the inside
-hyperbolic cylinder     ``x^2/a^2 - y^2/b^2 - 1``                      the region between the
-                                                                       sheets (holding the axis)
-parabolic cylinder      ``x^2/a^2 - z``                                the inside (``z >= ..``)
-parallel planes         ``x^2/a^2 - 1``                                the slab between them
-plane                   the matrix as given (``n . x - d``)            the half-space
-                                                                       ``n . x <= d``
-======================  =============================================  ==========================
+* ellipsoid, ``x^2/a^2 + y^2/b^2 + z^2/c^2 - 1``: the inside;
+* hyperboloid of one sheet, ``x^2/a^2 + y^2/b^2 - z^2/c^2 - 1``: the inside of the tube;
+* hyperboloid of two sheets, ``x^2/a^2 + y^2/b^2 - z^2/c^2 + 1``: the two cups;
+* elliptic paraboloid, ``x^2/a^2 + y^2/b^2 - z``: the inside (``z >= ..``);
+* hyperbolic paraboloid, the matrix as given: ``X^T Q X <= 0`` (one side);
+* elliptic cylinder, ``x^2/a^2 + y^2/b^2 - 1``: the inside;
+* hyperbolic cylinder, ``x^2/a^2 - y^2/b^2 - 1``: the region between the sheets (holding
+  the axis);
+* parabolic cylinder, ``x^2/a^2 - z``: the inside (``z >= ..``);
+* parallel planes, ``x^2/a^2 - 1``: the slab between them;
+* plane, the matrix as given (``n . x - d``): the half-space ``n . x <= d``.
 
 Quadrics without a row of Table 1 and not planes (cones, intersecting planes, imaginary
 quadrics, double planes, the zero matrix) are refused with
 :class:`~quadric_contact.exact.errors.ExcludedQuadricError`.
 
 The answers (:class:`~quadric_contact.modes.OverlapCode`)
---------------------------------------------------------
+---------------------------------------------------------
 ``SEPARATE``
     the closed solids are disjoint;
 ``TOUCHING``
@@ -129,7 +125,7 @@ solver) or as an overlap (``"overlap"``: FCL's GJK solver)."""
 
 class TouchingError(QuadricContactError, ValueError):
     """A touch was read as a yes or a no without a convention: pass ``touching="separate"``
-    or ``touching="overlap"`` to :func:`~quadric_contact.theory.overlap`, or read ``.code``."""
+    or ``touching="overlap"`` to :func:`~quadric_contact.overlap`, or read ``.code``."""
 
 
 def check_touching(touching: str | None) -> OverlapCode | None:
@@ -194,7 +190,7 @@ def solid_of(Q: Any, name: str = "Q") -> Quadric:
 
 @dataclass(frozen=True)
 class OverlapResult:
-    """Answer of :func:`~quadric_contact.theory.overlap` for one pair.
+    """Answer of :func:`~quadric_contact.overlap` for one pair.
 
     Attributes
     ----------
@@ -337,7 +333,7 @@ def _approx(r: Any) -> str:
 
 def overlap_exact(E: Any, Q: Any, *, touching: str | None = None) -> OverlapResult:
     """Do the solids of the ellipsoid ``E`` and of ``Q`` overlap?  Decided exactly for one pair
-    (the scalar path of :func:`quadric_contact.theory.overlap` in the ``certified`` and ``exact`` modes).
+    (the scalar path of :func:`quadric_contact.overlap` in the ``certified`` and ``exact`` modes).
 
     Parameters
     ----------

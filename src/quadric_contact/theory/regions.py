@@ -10,18 +10,15 @@ and parallel planes the zero roots are structural).  A test re-derives it.
 
 The patterns hold for ``Q`` with the sign of its standard form
 (:attr:`Quadric.canonical_sign`); for ``-Q`` the roots change sign and
-``R-``/``R+`` swap, which is how the caller's matrix is handled.
+``R-``/``R+`` swap, which is how the caller's matrix is handled.  The patterns of
+root signs (Table 4):
 
-================================================  ========  ========
-type of Q                                          R-        R+
-================================================  ========  ========
-ellipsoid, hyperboloid of two sheets,              ``----``  ``--++``
-elliptic paraboloid
-hyperboloid of one sheet, hyperbolic paraboloid    ``---+``  ``-+++``
-elliptic cylinder, parabolic cylinder              ``---0``  ``-0++``
-hyperbolic cylinder                                ``--0+``  ``0+++``
-parallel planes; a plane (Theorem 14)              ``--00``  ``00++``
-================================================  ========  ========
+* ellipsoid, hyperboloid of two sheets, elliptic paraboloid: ``R-`` ``----``,
+  ``R+`` ``--++``;
+* hyperboloid of one sheet, hyperbolic paraboloid: ``R-`` ``---+``, ``R+`` ``-+++``;
+* elliptic cylinder, parabolic cylinder: ``R-`` ``---0``, ``R+`` ``-0++``;
+* hyperbolic cylinder: ``R-`` ``--0+``, ``R+`` ``0+++``;
+* parallel planes; a plane (Theorem 14): ``R-`` ``--00``, ``R+`` ``00++``.
 """
 
 from __future__ import annotations

@@ -333,7 +333,7 @@ class PlaneSideResult:
 
 
 class OverlapCode(IntEnum):
-    """Codes of the array predicate :func:`~quadric_contact.theory.overlap` (do the solids overlap?).
+    """Codes of the array predicate :func:`~quadric_contact.overlap` (do the solids overlap?).
 
     The solid of ``E`` is its inside; the solid of ``Q`` is its region ``R-`` for the sign
     of its standard form (the matrix as given for a plane or a hyperbolic paraboloid):

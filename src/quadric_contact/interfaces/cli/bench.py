@@ -58,7 +58,7 @@ def run(args: argparse.Namespace) -> int:
         print(
             "note: not installed: "
             + ", ".join(names.get(m, m) for m in missing)
-            + " (pip install 'quadric-contact[bench]'); those measurements are skipped",
+            + ' (pip install ".[bench]"); those measurements are skipped',
             file=sys.stderr,
         )
     report = benchmark.run(

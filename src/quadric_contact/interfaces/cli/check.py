@@ -51,8 +51,37 @@ def _fmt(x: Fraction) -> str:
     return f"{x}  (~ {float(x):.6g})"
 
 
+def _touching(analysis: Any) -> str:
+    """One line for the kind of contact (Table 3) with the tangent points, for every type of Q."""
+    from quadric_contact.theory.contact_kind import ContactKind
+
+    kind = analysis.kind
+    where = ", ".join("(" + ", ".join(str(c) for c in point) + ")" for point in _points(analysis))
+    text = {
+        ContactKind.NONE: "no (the surfaces do not touch)",
+        ContactKind.TRANSVERSAL: "the surfaces cross (transversal contact)",
+        ContactKind.TANGENT_POINT: f"yes, tangent at one point {where}",
+        ContactKind.TWO_TANGENT_POINTS: f"yes, tangent at two points {where}",
+        ContactKind.TANGENT_CURVE: "yes, along a curve of tangency",
+    }.get(kind, str(kind))
+    if kind is ContactKind.TRANSVERSAL and where:
+        text += f", and tangent at {where}"
+    return f"touching: {text} (Table 3: {kind.value}, Segre {analysis.segre})"
+
+
+def _points(analysis: Any) -> list[tuple[str, ...]]:
+    """The tangent points, exact, as the report's JSON writes them (each once)."""
+    seen: list[tuple[str, ...]] = []
+    for member in analysis.to_dict()["members"]:
+        for point in member["points"]:
+            if tuple(point) not in seen:
+                seen.append(tuple(point))
+    return seen
+
+
 def run(args: argparse.Namespace) -> int:
     from quadric_contact.model.classification import QuadricKind
+    from quadric_contact.theory.contact_kind import analyze_contact
     from quadric_contact.theory.pencil import as_quadric, characteristic_polynomial
     from quadric_contact.theory.plane import plane_side_exact as plane_side
     from quadric_contact.theory.regions import decide_region
@@ -76,6 +105,8 @@ def run(args: argparse.Namespace) -> int:
         out["contact"] = region.contact.to_dict()
         out["region"] = region.to_dict()
         decided = region.decided
+    analysis = analyze_contact(E, Q, small=small)
+    out["contact_kind"] = analysis.to_dict()
     if args.json:
         print(json.dumps(out, indent=2, default=str))
         return EXIT_OK if decided else EXIT_UNDECIDED
@@ -102,5 +133,6 @@ def run(args: argparse.Namespace) -> int:
             lines.append(f"smallness: {verdict}")
         lines.append(f"transversal contact: {c}")
         lines.append(f"region: {region}")
+    lines.append(_touching(analysis))
     print("\n".join(lines))
     return EXIT_OK if decided else EXIT_UNDECIDED
