@@ -11,6 +11,7 @@ every number and every equation is read by the package's own parser,
     effects = ["zone", "contact", "relative_position", "first_contact"]
     on_not_small = "refuse"            # or "warn" (see below)
     places = 12                        # decimal places printed for event times
+    reading = "geometry"               # or "paper" (see below)
 
     [[object]]
     name = "tree"
@@ -92,6 +93,12 @@ Theorem 2; ``on_not_small = "refuse"`` rejects a scene where it fails,
 ``"warn"`` keeps it, with a warning, and the contact where all roots are real
 is then reported as undecided.
 
+A piece is the part of its quadric on the kept side of every plane on its
+path in the object's tree: the ellipsoid is in contact with it where it
+crosses the surface *as cut* (``reading = "geometry"``, the default).
+``reading = "paper"`` keeps the reading of Algorithm 1, where a piece whose
+zone the ellipsoid reaches counts as its whole quadric (Example 17).
+
 Names are unique: two pieces of one object, and two objects or
 ellipsoids of a scene (an object and an ellipsoid included), never share one.
 
@@ -121,6 +128,7 @@ from quadric_contact.model.quadric import Quadric
 from quadric_contact.scenes.composite import Composite, Piece, Split
 from quadric_contact.scenes.scene_model import (
     EFFECTS,
+    READINGS,
     EXCLUDED_KINDS,
     MovingEllipsoid,
     Scene,
@@ -585,7 +593,7 @@ def parse_scene(
         raise SceneError(f"{source}: not valid TOML: {exc}", text, file=source) from exc
     r.keys(data, "", ("scene", "object", "ellipsoid", "effects"))
     meta = r.table(data, "scene", "scene")
-    r.keys(meta, "scene", ("name", "description", "time", "effects", "on_not_small", "places"))
+    r.keys(meta, "scene", ("name", "description", "time", "effects", "on_not_small", "places", "reading"))
     name = r.string(meta, "name", "scene.name")
     description = meta.get("description", "")
     if not isinstance(description, str):
@@ -619,6 +627,9 @@ def parse_scene(
     places_raw = meta.get("places", 12)
     if isinstance(places_raw, bool) or not isinstance(places_raw, int) or not 0 <= places_raw <= 1000:
         raise r.error("scene.places", "an integer number of decimal places in [0, 1000]", places_raw)
+    reading = r.string(meta, "reading", "scene.reading", default="geometry")
+    if reading not in READINGS:
+        raise r.error("scene.reading", " or ".join(repr(x) for x in READINGS), reading)
     objects = tuple(
         _object(r, t, f"object[{i}]") for i, t in enumerate(r.array_of_tables(data, "object", "object"))
     )
@@ -642,6 +653,7 @@ def parse_scene(
         places_raw,
         ellipsoid_effects=per_ellipsoid,
         piece_effects=per_piece,
+        reading=reading,
     )
     if check_smallness and scene.needs_smallness():
         scene.check_smallness(on_not_small=on_not_small)

@@ -282,6 +282,16 @@ class PairResult:
     complete: bool = True
     segments_done: int = 0
 
+    def beyond_cut(self) -> list[str]:
+        """The pieces the ellipsoid crosses only beyond their cut at some time: where
+        the geometric reading and the paper's (whole quadrics) differ."""
+        names: dict[str, None] = {}
+        for ep in self.episodes:
+            for name, v in ep.state.pieces:
+                if v is not None and v.beyond_cut:
+                    names[name] = None
+        return list(names)
+
     @property
     def initial(self) -> ObjectState:
         """The state at the start of the time span."""
@@ -342,6 +352,12 @@ class PairResult:
         return out
 
 
+def _reading_text(reading: str) -> str:
+    if reading == "paper":
+        return "reading: the paper's (Algorithm 1): a piece whose zone is reached counts as its whole quadric"
+    return "reading: pieces as cut by the planes of their object (--reading paper: as whole quadrics)"
+
+
 def _piece_text(d: dict[str, PieceValue | None], name: str, inside: Region | None = None) -> str:
     if name not in d:
         return "not in zone"
@@ -392,6 +408,7 @@ class SimulationResult:
             "source": self.scene.source,
             "time_span": [str(self.scene.span[0]), str(self.scene.span[1])],
             "effects": list(self.plan.effects),
+            "reading": self.scene.reading,
             "plan": self.plan.describe(),
             "events": sum(len(p.events) for p in self.pairs),
             "pairs": [p.to_dict(places, self.plan.effects) for p in self.pairs],
@@ -416,7 +433,7 @@ class SimulationResult:
     def format_text(self, places: int | None = None) -> str:
         """The timeline as printed by ``quadric-contact simulate`` (event times to ``places`` decimals)."""
         places = self.scene.places if places is None else places
-        lines = [self.scene.describe(), f"plan: {self.plan.describe()}"]
+        lines = [self.scene.describe(), f"plan: {self.plan.describe()}", _reading_text(self.scene.reading)]
         if "smallness" in self.plan.effects or any(c.small is False for c in self.scene.smallness.values()):
             lines.append("smallness (Tables 1, 2):")
             lines += [f"  {c}" for c in self.scene.smallness.values()]
@@ -446,6 +463,12 @@ class SimulationResult:
                     lines += [" " * len(head) + c for c in changes[1:]]
                 end = p.episodes[-1].state.summary(p.object, with_zones=show_zones)
                 lines.append(f"  t = {_fmt_time(self.scene.span[1], places)}: end: {end}")
+            beyond = p.beyond_cut()
+            if beyond:
+                lines.append(
+                    f"  readings differ: as whole quadrics (--reading paper) the crossings of "
+                    f"{', '.join(beyond)} beyond the cut count as contact"
+                )
             if "first_contact" in own:
                 if p.first_contact is None:
                     lines.append("  first contact: none in the time span")

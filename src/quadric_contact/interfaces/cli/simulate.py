@@ -67,6 +67,12 @@ def register(sub: Any) -> None:
         help="what to do when an ellipsoid is not small with respect to a piece (default: the scene's)",
     )
     p.add_argument(
+        "--reading",
+        choices=("geometry", "paper"),
+        help="geometry: a piece is its quadric as cut by its planes; paper: Algorithm 1's reading, "
+        "a piece whose zone is reached counts as its whole quadric (default: the scene's, else geometry)",
+    )
+    p.add_argument(
         "--full",
         action="store_true",
         help="evaluate every effect for every piece on every segment (to compare with the lazy plan)",
@@ -153,6 +159,7 @@ def run(args: argparse.Namespace) -> int:
             on_not_small=args.on_not_small,
             broad_phase=broad_phase and not args.full,
             workers=1 if args.workers is None else args.workers,
+            reading=args.reading,
         )
     places = args.places
     payload = json.dumps(result.to_dict(places), indent=2) + "\n" if args.json or args.output else ""
