@@ -107,7 +107,6 @@ class SectionTrack(_Track):
         raw = pencil_coefficients(*E_upper, *(_const(v) for v in Q.upper))
         d4 = paper_deltas(*raw)[2]
         self.D4 = d4 if d4.is_zero() else reduce_positive(d4, positive)
-        ledger.add("discriminants", 2, target=label)
         self.smooth = not self.D4.is_zero() or Q.kind is QuadricKind.PLANE or _homothetic(E_upper, Q)
         self.critical = [] if self.degenerate else [self.G]
         self._find_roots()

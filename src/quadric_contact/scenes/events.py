@@ -436,6 +436,8 @@ class PieceTrack(_Track):
             return "undecided"
         if s4 != 0:
             return "none"  # all roots real and simple: Segre type [1111], no contact (Table 3)
+        if isinstance(t, RealAlgebraic) and t.is_rational:
+            t = t.as_fraction()  # a rational event time: the kind is classified exactly there
         if self._kind_fn is not None and isinstance(t, Fraction) and self.E_at is not None:
             result = self._kind_fn(self.E_at(t), self.Q, small=self.small)
             return str(getattr(result, "value", result))

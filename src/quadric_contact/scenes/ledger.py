@@ -47,7 +47,8 @@ Counted items
     exactly as the pencil in time would (one per target and side).
 ``section_pencils``
     Geometric reading: pencils of the conics cut by a plane from the moving
-    ellipsoid and a piece's quadric (one per piece, plane and segment).
+    ellipsoid and a piece's quadric, with its discriminant in ``t`` and the
+    discriminant of the piece's pencil (one per piece, plane and segment).
 ``section_samples``
     Does the curve ``E ∩ Q`` meet a cutting plane at a sample time (a cubic's
     roots and one inertia per gap).

@@ -162,6 +162,9 @@ class _BroadSegmentRun(_SegmentRun):
         return self._static[key]
 
     def make_track(self, label: str) -> None:
+        if label not in self.coverage.parts:  # a plane section of a piece as cut: exact on the segment
+            super().make_track(label)
+            return
         parts = self.coverage.parts[label]
         if len(parts) == 1 and parts[0].tracked:
             super().make_track(label)

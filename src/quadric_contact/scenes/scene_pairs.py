@@ -327,8 +327,11 @@ def _tangent_boundaries(
 ) -> None:
     """At an instant that bounds an interval of transversal contact with a piece and
     is not itself transversal, the surfaces touch without crossing (the contact set
-    is closed, the transversal one open): an undetermined contact kind there is a
-    tangency."""
+    is closed, the transversal one open).  The contact kind is a word of Table 3's
+    vocabulary (:class:`~quadric_contact.theory.contact_kind.ContactKind`, the one of
+    :func:`~quadric_contact.analyze_contact`); at an irrational instant, where the
+    row is not classified, it stays ``undetermined`` and the reason says that the
+    surfaces touch there."""
     for i, (kind, start, end, state, sample) in enumerate(entries):
         if kind != "instant":
             continue
@@ -338,7 +341,12 @@ def _tangent_boundaries(
             if v is not None and v.contact is False and v.kind == "undetermined":
                 near = [dict(entries[j][3].pieces).get(name) for j in (i - 1, i + 1) if 0 <= j < len(entries)]
                 if any(n is not None and n.contact for n in near):
-                    v = replace(v, kind="tangent", decided_by=v.decided_by + "; bounds a transversal contact")
+                    v = replace(
+                        v,
+                        decided_by=v.decided_by
+                        + "; bounds a transversal contact: the surfaces touch without crossing "
+                        "(the row of Table 3 is not classified at an irrational instant)",
+                    )
                     changed = True
             pieces.append((name, v))
         if changed:
