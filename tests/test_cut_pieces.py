@@ -199,9 +199,9 @@ def _paths(node, kept=()):
     return _paths(node.plus, (*kept, (node.plane, 1))) + _paths(node.minus, (*kept, (node.plane, -1)))
 
 
-def _expected(obj, E, reading):
+def _expected(obj, E, reading, points=12000):
     """Piece name -> contact, from the ellipsoid's sampled surface (None: too close to call)."""
-    X = _surface_points(E)
+    X = _surface_points(E, points)
     out: dict[str, bool | None] = {}
     leaves = _paths(obj.root) if not isinstance(obj.root, Piece) else [(obj.root, [])]
     leaves += [(p, []) for p in obj.extra_pieces]
@@ -234,10 +234,21 @@ def _expected(obj, E, reading):
 def test_builtin_scene_contacts_agree_with_sampling(name, reading):
     """Every piece's contact at many times, against the surface sampled in floats: in the
     geometric reading only the kept part of the ellipsoid's surface counts."""
+    _compare_with_sampling(name, reading, steps=48, points=8000)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("reading", ["geometry", "paper"])
+@pytest.mark.parametrize("name", builtin_scene_names())
+def test_builtin_scene_contacts_agree_with_dense_sampling(name, reading):
+    _compare_with_sampling(name, reading, steps=400, points=60000)
+
+
+def _compare_with_sampling(name, reading, *, steps, points):
     scene = builtin_scene(name)
     result = simulate(scene, effects=["contact"], reading=reading)
     t0, t1 = scene.span
-    steps = 120 if len(scene.ellipsoids) < 4 else 30
+    steps = steps if len(scene.ellipsoids) < 4 else steps // 4
     compared = 0
     for pair in result.pairs:
         if not pair.complete:
@@ -258,7 +269,7 @@ def test_builtin_scene_contacts_agree_with_sampling(name, reading):
             state = pair.state_at(t)
             got = {n: v.contact for n, v in state.pieces if v is not None}
             E = ell.trajectory.placed(ell.quadric, t, t0, t1)
-            for piece, expected in _expected(pair.object, E, reading).items():
+            for piece, expected in _expected(pair.object, E, reading, points).items():
                 if expected is None or piece not in asked:
                     continue
                 assert got.get(piece, False) == expected, (pair.ellipsoid, piece, t, reading)
