@@ -42,11 +42,13 @@ NUMBERED_RESULTS: tuple[str, ...] = (
 definition; the formulas of Section 3.2 are unnumbered but proved too).
 Tables 1-4 and the numbered equations belong to the results that state them."""
 
-FURTHER_RESULTS: tuple[str, ...] = ("Wang-Wang-Kim 2001",)
+FURTHER_RESULTS: tuple[str, ...] = ("Wang-Wang-Kim 2001", "Pieces as cut")
 """Results from outside the paper that the package relies on and proves in ``proofs/``
 alongside the paper's (after them, in this order): the separation condition of two
 ellipsoids of Wang, Wang and Kim (CAGD 18, 2001), on which
-:func:`quadric_contact.theory.overlap` decides two ellipsoids."""
+:func:`quadric_contact.theory.overlap` decides two ellipsoids; and the package's own
+reduction of contact with a piece as cut by a plane to the plane section's pencil
+(:mod:`quadric_contact.theory.sections`), on which the geometric reading of scenes rests."""
 
 PRINTED: dict[str, str] = {
     # Section 3.2, the two members of the discrimination system used by Corollary 10.

@@ -17,7 +17,7 @@ times it is decided at a rational sample time by
 :func:`~quadric_contact.theory.sections.curve_meets_half_space`; at each of
 them from the neighbouring intervals and the exact signs there
 (:func:`resolve_cut`).  The reduction is proved in
-``proofs/trimmed_pieces_plane_sections.py``.
+``proofs/pieces_as_cut.py``.
 
 What is not decided is said so (contact undecided, with the reason): an
 ellipsoid crossing two cutting planes of one piece at once, section conics

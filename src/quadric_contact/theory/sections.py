@@ -25,7 +25,7 @@ the paper's pencil ``λE + Q``:
 
 The reduction, and the claim that the answer can change in time only where
 the section's discriminant, ``E``'s zone or the pencil's discriminant
-changes sign, is proved in ``proofs/trimmed_pieces_plane_sections.py``.
+changes sign, is proved in ``proofs/pieces_as_cut.py``.
 
 Coefficient order as everywhere in the package: ``c0, c1, c2, c3`` with
 ``det(λA + B) = c3 λ^3 + c2 λ^2 + c1 λ + c0``.
