@@ -397,14 +397,37 @@ def test_report_says_where_the_readings_differ(capsys):
 
 def test_events_are_changes_and_the_count_is_the_timeline():
     """An event is reported only where the decided state changes: every event says what
-    changed, and the summary's count is the number of events listed."""
+    changed, and the summary's count is the number of events the timelines list."""
     for name in builtin_scene_names():
         result = simulate(builtin_scene(name))
         for pair in result.pairs:
             for ev in pair.events:
                 assert ev.changes(pair.object), (name, pair.ellipsoid, ev.time)
-        text = result.format_text()
-        assert f"events: {sum(len(p.events) for p in result.pairs)} in" in text
+        text = result.format_text(events="all")
+        listed = sum(
+            1
+            for line in text.splitlines()
+            if line.startswith("  t = ") and ": start: " not in line and ": end: " not in line
+        )
+        assert f"events: {listed} in {len(result.pairs)} (ellipsoid, object) pair(s)" in text, name
+
+
+def test_long_reports_are_summarised_unless_all_events_are_asked_for():
+    from quadric_contact.scenes.manybody import many_body_scene
+    from quadric_contact.scenes.simulation_reports import EVENTS_SHOWN, LINES_SHOWN
+
+    scene = many_body_scene(60, 4, seed=1, check_smallness=False)
+    result = simulate(scene, broad_phase=True)
+    short, full = result.format_text(), result.format_text(events="all")
+    events = sum(len(p.events) for p in result.pairs)
+    assert events > 40
+    assert len(short.splitlines()) < LINES_SHOWN + 3 * EVENTS_SHOWN + 60 < len(full.splitlines())
+    assert "more (ellipsoid, object) pairs" in short and "--events all" in short
+    assert "more (ellipsoid, object) pairs" not in full
+    tail = [line for line in short.splitlines() if line.startswith("events: ")]
+    assert tail == [line for line in full.splitlines() if line.startswith("events: ")]
+    with pytest.raises(SceneError, match="events"):
+        result.format_text(events="some")
 
 
 def test_probe_two_sheets_has_no_event_at_3_plus_sqrt10_over_2():

@@ -352,6 +352,20 @@ class PairResult:
         return out
 
 
+EVENTS_SHOWN = 24
+"""Events listed per pair in a summarised report (two thirds from the start, the rest from the end)."""
+
+LINES_SHOWN = 80
+"""Lines of pair timelines in a summarised report before the remaining pairs are summed up."""
+
+
+def _shown_changes(ev: Event, obj: Composite, show_zones: bool) -> list[str]:
+    changes = ev.changes(obj)
+    if not show_zones:
+        changes = [c for c in changes if not c.startswith("zone of plane")]
+    return changes
+
+
 def _reading_text(reading: str) -> str:
     if reading == "paper":
         return "reading: the paper's (Algorithm 1): a piece whose zone is reached counts as its whole quadric"
@@ -430,8 +444,23 @@ class SimulationResult:
             ]
         return out
 
-    def format_text(self, places: int | None = None) -> str:
-        """The timeline as printed by ``quadric-contact simulate`` (event times to ``places`` decimals)."""
+    def _listed(self, p: PairResult) -> int:
+        """The events a pair's timeline reports (what its ellipsoid asks to see)."""
+        own = self.plan.restricted(self.scene.ellipsoid_effects.get(p.ellipsoid)).effects
+        if not (p.complete and {"zone", "contact", "contact_kind", "relative_position"} & set(own)):
+            return 0
+        return sum(1 for ev in p.events if _shown_changes(ev, p.object, "zone" in own))
+
+    def format_text(self, places: int | None = None, *, events: str = "summary") -> str:
+        """The timeline as printed by ``quadric-contact simulate`` (event times to ``places`` decimals).
+
+        ``events="summary"`` (the default) bounds the output: each pair lists at
+        most :data:`EVENTS_SHOWN` events (the first ones and the last ones), and
+        once :data:`LINES_SHOWN` lines of timelines are printed the remaining pairs
+        are summed up in one line; ``events="all"`` lists every event of every pair.
+        """
+        if events not in ("summary", "all"):
+            raise SceneError(f"events: expected 'summary' or 'all', got {events!r}", events)
         places = self.scene.places if places is None else places
         lines = [self.scene.describe(), f"plan: {self.plan.describe()}", _reading_text(self.scene.reading)]
         if "smallness" in self.plan.effects or any(c.small is False for c in self.scene.smallness.values()):
@@ -443,7 +472,13 @@ class SimulationResult:
             f"event times: exact real algebraic numbers, shown to {places} decimal places "
             "(--places N; --json gives each one's polynomial and isolating interval)"
         )
+        shown_lines = listed_events = 0
+        hidden: list[PairResult] = []
         for p in self.pairs:
+            if events == "summary" and shown_lines >= LINES_SHOWN:
+                hidden.append(p)
+                continue
+            before = len(lines)
             own = self.plan.restricted(self.scene.ellipsoid_effects.get(p.ellipsoid)).effects
             show_zones = "zone" in own
             show_timeline = bool({"zone", "contact", "contact_kind", "relative_position"} & set(own))
@@ -452,15 +487,26 @@ class SimulationResult:
             if p.complete and show_timeline:
                 start = p.initial.summary(p.object, with_zones=show_zones)
                 lines.append(f"  t = {_fmt_time(self.scene.span[0], places)}: start: {start}")
-                for ev in p.events:
-                    changes = ev.changes(p.object)
-                    if not show_zones:
-                        changes = [c for c in changes if not c.startswith("zone of plane")]
-                        if not changes:
-                            continue
+                listed = [
+                    (ev, changes)
+                    for ev in p.events
+                    if (changes := _shown_changes(ev, p.object, show_zones))
+                ]
+                skip = (0, 0)
+                if events == "summary" and len(listed) > EVENTS_SHOWN:
+                    head_n = EVENTS_SHOWN - EVENTS_SHOWN // 3
+                    skip = (head_n, len(listed) - EVENTS_SHOWN // 3)
+                for k, (ev, changes) in enumerate(listed):
+                    if skip[0] <= k < skip[1]:
+                        if k == skip[0]:
+                            lines.append(
+                                f"  ... {skip[1] - skip[0]} more events (--events all lists every one)"
+                            )
+                        continue
                     head = f"  t = {_fmt_time(ev.time, places)}: "
                     lines.append(head + changes[0])
                     lines += [" " * len(head) + c for c in changes[1:]]
+                listed_events += len(listed)
                 end = p.episodes[-1].state.summary(p.object, with_zones=show_zones)
                 lines.append(f"  t = {_fmt_time(self.scene.span[1], places)}: end: {end}")
             beyond = p.beyond_cut()
@@ -478,11 +524,21 @@ class SimulationResult:
                     lines.append(
                         f"  first contact: t = {_fmt_time(t, places)} with {', '.join(names)}{extra}"
                     )
+            shown_lines += len(lines) - before
+        if hidden:
+            n_events = sum(self._listed(p) for p in hidden)
+            listed_events += n_events
+            n_touched = sum(1 for p in hidden if p.first_contact is not None)
+            lines.append("")
+            lines.append(
+                f"... {len(hidden)} more (ellipsoid, object) pairs, {n_touched} of them in contact, "
+                f"{n_events} events (--events all lists every one; --json gives everything)"
+            )
         lines.append("")
-        events = sum(len(p.events) for p in self.pairs)
         touched = sum(1 for p in self.pairs if p.first_contact is not None)
         lines.append(
-            f"events: {events} in {len(self.pairs)} (ellipsoid, object) pair(s); {touched} pair(s) in contact"
+            f"events: {listed_events} in {len(self.pairs)} (ellipsoid, object) pair(s); "
+            f"{touched} pair(s) in contact"
         )
         lines.append("work ledger (full = every effect for every piece on every segment):")
         lines += ["  " + line for line in self.ledger.format().splitlines()]

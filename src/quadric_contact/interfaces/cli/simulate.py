@@ -67,6 +67,13 @@ def register(sub: Any) -> None:
         help="what to do when an ellipsoid is not small with respect to a piece (default: the scene's)",
     )
     p.add_argument(
+        "--events",
+        choices=("summary", "all"),
+        default="summary",
+        help="summary (default): at most a few dozen events per pair and a bounded report; "
+        "all: every event of every pair",
+    )
+    p.add_argument(
         "--reading",
         choices=("geometry", "paper"),
         help="geometry: a piece is its quadric as cut by its planes; paper: Algorithm 1's reading, "
@@ -183,7 +190,7 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         sys.stdout.write(payload)
     else:
-        print(result.format_text(places))
+        print(result.format_text(places, events=args.events))
         if args.plot:
             print(f"plot written to {args.plot}")
         if args.animate:
