@@ -179,7 +179,7 @@ def run(args: argparse.Namespace) -> int:
     if args.animate:
         from quadric_contact.interfaces.animation import render_gif
 
-        gif = render_gif(result, frames=args.frames)
+        gif = render_gif(result, frames=args.frames, progress=args.progress)
     # everything succeeded: now write (each file appears whole or not at all)
     if args.output:
         _write_atomically(args.output, payload.encode())
