@@ -106,7 +106,8 @@ def section_restriction() -> Finding:
         dirs, origin, step = section_frame(plane)
         n, d = plane_form(plane)
         point = [u * dirs[0][k] + v * dirs[1][k] + origin[k] for k in range(4)]
-        ensure(sp.expand(sum(n[k] * point[k] for k in range(3)) + d) == 0, f"{text}: the frame is in the plane")
+        on_plane = sp.expand(sum(n[k] * point[k] for k in range(3)) + d) == 0
+        ensure(on_plane, f"{text}: the frame is in the plane")
         ensure(
             sum(n[k] * step[k] for k in range(3)) == 1 and step[3] == 0,
             f"{text}: the step moves the plane's form by one",
@@ -202,13 +203,15 @@ def scout_and_crown() -> Finding:
     from quadric_contact.scenes.simulate import simulate
 
     t, x, y, z = sp.symbols("t x y z", real=True)
-    s = (t - 2) / 2  # the second keyframe segment, from (5/4, 1/2, 5) at t = 2 to (5/2, 0, 15/2) at t = 4
-    cx, cy, cz = sp.Rational(5, 4) + s * sp.Rational(5, 4), sp.Rational(1, 2) - s / 2, 5 + s * sp.Rational(5, 2)
+    s = (t - 2) / 2  # the second keyframe segment: (5/4, 1/2, 5) at t = 2 to (5/2, 0, 15/2) at t = 4
+    cx = sp.Rational(5, 4) + s * sp.Rational(5, 4)
+    cy, cz = sp.Rational(1, 2) - s / 2, 5 + s * sp.Rational(5, 2)
     scout = (x - cx) ** 2 + (y - cy) ** 2 + 3 * (z - cz) ** 2 - sp.Rational(1, 10)
     crown = x**2 + y**2 + 3 * (z - sp.Rational(836291, 100000)) ** 2 - 20
     radical = sp.expand(scout - crown).subs(z, 6)  # homothetic: E - Q is a plane, met by z = 6 in a line
     a, b, e = radical.coeff(x), radical.coeff(y), -radical.subs({x: 0, y: 0})
-    h = sp.Poly(sp.expand((a * cx + b * cy - e) ** 2 - (a**2 + b**2) * (sp.Rational(1, 10) - 3 * (6 - cz) ** 2)), t)
+    radius2 = sp.Rational(1, 10) - 3 * (6 - cz) ** 2  # the scout's circle at z = 6
+    h = sp.Poly(sp.expand((a * cx + b * cy - e) ** 2 - (a**2 + b**2) * radius2), t)
     top = sp.Poly(sp.expand((6 - cz) ** 2 - sp.Rational(1, 30)), t)
 
     def coeffs(p: sp.Poly) -> list[Fraction]:

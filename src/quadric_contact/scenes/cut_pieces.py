@@ -198,7 +198,8 @@ def resolve_cut(
         return None, None, "the section conics are tangent at every instant"
     rational = isinstance(t, Fraction) or (isinstance(t, RealAlgebraic) and t.is_rational)
     tq = t if isinstance(t, Fraction) else (t.as_fraction() if rational else None)
-    if interval or (tq is not None and track.sign_G(tq) != 0 and (track.sign_D4(tq) != 0 or _plane_curve(track))):
+    static = tq is not None and track.sign_G(tq) != 0 and (track.sign_D4(tq) != 0 or _plane_curve(track))
+    if interval or static:
         assert tq is not None
         if track.meets(tq):
             return True, True, "the curve E ∩ Q crosses the cutting plane"
@@ -208,8 +209,10 @@ def resolve_cut(
         inside = curve_meets_half_space(E_at(tq), track.Q, track.plane, track.side)
         if inside is None:
             return None, False, "the level sections are tangent at every level"
-        return inside, False, (
-            "the curve E ∩ Q lies on the kept side" if inside else "the curve E ∩ Q lies beyond the cut"
+        return (
+            inside,
+            False,
+            ("the curve E ∩ Q lies on the kept side" if inside else "the curve E ∩ Q lies beyond the cut"),
         )
     near = [n for n in (left, right) if n is not None]
     g0 = track.sign_G(t) == 0

@@ -136,6 +136,7 @@ class _BroadSegmentRun(_SegmentRun):
         target = self.targets[label]
         if isinstance(target, Split):
             return ZoneValue(zone_of_sign(part.sign))
+        assert isinstance(target, Piece), "the broad phase covers planes and pieces only"
         key = (label, part.sign)  # one state per side: the ellipsoid never touches the target
         if key not in self._static:
             # the exact track's decision, on the placement at a time where it was certified

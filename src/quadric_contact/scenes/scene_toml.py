@@ -128,8 +128,8 @@ from quadric_contact.model.quadric import Quadric
 from quadric_contact.scenes.composite import Composite, Piece, Split
 from quadric_contact.scenes.scene_model import (
     EFFECTS,
-    READINGS,
     EXCLUDED_KINDS,
+    READINGS,
     MovingEllipsoid,
     Scene,
 )

@@ -35,7 +35,6 @@ from collections.abc import Sequence
 from dataclasses import replace
 
 from quadric_contact.exact.errors import SceneError
-
 from quadric_contact.scenes.ledger import Ledger
 from quadric_contact.scenes.manybody import run_pairs
 from quadric_contact.scenes.scene_model import READINGS, Scene

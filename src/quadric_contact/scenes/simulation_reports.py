@@ -488,9 +488,7 @@ class SimulationResult:
                 start = p.initial.summary(p.object, with_zones=show_zones)
                 lines.append(f"  t = {_fmt_time(self.scene.span[0], places)}: start: {start}")
                 listed = [
-                    (ev, changes)
-                    for ev in p.events
-                    if (changes := _shown_changes(ev, p.object, show_zones))
+                    (ev, changes) for ev in p.events if (changes := _shown_changes(ev, p.object, show_zones))
                 ]
                 skip = (0, 0)
                 if events == "summary" and len(listed) > EVENTS_SHOWN:

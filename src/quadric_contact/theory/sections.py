@@ -35,6 +35,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from fractions import Fraction
+from itertools import pairwise
 from typing import Any
 
 import flint
@@ -133,7 +134,7 @@ def section_matrix(entries: Sequence[Any], plane: Quadric, *, level: bool = Fals
         cast = fmpq_of if isinstance(one, flint.fmpq_poly) else Fraction
         cols = [[cast(v) for v in dirs[0]], [cast(v) for v in dirs[1]], [cast(v) for v in origin]]
         ring = list(entries)
-    idx = {(0, 0): 0, (0, 1): 1, (0, 2): 2, (0, 3): 3, (1, 1): 4, (1, 2): 5, (1, 3): 6, (2, 2): 7, (2, 3): 8, (3, 3): 9}
+    idx = {ij: k for k, ij in enumerate((i, j) for i in range(4) for j in range(i, 4))}
     Q = [[ring[idx[(min(i, j), max(i, j))]] for j in range(4)] for i in range(4)]
     out: Mat3 = [[None] * 3 for _ in range(3)]
     for a in range(3):
@@ -242,7 +243,7 @@ def conics_meet(A: Mat3, B: Mat3) -> bool:
         raise ValueError("det(lambda A + B) vanishes identically: A is not a proper conic")
     roots = real_roots(poly)
     points: list[Any] = [None, *roots, None]
-    for left, right in zip(points[:-1], points[1:], strict=True):
+    for left, right in pairwise(points):
         if left is None and right is None:
             lam = Fraction(0)
         elif left is None:
