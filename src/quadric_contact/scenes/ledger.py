@@ -52,6 +52,9 @@ Counted items
 ``section_samples``
     Does the curve ``E ∩ Q`` meet a cutting plane at a sample time (a cubic's
     roots and one inertia per gap).
+``mutual_pencils``
+    Pencils ``det(λ A(t) + B(t))`` of two moving ellipsoids (one per pair the
+    broad phase keeps and window of time).
 ``level_sweeps``
     Does the curve ``E ∩ Q`` lie on the kept side, decided by sweeping the
     levels of the cutting plane (at a sample time where it does not meet it).
@@ -81,6 +84,7 @@ ITEMS: tuple[str, ...] = (
     "section_pencils",
     "section_samples",
     "level_sweeps",
+    "mutual_pencils",
 )
 """The counted items, in report order."""
 
@@ -93,6 +97,7 @@ OPTIONAL_ITEMS: frozenset[str] = frozenset(
         "section_pencils",
         "section_samples",
         "level_sweeps",
+        "mutual_pencils",
     }
 )
 """Items printed only when something was counted (the broad phase's)."""

@@ -136,6 +136,9 @@ class Scene:
     """(object, piece) -> the effects asked for on it (of the scene's; default: all of them).
     A pair (ellipsoid, piece) gets the effects that the scene, the ellipsoid and the
     piece all ask for."""
+    mutual: tuple[str, ...] = ()
+    """The moving ellipsoids whose contacts with each other are wanted (``mutual``
+    in the scene file: ``true`` for all of them, or a list of names)."""
     reading: str = "geometry"
     """``"geometry"``: a piece is its quadric as cut by the planes on its path
     (:mod:`quadric_contact.scenes.cut_pieces`); ``"paper"``: Algorithm 1's reading,

@@ -163,4 +163,11 @@ def simulate(
         finally:
             if bar is not None:
                 bar.close()
-    return SimulationResult(scene, plan, pairs, ledger, time.perf_counter() - started, list(scene.warnings))
+    mutual = None
+    if len(scene.mutual) >= 2:
+        from quadric_contact.scenes.mutual import mutual_contacts
+
+        mutual = mutual_contacts(scene, scene.mutual, ledger=ledger)
+    return SimulationResult(
+        scene, plan, pairs, ledger, time.perf_counter() - started, list(scene.warnings), mutual=mutual
+    )

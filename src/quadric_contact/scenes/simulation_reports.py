@@ -405,6 +405,9 @@ class SimulationResult:
     ledger: Ledger
     seconds: float
     warnings: list[str] = field(default_factory=list)
+    mutual: list[Any] | None = None
+    """The pairs of moving ellipsoids that meet (:mod:`quadric_contact.scenes.mutual`),
+    when the scene asks for mutual contacts."""
 
     def pair(self, ellipsoid: str, obj: str) -> PairResult:
         """The timeline of one ellipsoid against one object (``KeyError`` if there is none)."""
@@ -426,6 +429,7 @@ class SimulationResult:
             "plan": self.plan.describe(),
             "events": sum(len(p.events) for p in self.pairs),
             "pairs": [p.to_dict(places, self.plan.effects) for p in self.pairs],
+            "mutual": None if self.mutual is None else [m.to_dict(places) for m in self.mutual],
             "ledger": self.ledger.to_dict(),
             "seconds": round(self.seconds, 6),
             "warnings": self.warnings,
@@ -443,6 +447,27 @@ class SimulationResult:
                 for c in self.scene.smallness.values()
             ]
         return out
+
+    def _mutual_lines(self, places: int, events: str) -> list[str]:
+        assert self.mutual is not None
+        lines = [
+            "",
+            f"mutual contacts among {len(self.scene.mutual)} moving ellipsoids: "
+            f"{len(self.mutual)} pair(s) meet",
+        ]
+        shown = self.mutual if events == "all" else self.mutual[:12]
+        for m in shown:
+            lines.append(f"  {m.a} and {m.b}: start {m.start}")
+            listed = m.events if events == "all" else m.events[:EVENTS_SHOWN]
+            for ev in listed:
+                lines.append(f"    t = {_fmt_time(ev.time, places)}: {ev.describe()}")
+            if len(listed) < len(m.events):
+                lines.append(
+                    f"    ... {len(m.events) - len(listed)} more events (--events all lists every one)"
+                )
+        if len(shown) < len(self.mutual):
+            lines.append(f"  ... {len(self.mutual) - len(shown)} more pairs (--events all lists every one)")
+        return lines
 
     def _listed(self, p: PairResult) -> int:
         """The events a pair's timeline reports (what its ellipsoid asks to see)."""
@@ -532,6 +557,8 @@ class SimulationResult:
                 f"... {len(hidden)} more (ellipsoid, object) pairs, {n_touched} of them in contact, "
                 f"{n_events} events (--events all lists every one; --json gives everything)"
             )
+        if self.mutual is not None:
+            lines += self._mutual_lines(places, events)
         lines.append("")
         touched = sum(1 for p in self.pairs if p.first_contact is not None)
         lines.append(
