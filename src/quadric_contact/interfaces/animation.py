@@ -37,7 +37,8 @@ _ORDER = ("contact", "undecided", "mixed", "inside", "outside", "no contact")
 
 def body_states(result: Any, t: Fraction) -> dict[str, str]:
     """Ellipsoid name -> one state word at the rational time ``t``: ``contact`` if it
-    crosses any object, else its state against the first object in scene order
+    crosses any object or meets another body (mutual contacts), else its state
+    against the first object in scene order
     (:meth:`~quadric_contact.scenes.simulate.ObjectState.category`)."""
     out: dict[str, str] = {}
     for pair in result.pairs:
@@ -47,6 +48,9 @@ def body_states(result: Any, t: Fraction) -> dict[str, str]:
             cat = "contact" if pair.first_contact is not None else "undecided"
         if pair.ellipsoid not in out or cat == "contact":
             out[pair.ellipsoid] = cat
+    for m in getattr(result, "mutual", None) or ():  # bodies touching or overlapping each other
+        if m.state_at(t) in ("touching", "overlapping"):
+            out[m.a] = out[m.b] = "contact"
     return out
 
 

@@ -358,6 +358,7 @@ def many_body_scene(
     duration: int = 4,
     effects: Sequence[str] = ("zone", "contact", "first_contact"),
     check_smallness: bool = True,
+    mutual: bool = False,
 ) -> Scene:
     """``bodies`` small ellipsoids flying straight through and around a :func:`totem`.
 
@@ -366,7 +367,7 @@ def many_body_scene(
     ``2 pieces``, and flies at constant velocity to a random point at distance
     at most 3 from the axis on the other side, over ``duration``; about one in
     ten also turns (a quaternion linear in ``t``).  The same ``seed`` gives the
-    same scene.
+    same scene.  With ``mutual`` the bodies' contacts with each other are wanted too.
 
     Examples
     --------
@@ -406,6 +407,7 @@ def many_body_scene(
         source=f"<generated many_bodies {bodies} {pieces} seed {seed}>",
         on_not_small="refuse",
         places=10,
+        mutual=tuple(e.name for e in ells) if mutual else (),
     )
     if check_smallness and scene.needs_smallness():
         scene.check_smallness()

@@ -37,6 +37,7 @@ pruning never loses a contact (the tests compare with the unpruned run).
 from __future__ import annotations
 
 import functools
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -47,7 +48,7 @@ import flint
 
 from quadric_contact._generated.formulas import paper_deltas, pencil_coefficients
 from quadric_contact.exact.algebraic import RealAlgebraic, rational_between, real_roots, sign_at
-from quadric_contact.exact.rational import fmpq_of
+from quadric_contact.exact.rational import fmpq_of, fraction_of
 from quadric_contact.model.quadric import Quadric
 from quadric_contact.scenes.broadphase import ellipsoid_extents, swept_box
 from quadric_contact.scenes.events import reduce_positive
@@ -128,6 +129,26 @@ class MutualResult:
     events: list[MutualEvent] = field(default_factory=list)
     first_contact: RealAlgebraic | None = None
 
+    def state_at(self, t: Any) -> str:
+        """The pair's state at a rational time of the span.
+
+        Examples
+        --------
+        >>> from quadric_contact.scenes.scene import builtin_scene
+        >>> from quadric_contact.scenes.simulate import simulate
+        >>> pair = simulate(builtin_scene("bees_meeting")).mutual[0]
+        >>> pair.a, pair.b, pair.state_at(0), pair.state_at(2)
+        ('north', 'south', 'apart', 'overlapping')
+        """
+        t = Fraction(t)
+        state = self.start
+        for e in self.events:
+            c = e.time.compare(t)
+            if c > 0:
+                break
+            state = e.at if c == 0 else e.after
+        return state
+
     def to_dict(self, places: int) -> dict[str, Any]:
         return {
             "bodies": [self.a, self.b],
@@ -172,7 +193,9 @@ class _PairWindow:
 
     def at_rational(self, t: Fraction) -> str:
         P = flint.fmpq_poly([ck(fmpq_of(t)) for ck in self.c])
-        positive = [(r, m) for r, m in real_roots(P, multiplicities=True) if r.sign() > 0]
+        lead = abs(fraction_of(P[P.degree()]))
+        bound = 1 + max(abs(fraction_of(P[k])) for k in range(P.degree())) / lead  # Cauchy's bound
+        positive = real_roots(P, Fraction(0), bound, multiplicities=True)
         if any(m >= 2 for _, m in positive):
             return TOUCHING
         assert len(positive) in (0, 2), "two ellipsoids: 0 or 2 positive roots (Wang-Wang-Kim)"
@@ -281,14 +304,19 @@ def _boxes(
 
 def _sweep(boxes: dict[str, Any]) -> set[tuple[str, str]]:
     """Pairs of names whose boxes meet (closed boxes; sort and sweep along x)."""
-    order = sorted(boxes, key=lambda n: boxes[n][0][0])
+    # floats rounded outwards: each float box contains the exact one, so no meeting is lost
+    fb = {
+        n: [(math.nextafter(float(lo), -math.inf), math.nextafter(float(hi), math.inf)) for lo, hi in box]
+        for n, box in boxes.items()
+    }
+    order = sorted(fb, key=lambda n: fb[n][0][0])
     active: list[str] = []
     out = set()
     for n in order:
-        bx = boxes[n]
-        active = [m for m in active if boxes[m][0][1] >= bx[0][0]]
+        bx = fb[n]
+        active = [m for m in active if fb[m][0][1] >= bx[0][0]]
         for m in active:
-            bm = boxes[m]
+            bm = fb[m]
             if all(bm[k][0] <= bx[k][1] and bx[k][0] <= bm[k][1] for k in (1, 2)):
                 out.add((m, n) if m < n else (n, m))
         active.append(n)
@@ -333,7 +361,8 @@ def mutual_contacts(
         by_shape: dict[tuple[Fraction, ...], Any] = {}
         extents = {}
         for e in bodies:  # congruent translates share their extents
-            shape = e.quadric.translated(tuple(-v for v in e.center)).upper
+            u = e.quadric.upper
+            shape = (*(u[k] for k in _QUADRATIC), e.quadric.value_at(e.center))
             if shape not in by_shape:
                 by_shape[shape] = ellipsoid_extents(e.quadric)
             extents[e.name] = by_shape[shape]

@@ -62,6 +62,12 @@ def register(sub: Any) -> None:
     p.add_argument("--pieces", type=int, default=16, help="many_bodies: pieces of the totem (default 16)")
     p.add_argument("--seed", type=int, default=0, help="many_bodies: the seed of the generated scene")
     p.add_argument(
+        "--mutual",
+        action="store_true",
+        help="also the contacts of the moving ellipsoids with each other (for a scene file: as if "
+        "it said mutual = true)",
+    )
+    p.add_argument(
         "--on-not-small",
         choices=("refuse", "warn"),
         help="what to do when an ellipsoid is not small with respect to a piece (default: the scene's)",
@@ -145,11 +151,17 @@ def run(args: argparse.Namespace) -> int:
             raise SceneError(
                 f"--bodies and --pieces: expected positive numbers, got {args.bodies}, {args.pieces}"
             )
-        scene = many_body_scene(args.bodies, args.pieces, seed=args.seed, check_smallness=False)
+        scene = many_body_scene(
+            args.bodies, args.pieces, seed=args.seed, check_smallness=False, mutual=args.mutual
+        )
         broad_phase = True
     else:
         # load without checking smallness; the run checks it only if its effects need it
         scene = load_scene(args.scene, check_smallness=False)
+        if args.mutual:
+            from dataclasses import replace
+
+            scene = replace(scene, mutual=tuple(e.name for e in scene.ellipsoids))
     plan_effects = effects if effects is not None else list(scene.effects)
     Plan.from_effects(plan_effects)  # validate before any work
     if args.plot or args.animate:
