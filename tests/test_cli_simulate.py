@@ -210,3 +210,15 @@ def test_event_labels_do_not_collide():
                 assert xs[j] - xs[i] >= 0.045 * 8
     groups = merge_close_labels([[0, 0, 0], [0.01, 0, 0], [5, 0, 0]], 0.1)
     assert [m for m, _ in groups] == [[0, 1], [2]]
+
+
+def test_mutual_contacts_and_full_event_lists_on_the_command_line(capsys):
+    assert main(["simulate", "bees_meeting", "--events", "all"]) == 0
+    out = capsys.readouterr().out
+    assert "mutual contacts among 6 moving ellipsoids: 2 pair(s) meet" in out
+    assert "north and south: start apart" in out
+    assert main(["simulate", "bees_meeting", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert [m["bodies"] for m in data["mutual"]] == [["north", "south"], ["east", "west"]]
+    assert main(["simulate", "bee_and_tree", "--mutual", "--places", "4"]) == 0  # one body: nothing to meet
+    assert "mutual contacts" not in capsys.readouterr().out
