@@ -11,7 +11,9 @@ from __future__ import annotations
 from fractions import Fraction as F
 from typing import Any
 
-from quadric_contact.scenes.composite import algorithm_2
+from quadric_contact.scenes.composite import Piece, Split, algorithm_2
+from quadric_contact.theory.results import Region
+from quadric_contact.theory.sections import curve_meets_half_space
 
 
 def static_state(result: Any, pair: Any, t: F, *, region: bool) -> tuple[Any, Any]:
@@ -32,7 +34,43 @@ def static_state(result: Any, pair: Any, t: F, *, region: bool) -> tuple[Any, An
         name: (c.transversal, static.regions[name].region if region else None)
         for name, c in static.contacts.items()
     }
+    if result.scene.reading == "geometry":
+        for name, crossed in _crossed_paths(obj, zones).items():
+            if pieces.get(name, (None,))[0] is not True or not crossed or not all(crossed):
+                continue
+            piece = next(p for p in obj.pieces if p.name == name)
+            answers = []
+            for path in crossed:
+                assert len(path) == 1, "a piece cut by two planes the ellipsoid crosses at once"
+                plane, side = path[0]
+                answers.append(curve_meets_half_space(E, piece.quadric, plane, side))
+            if not any(answers):
+                assert all(a is False for a in answers)
+                pieces[name] = (False, None)
     return zones, pieces
+
+
+def _crossed_paths(obj: Any, zones: dict[str, Any]) -> dict[str, list[list[tuple[Any, int]]]]:
+    """Piece name -> for every path of the tree that reaches it, the planes on the path
+    that the ellipsoid crosses (Zone 0) and the side kept."""
+    out: dict[str, list[list[tuple[Any, int]]]] = {}
+
+    def visit(node: Any, crossed: list[tuple[Any, int]]) -> None:
+        if node is None:
+            return
+        if isinstance(node, Piece):
+            out.setdefault(node.name, []).append(crossed)
+            return
+        assert isinstance(node, Split)
+        z = zones[node.name]
+        if z in (Region.R_PLUS, Region.CONTACT):
+            visit(node.plus, crossed + ([(node.plane, 1)] if z is Region.CONTACT else []))
+        if z in (Region.R_MINUS, Region.CONTACT):
+            visit(node.minus, crossed + ([(node.plane, -1)] if z is Region.CONTACT else []))
+
+    if isinstance(obj.root, Split):
+        visit(obj.root, [])
+    return out
 
 
 def _asked_region(result: Any, pair: Any, piece: str) -> bool:

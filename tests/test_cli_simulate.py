@@ -175,3 +175,50 @@ def test_animate_many_bodies_as_points(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "events: " in out and "14 (ellipsoid, object) pair(s)" in out
     assert target.read_bytes()[:3] == b"GIF"
+
+
+def test_animate_shows_progress_and_draws_the_path(tmp_path, capsys):
+    pytest.importorskip("matplotlib")
+    pytest.importorskip("PIL")
+    from quadric_contact.interfaces.animation import animate_result
+    from quadric_contact.scenes.scene import builtin_scene
+    from quadric_contact.scenes.simulate import simulate
+
+    target = tmp_path / "walls.gif"
+    assert main(["simulate", "parallel_walls", "--animate", str(target), "--frames", "5", "--progress"]) == 0
+    err = capsys.readouterr().err
+    assert "animating" in err and "5/5" in err
+    anim = animate_result(simulate(builtin_scene("parallel_walls")), frames=4)
+    ax = anim._fig.axes[0]
+    dashed = [ln for ln in ax.get_lines() if ln.get_linestyle() not in ("-", "None")]
+    assert len(dashed) == 1 and len(dashed[0].get_data_3d()[0]) == 4  # the whole path, from the start
+    assert min(t.get_fontsize() for t in ax.get_xticklabels() + ax.get_yticklabels()) >= 9
+    anim._draw_was_started = True  # inspected, not rendered: no warning when it is dropped
+    import matplotlib.pyplot as plt
+
+    plt.close(anim._fig)
+
+
+def test_event_labels_do_not_collide():
+    from quadric_contact.interfaces.plotting import label_rows, merge_close_labels
+
+    xs = [0.0, 2.6539, 2.6623, 2.9437, 2.9460, 2.9781, 8.0]
+    rows = label_rows(xs, 0.045 * 8)
+    for i in range(len(xs)):
+        for j in range(i + 1, len(xs)):
+            if rows[i] == rows[j]:
+                assert xs[j] - xs[i] >= 0.045 * 8
+    groups = merge_close_labels([[0, 0, 0], [0.01, 0, 0], [5, 0, 0]], 0.1)
+    assert [m for m, _ in groups] == [[0, 1], [2]]
+
+
+def test_mutual_contacts_and_full_event_lists_on_the_command_line(capsys):
+    assert main(["simulate", "bees_meeting", "--events", "all"]) == 0
+    out = capsys.readouterr().out
+    assert "mutual contacts among 6 moving ellipsoids: 2 pair(s) meet" in out
+    assert "north and south: start apart" in out
+    assert main(["simulate", "bees_meeting", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert [m["bodies"] for m in data["mutual"]] == [["north", "south"], ["east", "west"]]
+    assert main(["simulate", "bee_and_tree", "--mutual", "--places", "4"]) == 0  # one body: nothing to meet
+    assert "mutual contacts" not in capsys.readouterr().out

@@ -32,9 +32,10 @@ def main() -> None:
         plt.close(fig)
         (HERE / f"{name}.png").write_bytes(buf.getvalue())
         print(f"{name}.png")
-    gif = render_gif(simulate(builtin_scene("trough_and_channel")), frames=20, fps=5, dpi=55)
-    (HERE / "trough_and_channel.gif").write_bytes(gif)
-    print("trough_and_channel.gif")
+    for name in ("trough_and_channel", "bees_meeting"):
+        gif = render_gif(simulate(builtin_scene(name)), frames=20, fps=5, dpi=55)
+        (HERE / f"{name}.gif").write_bytes(gif)
+        print(f"{name}.gif")
 
 
 if __name__ == "__main__":

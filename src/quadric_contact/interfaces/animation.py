@@ -15,6 +15,7 @@ from the exact timeline (:meth:`~quadric_contact.scenes.simulate.PairResult.stat
 from __future__ import annotations
 
 import os
+import sys
 import tempfile
 from fractions import Fraction
 from pathlib import Path
@@ -36,7 +37,8 @@ _ORDER = ("contact", "undecided", "mixed", "inside", "outside", "no contact")
 
 def body_states(result: Any, t: Fraction) -> dict[str, str]:
     """Ellipsoid name -> one state word at the rational time ``t``: ``contact`` if it
-    crosses any object, else its state against the first object in scene order
+    crosses any object or meets another body (mutual contacts), else its state
+    against the first object in scene order
     (:meth:`~quadric_contact.scenes.simulate.ObjectState.category`)."""
     out: dict[str, str] = {}
     for pair in result.pairs:
@@ -46,6 +48,9 @@ def body_states(result: Any, t: Fraction) -> dict[str, str]:
             cat = "contact" if pair.first_contact is not None else "undecided"
         if pair.ellipsoid not in out or cat == "contact":
             out[pair.ellipsoid] = cat
+    for m in getattr(result, "mutual", None) or ():  # bodies touching or overlapping each other
+        if m.state_at(t) in ("touching", "overlapping"):
+            out[m.a] = out[m.b] = "contact"
     return out
 
 
@@ -125,14 +130,17 @@ def animate_result(result: Any, *, frames: int = 40, fps: int = 10, whole: int =
     ax.set_zlim(*box[2])
     extent = np.array([b[1] - b[0] for b in box])
     ax.set_box_aspect(tuple(np.maximum(extent / extent.max(), 0.25)))
-    ax.set_xlabel("x", fontsize=7)
-    ax.set_ylabel("y", fontsize=7)
-    ax.set_zlabel("z", fontsize=7)
-    ax.tick_params(labelsize=6)
+    ax.set_xlabel("x", fontsize=10)
+    ax.set_ylabel("y", fontsize=10)
+    ax.set_zlabel("z", fontsize=10)
+    ax.tick_params(labelsize=9)
     for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
         axis.set_major_locator(plt.MaxNLocator(4))
+    if len(scene.ellipsoids) <= whole:  # the whole path of each body, faint, from the start
+        for ell in scene.ellipsoids:
+            ax.plot(*centres[ell.name].T, color="#555555", linewidth=0.8, linestyle=(0, (3, 2)), alpha=0.6)
     if k <= 8:
-        ax.legend(fontsize=6, loc="upper left", markerscale=6)
+        ax.legend(fontsize=9, loc="upper left", markerscale=6)
 
     tl = fig.add_subplot(gs[1])
     names = [e.name for e in scene.ellipsoids]
@@ -142,8 +150,8 @@ def animate_result(result: Any, *, frames: int = 40, fps: int = 10, whole: int =
         cats = sorted({c for st in states for c in st.values()}, key=lambda c: (c not in _ORDER, c))
         counts = np.array([[sum(1 for v in st.values() if v == c) for st in states] for c in cats])
         tl.stackplot(tf, counts, colors=[_colour(c) for c in cats], labels=cats, alpha=0.85)
-        tl.set_ylabel("bodies", fontsize=7)
-        tl.legend(fontsize=6, ncol=len(cats), loc="upper center", bbox_to_anchor=(0.5, 1.45), frameon=False)
+        tl.set_ylabel("bodies", fontsize=10)
+        tl.legend(fontsize=9, ncol=len(cats), loc="upper center", bbox_to_anchor=(0.5, 1.45), frameon=False)
     else:
         for row, pair in enumerate(result.pairs):
             for ep in pair.episodes:
@@ -151,17 +159,17 @@ def animate_result(result: Any, *, frames: int = 40, fps: int = 10, whole: int =
                 width = max(b - a, float(t1 - t0) / 400)
                 tl.barh(row, width, left=a, color=_colour(ep.state.category(pair.object)), height=0.6)
         tl.set_yticks(range(len(result.pairs)))
-        tl.set_yticklabels([f"{p.ellipsoid} / {p.object.name}" for p in result.pairs], fontsize=6)
+        tl.set_yticklabels([f"{p.ellipsoid} / {p.object.name}" for p in result.pairs], fontsize=9)
         tl.invert_yaxis()
         seen = dict.fromkeys(ep.state.category(p.object) for p in result.pairs for ep in p.episodes)
         for cat in seen:
             tl.barh(0, 0, color=_colour(cat), label=cat)
-        tl.legend(fontsize=6, ncol=len(seen), loc="upper center", bbox_to_anchor=(0.5, 1.45), frameon=False)
+        tl.legend(fontsize=9, ncol=len(seen), loc="upper center", bbox_to_anchor=(0.5, 1.45), frameon=False)
     tl.set_xlim(float(t0), float(t1))
-    tl.set_xlabel("t", fontsize=7)
-    tl.tick_params(labelsize=6)
+    tl.set_xlabel("t", fontsize=10)
+    tl.tick_params(labelsize=9)
     cursor = tl.axvline(tf[0], color="black", linewidth=1.2)
-    title = ax.set_title("", fontsize=9)
+    title = ax.set_title("", fontsize=12)
     drawn: list[Any] = []
     trail: dict[str, Any] = {}
 
@@ -182,7 +190,7 @@ def animate_result(result: Any, *, frames: int = 40, fps: int = 10, whole: int =
                 path = centres[ell.name][: i + 1]
                 if ell.name in trail:
                     trail[ell.name].remove()
-                (trail[ell.name],) = ax.plot(*path.T, color="black", linewidth=0.6, alpha=0.5)
+                (trail[ell.name],) = ax.plot(*path.T, color="black", linewidth=1.6, alpha=0.8)
         cursor.set_xdata([tf[i], tf[i]])
         title.set_text(f"{scene.name}   t = {tf[i]:.3f}")
         return [*drawn, cursor, title]
@@ -192,7 +200,7 @@ def animate_result(result: Any, *, frames: int = 40, fps: int = 10, whole: int =
     return anim
 
 
-def render_gif(result: Any, *, dpi: int = 80, **kwargs: Any) -> bytes:
+def render_gif(result: Any, *, dpi: int = 80, progress: bool | None = None, **kwargs: Any) -> bytes:
     """The animation of :func:`animate_result` as GIF bytes (pillow writer), so that a
     caller can write the file only once everything has succeeded.
 
@@ -201,6 +209,8 @@ def render_gif(result: Any, *, dpi: int = 80, **kwargs: Any) -> bytes:
     result : SimulationResult
     dpi : int
         Resolution of the frames (the figure is 7 x 7.2 inches).
+    progress : bool, optional
+        A progress bar of the frames written, on stderr (default: on a terminal).
     **kwargs
         As for :func:`animate_result` (``frames``, ``fps``, ``whole``).
 
@@ -215,9 +225,23 @@ def render_gif(result: Any, *, dpi: int = 80, **kwargs: Any) -> bytes:
     anim = animate_result(result, **kwargs)
     fd, tmp = tempfile.mkstemp(suffix=".gif")
     os.close(fd)
+    bar = _frames_bar(int(kwargs.get("frames", 40)), progress)
     try:
-        anim.save(tmp, writer=PillowWriter(fps=fps), dpi=dpi)
+        callback = None if bar is None else (lambda i, n: bar.update(1))
+        anim.save(tmp, writer=PillowWriter(fps=fps), dpi=dpi, progress_callback=callback)
         return Path(tmp).read_bytes()
     finally:
+        if bar is not None:
+            bar.close()
         plt.close(anim._fig)
         Path(tmp).unlink(missing_ok=True)
+
+
+def _frames_bar(total: int, enabled: bool | None) -> Any:
+    if enabled is None:
+        enabled = sys.stderr.isatty()
+    if not enabled:
+        return None
+    from tqdm import tqdm
+
+    return tqdm(total=total, desc="animating", unit="frame", file=sys.stderr, leave=False)

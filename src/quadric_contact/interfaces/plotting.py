@@ -20,7 +20,15 @@ from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import Quadric
 from quadric_contact.scenes.composite import Composite, Piece, Split
 
-__all__ = ["STATE_COLOURS", "plot_quadric", "plot_result", "quadric_mesh", "render_png"]
+__all__ = [
+    "STATE_COLOURS",
+    "label_rows",
+    "merge_close_labels",
+    "plot_quadric",
+    "plot_result",
+    "quadric_mesh",
+    "render_png",
+]
 
 STATE_COLOURS: dict[str, str] = {
     "contact": "#d62728",
@@ -175,13 +183,17 @@ def _draw_pair(fig: Any, spec: Any, result: Any, pair: Any, samples: int) -> Non
     for t in shown:
         X, Y, Z = _ellipsoid_mesh(ell.trajectory.placed(ell.quadric, t, t0, t1))
         ax.plot_wireframe(X, Y, Z, color="black", linewidth=0.3, alpha=0.6)
-    for k, ev in enumerate(pair.events):
+    spots = []
+    for ev in pair.events:
         t = ev.time.rational_near(6)
         seg = next((s for s in segs if s.t0 <= t <= s.t1), segs[-1])
         p = [float(v) for v in seg.center_at(t)]
         ax.scatter(*p, color="black", s=10, zorder=6)
-        if len(pair.events) <= 12:
-            ax.text(*p, f" {k + 1}", fontsize=6)
+        spots.append(p)
+    if len(pair.events) <= 12:
+        size = max(b_[1] - b_[0] for b_ in box)
+        for members, p in merge_close_labels(spots, 0.04 * size):
+            ax.text(*p, " " + ",".join(str(k + 1) for k in members), fontsize=8)
     ax.set_xlim(*box[0])
     ax.set_ylim(*box[1])
     ax.set_zlim(*box[2])
@@ -190,18 +202,22 @@ def _draw_pair(fig: Any, spec: Any, result: Any, pair: Any, samples: int) -> Non
     ax.set_xlabel("x")
     ax.set_ylabel("y")
     ax.set_zlabel("z")
-    ax.set_title(f"{pair.ellipsoid} vs {pair.object.name}", fontsize=9)
-    ax.legend(fontsize=6, loc="upper left", markerscale=10)
+    ax.set_title(f"{pair.ellipsoid} vs {pair.object.name}", fontsize=11)
+    ax.legend(fontsize=8, loc="upper left", markerscale=10)
 
     tl = fig.add_subplot(spec[1])
     for ep in pair.episodes:
         a, b = float(ep.start), float(ep.end)
         cat = ep.state.category(pair.object)
         tl.barh(0, max(b - a, (float(t1) - float(t0)) / 400), left=a, color=_colour(cat), height=0.5)
-    for k, ev in enumerate(pair.events):
-        tl.axvline(float(ev.time), color="black", linewidth=0.5)
-        if len(pair.events) <= 12:
-            tl.text(float(ev.time), 0.3, f"{k + 1}", fontsize=6, ha="center", va="bottom")
+    times = [float(ev.time) for ev in pair.events]
+    for x in times:
+        tl.axvline(x, color="black", linewidth=0.5)
+    rows = label_rows(times, 0.045 * (float(t1) - float(t0)))
+    if len(pair.events) <= 12:
+        for k, (x, row) in enumerate(zip(times, rows, strict=True)):
+            tl.text(x, 0.3 + 0.45 * row, f"{k + 1}", fontsize=8, ha="center", va="bottom")
+        tl.set_ylim(-0.4, 0.8 + 0.45 * max(rows, default=0))
     seen: dict[str, str] = {}
     for ep in pair.episodes:
         cat = ep.state.category(pair.object)
@@ -211,7 +227,48 @@ def _draw_pair(fig: Any, spec: Any, result: Any, pair: Any, samples: int) -> Non
     tl.set_yticks([])
     tl.set_xlim(float(t0), float(t1))
     tl.set_xlabel("t")
-    tl.legend(fontsize=6, ncol=len(seen), loc="upper center", bbox_to_anchor=(0.5, 1.9), frameon=False)
+    tl.legend(fontsize=8, ncol=len(seen), loc="upper center", bbox_to_anchor=(0.5, 1.9), frameon=False)
+
+
+def label_rows(xs: list[float], gap: float) -> list[int]:
+    """A row for each label at ``xs`` (in increasing order) so that two labels of one row
+    are at least ``gap`` apart: labels that would collide are stacked.
+
+    Examples
+    --------
+    >>> label_rows([1.0, 1.01, 1.02, 2.0, 2.5], 0.1)
+    [0, 1, 2, 0, 0]
+    """
+    last: list[float] = []  # the right-most label of each row
+    rows = []
+    for x in xs:
+        row = next((r for r, right in enumerate(last) if x - right >= gap), len(last))
+        if row == len(last):
+            last.append(x)
+        else:
+            last[row] = x
+        rows.append(row)
+    return rows
+
+
+def merge_close_labels(points: list[list[float]], radius: float) -> list[tuple[list[int], list[float]]]:
+    """Indices of points closer than ``radius`` to the first of a group share one label,
+    placed at that first point: ``[(members, position), ...]``.
+
+    Examples
+    --------
+    >>> merge_close_labels([[0, 0, 0], [0, 0, 0.01], [1, 0, 0]], 0.1)
+    [([0, 1], [0, 0, 0]), ([2], [1, 0, 0])]
+    """
+    groups: list[tuple[list[int], list[float]]] = []
+    for k, p in enumerate(points):
+        for members, q in groups:
+            if sum((a - b) ** 2 for a, b in zip(p, q, strict=True)) < radius * radius:
+                members.append(k)
+                break
+        else:
+            groups.append(([k], p))
+    return groups
 
 
 def plot_result(result: Any, *, max_pairs: int = 6, samples: int = 240) -> Any:
@@ -247,7 +304,7 @@ def plot_result(result: Any, *, max_pairs: int = 6, samples: int = 240) -> Any:
     gs = fig.add_gridspec(2, cols, height_ratios=[6, 1], hspace=0.35)
     for j, pair in enumerate(pairs):
         _draw_pair(fig, (gs[0, j], gs[1, j]), result, pair, samples)
-    fig.suptitle(result.scene.name, fontsize=10)
+    fig.suptitle(result.scene.name, fontsize=12)
     return fig
 
 

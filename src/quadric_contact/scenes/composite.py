@@ -12,10 +12,11 @@ Here the single plane is generalised to a *tree of separating planes*
 ``R-`` sides hold a sub-tree, a piece, or nothing.  Algorithm 1 descends the
 tree; an ellipsoid in transversal contact with a plane (Zone 0) continues
 into both sides, exactly as Algorithm 2 checks both surfaces in Zone 0.
-Pieces are whole quadrics: as in the paper, a contact in Zone 0 with the
-part of a surface that lies beyond its plane counts as a contact (model the
-object so that pieces meet along the planes, as the crown and the trunk of
-Example 17 do at ``z = 6``).
+:func:`algorithm_1` and :func:`algorithm_2` read pieces as the paper does,
+as whole quadrics: a contact in Zone 0 with the part of a surface that lies
+beyond its plane counts as a contact.  Simulated scenes read them as cut by
+default (:mod:`quadric_contact.scenes.cut_pieces`; ``reading = "paper"``
+keeps the whole quadrics).
 
 An object without planes is a plain combination of quadrics (Section 5.1):
 every piece is checked.

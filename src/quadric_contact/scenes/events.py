@@ -37,7 +37,7 @@ Taylor bound on a shrinking interval; each refinement is counted as an
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from fractions import Fraction
 from itertools import pairwise
 from typing import Any
@@ -110,13 +110,18 @@ class PieceValue:
         Contact kind (Table 3) when asked for.
     decided_by : str
         The result that decided the contact.
+    beyond_cut : bool
+        The ellipsoid crosses the piece's whole quadric, but only beyond the
+        plane(s) that cut the piece (the geometric reading says no contact, the
+        paper's reading says contact).
     """
 
     contact: bool | None
     region: Region | None = None
     kind: str | None = None
-    decided_by: str = ""
+    decided_by: str = field(default="", compare=False)
     region_asked: bool = False
+    beyond_cut: bool = False
 
     def __str__(self) -> str:
         return self.describe()
@@ -125,6 +130,8 @@ class PieceValue:
         """One line; with ``inside`` (the piece's inside region) ``R-``/``R+`` are
         glossed as inside/outside."""
         parts = [{True: "contact", False: "no contact", None: "contact undecided"}[self.contact]]
+        if self.beyond_cut:
+            parts[0] += " (crosses the quadric beyond the cut only)"
         if self.region is not None and self.region is not Region.CONTACT:
             gloss = "" if inside is None else (" (inside)" if self.region is inside else " (outside)")
             parts.append(self.region.value + gloss)
@@ -429,6 +436,8 @@ class PieceTrack(_Track):
             return "undecided"
         if s4 != 0:
             return "none"  # all roots real and simple: Segre type [1111], no contact (Table 3)
+        if isinstance(t, RealAlgebraic) and t.is_rational:
+            t = t.as_fraction()  # a rational event time: the kind is classified exactly there
         if self._kind_fn is not None and isinstance(t, Fraction) and self.E_at is not None:
             result = self._kind_fn(self.E_at(t), self.Q, small=self.small)
             return str(getattr(result, "value", result))

@@ -45,6 +45,19 @@ Counted items
 ``static_pencils``
     Pencils of one frozen placement, formed to state a certified stretch
     exactly as the pencil in time would (one per target and side).
+``section_pencils``
+    Geometric reading: pencils of the conics cut by a plane from the moving
+    ellipsoid and a piece's quadric, with its discriminant in ``t`` and the
+    discriminant of the piece's pencil (one per piece, plane and segment).
+``section_samples``
+    Does the curve ``E ∩ Q`` meet a cutting plane at a sample time (a cubic's
+    roots and one inertia per gap).
+``mutual_pencils``
+    Pencils ``det(λ A(t) + B(t))`` of two moving ellipsoids (one per pair the
+    broad phase keeps and window of time).
+``level_sweeps``
+    Does the curve ``E ∩ Q`` lie on the kept side, decided by sweeping the
+    levels of the cutting plane (at a sample time where it does not meet it).
 """
 
 from __future__ import annotations
@@ -68,11 +81,24 @@ ITEMS: tuple[str, ...] = (
     "pruned_pairs",
     "pruned_stretches",
     "static_pencils",
+    "section_pencils",
+    "section_samples",
+    "level_sweeps",
+    "mutual_pencils",
 )
 """The counted items, in report order."""
 
 OPTIONAL_ITEMS: frozenset[str] = frozenset(
-    {"broad_phase_tests", "pruned_pairs", "pruned_stretches", "static_pencils"}
+    {
+        "broad_phase_tests",
+        "pruned_pairs",
+        "pruned_stretches",
+        "static_pencils",
+        "section_pencils",
+        "section_samples",
+        "level_sweeps",
+        "mutual_pencils",
+    }
 )
 """Items printed only when something was counted (the broad phase's)."""
 

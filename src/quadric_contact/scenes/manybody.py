@@ -136,6 +136,7 @@ class _BroadSegmentRun(_SegmentRun):
         target = self.targets[label]
         if isinstance(target, Split):
             return ZoneValue(zone_of_sign(part.sign))
+        assert isinstance(target, Piece), "the broad phase covers planes and pieces only"
         key = (label, part.sign)  # one state per side: the ellipsoid never touches the target
         if key not in self._static:
             # the exact track's decision, on the placement at a time where it was certified
@@ -162,6 +163,9 @@ class _BroadSegmentRun(_SegmentRun):
         return self._static[key]
 
     def make_track(self, label: str) -> None:
+        if label not in self.coverage.parts:  # a plane section of a piece as cut: exact on the segment
+            super().make_track(label)
+            return
         parts = self.coverage.parts[label]
         if len(parts) == 1 and parts[0].tracked:
             super().make_track(label)
@@ -354,6 +358,7 @@ def many_body_scene(
     duration: int = 4,
     effects: Sequence[str] = ("zone", "contact", "first_contact"),
     check_smallness: bool = True,
+    mutual: bool = False,
 ) -> Scene:
     """``bodies`` small ellipsoids flying straight through and around a :func:`totem`.
 
@@ -362,7 +367,7 @@ def many_body_scene(
     ``2 pieces``, and flies at constant velocity to a random point at distance
     at most 3 from the axis on the other side, over ``duration``; about one in
     ten also turns (a quaternion linear in ``t``).  The same ``seed`` gives the
-    same scene.
+    same scene.  With ``mutual`` the bodies' contacts with each other are wanted too.
 
     Examples
     --------
@@ -402,6 +407,7 @@ def many_body_scene(
         source=f"<generated many_bodies {bodies} {pieces} seed {seed}>",
         on_not_small="refuse",
         places=10,
+        mutual=tuple(e.name for e in ells) if mutual else (),
     )
     if check_smallness and scene.needs_smallness():
         scene.check_smallness()

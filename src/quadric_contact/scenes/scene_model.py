@@ -30,6 +30,10 @@ __all__ = [
     "SmallnessCheck",
 ]
 
+READINGS: tuple[str, ...] = ("geometry", "paper")
+"""How a piece is read: as its quadric cut by the planes on its path (the
+default), or, as Algorithm 1 does, as its whole quadric."""
+
 EFFECTS: tuple[str, ...] = (
     "zone",
     "contact",
@@ -132,6 +136,13 @@ class Scene:
     """(object, piece) -> the effects asked for on it (of the scene's; default: all of them).
     A pair (ellipsoid, piece) gets the effects that the scene, the ellipsoid and the
     piece all ask for."""
+    mutual: tuple[str, ...] = ()
+    """The moving ellipsoids whose contacts with each other are wanted (``mutual``
+    in the scene file: ``true`` for all of them, or a list of names)."""
+    reading: str = "geometry"
+    """``"geometry"``: a piece is its quadric as cut by the planes on its path
+    (:mod:`quadric_contact.scenes.cut_pieces`); ``"paper"``: Algorithm 1's reading,
+    a piece reached by the descent counts as its whole quadric."""
 
     def __post_init__(self) -> None:
         t0, t1 = (to_fraction(v) for v in self.span)

@@ -23,6 +23,7 @@ from typing import Any
 from quadric_contact.exact.algebraic import RealAlgebraic, rational_between
 from quadric_contact.model.quadric import Quadric
 from quadric_contact.scenes.composite import Composite, Piece, Split
+from quadric_contact.scenes.cut_pieces import SectionTrack, cut_value, resolve_cut
 from quadric_contact.scenes.events import (
     PieceTrack,
     PieceValue,
@@ -53,6 +54,13 @@ def _piece_label(obj: Composite, p: Piece) -> str:
     return f"{obj.name}/{p.name}"
 
 
+def _section_label(obj: Composite, p: Piece, s: Split, side: int) -> str:
+    return f"{obj.name}/{p.name} cut by {s.name} ({'R+' if side > 0 else 'R-'} kept)"
+
+
+Crossing = tuple[Split, int]  # a cutting plane the ellipsoid crosses, and the kept side
+
+
 class _SegmentRun:
     """One ellipsoid against one object on one motion segment."""
 
@@ -73,7 +81,8 @@ class _SegmentRun:
         }
         self.E_upper = seg.moved_upper(ell.quadric, ell.center)
         self.positive = seg.norm_poly()  # |q(t)|^2 > 0: its powers carry no sign information
-        self.targets: dict[str, Split | Piece] = {}
+        self.geometric = scene.reading == "geometry"
+        self.targets: dict[str, Split | Piece | tuple[Piece, Split, int]] = {}
         for s in obj.splits():
             self.targets[_plane_label(obj, s)] = s
         for p in obj.pieces:
@@ -102,6 +111,11 @@ class _SegmentRun:
         target = self.targets[label]
         if isinstance(target, Split):
             return PlaneTrack(label, self.E_upper, target.plane, t0, t1, self.ledger, self.positive)
+        if isinstance(target, tuple):
+            piece, split, side = target
+            return SectionTrack(
+                label, self.E_upper, piece.quadric, split.plane, side, t0, t1, self.ledger, self.positive
+            )
         return PieceTrack(
             label,
             self.E_upper,
@@ -121,27 +135,42 @@ class _SegmentRun:
         obj = self.obj
         zones: list[tuple[str, ZoneValue]] = []
         active: list[Piece] = list(obj.extra_pieces) if not isinstance(obj.root, Piece) else []
+        # per piece, the cutting planes the ellipsoid crosses on each path that reaches it
+        paths: dict[str, list[tuple[Crossing, ...]]] = {p.name: [()] for p in active}
 
-        def visit(node: Split | Piece | None) -> None:
+        def visit(node: Split | Piece | None, crossed: tuple[Crossing, ...]) -> None:
             if node is None:
                 return
             if isinstance(node, Piece):
                 if node not in active:
                     active.append(node)
+                paths.setdefault(node.name, []).append(crossed)
                 return
             z: ZoneValue | None = get(_plane_label(obj, node))
             if z is None:  # not computed yet: the next pass will have it
                 return
             zones.append((node.name, z))
+            through = z.region is Region.CONTACT
             if z.region in (Region.R_PLUS, Region.CONTACT):
-                visit(node.plus)
+                visit(node.plus, (*crossed, (node, 1)) if through else crossed)
             if z.region in (Region.R_MINUS, Region.CONTACT):
-                visit(node.minus)
+                visit(node.minus, (*crossed, (node, -1)) if through else crossed)
 
-        visit(obj.root)
+        visit(obj.root, ())
         pieces: list[tuple[str, PieceValue | None]] = []
+        cuts: dict[str, list[tuple[Crossing, ...]]] = {}
         for p in active:
-            pieces.append((p.name, get(_piece_label(obj, p)) if self.piece_plans[p.name].pieces else None))
+            wanted = self.piece_plans[p.name].pieces
+            pieces.append((p.name, get(_piece_label(obj, p)) if wanted else None))
+            if self.geometric and wanted and all(paths[p.name]):  # cut on every path that reaches it
+                cuts[p.name] = paths[p.name]
+                for crossed in paths[p.name]:
+                    if len(crossed) == 1:
+                        split, side = crossed[0]
+                        label = _section_label(obj, p, split, side)
+                        self.targets.setdefault(label, (p, split, side))
+                        get(label)
+        self._cut_log.append(cuts)
         return ObjectState(tuple(zones), tuple(pieces))
 
     def run(self) -> list[tuple[str, TimePoint, TimePoint, ObjectState, Fraction | None]]:
@@ -154,11 +183,66 @@ class _SegmentRun:
             # collects the targets the descent reached without a track; those are
             # computed (only they) and the pass is repeated: at most depth + 1 passes.
             self.missing: dict[str, None] = {}
+            self._cut_log: list[dict[str, list[tuple[Crossing, ...]]]] = []
             entries = self._evaluate()
             if not self.missing:
+                if self.geometric and any(self._cut_log):
+                    self._cut(entries)
                 return entries
             for label in self.missing:
                 self.make_track(label)
+
+    def _cut(self, entries: list[tuple[str, TimePoint, TimePoint, ObjectState, Fraction | None]]) -> None:
+        """The geometric reading: every piece the ellipsoid reaches only across a
+        cutting plane gets its state as cut (:mod:`quadric_contact.scenes.cut_pieces`):
+        the intervals at their sample times first, then each instant from its
+        neighbours."""
+        log = self._cut_log
+        assert len(log) == len(entries)
+        found: dict[tuple[int, str], tuple[bool | None, bool | None, str]] = {}
+
+        def one(i: int, name: str, crossed: tuple[Crossing, ...], whole: PieceValue) -> Any:
+            if len(crossed) != 1:
+                return None, None, "the ellipsoid crosses two cutting planes of the piece at once"
+            split, side = crossed[0]
+            label = _section_label(self.obj, self._piece(name), split, side)
+            key = (i, label)
+            if key in found:
+                return found[key]
+            kind, start, _end, _state, sample = entries[i]
+            track = self.tracks[label]
+            if kind == "interval":
+                out = resolve_cut(track, whole, sample, self.E_at, interval=True)
+            else:
+                near = []
+                for j in (i - 1, i + 1):
+                    if 0 <= j < len(entries) and entries[j][0] == "interval" and name in log[j]:
+                        pv = dict(entries[j][3].pieces).get(name)
+                        near.append(one(j, name, crossed, pv)[:2] if pv is not None else None)
+                    else:
+                        near.append(None)
+                out = resolve_cut(track, whole, start, self.E_at, interval=False, left=near[0], right=near[1])
+            found[key] = out
+            return out
+
+        for order in ("interval", "instant"):
+            for i, (kind, start, end, state, sample) in enumerate(entries):
+                if kind != order or not log[i]:
+                    continue
+                pieces = []
+                for name, v in state.pieces:
+                    if v is not None and name in log[i]:
+                        answers = [one(i, name, crossed, v) for crossed in log[i][name]]
+                        values = [a[0] for a in answers]
+                        contact = True if True in values else (None if None in values else False)
+                        reason = next(a[2] for a in answers if a[0] is contact)
+                        planes = ", ".join(dict.fromkeys(c[0].name for cr in log[i][name] for c in cr))
+                        v = cut_value(v, contact, reason, planes)
+                    pieces.append((name, v))
+                entries[i] = (kind, start, end, ObjectState(state.zones, tuple(pieces)), sample)
+
+    def _piece(self, name: str) -> Piece:
+        return next(p for p in self.obj.pieces if p.name == name)
 
     def _evaluate(self) -> list[tuple[str, TimePoint, TimePoint, ObjectState, Fraction | None]]:
         seg = self.seg
@@ -243,8 +327,11 @@ def _tangent_boundaries(
 ) -> None:
     """At an instant that bounds an interval of transversal contact with a piece and
     is not itself transversal, the surfaces touch without crossing (the contact set
-    is closed, the transversal one open): an undetermined contact kind there is a
-    tangency."""
+    is closed, the transversal one open).  The contact kind is a word of Table 3's
+    vocabulary (:class:`~quadric_contact.theory.contact_kind.ContactKind`, the one of
+    :func:`~quadric_contact.analyze_contact`); at an irrational instant, where the
+    row is not classified, it stays ``undetermined`` and the reason says that the
+    surfaces touch there."""
     for i, (kind, start, end, state, sample) in enumerate(entries):
         if kind != "instant":
             continue
@@ -254,7 +341,12 @@ def _tangent_boundaries(
             if v is not None and v.contact is False and v.kind == "undetermined":
                 near = [dict(entries[j][3].pieces).get(name) for j in (i - 1, i + 1) if 0 <= j < len(entries)]
                 if any(n is not None and n.contact for n in near):
-                    v = replace(v, kind="tangent", decided_by=v.decided_by + "; bounds a transversal contact")
+                    v = replace(
+                        v,
+                        decided_by=v.decided_by
+                        + "; bounds a transversal contact: the surfaces touch without crossing "
+                        "(the row of Table 3 is not classified at an irrational instant)",
+                    )
                     changed = True
             pieces.append((name, v))
         if changed:

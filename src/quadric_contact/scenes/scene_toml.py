@@ -11,6 +11,7 @@ every number and every equation is read by the package's own parser,
     effects = ["zone", "contact", "relative_position", "first_contact"]
     on_not_small = "refuse"            # or "warn" (see below)
     places = 12                        # decimal places printed for event times
+    reading = "geometry"               # or "paper" (see below)
 
     [[object]]
     name = "tree"
@@ -92,6 +93,16 @@ Theorem 2; ``on_not_small = "refuse"`` rejects a scene where it fails,
 ``"warn"`` keeps it, with a warning, and the contact where all roots are real
 is then reported as undecided.
 
+``mutual = true`` (or a list of ellipsoid names) asks for the contacts of the
+moving ellipsoids with each other, at exact times
+(:mod:`quadric_contact.scenes.mutual`).
+
+A piece is the part of its quadric on the kept side of every plane on its
+path in the object's tree: the ellipsoid is in contact with it where it
+crosses the surface *as cut* (``reading = "geometry"``, the default).
+``reading = "paper"`` keeps the reading of Algorithm 1, where a piece whose
+zone the ellipsoid reaches counts as its whole quadric (Example 17).
+
 Names are unique: two pieces of one object, and two objects or
 ellipsoids of a scene (an object and an ellipsoid included), never share one.
 
@@ -122,6 +133,7 @@ from quadric_contact.scenes.composite import Composite, Piece, Split
 from quadric_contact.scenes.scene_model import (
     EFFECTS,
     EXCLUDED_KINDS,
+    READINGS,
     MovingEllipsoid,
     Scene,
 )
@@ -585,7 +597,11 @@ def parse_scene(
         raise SceneError(f"{source}: not valid TOML: {exc}", text, file=source) from exc
     r.keys(data, "", ("scene", "object", "ellipsoid", "effects"))
     meta = r.table(data, "scene", "scene")
-    r.keys(meta, "scene", ("name", "description", "time", "effects", "on_not_small", "places"))
+    r.keys(
+        meta,
+        "scene",
+        ("name", "description", "time", "effects", "on_not_small", "places", "reading", "mutual"),
+    )
     name = r.string(meta, "name", "scene.name")
     description = meta.get("description", "")
     if not isinstance(description, str):
@@ -619,6 +635,9 @@ def parse_scene(
     places_raw = meta.get("places", 12)
     if isinstance(places_raw, bool) or not isinstance(places_raw, int) or not 0 <= places_raw <= 1000:
         raise r.error("scene.places", "an integer number of decimal places in [0, 1000]", places_raw)
+    reading = r.string(meta, "reading", "scene.reading", default="geometry")
+    if reading not in READINGS:
+        raise r.error("scene.reading", " or ".join(repr(x) for x in READINGS), reading)
     objects = tuple(
         _object(r, t, f"object[{i}]") for i, t in enumerate(r.array_of_tables(data, "object", "object"))
     )
@@ -629,6 +648,18 @@ def parse_scene(
     _distinct_names(r, [(f"object[{i}]", o.name) for i, o in enumerate(objects)] + [
         (f"ellipsoid[{i}]", e.name) for i, e in enumerate(ells)
     ])
+    mutual_raw = meta.get("mutual", False)
+    if mutual_raw is True:
+        mutual = tuple(e.name for e in ells)
+    elif mutual_raw is False:
+        mutual = ()
+    elif isinstance(mutual_raw, list) and all(isinstance(n, str) for n in mutual_raw):
+        unknown = [n for n in mutual_raw if n not in {e.name for e in ells}]
+        if unknown:
+            raise r.error("scene.mutual", "names of the scene's ellipsoids", unknown)
+        mutual = tuple(dict.fromkeys(mutual_raw))
+    else:
+        raise r.error("scene.mutual", "true, false or a list of ellipsoid names", mutual_raw)
     per_ellipsoid, per_piece = _object_effects(r, data, objects, ells)
     scene = Scene(
         name,
@@ -642,6 +673,8 @@ def parse_scene(
         places_raw,
         ellipsoid_effects=per_ellipsoid,
         piece_effects=per_piece,
+        reading=reading,
+        mutual=mutual,
     )
     if check_smallness and scene.needs_smallness():
         scene.check_smallness(on_not_small=on_not_small)

@@ -32,10 +32,12 @@ from __future__ import annotations
 
 import time
 from collections.abc import Sequence
+from dataclasses import replace
 
+from quadric_contact.exact.errors import SceneError
 from quadric_contact.scenes.ledger import Ledger
 from quadric_contact.scenes.manybody import run_pairs
-from quadric_contact.scenes.scene_model import Scene
+from quadric_contact.scenes.scene_model import READINGS, Scene
 from quadric_contact.scenes.scene_pairs import _progress, _simulate_pair
 from quadric_contact.scenes.simulation_reports import (
     Episode,
@@ -66,6 +68,7 @@ def simulate(
     on_not_small: str | None = None,
     broad_phase: bool = False,
     workers: int = 1,
+    reading: str | None = None,
 ) -> SimulationResult:
     """Run a scene and return its exact event timelines and work ledger.
 
@@ -88,6 +91,10 @@ def simulate(
         the timelines are the same.  A full evaluation (``full``) does without it.
     workers : int
         Processes to share the ellipsoids between (``0``: one per core).
+    reading : {"geometry", "paper"}, optional
+        Override the scene's reading of its pieces: as cut by the planes on
+        their paths (``"geometry"``), or as whole quadrics (``"paper"``,
+        Algorithm 1).
 
     Returns
     -------
@@ -96,7 +103,7 @@ def simulate(
     Raises
     ------
     SceneError
-        Unknown effects, or a pair that is not small under the ``"refuse"`` policy.
+        An unknown reading, unknown effects, or a pair that is not small under the ``"refuse"`` policy.
 
     References
     ----------
@@ -110,6 +117,10 @@ def simulate(
     >>> result.ledger.cost("tree/crown"), result.ledger.cost("tree/trunk")
     (0, 0)
     """
+    if reading is not None and reading != scene.reading:
+        if reading not in READINGS:
+            raise SceneError(f"reading: expected one of {list(READINGS)}, got {reading!r}", reading)
+        scene = replace(scene, reading=reading)
     plan = Plan.from_effects(scene.effects if effects is None else effects, full=full)
     started = time.perf_counter()
     ledger = Ledger()
@@ -152,4 +163,11 @@ def simulate(
         finally:
             if bar is not None:
                 bar.close()
-    return SimulationResult(scene, plan, pairs, ledger, time.perf_counter() - started, list(scene.warnings))
+    mutual = None
+    if len(scene.mutual) >= 2:
+        from quadric_contact.scenes.mutual import mutual_contacts
+
+        mutual = mutual_contacts(scene, scene.mutual, ledger=ledger)
+    return SimulationResult(
+        scene, plan, pairs, ledger, time.perf_counter() - started, list(scene.warnings), mutual=mutual
+    )

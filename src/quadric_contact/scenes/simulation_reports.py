@@ -282,6 +282,16 @@ class PairResult:
     complete: bool = True
     segments_done: int = 0
 
+    def beyond_cut(self) -> list[str]:
+        """The pieces the ellipsoid crosses only beyond their cut at some time: where
+        the geometric reading and the paper's (whole quadrics) differ."""
+        names: dict[str, None] = {}
+        for ep in self.episodes:
+            for name, v in ep.state.pieces:
+                if v is not None and v.beyond_cut:
+                    names[name] = None
+        return list(names)
+
     @property
     def initial(self) -> ObjectState:
         """The state at the start of the time span."""
@@ -342,6 +352,26 @@ class PairResult:
         return out
 
 
+EVENTS_SHOWN = 24
+"""Events listed per pair in a summarised report (two thirds from the start, the rest from the end)."""
+
+LINES_SHOWN = 80
+"""Lines of pair timelines in a summarised report before the remaining pairs are summed up."""
+
+
+def _shown_changes(ev: Event, obj: Composite, show_zones: bool) -> list[str]:
+    changes = ev.changes(obj)
+    if not show_zones:
+        changes = [c for c in changes if not c.startswith("zone of plane")]
+    return changes
+
+
+def _reading_text(reading: str) -> str:
+    if reading == "paper":
+        return "reading: the paper's (Algorithm 1): a piece whose zone is reached counts as its whole quadric"
+    return "reading: pieces as cut by the planes of their object (--reading paper: as whole quadrics)"
+
+
 def _piece_text(d: dict[str, PieceValue | None], name: str, inside: Region | None = None) -> str:
     if name not in d:
         return "not in zone"
@@ -375,6 +405,9 @@ class SimulationResult:
     ledger: Ledger
     seconds: float
     warnings: list[str] = field(default_factory=list)
+    mutual: list[Any] | None = None
+    """The pairs of moving ellipsoids that meet (:mod:`quadric_contact.scenes.mutual`),
+    when the scene asks for mutual contacts."""
 
     def pair(self, ellipsoid: str, obj: str) -> PairResult:
         """The timeline of one ellipsoid against one object (``KeyError`` if there is none)."""
@@ -392,9 +425,11 @@ class SimulationResult:
             "source": self.scene.source,
             "time_span": [str(self.scene.span[0]), str(self.scene.span[1])],
             "effects": list(self.plan.effects),
+            "reading": self.scene.reading,
             "plan": self.plan.describe(),
             "events": sum(len(p.events) for p in self.pairs),
             "pairs": [p.to_dict(places, self.plan.effects) for p in self.pairs],
+            "mutual": None if self.mutual is None else [m.to_dict(places) for m in self.mutual],
             "ledger": self.ledger.to_dict(),
             "seconds": round(self.seconds, 6),
             "warnings": self.warnings,
@@ -413,10 +448,46 @@ class SimulationResult:
             ]
         return out
 
-    def format_text(self, places: int | None = None) -> str:
-        """The timeline as printed by ``quadric-contact simulate`` (event times to ``places`` decimals)."""
+    def _mutual_lines(self, places: int, events: str) -> list[str]:
+        assert self.mutual is not None
+        lines = [
+            "",
+            f"mutual contacts among {len(self.scene.mutual)} moving ellipsoids: "
+            f"{len(self.mutual)} pair(s) meet",
+        ]
+        shown = self.mutual if events == "all" else self.mutual[:12]
+        for m in shown:
+            lines.append(f"  {m.a} and {m.b}: start {m.start}")
+            listed = m.events if events == "all" else m.events[:EVENTS_SHOWN]
+            for ev in listed:
+                lines.append(f"    t = {_fmt_time(ev.time, places)}: {ev.describe()}")
+            if len(listed) < len(m.events):
+                lines.append(
+                    f"    ... {len(m.events) - len(listed)} more events (--events all lists every one)"
+                )
+        if len(shown) < len(self.mutual):
+            lines.append(f"  ... {len(self.mutual) - len(shown)} more pairs (--events all lists every one)")
+        return lines
+
+    def _listed(self, p: PairResult) -> int:
+        """The events a pair's timeline reports (what its ellipsoid asks to see)."""
+        own = self.plan.restricted(self.scene.ellipsoid_effects.get(p.ellipsoid)).effects
+        if not (p.complete and {"zone", "contact", "contact_kind", "relative_position"} & set(own)):
+            return 0
+        return sum(1 for ev in p.events if _shown_changes(ev, p.object, "zone" in own))
+
+    def format_text(self, places: int | None = None, *, events: str = "summary") -> str:
+        """The timeline as printed by ``quadric-contact simulate`` (event times to ``places`` decimals).
+
+        ``events="summary"`` (the default) bounds the output: each pair lists at
+        most :data:`EVENTS_SHOWN` events (the first ones and the last ones), and
+        once :data:`LINES_SHOWN` lines of timelines are printed the remaining pairs
+        are summed up in one line; ``events="all"`` lists every event of every pair.
+        """
+        if events not in ("summary", "all"):
+            raise SceneError(f"events: expected 'summary' or 'all', got {events!r}", events)
         places = self.scene.places if places is None else places
-        lines = [self.scene.describe(), f"plan: {self.plan.describe()}"]
+        lines = [self.scene.describe(), f"plan: {self.plan.describe()}", _reading_text(self.scene.reading)]
         if "smallness" in self.plan.effects or any(c.small is False for c in self.scene.smallness.values()):
             lines.append("smallness (Tables 1, 2):")
             lines += [f"  {c}" for c in self.scene.smallness.values()]
@@ -426,7 +497,13 @@ class SimulationResult:
             f"event times: exact real algebraic numbers, shown to {places} decimal places "
             "(--places N; --json gives each one's polynomial and isolating interval)"
         )
+        shown_lines = listed_events = 0
+        hidden: list[PairResult] = []
         for p in self.pairs:
+            if events == "summary" and shown_lines >= LINES_SHOWN:
+                hidden.append(p)
+                continue
+            before = len(lines)
             own = self.plan.restricted(self.scene.ellipsoid_effects.get(p.ellipsoid)).effects
             show_zones = "zone" in own
             show_timeline = bool({"zone", "contact", "contact_kind", "relative_position"} & set(own))
@@ -435,17 +512,32 @@ class SimulationResult:
             if p.complete and show_timeline:
                 start = p.initial.summary(p.object, with_zones=show_zones)
                 lines.append(f"  t = {_fmt_time(self.scene.span[0], places)}: start: {start}")
-                for ev in p.events:
-                    changes = ev.changes(p.object)
-                    if not show_zones:
-                        changes = [c for c in changes if not c.startswith("zone of plane")]
-                        if not changes:
-                            continue
+                listed = [
+                    (ev, changes) for ev in p.events if (changes := _shown_changes(ev, p.object, show_zones))
+                ]
+                skip = (0, 0)
+                if events == "summary" and len(listed) > EVENTS_SHOWN:
+                    head_n = EVENTS_SHOWN - EVENTS_SHOWN // 3
+                    skip = (head_n, len(listed) - EVENTS_SHOWN // 3)
+                for k, (ev, changes) in enumerate(listed):
+                    if skip[0] <= k < skip[1]:
+                        if k == skip[0]:
+                            lines.append(
+                                f"  ... {skip[1] - skip[0]} more events (--events all lists every one)"
+                            )
+                        continue
                     head = f"  t = {_fmt_time(ev.time, places)}: "
                     lines.append(head + changes[0])
                     lines += [" " * len(head) + c for c in changes[1:]]
+                listed_events += len(listed)
                 end = p.episodes[-1].state.summary(p.object, with_zones=show_zones)
                 lines.append(f"  t = {_fmt_time(self.scene.span[1], places)}: end: {end}")
+            beyond = p.beyond_cut()
+            if beyond:
+                lines.append(
+                    f"  readings differ: as whole quadrics (--reading paper) the crossings of "
+                    f"{', '.join(beyond)} beyond the cut count as contact"
+                )
             if "first_contact" in own:
                 if p.first_contact is None:
                     lines.append("  first contact: none in the time span")
@@ -455,11 +547,23 @@ class SimulationResult:
                     lines.append(
                         f"  first contact: t = {_fmt_time(t, places)} with {', '.join(names)}{extra}"
                     )
+            shown_lines += len(lines) - before
+        if hidden:
+            n_events = sum(self._listed(p) for p in hidden)
+            listed_events += n_events
+            n_touched = sum(1 for p in hidden if p.first_contact is not None)
+            lines.append("")
+            lines.append(
+                f"... {len(hidden)} more (ellipsoid, object) pairs, {n_touched} of them in contact, "
+                f"{n_events} events (--events all lists every one; --json gives everything)"
+            )
+        if self.mutual is not None:
+            lines += self._mutual_lines(places, events)
         lines.append("")
-        events = sum(len(p.events) for p in self.pairs)
         touched = sum(1 for p in self.pairs if p.first_contact is not None)
         lines.append(
-            f"events: {events} in {len(self.pairs)} (ellipsoid, object) pair(s); {touched} pair(s) in contact"
+            f"events: {listed_events} in {len(self.pairs)} (ellipsoid, object) pair(s); "
+            f"{touched} pair(s) in contact"
         )
         lines.append("work ledger (full = every effect for every piece on every segment):")
         lines += ["  " + line for line in self.ledger.format().splitlines()]

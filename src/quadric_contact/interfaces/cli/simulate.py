@@ -62,9 +62,28 @@ def register(sub: Any) -> None:
     p.add_argument("--pieces", type=int, default=16, help="many_bodies: pieces of the totem (default 16)")
     p.add_argument("--seed", type=int, default=0, help="many_bodies: the seed of the generated scene")
     p.add_argument(
+        "--mutual",
+        action="store_true",
+        help="also the contacts of the moving ellipsoids with each other (for a scene file: as if "
+        "it said mutual = true)",
+    )
+    p.add_argument(
         "--on-not-small",
         choices=("refuse", "warn"),
         help="what to do when an ellipsoid is not small with respect to a piece (default: the scene's)",
+    )
+    p.add_argument(
+        "--events",
+        choices=("summary", "all"),
+        default="summary",
+        help="summary (default): at most a few dozen events per pair and a bounded report; "
+        "all: every event of every pair",
+    )
+    p.add_argument(
+        "--reading",
+        choices=("geometry", "paper"),
+        help="geometry: a piece is its quadric as cut by its planes; paper: Algorithm 1's reading, "
+        "a piece whose zone is reached counts as its whole quadric (default: the scene's, else geometry)",
     )
     p.add_argument(
         "--full",
@@ -132,11 +151,17 @@ def run(args: argparse.Namespace) -> int:
             raise SceneError(
                 f"--bodies and --pieces: expected positive numbers, got {args.bodies}, {args.pieces}"
             )
-        scene = many_body_scene(args.bodies, args.pieces, seed=args.seed, check_smallness=False)
+        scene = many_body_scene(
+            args.bodies, args.pieces, seed=args.seed, check_smallness=False, mutual=args.mutual
+        )
         broad_phase = True
     else:
         # load without checking smallness; the run checks it only if its effects need it
         scene = load_scene(args.scene, check_smallness=False)
+        if args.mutual:
+            from dataclasses import replace
+
+            scene = replace(scene, mutual=tuple(e.name for e in scene.ellipsoids))
     plan_effects = effects if effects is not None else list(scene.effects)
     Plan.from_effects(plan_effects)  # validate before any work
     if args.plot or args.animate:
@@ -153,6 +178,7 @@ def run(args: argparse.Namespace) -> int:
             on_not_small=args.on_not_small,
             broad_phase=broad_phase and not args.full,
             workers=1 if args.workers is None else args.workers,
+            reading=args.reading,
         )
     places = args.places
     payload = json.dumps(result.to_dict(places), indent=2) + "\n" if args.json or args.output else ""
@@ -165,7 +191,7 @@ def run(args: argparse.Namespace) -> int:
     if args.animate:
         from quadric_contact.interfaces.animation import render_gif
 
-        gif = render_gif(result, frames=args.frames)
+        gif = render_gif(result, frames=args.frames, progress=args.progress)
     # everything succeeded: now write (each file appears whole or not at all)
     if args.output:
         _write_atomically(args.output, payload.encode())
@@ -176,7 +202,7 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         sys.stdout.write(payload)
     else:
-        print(result.format_text(places))
+        print(result.format_text(places, events=args.events))
         if args.plot:
             print(f"plot written to {args.plot}")
         if args.animate:

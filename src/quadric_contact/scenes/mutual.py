@@ -1,0 +1,390 @@
+"""Mutual contacts between moving ellipsoids, at exact times.
+
+Two ellipsoids ``A(t)`` and ``B(t)``, each under the scene's motion
+(polynomial translations, rational rotations), have matrices that are
+positive multiples of matrices of polynomials in ``t``
+(:meth:`~quadric_contact.scenes.trajectory.MotionSegment.moved_upper`).  The
+pencil is taken time-dependent on both sides, ``P(λ; t) = det(λ A(t) + B(t))``,
+both matrices negative inside: its coefficients are polynomials in ``t``
+(rather than moving to the frame of one body, which makes the other's motion
+rational with the first rotation's inverse; both give the same roots, the
+pencil needs no division).  By the condition of Wang, Wang and Kim (proved in
+``proofs/wwk_2001_ellipsoid_separation.py``) the solids are apart iff ``P``
+has two distinct positive roots, touch iff it has a double positive root,
+and overlap iff it has none.
+
+In time the number of positive roots changes only where two roots meet (a
+real root of the discriminant ``Δ4(t)``) or where a root passes through 0 or
+infinity, which never happens: ``c0 = det B(t)`` and ``c4 = det A(t)`` are a
+positive power of ``|q(t)|^2`` times the fixed negative determinants.  So the
+state is decided at one rational time between consecutive real roots of
+``Δ4`` and, at each root, by the sign of the double root ``-s0/s1`` of the
+first subresultant ``s1 λ + s0`` of ``P`` and ``P'``: touching iff it is
+positive.  Similar bodies that only translate (congruent ones, spheres) have
+the structural double root ``λ = -k < 0`` where the quadratic part vanishes:
+``P = (λ + k)^2 R(λ)``, and the discriminant of the quadratic ``R`` takes
+the place of ``Δ4`` (identically zero then).  The formulas are checked in
+``tests/test_mutual.py``.
+
+A *broad phase* among bodies keeps N bodies from costing N² pencils: over each
+window of time every body's swept volume is enclosed in a rational box
+(:func:`~quadric_contact.scenes.broadphase.swept_box`); boxes are sorted and
+swept along ``x`` and only pairs whose boxes meet get a pencil on that window.
+A box contains every placement, so a pruned pair cannot touch there: the
+pruning never loses a contact (the tests compare with the unpruned run).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from fractions import Fraction
+from itertools import pairwise
+from typing import Any
+
+import flint
+
+from quadric_contact._generated.formulas import paper_deltas, pencil_coefficients
+from quadric_contact.exact.algebraic import RealAlgebraic, rational_between, real_roots, sign_at
+from quadric_contact.exact.rational import fmpq_of, fraction_of
+from quadric_contact.model.quadric import Quadric
+from quadric_contact.scenes.broadphase import ellipsoid_extents, swept_box
+from quadric_contact.scenes.events import reduce_positive
+from quadric_contact.scenes.ledger import Ledger
+from quadric_contact.scenes.scene_model import MovingEllipsoid, Scene
+from quadric_contact.scenes.trajectory import MotionSegment
+
+__all__ = ["OVERLAPPING", "SEPARATE", "TOUCHING", "MutualEvent", "MutualResult", "mutual_contacts"]
+
+SEPARATE, TOUCHING, OVERLAPPING, UNDECIDED = "apart", "touching", "overlapping", "undecided"
+
+
+@functools.cache
+def _subresultant_1() -> tuple[Any, Any]:
+    """``(s1, s0)``: the first subresultant of a quartic and its derivative, as
+    functions of ``c0..c4`` (derived with sympy once)."""
+    import sympy as sp
+
+    from quadric_contact.exact.algebraic import compile_expression
+
+    c = sp.symbols("c0:5")
+    lam = sp.Symbol("lam")
+    P = sp.Poly(sum(c[i] * lam**i for i in range(5)), lam)
+    S1 = sp.Poly(sp.subresultants(P, P.diff(lam))[3], lam)
+    assert S1.degree() == 1
+    return (
+        compile_expression(sp.expand(S1.coeff_monomial(lam)), c),
+        compile_expression(sp.expand(S1.coeff_monomial(1)), c),
+    )
+
+
+def _negative_inside(q: Quadric) -> Quadric:
+    return -q if q.canonical_sign < 0 else q
+
+
+_QUADRATIC = (0, 1, 2, 4, 5, 7)  # q00 q01 q02 q11 q12 q22 among the ten upper entries
+
+
+def _homothety(A: Sequence[Any], B: Sequence[Any]) -> Fraction | None:
+    """``k`` with the quadratic part of ``B(t)`` equal to ``k`` times that of ``A(t)`` for
+    every ``t`` (congruent or similar bodies that only translate, two spheres), else None."""
+    i = next(j for j in _QUADRATIC if not A[j].is_zero())
+    q, r = divmod(B[i], A[i])
+    if not r.is_zero() or q.degree() > 0 or q.is_zero():
+        return None
+    k = fmpq_of(q[0])
+    if all((B[j] - k * A[j]).is_zero() for j in _QUADRATIC):
+        from quadric_contact.exact.rational import fraction_of
+
+        return fraction_of(k)
+    return None
+
+
+@dataclass(frozen=True)
+class MutualEvent:
+    """The state of a pair of bodies changes at an exact time: ``before``, ``at``, ``after``."""
+
+    time: RealAlgebraic
+    before: str
+    at: str
+    after: str
+
+    def describe(self) -> str:
+        if self.before == self.after:
+            return f"{self.at} at the instant only (before and after: {self.before})"
+        tail = f" (at the instant: {self.at})" if self.at not in (self.before, self.after) else ""
+        return f"{self.before} -> {self.after}{tail}"
+
+
+@dataclass
+class MutualResult:
+    """The timeline of one pair of bodies: its state at the start, its events, and
+    the first time the solids meet (touch or overlap)."""
+
+    a: str
+    b: str
+    start: str
+    events: list[MutualEvent] = field(default_factory=list)
+    first_contact: RealAlgebraic | None = None
+
+    def state_at(self, t: Any) -> str:
+        """The pair's state at a rational time of the span.
+
+        Examples
+        --------
+        >>> from quadric_contact.scenes.scene import builtin_scene
+        >>> from quadric_contact.scenes.simulate import simulate
+        >>> pair = simulate(builtin_scene("bees_meeting")).mutual[0]
+        >>> pair.a, pair.b, pair.state_at(0), pair.state_at(2)
+        ('north', 'south', 'apart', 'overlapping')
+        """
+        t = Fraction(t)
+        state = self.start
+        for e in self.events:
+            c = e.time.compare(t)
+            if c > 0:
+                break
+            state = e.at if c == 0 else e.after
+        return state
+
+    def to_dict(self, places: int) -> dict[str, Any]:
+        return {
+            "bodies": [self.a, self.b],
+            "start": self.start,
+            "events": [
+                {"time": e.time.to_dict(places), "before": e.before, "at": e.at, "after": e.after}
+                for e in self.events
+            ],
+            "first_contact": None if self.first_contact is None else self.first_contact.to_dict(places),
+        }
+
+
+class _PairWindow:
+    """The exact track of a pair on a window ``[t0, t1]`` where both motions are one segment."""
+
+    def __init__(
+        self, A: Sequence[Any], B: Sequence[Any], t0: Fraction, t1: Fraction, ledger: Ledger
+    ) -> None:
+        self.t0, self.t1 = t0, t1
+        self.c = pencil_coefficients(*A, *B)
+        ledger.add("mutual_pencils")
+        k = _homothety(A, B)
+        self.similar = k is not None
+        if k is not None:
+            # λ = -k < 0 makes the quadratic part vanish: P = (λ + k)^2 (r2 λ^2 + r1 λ + r0), and
+            # the positive roots are those of the quadratic factor
+            kq = fmpq_of(k)
+            c0, c1, c2, c3, c4 = self.c
+            r2 = c4
+            r1 = c3 - 2 * kq * r2
+            r0 = c2 - 2 * kq * r1 - kq * kq * r2
+            assert (c1 - (2 * kq * r0 + kq * kq * r1)).is_zero() and (c0 - kq * kq * r0).is_zero()
+            self.r = (r0, r1, r2)
+            disc = r1 * r1 - 4 * r2 * r0
+            self.D4 = reduce_positive(disc) if not disc.is_zero() else disc
+        else:
+            d4 = paper_deltas(*self.c)[2]
+            self.D4 = reduce_positive(d4) if not d4.is_zero() else d4
+            s1, s0 = _subresultant_1()
+            self.s1, self.s0 = s1(*self.c, const=fmpq_of), s0(*self.c, const=fmpq_of)
+        self.roots = [] if self.D4.is_zero() else real_roots(self.D4, t0, t1, ledger=ledger)
+
+    def at_rational(self, t: Fraction) -> str:
+        P = flint.fmpq_poly([ck(fmpq_of(t)) for ck in self.c])
+        lead = abs(fraction_of(P[P.degree()]))
+        bound = 1 + max(abs(fraction_of(P[k])) for k in range(P.degree())) / lead  # Cauchy's bound
+        positive = real_roots(P, Fraction(0), bound, multiplicities=True)
+        if any(m >= 2 for _, m in positive):
+            return TOUCHING
+        assert len(positive) in (0, 2), "two ellipsoids: 0 or 2 positive roots (Wang-Wang-Kim)"
+        return SEPARATE if positive else OVERLAPPING
+
+    def at_root(self, r: RealAlgebraic, left: str, right: str) -> str:
+        """At a root of Δ4: touching iff the double root is positive."""
+        if r.is_rational:
+            return self.at_rational(r.as_fraction())
+        if left != right:
+            return TOUCHING  # the apart and overlapping sets are open: their common boundary touches
+        if self.similar:  # the double root of the quadratic factor is -r1 / (2 r2)
+            r0, r1, r2 = self.r
+            return TOUCHING if -sign_at(r1, r) * sign_at(r2, r) > 0 else left
+        s1 = sign_at(self.s1, r)
+        if s1 == 0:  # the gcd of P and P' has degree 2 or more here
+            return UNDECIDED
+        return TOUCHING if -sign_at(self.s0, r) * s1 > 0 else left
+
+
+def _windows(
+    sa: Sequence[MotionSegment], sb: Sequence[MotionSegment]
+) -> list[tuple[MotionSegment, MotionSegment, Fraction, Fraction]]:
+    out = []
+    for x in sa:
+        for y in sb:
+            a, b = max(x.t0, y.t0), min(x.t1, y.t1)
+            if a < b:
+                out.append((x, y, a, b))
+    return out
+
+
+def _pair_timeline(
+    ea: MovingEllipsoid,
+    eb: MovingEllipsoid,
+    sa: Sequence[MotionSegment],
+    sb: Sequence[MotionSegment],
+    live: Any,
+    ledger: Ledger,
+) -> MutualResult:
+    """The timeline of one pair; ``live(a, b)`` says whether the broad phase kept the
+    pair on ``[a, b]`` (elsewhere the solids are certified apart)."""
+    A0, B0 = _negative_inside(ea.quadric), _negative_inside(eb.quadric)
+    entries: list[tuple[str, Any, str]] = []  # ("instant" | "interval", time or sample, state)
+    for x, y, a, b in _windows(sa, sb):
+        if not live(a, b):
+            if not entries:
+                entries.append(("instant", a, SEPARATE))
+            entries += [("interval", a, SEPARATE), ("instant", b, SEPARATE)]
+            continue
+        w = _PairWindow(x.moved_upper(A0, ea.center), y.moved_upper(B0, eb.center), a, b, ledger)
+        points: list[Any] = [a, *w.roots, b]
+        states = [w.at_rational(rational_between(points[i], points[i + 1])) for i in range(len(points) - 1)]
+        ledger.add("samples", len(states))
+        if not entries:
+            entries.append(("instant", a, w.at_rational(a)))
+        for i, s in enumerate(states):
+            entries.append(("interval", points[i], s))
+            if i + 1 < len(states):
+                entries.append(("instant", points[i + 1], w.at_root(points[i + 1], s, states[i + 1])))
+        entries.append(("instant", b, w.at_rational(b)))
+    # joints between windows: an instant between two intervals, decided where it was computed
+    result = MutualResult(ea.name, eb.name, entries[0][2])
+    for i in range(1, len(entries) - 1):
+        kind, t, at = entries[i]
+        if kind != "instant":
+            continue
+        before, after = entries[i - 1][2], entries[i + 1][2]
+        if before == at == after:
+            continue
+        time = t if isinstance(t, RealAlgebraic) else RealAlgebraic(Fraction(t))
+        if result.events and result.events[-1].time.compare(time) == 0:
+            continue
+        result.events.append(MutualEvent(time, before, at, after))
+    for _kind, t, state in entries:
+        if state in (TOUCHING, OVERLAPPING):
+            result.first_contact = t if isinstance(t, RealAlgebraic) else RealAlgebraic(Fraction(t))
+            break
+    return result
+
+
+def _boxes(
+    bodies: Sequence[MovingEllipsoid],
+    segs: Mapping[str, Sequence[MotionSegment]],
+    extents: Mapping[str, Any],
+    a: Fraction,
+    b: Fraction,
+) -> dict[str, Any]:
+    out = {}
+    for e in bodies:
+        half, rho = extents[e.name]
+        box: Any = None
+        for s in segs[e.name]:
+            lo, hi = max(a, s.t0), min(b, s.t1)
+            if lo > hi:
+                continue
+            part = swept_box(s, half, rho, lo, hi)
+            box = (
+                part
+                if box is None
+                else tuple((min(p[0], q[0]), max(p[1], q[1])) for p, q in zip(box, part, strict=True))
+            )
+        out[e.name] = box
+    return out
+
+
+def _sweep(boxes: dict[str, Any]) -> set[tuple[str, str]]:
+    """Pairs of names whose boxes meet (closed boxes; sort and sweep along x)."""
+    # floats rounded outwards: each float box contains the exact one, so no meeting is lost
+    fb = {
+        n: [(math.nextafter(float(lo), -math.inf), math.nextafter(float(hi), math.inf)) for lo, hi in box]
+        for n, box in boxes.items()
+    }
+    order = sorted(fb, key=lambda n: fb[n][0][0])
+    active: list[str] = []
+    out = set()
+    for n in order:
+        bx = fb[n]
+        active = [m for m in active if fb[m][0][1] >= bx[0][0]]
+        for m in active:
+            bm = fb[m]
+            if all(bm[k][0] <= bx[k][1] and bx[k][0] <= bm[k][1] for k in (1, 2)):
+                out.add((m, n) if m < n else (n, m))
+        active.append(n)
+    return out
+
+
+def mutual_contacts(
+    scene: Scene,
+    names: Sequence[str] | None = None,
+    *,
+    broad_phase: bool = True,
+    windows: int = 16,
+    ledger: Ledger | None = None,
+) -> list[MutualResult]:
+    """Exact timelines of every pair of the named moving ellipsoids (all by default).
+
+    Parameters
+    ----------
+    scene : Scene
+    names : sequence of str, optional
+        The bodies whose mutual contacts are wanted.
+    broad_phase : bool
+        Prune pairs by certified swept boxes over ``windows`` equal windows of
+        the span (never a real contact); without it every pair gets its pencil
+        on every window.
+    windows : int
+    ledger : Ledger, optional
+
+    Returns
+    -------
+    list of MutualResult
+        One per pair that is not apart at some time (pairs apart throughout are
+        left out), in the order of the bodies.
+    """
+    ledger = ledger if ledger is not None else Ledger()
+    bodies = [e for e in scene.ellipsoids if names is None or e.name in set(names)]
+    t0, t1 = scene.span
+    segs = {e.name: e.trajectory.segments(t0, t1, e.center) for e in bodies}
+    cuts = [t0 + (t1 - t0) * Fraction(k, windows) for k in range(windows + 1)]
+    keep: dict[tuple[str, str], list[tuple[Fraction, Fraction]]] = {}
+    if broad_phase:
+        by_shape: dict[tuple[Fraction, ...], Any] = {}
+        extents = {}
+        for e in bodies:  # congruent translates share their extents
+            u = e.quadric.upper
+            shape = (*(u[k] for k in _QUADRATIC), e.quadric.value_at(e.center))
+            if shape not in by_shape:
+                by_shape[shape] = ellipsoid_extents(e.quadric)
+            extents[e.name] = by_shape[shape]
+        for a, b in pairwise(cuts):
+            for pair in _sweep(_boxes(bodies, segs, extents, a, b)):
+                keep.setdefault(pair, []).append((a, b))
+            ledger.add("broad_phase_tests", len(bodies))
+    index = {e.name: i for i, e in enumerate(bodies)}
+    out = []
+    for i, ea in enumerate(bodies):
+        for eb in bodies[i + 1 :]:
+            key = (ea.name, eb.name) if ea.name < eb.name else (eb.name, ea.name)
+            if broad_phase and key not in keep:
+                ledger.add("pruned_pairs")
+                continue
+            spans = keep.get(key, [])
+
+            def live(a: Fraction, b: Fraction, spans: list[tuple[Fraction, Fraction]] = spans) -> bool:
+                return not broad_phase or any(lo < b and a < hi for lo, hi in spans)
+
+            r = _pair_timeline(ea, eb, segs[ea.name], segs[eb.name], live, ledger)
+            if r.first_contact is not None:
+                out.append(r)
+    out.sort(key=lambda r: (index[r.a], index[r.b]))
+    return out
