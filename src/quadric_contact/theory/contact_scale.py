@@ -327,7 +327,7 @@ def contact_scale_exact(E: Any, Q: Any, *, scale: str = "E") -> ContactScaleResu
     P0, B = scale_polynomial(e, q, scale)
     R = _candidates(P0, B)
     if R.is_zero():
-        raise UndecidedError(f"the scaled pencil of {e} and {q} is tangent for every scale", e, q)
+        raise UndecidedError(f"the scaled pencil of {e} and {q} is tangent for every scale", e, other=q)
     roots = real_roots(R, Fraction(0), _upper_bound(R))
     below = Fraction(0)
     for k, t in enumerate(roots):
@@ -337,7 +337,7 @@ def contact_scale_exact(E: Any, Q: Any, *, scale: str = "E") -> ContactScaleResu
             lo = below if below > 0 else _below(t)
             if _touches(e, q, lo, scale):
                 raise UndecidedError(
-                    f"the scale predicate holds below the candidate {t} for {e} and {q}", e, q
+                    f"the scale predicate holds below the candidate {t} for {e} and {q}", e, other=q
                 )
             return ContactScaleResult(_sqrt(t), t, R, scale, (lo, above))
         below = above
