@@ -74,7 +74,10 @@ def minimise_on_sphere(fn, *, digits=40, grid=48, polish=6):
 
             try:
                 a, b = mpmath.findroot(
-                    [lambda a, b: mpmath.diff(lambda x: g(x, b), a), lambda a, b: mpmath.diff(lambda y: g(a, y), b)],
+                    [
+                        lambda a, b: mpmath.diff(lambda x: g(x, b), a),
+                        lambda a, b: mpmath.diff(lambda y: g(a, y), b),
+                    ],
                     (mpmath.mpf(0), mpmath.mpf(0)),
                     tol=mpmath.mpf(10) ** (-2 * digits),
                     maxsteps=60,

@@ -187,7 +187,9 @@ def _candidates(P0: Any, B: Any) -> Any:
     Pt, Bt = P0 / G, B / G  # exact division in Q[l]
     n = max(Pt.degree(), Bt.degree())
     coeffs = [
-        flint.fmpq_poly([Pt.coeffs()[k] if k <= Pt.degree() else 0, Bt.coeffs()[k] if k <= Bt.degree() else 0])
+        flint.fmpq_poly(
+            [Pt.coeffs()[k] if k <= Pt.degree() else 0, Bt.coeffs()[k] if k <= Bt.degree() else 0]
+        )
         for k in range(n + 1)
     ]
     R = flint.fmpq_poly([1])
@@ -276,10 +278,8 @@ def _validate(E: Any, Q: Any, scale: str) -> tuple[Quadric, Quadric]:
     if scale not in SCALINGS:
         raise ValueError(f"scale must be one of {SCALINGS}, got {scale!r}")
     e = as_quadric(E, "E").as_ellipsoid()
-    if scale == "both":
-        q = as_quadric(Q, "Q").as_ellipsoid()
-    else:
-        q = solid_of(Q)  # the types with a solid: Table 1 and planes (the kinds the decisions know)
+    # with scale "E": the types with a solid (Table 1 and planes), the kinds the decisions know
+    q = as_quadric(Q, "Q").as_ellipsoid() if scale == "both" else solid_of(Q)
     return e, q
 
 

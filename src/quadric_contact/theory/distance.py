@@ -183,7 +183,10 @@ def _foot_point(K: Quadric, c: Sequence[Fraction], d2: RealAlgebraic) -> Point |
     """The point of the surface of ``K`` at squared distance ``d2`` (the least) from ``c``, read
     from the point-quadric secular equation; None when it is not a regular critical point (a
     symmetric configuration: a circle or sphere of nearest points)."""
-    Q00 = [[flint.fmpq_poly([int(i == j), 0]) + flint.fmpq_poly([0, _q(K[i, j])]) for j in range(3)] for i in range(3)]
+    Q00 = [
+        [flint.fmpq_poly([int(i == j), 0]) + flint.fmpq_poly([0, _q(K[i, j])]) for j in range(3)]
+        for i in range(3)
+    ]
     b = [_q(K[i, 3]) for i in range(3)]
     rhs = [flint.fmpq_poly([_q(c[i]), -b[i]]) for i in range(3)]  # c - mu b
     # adjugate solution: p = adj(M) rhs / det(M), M = I + mu Q00

@@ -1,0 +1,173 @@
+"""How far from contact, as public predicates: :func:`contact_scale` and :func:`distance`,
+for one pair and for stacks.
+
+One meaning for every input form: a pair answers with the exact result of
+:mod:`quadric_contact.theory.contact_scale` or :mod:`quadric_contact.theory.distance`; a stack
+answers with, for every pair, an enclosure ``[lo, hi]`` of that same exact number in binary64
+(``lo <= value <= hi``, rounded outwards from an exact rational interval), in an array of
+shape ``(..., 2)``.  A stack of one holds the enclosure of the pair's exact value.
+
+The stack path is the scalar exact path run pair by pair (certified, not fast): each pair
+costs what its exact answer costs (tens of milliseconds).
+"""
+
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+from typing import Any
+
+import numpy as np
+
+from quadric_contact.exact.algebraic import RealAlgebraic
+from quadric_contact.modes.batch import is_stack
+from quadric_contact.theory.contact_scale import contact_scale_exact
+from quadric_contact.theory.distance import distance_exact
+
+__all__ = ["contact_scale", "distance", "enclosure"]
+
+_MODES = ("certified", "exact")
+
+
+def enclosure(x: RealAlgebraic, bits: int = 60) -> tuple[float, float]:
+    """Binary64 bounds ``lo <= x <= hi``, from an isolating interval refined below ``2^-bits``
+    relative, each end rounded outwards.
+
+    Examples
+    --------
+    >>> lo, hi = enclosure(RealAlgebraic.sqrt(2))
+    >>> lo < 2 ** 0.5 < hi or lo == 2 ** 0.5 or hi == 2 ** 0.5, hi - lo < 1e-15
+    (True, True)
+    """
+    if x.is_rational:
+        v = x.as_fraction()
+        return _down(v), _up(v)
+    lo, hi = x.interval
+    scale = max(abs(lo), abs(hi), Fraction(1, 1 << 1000))
+    x.refine(scale / (1 << bits))
+    lo, hi = x.interval
+    return _down(lo), _up(hi)
+
+
+def _down(v: Fraction) -> float:
+    f = float(v)
+    return f if Fraction(f) <= v else math.nextafter(f, -math.inf)
+
+
+def _up(v: Fraction) -> float:
+    f = float(v)
+    return f if Fraction(f) >= v else math.nextafter(f, math.inf)
+
+
+def _pairs(E: Any, Q: Any) -> tuple[list[Any], list[Any], tuple[int, ...]]:
+    """The pairs of a stack (either side may be one matrix, broadcast)."""
+
+    def items(v: Any) -> tuple[list[Any], tuple[int, ...] | None]:
+        if not is_stack(v):
+            return [v], None
+        if isinstance(v, np.ndarray) and v.dtype != object:
+            shape = v.shape[:-2]
+            return list(v.reshape(-1, 4, 4)), shape
+        arr = np.empty(len(v), dtype=object)
+        arr[:] = list(v) if not isinstance(v, np.ndarray) else list(v.reshape(-1))
+        return list(arr), (len(v),) if not isinstance(v, np.ndarray) else v.shape
+
+    es, se = items(E)
+    qs, sq = items(Q)
+    shape = se if se is not None else sq
+    assert shape is not None
+    n = math.prod(shape)
+    es = es * n if se is None else es
+    qs = qs * n if sq is None else qs
+    if len(es) != len(qs):
+        raise ValueError(f"stacks of {len(es)} and {len(qs)} pairs do not match")
+    return es, qs, shape
+
+
+def _check(mode: str) -> None:
+    if mode not in _MODES:
+        raise ValueError(f"mode must be one of {_MODES}, got {mode!r}")
+
+
+def contact_scale(E: Any, Q: Any, *, scale: str = "E", mode: str = "certified") -> Any:
+    """The factor ``s* >= 0`` by which ``E``, scaled about its centre, first touches ``Q``.
+
+    ``s* > 1``: ``E`` is clear of ``Q`` (it could grow by ``s*``); ``s* = 1``: it touches;
+    ``s* < 1``: its solid already reaches the surface of ``Q``.  With ``scale="both"`` (two
+    ellipsoids) both are scaled about their own centres and ``s*^2`` is the Perram-Wertheim
+    contact function.
+
+    Parameters
+    ----------
+    E : Quadric, equation, matrix-like; or a stack ``(..., 4, 4)``
+        A real ellipsoid.
+    Q : Quadric, equation, matrix-like; or a stack
+        A quadric of Table 1 or a plane; an ellipsoid with ``scale="both"``.
+    scale : {"E", "both"}
+    mode : {"certified", "exact"}
+        The same exact answer; on stacks both give enclosures.
+
+    Returns
+    -------
+    ContactScaleResult for a pair (``.scale`` a :class:`~quadric_contact.RealAlgebraic`);
+    for a stack a float64 array ``(..., 2)`` of enclosures ``[lo, hi]`` of ``s*``.
+
+    Raises
+    ------
+    NotAnEllipsoidError, ExcludedQuadricError, UndecidedError
+
+    Examples
+    --------
+    >>> contact_scale("x**2 + y**2 + z**2 - 1", "x - 3").scale
+    RealAlgebraic(3)
+    >>> contact_scale(["x**2 + y**2 + z**2 - 1"] * 2, "x - 3")
+    array([[3., 3.],
+           [3., 3.]])
+    """
+    _check(mode)
+    if not (is_stack(E) or is_stack(Q)):
+        return contact_scale_exact(E, Q, scale=scale)
+    es, qs, shape = _pairs(E, Q)
+    out = np.empty((len(es), 2))
+    for k, (e, q) in enumerate(zip(es, qs, strict=True)):
+        out[k] = enclosure(contact_scale_exact(e, q, scale=scale).scale)
+    return out.reshape(*shape, 2)
+
+
+def distance(E: Any, Q: Any, *, mode: str = "certified") -> Any:
+    """The signed distance of the ellipsoid ``E`` from the solid of ``Q``, with witnesses.
+
+    Positive: the Euclidean distance between the solids; ``0``: touching; negative: minus the
+    penetration depth (the length of the shortest translation of ``E`` after which the
+    interiors are disjoint).  See :mod:`quadric_contact.theory.distance` for the solids, the
+    witnesses and the normal, and for which pairs have an exact answer (an ellipsoid against
+    a plane; a sphere against any solid, the depth where the solid is convex).
+
+    Parameters
+    ----------
+    E : Quadric, equation, matrix-like; or a stack ``(..., 4, 4)``
+    Q : Quadric, equation, matrix-like; or a stack
+    mode : {"certified", "exact"}
+
+    Returns
+    -------
+    DistanceResult for a pair; for a stack a float64 array ``(..., 2)`` of enclosures.
+
+    Raises
+    ------
+    NotAnEllipsoidError, ExcludedQuadricError, UndecidedError
+
+    Examples
+    --------
+    >>> r = distance("x**2 + y**2 + z**2 - 1", "x**2 + y**2 + (z - 5)**2 - 4")
+    >>> r.distance, [str(c) for c in r.normal]
+    (RealAlgebraic(2), ['0', '0', '-1'])
+    """
+    _check(mode)
+    if not (is_stack(E) or is_stack(Q)):
+        return distance_exact(E, Q)
+    es, qs, shape = _pairs(E, Q)
+    out = np.empty((len(es), 2))
+    for k, (e, q) in enumerate(zip(es, qs, strict=True)):
+        out[k] = enclosure(distance_exact(e, q).distance)
+    return out.reshape(*shape, 2)
