@@ -61,7 +61,7 @@ from typing import Any
 import flint
 
 from quadric_contact._generated import formulas
-from quadric_contact.exact.algebraic import RealAlgebraic, rational_between, real_roots
+from quadric_contact.exact.algebraic import RealAlgebraic, algebraic_sqrt, rational_between, real_roots
 from quadric_contact.exact.errors import ExcludedQuadricError, UndecidedError
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import Quadric, as_quadric
@@ -339,7 +339,7 @@ def contact_scale_exact(E: Any, Q: Any, *, scale: str = "E") -> ContactScaleResu
                 raise UndecidedError(
                     f"the scale predicate holds below the candidate {t} for {e} and {q}", e, other=q
                 )
-            return ContactScaleResult(_sqrt(t), t, R, scale, (lo, above))
+            return ContactScaleResult(algebraic_sqrt(t), t, R, scale, (lo, above))
         below = above
     raise ExcludedQuadricError(f"{q} is never reached by {e} scaled about its centre", q)
 
@@ -359,36 +359,3 @@ def _beyond(t: RealAlgebraic) -> Fraction:
 def _below(t: RealAlgebraic) -> Fraction:
     """A positive rational below ``t > 0`` (no root of ``R`` lies between: ``t`` is the first)."""
     return rational_between(RealAlgebraic(0), t)
-
-
-def _sqrt(t: RealAlgebraic) -> RealAlgebraic:
-    """The non-negative square root of a positive real algebraic number, exactly."""
-    if t.is_rational:
-        return RealAlgebraic.sqrt(t.as_fraction())
-    p = t.poly  # minimal polynomial of t; sqrt(t) is a root of p(s^2)
-    coeffs = [Fraction(int(a.p), int(a.q)) for a in flint.fmpq_poly(p).coeffs()]
-    sq = []
-    for a in coeffs:
-        sq += [a, Fraction(0)]
-    sq = sq[:-1]
-    lo, hi = t.interval
-    lo_s = _isqrt_down(max(lo, Fraction(0)))
-    hi_s = _isqrt_up(hi)
-    cands = real_roots(sq, lo_s, hi_s, closed=True)
-    while len(cands) != 1:
-        t.bisect()
-        lo, hi = t.interval
-        cands = real_roots(sq, _isqrt_down(max(lo, Fraction(0))), _isqrt_up(hi), closed=True)
-    return cands[0]
-
-
-def _isqrt_down(x: Fraction) -> Fraction:
-    """A rational ``<= sqrt(x)`` within ``2^-60 (1 + sqrt(x))``."""
-    scale = 1 << 60
-    import math
-
-    return Fraction(math.isqrt(int(x * scale * scale)), scale)
-
-
-def _isqrt_up(x: Fraction) -> Fraction:
-    return _isqrt_down(x) + Fraction(1, 1 << 60)

@@ -49,7 +49,7 @@ from typing import Any
 
 import flint
 
-from quadric_contact.exact.algebraic import RealAlgebraic, algebraic_value, real_roots
+from quadric_contact.exact.algebraic import RealAlgebraic, algebraic_sqrt, algebraic_value, real_roots
 from quadric_contact.exact.errors import UndecidedError
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import Quadric, as_quadric
@@ -98,21 +98,24 @@ class DistanceResult:
     point_Q: Point | None
     unique: bool
     method: str
-    _normal: Callable[[], Point | None] = field(repr=False, compare=False)
+    _witnesses: Callable[[], tuple[Point, Point] | None] = field(repr=False, compare=False)
 
     def __float__(self) -> float:
         return float(self.distance)
 
     @functools.cached_property
-    def normal(self) -> Point | None:
-        return self._normal()
+    def _normal_and_point(self) -> tuple[Point, Point] | None:
+        return self._witnesses()
 
-    @functools.cached_property
+    @property
+    def normal(self) -> Point | None:
+        w = self._normal_and_point
+        return None if w is None else w[0]
+
+    @property
     def point_E(self) -> Point | None:
-        n = self.normal
-        if n is None or self.point_Q is None:
-            return None
-        return tuple(self.point_Q[i] + self.distance * n[i] for i in range(3))  # type: ignore[return-value]
+        w = self._normal_and_point
+        return None if w is None else w[1]
 
     @property
     def separated(self) -> bool:
@@ -175,11 +178,13 @@ def _ellipsoid_plane(E: Quadric, K: Quadric) -> DistanceResult:
         point_Q,  # type: ignore[arg-type]
         True,
         "ellipsoid-plane",
-        lambda: tuple(_ra(n[i]) / norm for i in range(3)),  # type: ignore[arg-type,return-value]
+        lambda: (tuple(_ra(n[i]) / norm for i in range(3)), point_E),  # type: ignore[arg-type,return-value]
     )
 
 
-def _foot_point(K: Quadric, c: Sequence[Fraction], d2: RealAlgebraic) -> Point | None:
+def _foot_point(
+    K: Quadric, c: Sequence[Fraction], d2: RealAlgebraic
+) -> tuple[Point, RealAlgebraic, Callable[[Any, int], Any]] | None:
     """The point of the surface of ``K`` at squared distance ``d2`` (the least) from ``c``, read
     from the point-quadric secular equation; None when it is not a regular critical point (a
     symmetric configuration: a circle or sphere of nearest points)."""
@@ -219,7 +224,8 @@ def _foot_point(K: Quadric, c: Sequence[Fraction], d2: RealAlgebraic) -> Point |
         try:
             value = algebraic_value(dist2, [mu])
             if value.compare(d2) == 0:
-                return tuple(algebraic_value(lambda m, i=i: p_of(m, i), [mu]) for i in range(3))  # type: ignore[return-value]
+                foot = tuple(algebraic_value(lambda m, i=i: p_of(m, i), [mu]) for i in range(3))
+                return foot, mu, p_of  # type: ignore[return-value]
         except ZeroDivisionError:
             # the certified evaluation could not single the value out: no witness from this
             # multiplier (the result then reports no witness rather than an unproven one)
@@ -277,16 +283,33 @@ def _sphere_quadric(E: Quadric, K: Quadric) -> DistanceResult:
             E,
             other=K,
         )
-    foot = _foot_point(K, c, dc2) if dc.sign() != 0 else None
-    if foot is None:
+    found = _foot_point(K, c, dc2) if dc.sign() != 0 else None
+    if found is None:
         return DistanceResult(dist, None, False, "sphere-quadric", _none)
+    foot, mu, p_of = found
     side = 1 if inside else -1
 
-    def normal() -> Point:
-        # unit, from c towards p* inside K, away from it outside
-        return tuple((foot[i] - c[i]) * side / dc for i in range(3))  # type: ignore[return-value]
+    def witnesses() -> tuple[Point, Point]:
+        # The normal, out of K: from c towards p* when c is inside K, away from it outside;
+        # point_E = c - rho normal.  Each coordinate of the normal is the square root of a
+        # number of Q(mu) (one generator, evaluated once) with a known sign, so no product of
+        # high-degree algebraic numbers is formed.
+        def unit(i: int) -> RealAlgebraic:
+            sq = algebraic_value(
+                lambda m: (p_of(m, i) - c[i]) ** 2 / sum((p_of(m, j) - c[j]) ** 2 for j in range(3)), [mu]
+            )
+            u = algebraic_sqrt(sq)
+            return u if side * (foot[i] - c[i]).sign() >= 0 else -u
 
-    return DistanceResult(dist, foot, True, "sphere-quadric", normal)
+        normal = tuple(unit(i) for i in range(3))
+        if rho.is_rational:
+            r = rho.as_fraction()
+            point_E = tuple(algebraic_value(lambda u, i=i: c[i] - r * u, [normal[i]]) for i in range(3))
+        else:
+            point_E = tuple(rho * -normal[i] + c[i] for i in range(3))
+        return normal, point_E  # type: ignore[return-value]
+
+    return DistanceResult(dist, foot, True, "sphere-quadric", witnesses)
 
 
 def distance_exact(E: Any, Q: Any) -> DistanceResult:
