@@ -42,11 +42,12 @@ NUMBERED_RESULTS: tuple[str, ...] = (
 definition; the formulas of Section 3.2 are unnumbered but proved too).
 Tables 1-4 and the numbered equations belong to the results that state them."""
 
-FURTHER_RESULTS: tuple[str, ...] = ("Wang-Wang-Kim 2001",)
+FURTHER_RESULTS: tuple[str, ...] = ("Wang-Wang-Kim 2001", "First-contact scale")
 """Results from outside the paper that the package relies on and proves in ``proofs/``
 alongside the paper's (after them, in this order): the separation condition of two
 ellipsoids of Wang, Wang and Kim (CAGD 18, 2001), on which
-:func:`quadric_contact.theory.overlap` decides two ellipsoids."""
+:func:`quadric_contact.theory.overlap` decides two ellipsoids; the choice of the root that
+:func:`quadric_contact.contact_scale` returns."""
 
 PRINTED: dict[str, str] = {
     # Section 3.2, the two members of the discrimination system used by Corollary 10.
