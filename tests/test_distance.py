@@ -16,6 +16,7 @@ from quadric_contact import Quadric, QuadricKind
 from quadric_contact.exact.errors import UndecidedError
 from quadric_contact.exact.precision import working_precision
 from quadric_contact.model.motions import RigidMotion
+from quadric_contact.modes.distance_certified import distance_certified
 from quadric_contact.theory.distance import CONVEX_SOLIDS, distance_exact
 from quadric_contact.theory.overlap import solid_of
 
@@ -144,7 +145,47 @@ def test_other_pairs_are_refused_with_the_reason():
 
 def test_stack_of_one_encloses_the_scalar_answer():
     e, q = Quadric.sphere(Fraction(1, 2), (1, 2, 3)), TYPES[QuadricKind.ELLIPSOID]
-    exact = qc.distance(e, q).distance
+    exact = qc.distance(e, q, mode="exact").distance
     lo, hi = qc.distance([e], q)[0]
     assert exact.compare(Fraction(lo)) >= 0 and exact.compare(Fraction(hi)) <= 0
     assert hi - lo <= 4 * np.spacing(abs(hi))
+
+
+@pytest.mark.parametrize("kind", list(TYPES), ids=lambda k: k.name.lower())
+def test_certified_encloses_the_exact_distance_to_the_digits_asked(kind):
+    q = TYPES[kind].moved(MOTION)
+    for centre in CENTRES:
+        e = Quadric.sphere(Fraction(1, 3), centre)
+        try:
+            exact = distance_exact(e, q)
+        except UndecidedError:
+            with pytest.raises(UndecidedError):
+                distance_certified(e, q)
+            continue
+        ball = distance_certified(e, q, digits=40)
+        lo, hi = ball.bounds
+        assert exact.distance.compare(lo) >= 0 and exact.distance.compare(hi) <= 0
+        assert hi - lo <= 2 * abs(hi) * Fraction(1, 10**40)
+        # the witnesses enclose the exact ones
+        for got, want in (
+            (ball.point_Q, exact.point_Q),
+            (ball.normal, exact.normal),
+            (ball.point_E, exact.point_E),
+        ):
+            for g, w in zip(got, want, strict=True):
+                w.refine(Fraction(1, 10**45))
+                assert g.overlaps(_ball_of(w))
+
+
+def _ball_of(w):
+    """An arb ball holding the real algebraic number ``w`` (its isolating interval)."""
+    import flint
+
+    lo, hi = w.interval
+    mid, rad = (lo + hi) / 2, (hi - lo) / 2
+    return flint.arb(flint.fmpq(mid.numerator, mid.denominator), float(rad) * 2 + 1e-300)
+
+
+def test_certified_symmetric_configuration_falls_back_to_exact():
+    r = qc.distance(Quadric.sphere(1), "x**2 + y**2 - 9")
+    assert r.distance == -4  # the exact result: the nearest points form a circle

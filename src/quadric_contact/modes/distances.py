@@ -1,14 +1,17 @@
 """How far from contact, as public predicates: :func:`contact_scale` and :func:`distance`,
 for one pair and for stacks.
 
-One meaning for every input form: a pair answers with the exact result of
-:mod:`quadric_contact.theory.contact_scale` or :mod:`quadric_contact.theory.distance`; a stack
-answers with, for every pair, an enclosure ``[lo, hi]`` of that same exact number in binary64
-(``lo <= value <= hi``, rounded outwards from an exact rational interval), in an array of
-shape ``(..., 2)``.  A stack of one holds the enclosure of the pair's exact value.
+One meaning for every input form and mode: the exact number of
+:mod:`quadric_contact.theory.contact_scale` or :mod:`quadric_contact.theory.distance`.  For a
+pair, ``mode="exact"`` gives it as a real algebraic number with exact witnesses and
+``mode="certified"`` (the distance) as arb balls enclosing it to ``digits`` digits
+(:mod:`quadric_contact.modes.distance_certified`; the exact path answers the symmetric
+configurations the balls leave).  A stack answers with, for every pair, an enclosure
+``[lo, hi]`` of that same number in binary64 (``lo <= value <= hi``, rounded outwards), in an
+array of shape ``(..., 2)``: a stack of one holds the enclosure of the pair's value.
 
-The stack path is the scalar exact path run pair by pair (certified, not fast): each pair
-costs what its exact answer costs (tens of milliseconds).
+The stack path runs the scalar path pair by pair: about a millisecond a pair for a certified
+distance, tens to hundreds for an exact first-contact scale.
 """
 
 from __future__ import annotations
@@ -20,7 +23,9 @@ from typing import Any
 import numpy as np
 
 from quadric_contact.exact.algebraic import RealAlgebraic
+from quadric_contact.exact.errors import UndecidedError
 from quadric_contact.modes.batch import is_stack
+from quadric_contact.modes.distance_certified import DistanceEnclosure, distance_certified
 from quadric_contact.theory.contact_scale import contact_scale_exact
 from quadric_contact.theory.distance import distance_exact
 
@@ -134,7 +139,21 @@ def contact_scale(E: Any, Q: Any, *, scale: str = "E", mode: str = "certified") 
     return out.reshape(*shape, 2)
 
 
-def distance(E: Any, Q: Any, *, mode: str = "certified") -> Any:
+def _certified(E: Any, Q: Any, digits: int) -> DistanceEnclosure | None:
+    """The certified enclosure, or None for a symmetric configuration (the exact path's)."""
+    try:
+        return distance_certified(E, Q, digits=digits)
+    except UndecidedError as exc:
+        if "symmetric configuration" in str(exc):
+            return None
+        raise
+
+
+def _float_bounds(lo: Fraction, hi: Fraction) -> tuple[float, float]:
+    return _down(lo), _up(hi)
+
+
+def distance(E: Any, Q: Any, *, mode: str = "certified", digits: int = 15) -> Any:
     """The signed distance of the ellipsoid ``E`` from the solid of ``Q``, with witnesses.
 
     Positive: the Euclidean distance between the solids; ``0``: touching; negative: minus the
@@ -148,10 +167,15 @@ def distance(E: Any, Q: Any, *, mode: str = "certified") -> Any:
     E : Quadric, equation, matrix-like; or a stack ``(..., 4, 4)``
     Q : Quadric, equation, matrix-like; or a stack
     mode : {"certified", "exact"}
+    digits : int
+        ``certified``: significant digits of the enclosure.
 
     Returns
     -------
-    DistanceResult for a pair; for a stack a float64 array ``(..., 2)`` of enclosures.
+    For a pair, a :class:`~quadric_contact.DistanceResult` (``exact``, and ``certified`` in a
+    symmetric configuration) or a
+    :class:`~quadric_contact.modes.distance_certified.DistanceEnclosure` (``certified``); for a
+    stack a float64 array ``(..., 2)`` of enclosures.
 
     Raises
     ------
@@ -159,15 +183,25 @@ def distance(E: Any, Q: Any, *, mode: str = "certified") -> Any:
 
     Examples
     --------
-    >>> r = distance("x**2 + y**2 + z**2 - 1", "x**2 + y**2 + (z - 5)**2 - 4")
+    >>> r = distance("x**2 + y**2 + z**2 - 1", "x**2 + y**2 + (z - 5)**2 - 4", mode="exact")
     >>> r.distance, [str(c) for c in r.normal]
     (RealAlgebraic(2), ['0', '0', '-1'])
+    >>> ball, throat = "9*((x - 5)**2 + (y - 3)**2 + (z - 2)**2) - 1", "x**2/4 + y**2 - z**2 - 1"
+    >>> distance(ball, throat, digits=20).distance.str(20, radius=False)
+    '1.0237793867297612191'
+    >>> distance(ball, throat, mode="exact").distance.decimal(19)
+    '1.0237793867297612191'
+    >>> distance([ball, ball], throat)[0]  # binary64 bounds
+    array([1.02377939, 1.02377939])
     """
     _check(mode)
     if not (is_stack(E) or is_stack(Q)):
-        return distance_exact(E, Q)
+        if mode == "exact":
+            return distance_exact(E, Q)
+        return _certified(E, Q, digits) or distance_exact(E, Q)
     es, qs, shape = _pairs(E, Q)
     out = np.empty((len(es), 2))
     for k, (e, q) in enumerate(zip(es, qs, strict=True)):
-        out[k] = enclosure(distance_exact(e, q).distance)
+        c = _certified(e, q, max(digits, 17)) if mode == "certified" else None
+        out[k] = _float_bounds(*c.bounds) if c is not None else enclosure(distance_exact(e, q).distance)
     return out.reshape(*shape, 2)
