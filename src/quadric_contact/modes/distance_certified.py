@@ -103,8 +103,8 @@ def _plane(E: Quadric, K: Quadric, digits: int) -> DistanceEnclosure:
 
     Ainv_n = _solve3(A, n)
     k = sum(n[i] * Ainv_n[i] for i in range(3))
-    N = sum(x * x for x in n)
-    nc = sum(n[i] * c[i] for i in range(3))
+    N = sum((x * x for x in n), Fraction(0))
+    nc = sum((n[i] * c[i] for i in range(3)), Fraction(0))
     bits = 64
     while True:
         with working_precision(bits):
@@ -115,7 +115,7 @@ def _plane(E: Quadric, K: Quadric, digits: int) -> DistanceEnclosure:
             point_Q = tuple(point_E[i] - (_arb(nc - d) - root) * _arb(n[i] / N) for i in range(3))
             normal = tuple(_arb(n[i]) / norm for i in range(3))
         if _good(dist, digits, bits) or bits >= MAX_BITS:
-            return DistanceEnclosure(dist, point_E, point_Q, normal, bits, "ellipsoid-plane")  # type: ignore[arg-type]
+            return DistanceEnclosure(dist, point_E, point_Q, normal, bits, "ellipsoid-plane")
         bits *= 2
 
 
@@ -189,13 +189,12 @@ def _sphere(E: Quadric, K: Quadric, digits: int) -> DistanceEnclosure:
             dc = d2.sqrt()
             rho = _arb(rho2).sqrt()
             dist = (-dc - rho) if inside else (dc - rho)
+            witnesses: tuple[Any, Any, Any] = (None, None, None)
             if single:
                 side = 1 if inside else -1
                 normal = tuple((p[i] - _arb(c[i])) * side / dc for i in range(3))
                 point_E = tuple(_arb(c[i]) - rho * normal[i] for i in range(3))
                 witnesses = (point_E, tuple(p), normal)
-            else:
-                witnesses = (None, None, None)
         if not inside and K.kind not in CONVEX_SOLIDS and dist < 0:
             raise UndecidedError(
                 f"the sphere crosses the solid of {K.kind.value}, which is not convex: its penetration "
@@ -204,7 +203,7 @@ def _sphere(E: Quadric, K: Quadric, digits: int) -> DistanceEnclosure:
                 other=K,
             )
         if _good(dist, digits, bits) or bits >= MAX_BITS:
-            return DistanceEnclosure(dist, *witnesses, bits, "sphere-quadric")  # type: ignore[arg-type]
+            return DistanceEnclosure(dist, *witnesses, bits, "sphere-quadric")
         bits *= 2
 
 

@@ -54,6 +54,7 @@ and the contact function, J. Comput. Phys. 58 (1985) 409-416.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
@@ -81,7 +82,7 @@ SCALINGS = ("E", "both")
 """What is scaled: ``"E"`` alone (about its centre), or ``"both"`` ellipsoids about their
 own centres (the Perram-Wertheim contact function)."""
 
-_SEQUENCES = {
+_SEQUENCES: dict[int, Callable[..., Any]] = {
     2: formulas.discrimination_sequence_2,
     3: formulas.discrimination_sequence_3,
     4: formulas.discrimination_sequence_4,
@@ -166,14 +167,14 @@ def scale_polynomial(E: Quadric, Q: Quadric, scale: str = "E") -> tuple[Any, Any
     2
     """
     A, c, r = centred_form(E)
-    cAc = sum(c[i] * A[i][j] * c[j] for i in range(3) for j in range(3))
+    cAc = sum((c[i] * A[i][j] * c[j] for i in range(3) for j in range(3)), Fraction(0))
     q = [list(row) for row in Q.matrix]
     e0 = [list(row) for row in E.matrix]
     e0[3][3] = cAc
     rq = Fraction(0)
     if scale == "both":
         AQ, cq, rq = centred_form(Q)
-        q[3][3] = sum(cq[i] * AQ[i][j] * cq[j] for i in range(3) for j in range(3))
+        q[3][3] = sum((cq[i] * AQ[i][j] * cq[j] for i in range(3) for j in range(3)), Fraction(0))
     pencil = [[_lin(q[i][j], e0[i][j]) for j in range(4)] for i in range(4)]
     P0 = _det(pencil)
     top = _det([row[:3] for row in pencil[:3]])
