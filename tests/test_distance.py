@@ -187,5 +187,5 @@ def _ball_of(w):
 
 
 def test_certified_symmetric_configuration_falls_back_to_exact():
-    r = qc.distance(Quadric.sphere(1), "x**2 + y**2 - 9")
-    assert r.distance == -4  # the exact result: the nearest points form a circle
+    r = qc.distance(Quadric.sphere(1), "x**2 + y**2 - 9")  # the nearest points form a circle
+    assert r.distance.contains(-4) and r.distance.rad() == 0 and r.point_Q is None

@@ -20,14 +20,16 @@ import math
 from fractions import Fraction
 from typing import Any
 
+import flint
 import numpy as np
 
 from quadric_contact.exact.algebraic import RealAlgebraic
 from quadric_contact.exact.errors import UndecidedError
+from quadric_contact.exact.precision import working_precision
 from quadric_contact.modes.batch import is_stack
 from quadric_contact.modes.distance_certified import DistanceEnclosure, distance_certified
 from quadric_contact.theory.contact_scale import contact_scale_exact
-from quadric_contact.theory.distance import distance_exact
+from quadric_contact.theory.distance import DistanceResult, distance_exact
 
 __all__ = ["contact_scale", "distance", "enclosure"]
 
@@ -149,6 +151,23 @@ def _certified(E: Any, Q: Any, digits: int) -> DistanceEnclosure | None:
         raise
 
 
+def _as_enclosure(r: DistanceResult, digits: int) -> DistanceEnclosure:
+    """The exact result as balls (a symmetric configuration in ``certified`` mode: one type of
+    answer per mode)."""
+    bits = int(digits * 3.33) + 8
+    with working_precision(bits):
+
+        def ball(x: RealAlgebraic) -> Any:
+            return x.enclosure(bits) if x.sign() != 0 else flint.arb(0)
+
+        def balls(p: Any) -> Any:
+            return None if p is None else tuple(ball(x) for x in p)
+
+        return DistanceEnclosure(
+            ball(r.distance), balls(r.point_E), balls(r.point_Q), balls(r.normal), bits, r.method
+        )
+
+
 def _float_bounds(lo: Fraction, hi: Fraction) -> tuple[float, float]:
     return _down(lo), _up(hi)
 
@@ -172,10 +191,10 @@ def distance(E: Any, Q: Any, *, mode: str = "certified", digits: int = 15) -> An
 
     Returns
     -------
-    For a pair, a :class:`~quadric_contact.DistanceResult` (``exact``, and ``certified`` in a
-    symmetric configuration) or a
-    :class:`~quadric_contact.modes.distance_certified.DistanceEnclosure` (``certified``); for a
-    stack a float64 array ``(..., 2)`` of enclosures.
+    For a pair, a :class:`~quadric_contact.DistanceResult` (``exact``) or a
+    :class:`~quadric_contact.modes.distance_certified.DistanceEnclosure` (``certified``: arb
+    balls; in a symmetric configuration those of the exact answer); for a stack a float64
+    array ``(..., 2)`` of enclosures.
 
     Raises
     ------
@@ -198,7 +217,7 @@ def distance(E: Any, Q: Any, *, mode: str = "certified", digits: int = 15) -> An
     if not (is_stack(E) or is_stack(Q)):
         if mode == "exact":
             return distance_exact(E, Q)
-        return _certified(E, Q, digits) or distance_exact(E, Q)
+        return _certified(E, Q, digits) or _as_enclosure(distance_exact(E, Q), digits)
     es, qs, shape = _pairs(E, Q)
     out = np.empty((len(es), 2))
     for k, (e, q) in enumerate(zip(es, qs, strict=True)):
