@@ -219,7 +219,7 @@ def _foot_point(
             return _eval(adj_rhs[i], m) / _eval(det, m)
 
         def dist2(m: Any) -> Any:
-            return sum((p_of(m, i) - c[i]) ** 2 for i in range(3))
+            return sum(_square(p_of(m, i) - c[i]) for i in range(3))
 
         try:
             value = algebraic_value(dist2, [mu])
@@ -231,6 +231,10 @@ def _foot_point(
             # multiplier (the result then reports no witness rather than an unproven one)
             continue
     return None
+
+
+def _square(x: Any) -> Any:
+    return x * x
 
 
 def _q(x: Fraction) -> Any:
@@ -296,7 +300,7 @@ def _sphere_quadric(E: Quadric, K: Quadric) -> DistanceResult:
         # high-degree algebraic numbers is formed.
         def unit(i: int) -> RealAlgebraic:
             sq = algebraic_value(
-                lambda m: (p_of(m, i) - c[i]) ** 2 / sum((p_of(m, j) - c[j]) ** 2 for j in range(3)), [mu]
+                lambda m: _square(p_of(m, i) - c[i]) / sum(_square(p_of(m, j) - c[j]) for j in range(3)), [mu]
             )
             u = algebraic_sqrt(sq)
             return u if side * (foot[i] - c[i]).sign() >= 0 else -u
