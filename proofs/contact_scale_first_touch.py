@@ -191,7 +191,7 @@ def structural_roots() -> Finding:
 
 
 def _predicate_around(e: Any, q: Any) -> str:
-    from quadric_contact.theory.contact_scale import _touches, contact_scale_exact
+    from quadric_contact.theory.contact_scale import contact_scale_exact, reached_at
 
     got = contact_scale_exact(e, q)
     if got.scale.sign() == 0:
@@ -200,8 +200,8 @@ def _predicate_around(e: Any, q: Any) -> str:
     t = got.squared
     t.refine(t.hi * eps / 16)
     lo, hi = t.lo * (1 - eps), t.hi * (1 + eps)
-    ensure(not _touches(e, q, lo, "E"), f"{e} / {q}: the solid reaches the surface below s*")
-    ensure(_touches(e, q, hi, "E"), f"{e} / {q}: the solid does not reach the surface above s*")
+    ensure(not reached_at(e, q, lo, "E"), f"{e} / {q}: the solid reaches the surface below s*")
+    ensure(reached_at(e, q, hi, "E"), f"{e} / {q}: the solid does not reach the surface above s*")
     return q.kind.name
 
 

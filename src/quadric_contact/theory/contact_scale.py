@@ -74,6 +74,7 @@ __all__ = [
     "ContactScaleResult",
     "centred_form",
     "contact_scale_exact",
+    "reached_at",
     "scale_polynomial",
     "scaled",
 ]
@@ -221,9 +222,18 @@ def _interpolate(xs: list[Any], ys: list[Any]) -> Any:
     return out
 
 
-def _touches(E: Quadric, Q: Quadric, t: Fraction, scale: str) -> bool:
+def reached_at(E: Quadric, Q: Quadric, t: Fraction, scale: str = "E") -> bool:
     """The monotone predicate at a rational ``t > 0``: does the solid of ``E_t`` meet the
-    surface of ``Q`` (``scale="E"``), or the solid of ``Q_t`` (``scale="both"``)?"""
+    surface of ``Q`` (``scale="E"``), or the solid of ``Q_t`` (``scale="both"``)?  Decided
+    exactly (:func:`~quadric_contact.theory.geometric.decide_geometrically`,
+    :func:`~quadric_contact.theory.overlap.overlap_exact`).
+
+    Examples
+    --------
+    >>> e, q = Quadric.sphere(1), Quadric.plane((1, 0, 0), 3)
+    >>> reached_at(e, q, Fraction(8)), reached_at(e, q, Fraction(9))
+    (False, True)
+    """
     Et = scaled(E, t)
     if scale == "both":
         return overlap_exact(Et, scaled(Q, t)).code.name != "SEPARATE"
@@ -334,9 +344,9 @@ def contact_scale_exact(E: Any, Q: Any, *, scale: str = "E") -> ContactScaleResu
     for k, t in enumerate(roots):
         after = roots[k + 1] if k + 1 < len(roots) else None
         above = rational_between(t, after) if after is not None else _beyond(t)
-        if _touches(e, q, above, scale):
+        if reached_at(e, q, above, scale):
             lo = below if below > 0 else _below(t)
-            if _touches(e, q, lo, scale):
+            if reached_at(e, q, lo, scale):
                 raise UndecidedError(
                     f"the scale predicate holds below the candidate {t} for {e} and {q}", e, other=q
                 )
