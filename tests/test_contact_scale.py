@@ -106,6 +106,10 @@ def test_scaled_pair_is_tangent_exactly_at_rational_scale():
 
 def test_centre_on_the_surface_gives_zero():
     assert contact_scale_exact(Quadric.sphere(1, (2, 0, 0)), "x - 2").scale == 0
+    # both scaled: two ellipsoids with one centre share it at every scale
+    e, q = Quadric.sphere(1, (1, 2, 3)), Quadric.ellipsoid(1, 2, 3, (1, 2, 3))
+    assert contact_scale_exact(e, q, scale="both").scale == 0
+    assert contact_scale_exact(e, q).scale == 1  # E alone reaches q's nearest vertex at radius 1
 
 
 def test_concentric_spheres_and_homothetic_ellipsoids():

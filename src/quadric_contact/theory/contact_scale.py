@@ -24,8 +24,8 @@ The contact scale
 ``inf {s > 0 : the solids of E_s and Q_s meet}`` (``scale="both"``: this is the square root of
 the Perram-Wertheim contact function ``F(A, B)`` of two ellipsoids; Perram and Wertheim 1985).
 Both predicates are monotone in ``s`` (the solids grow with ``s``).  ``s* = 0`` exactly when
-the centre of ``E`` lies on the surface of ``Q`` (one-sided; the solids of two ellipsoids
-scaled about their centres never touch at ``s = 0`` unless the centres coincide).
+the centre of ``E`` lies on the surface of ``Q`` (one-sided), or when the two ellipsoids share
+their centre (``scale="both"``).
 
 Which root
 ----------
@@ -332,7 +332,9 @@ def contact_scale_exact(E: Any, Q: Any, *, scale: str = "E") -> ContactScaleResu
     """
     e, q = _validate(E, Q, scale)
     _, c, _ = centred_form(e)
-    if scale == "E" and q.value_at(c) == 0:
+    if (scale == "E" and q.value_at(c) == 0) or (scale == "both" and q.center() == tuple(c)):
+        # the centre of E on the surface of Q; or two ellipsoids with one centre, whose solids
+        # share it at every scale
         zero = RealAlgebraic(0)
         return ContactScaleResult(zero, zero, flint.fmpq_poly([0, 1]), scale, (Fraction(0), Fraction(0)))
     P0, B = scale_polynomial(e, q, scale)
