@@ -31,7 +31,7 @@ Which root
 ----------
 At ``t* = s*^2`` the surfaces touch at a real point ``X = (p, 1)`` and ``X`` spans a kernel
 vector of ``l0 E_t* + Q`` for a real ``l0``; with ``X^T E_t* X = 0``, Jacobi's formula makes
-``l0`` a multiple root of ``P(., t*)`` (``proofs/contact_scale_first_touch.py``).  Write
+``l0`` a multiple root of ``P(., t*)`` (``proofs/first_contact_scale.py``).  Write
 ``P = G(l) P~(l, t)`` with ``G = gcd(P_0, B)`` the factor of ``P`` common to every ``t``.
 Then ``t*`` is a root of
 

@@ -31,7 +31,7 @@ What is exact here
 ------------------
 * an ellipsoid ``(x - c)^T A (x - c) = r`` and a plane ``n . x = d``, in closed form: with
   ``k = n^T A^-1 n``, ``distance = (n . c - d - sqrt(r k)) / |n|``, ``point_E = c - sqrt(r / k)
-  A^-1 n``, ``normal = n / |n|`` (the support function of ``E``; ``proofs/distance_closed_forms.py``);
+  A^-1 n``, ``normal = n / |n|`` (the support function of ``E``);
 * a sphere ``|x - c| = rho`` and any quadric with a solid: ``distance = +-|c - p*| - rho`` with
   ``p*`` the point of the surface of ``Q`` nearest to ``c`` (sign ``-`` for ``c`` in ``K``).
   ``|c - p*| = rho s*`` with ``s*`` the first-contact scale of the sphere
