@@ -130,3 +130,12 @@ def test_a_value_between_two_close_conjugates_is_found():
     minpoly = sympy.Poly(sympy.expand((t - 1) ** 2 - sympy.Rational(2, 2**160)), t)
     assert r.minpoly == tuple(Fraction(int(c.p), int(c.q)) for c in reversed(minpoly.all_coeffs()))
     assert algebraic_value(lambda y: y - 1, [r]).sign() == 1
+
+
+def test_algebraic_value_with_a_ball_holding_zero_in_a_power():
+    # (x - x)^2 is 0: its ball holds 0, where arb's real power is NaN; the value is still found
+    from quadric_contact.exact.algebraic import algebraic_value
+
+    s2 = RealAlgebraic.sqrt(2)
+    assert algebraic_value(lambda x: (x - x) ** 2 + x, [s2]) == s2
+    assert algebraic_value(lambda x: (x - 1) ** 3, [s2]).compare(0) > 0

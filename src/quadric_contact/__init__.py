@@ -51,6 +51,7 @@ from quadric_contact.modes import (
     RegionCode,
     SmallnessCode,
 )
+from quadric_contact.modes.distances import contact_scale, distance
 from quadric_contact.modes.packing import Packed, pack, symmetrize, unpack
 from quadric_contact.modes.predicates import (
     CriterionResult,
@@ -73,6 +74,8 @@ from quadric_contact.scenes.scene import (
 )
 from quadric_contact.scenes.simulate import SimulationResult, simulate
 from quadric_contact.theory.contact_kind import ContactAnalysis, ContactKind, analyze_contact
+from quadric_contact.theory.contact_scale import ContactScaleResult
+from quadric_contact.theory.distance import DistanceResult
 from quadric_contact.theory.geometric import GeometricDecision, decide_geometrically
 from quadric_contact.theory.overlap import OverlapResult, TouchingError
 from quadric_contact.theory.pencil import CharacteristicPolynomial, characteristic_polynomial
@@ -97,9 +100,11 @@ __all__ = [
     "ContactKind",
     "ContactKindCode",
     "ContactResult",
+    "ContactScaleResult",
     "CriterionCode",
     "CriterionResult",
     "DegeneratePencilError",
+    "DistanceResult",
     "EquationError",
     "ExcludedQuadricError",
     "Family",
@@ -141,9 +146,11 @@ __all__ = [
     "builtin_scene_names",
     "characteristic_polynomial",
     "contact_kind",
+    "contact_scale",
     "corollary_10",
     "decide_geometrically",
     "discrimination_sequence",
+    "distance",
     "family",
     "invariants",
     "load_scene",

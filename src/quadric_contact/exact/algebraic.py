@@ -922,7 +922,15 @@ class _Ball:
         return _Ball(-self.x)
 
     def __pow__(self, n: int) -> _Ball:
-        return _Ball(self.x**n)
+        # by squaring: arb's ``**`` is exp(n log x), NaN on a ball that holds 0
+        r, b = flint.arb(1), self.x
+        k = abs(n)
+        while k:
+            if k & 1:
+                r = r * b
+            b = b * b
+            k >>= 1
+        return _Ball(r if n >= 0 else 1 / r)
 
 
 def _companion(key: tuple[Fraction, ...]) -> list[list[Fraction]]:

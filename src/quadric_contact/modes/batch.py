@@ -173,9 +173,8 @@ def _packed_stack(value: Any, name: str) -> MatrixStack:
     arr = value.array
     batch = tuple(arr.shape[:-1])
     kind = arr.dtype.kind
-    if (
-        (kind == "f" and arr.dtype.itemsize <= 8)
-        or (kind in "iu" and arr.size and int(np.abs(arr).max()) <= 2**53)
+    if (kind == "f" and arr.dtype.itemsize <= 8) or (
+        kind in "iu" and arr.size and int(np.abs(arr).max()) <= 2**53
     ):
         packed = np.ascontiguousarray(arr.reshape(-1, 10), dtype=np.float64)
         return MatrixStack(None, None, False, name, batch, packed=packed)

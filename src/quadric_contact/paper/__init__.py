@@ -42,16 +42,21 @@ NUMBERED_RESULTS: tuple[str, ...] = (
 definition; the formulas of Section 3.2 are unnumbered but proved too).
 Tables 1-4 and the numbered equations belong to the results that state them."""
 
-FURTHER_RESULTS: tuple[str, ...] = ("Wang-Wang-Kim 2001", "Tu-Wang-Mourrain-Wang 2009", "Pieces as cut")
+FURTHER_RESULTS: tuple[str, ...] = (
+    "Wang-Wang-Kim 2001",
+    "Tu-Wang-Mourrain-Wang 2009",
+    "Pieces as cut",
+    "First-contact scale",
+)
 """Results from outside the paper that the package relies on and proves in ``proofs/``
 alongside the paper's (after them, in this order): the separation condition of two
 ellipsoids of Wang, Wang and Kim (CAGD 18, 2001), on which
 :func:`quadric_contact.overlap` decides two ellipsoids; the decision of contact,
 region and overlap of an ellipsoid and any quadric from the signature sequence of the pencil
 (after Tu, Wang, Mourrain and Wang, CAGD 26, 2009), which needs no smallness: beyond the
-paper; and the package's own reduction of contact with a piece as cut by a plane to the plane
+paper; the package's own reduction of contact with a piece as cut by a plane to the plane
 section's pencil (:mod:`quadric_contact.theory.sections`), on which the geometric reading of
-scenes rests."""
+scenes rests; and the choice of the root that :func:`quadric_contact.contact_scale` returns."""
 
 PRINTED: dict[str, str] = {
     # Section 3.2, the two members of the discrimination system used by Corollary 10.
