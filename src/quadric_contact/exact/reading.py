@@ -383,9 +383,11 @@ def _tokenize(text: str, what: str) -> list[_Token]:
     tokens: list[_Token] = []
     append = tokens.append
     pos = 0
-    for m in _TOKEN.finditer(text):
-        if m.start() != pos:  # the scan skipped characters the grammar does not know
-            break
+    match = _TOKEN.match
+    # One anchored match per token, never a search: a search would retry at
+    # every later position after a failure, and each try rescans a run of
+    # blanks or digits, which is quadratic in the length of the text.
+    while (m := match(text, pos)) is not None:
         i = m.lastindex or 4
         start, end = m.span(i)
         literal = m.group(i)
