@@ -85,7 +85,9 @@ def _big_pair(digits: int, seed: int = 2) -> tuple[Any, Any]:
     rng = random.Random(seed)
 
     def entry() -> Fraction:
-        return Fraction(rng.randrange(10 ** (digits - 1), 10**digits), rng.randrange(10 ** (digits - 1), 10**digits))
+        return Fraction(
+            rng.randrange(10 ** (digits - 1), 10**digits), rng.randrange(10 ** (digits - 1), 10**digits)
+        )
 
     def matrix(diagonal: tuple[int, ...]) -> list[list[Fraction]]:
         M = [[entry() / 1000 for _ in range(4)] for _ in range(4)]
