@@ -19,6 +19,17 @@ from quadric_contact.exact import reading
 from quadric_contact.exact.errors import EquationError, NotANumberError
 from quadric_contact.exact.reading import MAX_LENGTH, parse_number, parse_polynomial
 
+
+def _env_with_src() -> dict[str, str]:
+    """The environment of a child interpreter that imports this checkout's package."""
+    import os
+    from pathlib import Path
+
+    env = dict(os.environ)
+    env["PYTHONPATH"] = str(Path(__file__).resolve().parents[1] / "src")
+    return env
+
+
 # -- the tokenizer: one anchored match per token ------------------------------------------
 
 
@@ -163,3 +174,273 @@ def test_check_prints_huge_numbers_plain_and_json(capsys):
     assert main(["check", "--json", e, q]) in (0, 3)
     data = json.loads(capsys.readouterr().out)
     assert len(data["contact"]["delta4"]) > 4300
+
+
+# -- families: bounds estimated before building, names that cannot collide ----------------
+
+EIGHT_FACTORS = "*".join(f"({p}+{k})" for p, k in zip("abcdefgh", range(2, 10), strict=True))
+FOUR_PARAMETER_HEAVY = (
+    "x^2+y^2+z^2-1",
+    "(a+2)*(b+3)*(c+4)*(d+5)*x^2 + (a+3)*(b+4)*(c+5)*(d+6)*y^2 - (a+4)*(b+5)*(c+6)*(d+7)*z^2"
+    " - (a+5)*(b+6)*(c+7)*(d+8)",
+    "a b c d",
+)
+
+
+def test_too_many_parameters_are_refused_before_anything_is_read():
+    from quadric_contact.exact.bounds import MAX_PARAMETERS
+    from quadric_contact.families.family import family
+
+    with pytest.raises(EquationError, match="MAX_PARAMETERS"):
+        family("x^2+y^2+z^2-1", f"{EIGHT_FACTORS}*x^2 + y^2 - z^2 - 1", "a b c d e f g h")
+    assert MAX_PARAMETERS < 8
+
+
+def test_the_eight_factor_family_no_longer_aborts_the_interpreter():
+    import subprocess
+    import sys
+
+    code = (
+        "from quadric_contact.families.family import family\n"
+        "from quadric_contact.exact.errors import QuadricContactError\n"
+        "try:\n"
+        f"    fam = family('x^2+y^2+z^2-1', '{EIGHT_FACTORS}*x^2 + y^2 - z^2 - 1', 'a b c d e f g h')\n"
+        "    fam.coefficients, fam.deltas\n"
+        "except QuadricContactError as exc:\n"
+        "    print('refused:', type(exc).__name__)\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=300, env=_env_with_src()
+    )
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert "refused: EquationError" in done.stdout
+
+
+def test_a_family_whose_discriminant_is_too_large_is_refused_before_it_is_built(monkeypatch):
+    import flint
+
+    from quadric_contact.exact.bounds import MAX_FAMILY_WORK_PRODUCTS
+    from quadric_contact.exact.errors import WorkLimitError
+    from quadric_contact.families import family_budget
+    from quadric_contact.families.family import family
+
+    fam = family(*FOUR_PARAMETER_HEAVY)
+    built: list[int] = []
+    real = family_budget.CountedPolynomial.__mul__
+
+    def watch(self: Any, other: Any) -> Any:
+        out = real(self, other)
+        built.append(len(out.p) if isinstance(out.p, flint.fmpq_mpoly) else 1)
+        return out
+
+    monkeypatch.setattr(family_budget.CountedPolynomial, "__mul__", watch)
+    with pytest.raises(WorkLimitError, match="MAX_FAMILY") as info:
+        _ = fam.deltas
+    assert info.value.details["needed"] > info.value.details["limit"]
+    assert "a, b, c, d" in str(info.value)  # names the family
+    # nothing was built beyond what the budget allows, charged before each product
+    assert built and max(built) <= MAX_FAMILY_WORK_PRODUCTS
+
+
+def test_a_moderate_family_is_answered_and_its_discriminant_is_exact():
+    import sympy
+
+    from quadric_contact.families.family import family
+
+    fam = family("(x - u)^2 + v*(y - w)^2 + 3*(z - s)^2 - 1", "x**2 + y**2 - u*(z-3)**2 - v", "u v w s")
+    point = {"u": Fraction(1, 2), "v": Fraction(2), "w": Fraction(1, 3), "s": Fraction(-1)}
+    d4 = fam.deltas[2].subs(
+        {sympy.Symbol(k): sympy.Rational(v.numerator, v.denominator) for k, v in point.items()}
+    )
+    from quadric_contact.exact.discriminants import paper_deltas
+    from quadric_contact.theory.pencil import characteristic_polynomial
+
+    E, Q = fam.at(**point)
+    P = characteristic_polynomial(E, Q)
+    assert sympy.Rational(d4) == sympy.Rational(*paper_deltas(P.coefficients)[2].as_integer_ratio())
+
+
+def test_the_reference_point_search_is_bounded(monkeypatch):
+    from quadric_contact.exact.bounds import MAX_REFERENCE_POINTS
+    from quadric_contact.exact.errors import NotAnEllipsoidError
+    from quadric_contact.families.family import Family, family
+
+    tried = []
+    real = Family._not_an_ellipsoid
+
+    def count(self: Any, point: Any) -> str:
+        tried.append(point)
+        return real(self, point)
+
+    monkeypatch.setattr(Family, "_not_an_ellipsoid", count)
+    with pytest.raises(NotAnEllipsoidError, match="MAX_REFERENCE_POINTS"):
+        family("x^2 + y^2 + z^2 + 1 + (u*v*w*s)^2", "z", "u v w s")  # never real
+    assert len(tried) == MAX_REFERENCE_POINTS
+
+
+@pytest.mark.parametrize(
+    ("name", "why"),
+    [
+        ("lambda", "characteristic polynomial"),
+        ("t", "smallness"),
+        ("class", "keyword"),
+        ("match", "keyword"),
+        ("at", "attribute"),
+        ("E", "attribute"),
+        ("reference", "attribute"),
+        ("name", "keyword argument"),
+        ("refine", "keyword argument"),
+        ("resolution", "keyword argument"),
+    ],
+)
+def test_parameter_names_that_would_collide_are_refused(name, why):
+    from quadric_contact.families.family import family
+
+    with pytest.raises(EquationError, match=why):
+        family(f"(x - {name})^2 + y^2 + z^2 - 1", "z", name)
+
+
+def test_every_public_attribute_of_a_family_is_a_refused_name():
+    from quadric_contact.families.family import _reserved_names, family
+
+    fam = family("(x - u)^2 + y^2 + z^2 - 1", "z", "u")
+    public = {n for n in (*vars(fam), *dir(fam)) if not n.startswith("_")}
+    assert public <= set(_reserved_names())
+
+
+def test_the_pencil_symbol_cannot_be_a_parameter():
+    import sympy
+
+    from quadric_contact.families.family import family
+
+    fam = family("(x - u)^2 + y^2 + z^2 - 1", "x^2 + y^2 - z^2 - 1", "u")
+    lam = sympy.Symbol("mu")
+    assert sympy.Poly(fam.characteristic_polynomial("mu"), lam).degree() == 4
+    for bad in ("u", "x", "1u", "a b"):
+        with pytest.raises(EquationError, match="symbol"):
+            fam.characteristic_polynomial(bad)
+
+
+def test_an_unknown_quantity_or_backend_lists_the_valid_ones():
+    from quadric_contact.exact.errors import ChoiceError
+    from quadric_contact.families.family import family
+
+    fam = family("(x - u)^2 + y^2 + z^2 - 1", "x^2 + y^2 - z^2 - 1", "u")
+    with pytest.raises(ChoiceError, match="Delta4") as info:
+        fam.quantity("Delta5")
+    assert "Delta4" in info.value.details["choices"]
+    with pytest.raises(ChoiceError, match="numpy"):
+        fam.lambdify("Delta4", backend="fortran")
+
+
+# -- motions: the degree bound holds for coefficient lists too -----------------------------
+
+
+def _drone_scene(translation: str, quaternion: str) -> str:
+    from pathlib import Path
+
+    import quadric_contact.scenes as scenes
+
+    text = (Path(scenes.__file__).parent / "drone_cooling_tower.toml").read_text()
+    text = re.sub(r"(?m)^translation = .*$", f"translation = {translation}", text)
+    return re.sub(r"(?m)^quaternion = .*$", f"quaternion = {quaternion}", text)
+
+
+@pytest.mark.parametrize(
+    ("translation", "quaternion"),
+    [
+        ("[[" + "0, " * 200 + "1], [0], [0]]", "[[4], [0], [0], [0, 1]]"),
+        ("[[0, 8], [0], [0, 30, -2.5]]", "[[4], [0], [0], [" + "0, " * 100 + "1]]"),
+        ('["t**9", "0", "0"]', "[[4], [0], [0], [0, 1]]"),
+    ],
+    ids=["translation of degree 200", "quaternion of degree 100", "text of degree 9"],
+)
+def test_a_motion_above_the_degree_bound_is_refused_before_it_is_read(translation, quaternion, monkeypatch):
+    from quadric_contact.exact import rational
+    from quadric_contact.exact.errors import SceneError
+    from quadric_contact.scenes.scene_toml import parse_scene
+
+    calls = []
+    real = rational.to_fraction
+    monkeypatch.setattr(rational, "to_fraction", lambda v: calls.append(v) or real(v))
+    with pytest.raises(SceneError, match="MAX_MOTION_DEGREE"):
+        parse_scene(_drone_scene(translation, quaternion))
+    assert len(calls) < 50  # the long list was never read entry by entry
+
+
+def test_a_motion_at_the_degree_bound_is_read():
+    from quadric_contact.exact.bounds import MAX_MOTION_DEGREE
+    from quadric_contact.scenes.trajectory import PolynomialMotion
+
+    top = [0] * MAX_MOTION_DEGREE + [Fraction(1, 10**9)]
+    m = PolynomialMotion((top, [0], "t**8"), quaternion=([4], [0], [0], top))
+    assert len(m.translation[0]) == len(m.quaternion[3]) == MAX_MOTION_DEGREE + 1
+    with pytest.raises(Exception, match="MAX_MOTION_DEGREE"):
+        PolynomialMotion(([0] * (MAX_MOTION_DEGREE + 1) + [1], [0], [0]))
+    with pytest.raises(Exception, match="MAX_MOTION_DEGREE"):
+        PolynomialMotion(((0 for _ in iter(int, 1)), [0], [0]))  # an endless generator: cut, not read
+
+
+# -- scene files: regular files of bounded size, bounded nesting -----------------------------
+
+
+@pytest.mark.parametrize("special", ["/dev/zero", "fifo", "directory"])
+def test_a_scene_path_that_is_not_a_regular_file_is_refused_unread(special, tmp_path):
+    import os
+
+    from quadric_contact.exact.errors import SceneError
+    from quadric_contact.scenes.scene_toml import load_scene
+
+    if special == "fifo":
+        path = tmp_path / "scene.toml"
+        os.mkfifo(path)  # no writer: opening it for reading would block
+    elif special == "directory":
+        path = tmp_path
+    else:
+        path = special
+    with pytest.raises(SceneError, match="not a regular file"):
+        load_scene(path)
+
+
+def test_a_scene_file_beyond_the_size_bound_is_refused(tmp_path):
+    from quadric_contact.exact.bounds import MAX_SCENE_BYTES
+    from quadric_contact.exact.errors import SceneError
+    from quadric_contact.scenes.scene_toml import load_scene, parse_scene
+
+    path = tmp_path / "big.toml"
+    path.write_text("# " + "x" * MAX_SCENE_BYTES + "\n")
+    with pytest.raises(SceneError, match="MAX_SCENE_BYTES"):
+        load_scene(path)
+    with pytest.raises(SceneError, match="MAX_SCENE_BYTES"):
+        parse_scene(path.read_text())
+
+
+@pytest.mark.parametrize("opening", ["[", "{a = ", "[\n"])
+def test_deep_nesting_in_a_scene_is_a_scene_error(opening):
+    from quadric_contact.exact.errors import SceneError
+    from quadric_contact.scenes.scene_toml import parse_scene
+
+    closing = {"[": "]", "{a = ": "}", "[\n": "]\n"}[opening]
+    text = "[scene]\nname = 'deep'\ntime = [0, 1]\nx = " + opening * 600 + "1" + closing * 600 + "\n"
+    with pytest.raises(SceneError, match="MAX_SCENE_DEPTH"):
+        parse_scene(text)
+
+
+def test_strings_and_comments_do_not_count_as_nesting():
+    from quadric_contact.scenes.scene_toml import _nesting_depth
+
+    assert (
+        _nesting_depth("a = '[[[['\nb = \"\\\"[[[\"\nc = '''\n[[[\n'''\n# [[[[[[\n[[d]]\ne = [[1], [2]]\n")
+        == 2
+    )
+
+
+def test_places_are_bounded_in_scenes():
+    from quadric_contact.exact.bounds import MAX_PLACES
+    from quadric_contact.exact.errors import SceneError
+    from quadric_contact.scenes.scene_toml import parse_scene
+
+    text = _drone_scene("[[0, 8], [0], [0, 30, -2.5]]", "[[4], [0], [0], [0, 1]]")
+    parse_scene(re.sub(r"(?m)^places = .*$", f"places = {MAX_PLACES}", text), check_smallness=False)
+    with pytest.raises(SceneError, match="MAX_PLACES"):
+        parse_scene(re.sub(r"(?m)^places = .*$", f"places = {MAX_PLACES + 1}", text), check_smallness=False)
