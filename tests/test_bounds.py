@@ -444,3 +444,112 @@ def test_places_are_bounded_in_scenes():
     parse_scene(re.sub(r"(?m)^places = .*$", f"places = {MAX_PLACES}", text), check_smallness=False)
     with pytest.raises(SceneError, match="MAX_PLACES"):
         parse_scene(re.sub(r"(?m)^places = .*$", f"places = {MAX_PLACES + 1}", text), check_smallness=False)
+
+
+# -- the command line: numbers through the reader, paths and addresses checked first -------
+
+
+def _cli(args: list[str], capsys: Any) -> tuple[int, str, str]:
+    from quadric_contact.interfaces.cli import main
+
+    try:
+        status = main(args)
+    except SystemExit as exc:  # argparse refuses an option
+        status = int(exc.code or 0)
+    out = capsys.readouterr()
+    return status, out.out, out.err
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["sweep", "--serial", "-n", "1", "--amplitude", "1e100000"], "MAX_DIGITS"),
+        (["sweep", "--serial", "-n", "1", "--amplitude", "1e-10000000"], "MAX_DIGITS"),
+        (["sweep", "--serial", "-n", "1", "--amplitude", "\uff11/20"], "ASCII digits"),
+        (["sweep", "--serial", "-n", "1", "--amplitude", "10**100"], "[0, 1000]"),
+        (["sweep", "--serial", "-n", "1", "--places", "1000"], "[0, 100]"),
+        (["sweep", "--serial", "-n", "\uff11"], "ASCII digits"),
+        (["sweep", "--serial", "-n", "1e30"], "[1, 10000000]"),
+        (["simulate", "--places", "101", "bee_and_tree"], "[0, 100]"),
+        (["simulate", "--frames", "10**9", "bee_and_tree"], "[2, 1000]"),
+        (["simulate", "--bodies", "1/2", "many_bodies"], "integer"),
+    ],
+)
+def test_command_line_numbers_are_read_by_the_package_and_bounded(args, message, capsys):
+    status, _, err = _cli(args, capsys)
+    assert status == 2 and message in err, err
+
+
+@pytest.mark.parametrize(
+    "address", ["file:///etc/passwd", "__import__('os').system('x')", "tcp://h:99999", "h"]
+)
+def test_a_malformed_scheduler_address_is_refused_before_anything(address, capsys, monkeypatch):
+    import quadric_contact.scenes.scene_toml as scene_toml
+
+    monkeypatch.setattr(scene_toml, "read_scene_file", lambda *a: pytest.fail("the scene was read"))
+    status, _, err = _cli(["sweep", "--scheduler", address, "-n", "1"], capsys)
+    assert status == 2 and "is not a scheduler address" in err, err
+
+
+def test_an_unreachable_scheduler_is_a_clear_error_after_the_timeout(monkeypatch):
+    pytest.importorskip("dask.distributed")
+    from quadric_contact.exact.errors import SchedulerError
+    from quadric_contact.scenes import sweep
+
+    monkeypatch.setattr(sweep, "SCHEDULER_TIMEOUT", 0.5)
+    with pytest.raises(SchedulerError, match="cannot connect") as info:
+        sweep.run_sweep(
+            sweep.parse_scene.__globals__["builtin_scene"]
+            .__globals__["resources"]
+            .files("quadric_contact")
+            .joinpath("scenes", "bee_and_tree.toml")
+            .read_text(),
+            "bee",
+            1,
+            scheduler="tcp://127.0.0.1:1",
+        )
+    assert isinstance(info.value, ConnectionError)
+
+
+@pytest.mark.parametrize("command", ["simulate", "sweep"])
+def test_an_output_path_that_is_a_directory_is_refused_before_the_run(command, tmp_path, capsys, monkeypatch):
+    import quadric_contact.scenes.simulate as simulate_module
+    import quadric_contact.scenes.sweep as sweep_module
+
+    monkeypatch.setattr(simulate_module, "simulate", lambda *a, **k: pytest.fail("the run started"))
+    monkeypatch.setattr(sweep_module, "run_sweep", lambda *a, **k: pytest.fail("the run started"))
+    extra = ["--serial", "-n", "1"] if command == "sweep" else []
+    status, _, err = _cli([command, *extra, "-o", str(tmp_path), "bee_and_tree"], capsys)
+    assert status == 2 and "is a directory" in err, err
+
+
+def test_a_broken_pipe_exits_quietly():
+    import subprocess
+    import sys
+
+    code = (
+        "import sys\n"
+        "from quadric_contact.interfaces.cli import main\n"
+        "sys.stdout.close = lambda: None\n"
+        "import os; r, w = os.pipe(); os.close(r); os.dup2(w, 1)\n"
+        "sys.exit(main(['simulate', '--list']))\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=300, env=_env_with_src()
+    )
+    assert "Traceback" not in done.stderr and "BrokenPipeError" not in done.stderr, done.stderr
+    assert done.returncode == 1
+
+
+def test_unknown_mode_and_backend_are_the_package_s_errors_listing_the_choices():
+    import quadric_contact as qc
+    from quadric_contact.exact.errors import ChoiceError
+    from quadric_contact.modes import get_mode
+
+    with pytest.raises(ChoiceError, match="certified") as info:
+        qc.transversal_contact("x^2+y^2+z^2-1", "z", mode="nope")
+    assert "exact" in info.value.details["choices"]
+    with pytest.raises(ChoiceError):
+        get_mode(["unhashable"])  # type: ignore[arg-type]
+    with pytest.raises(ChoiceError, match="numba"):
+        get_mode("float", backend="fortran")

@@ -20,13 +20,18 @@ The modules that enforce a bound read it from here:
 from __future__ import annotations
 
 __all__ = [
+    "MAX_AMPLITUDE",
+    "MAX_AMPLITUDE_DIGITS",
+    "MAX_CLI_BODIES",
     "MAX_CLI_COUNT",
+    "MAX_CLI_PROCESSES",
     "MAX_DEGREE",
     "MAX_DEPTH",
     "MAX_DIGITS",
     "MAX_EXPONENT",
     "MAX_FAMILY_TERMS",
     "MAX_FAMILY_WORK_PRODUCTS",
+    "MAX_FRAMES",
     "MAX_LENGTH",
     "MAX_MOTION_DEGREE",
     "MAX_PAIR_BITS",
@@ -139,8 +144,22 @@ MAX_SCENE_DEPTH = 32
 # -- the command line -------------------------------------------------------------------
 
 MAX_CLI_COUNT = 10_000_000
-"""Largest count on the command line (``--perturbations``, ``--bodies``, ...),
-each also bounded by what the option means (see its ``--help``)."""
+"""Largest count on the command line (``--perturbations``, ``--chunk``, ``--seed``)."""
+
+MAX_CLI_BODIES = 100_000
+"""Most ellipsoids (``--bodies``) and pieces (``--pieces``) of a generated scene."""
+
+MAX_CLI_PROCESSES = 256
+"""Most worker processes or threads (``--workers``, ``--threads``)."""
+
+MAX_FRAMES = 1_000
+"""Most frames of an animation (``--frames``)."""
+
+MAX_AMPLITUDE = 1_000
+"""Largest ``--amplitude`` of a sweep's perturbations (in the scene's units)."""
+
+MAX_AMPLITUDE_DIGITS = 30
+"""Most digits in the numerator and the denominator of ``--amplitude``."""
 
 SCHEDULER_TIMEOUT = 10.0
 """Seconds allowed to connect to a dask scheduler given by ``--scheduler``

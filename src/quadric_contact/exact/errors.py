@@ -118,3 +118,9 @@ class ChoiceError(QuadricContactError, ValueError):
     """A name chosen from a fixed set is not one of them (a ``mode=``, a
     ``backend=``, a quantity of a family); the message lists the valid ones,
     ``.details['choices']`` holds them."""
+
+
+class SchedulerError(QuadricContactError, ConnectionError):
+    """A dask scheduler address is malformed (not ``tcp://host:port`` or a kind
+    dask speaks), or the scheduler cannot be reached within the connection
+    timeout (:data:`~quadric_contact.exact.bounds.SCHEDULER_TIMEOUT`)."""

@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from quadric_contact.exact.errors import NotANumberError, NotSymmetricError, ShapeError
+from quadric_contact.exact.errors import ChoiceError, NotANumberError, NotSymmetricError, ShapeError
 from quadric_contact.modes import (
     MatrixStack,
     NumberMode,
@@ -277,7 +277,11 @@ def run_stack(
     array shaped like the broadcast batch (dask input: chunk by chunk, computed unless
     ``compute=False``)."""
     if question not in _QUESTIONS:
-        raise ValueError(f"question must be one of {tuple(_QUESTIONS)}, got {question!r}")
+        raise ChoiceError(
+            f"question must be one of {', '.join(_QUESTIONS)}, got {question!r}",
+            question,
+            choices=tuple(_QUESTIONS),
+        )
     if _is_dask(E) or _is_dask(Q):
         return _run_dask(question, E, Q, mode, client, compute)
     m = get_mode(mode)

@@ -135,7 +135,7 @@ from quadric_contact.scenes.trajectory import (
 )
 from quadric_contact.theory.results import Region
 
-__all__ = ["builtin_scene", "builtin_scene_names", "load_scene", "parse_scene"]
+__all__ = ["builtin_scene", "builtin_scene_names", "load_scene", "parse_scene", "read_scene_file"]
 
 
 class _BadFloat:
@@ -789,10 +789,10 @@ def load_scene(path: str | Path, **kwargs: Any) -> Scene:
             str(path),
             file=str(path),
         )
-    return parse_scene(_read_scene_file(p), str(path), **kwargs)
+    return parse_scene(read_scene_file(p), str(path), **kwargs)
 
 
-def _read_scene_file(path: Path) -> str:
+def read_scene_file(path: str | Path) -> str:
     """The text of a scene file: a regular file (not a device such as ``/dev/zero``,
     a FIFO that would block, or a directory) of at most
     :data:`~quadric_contact.exact.bounds.MAX_SCENE_BYTES` bytes, in UTF-8.  The file
@@ -802,6 +802,7 @@ def _read_scene_file(path: Path) -> str:
     def refuse(why: str, exc: BaseException | None = None) -> SceneError:
         return SceneError(f"{path}: cannot read the scene file: {why}", str(path), file=str(path))
 
+    path = Path(path)
     try:
         fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0))
     except OSError as exc:
