@@ -553,3 +553,127 @@ def test_unknown_mode_and_backend_are_the_package_s_errors_listing_the_choices()
         get_mode(["unhashable"])  # type: ignore[arg-type]
     with pytest.raises(ChoiceError, match="numba"):
         get_mode("float", backend="fortran")
+
+
+# -- boundary objects become plain exact values, under the same bounds -----------------------
+
+
+class _LyingStr(str):
+    def __len__(self) -> int:
+        return 1
+
+
+class _AlwaysLess(Fraction):
+    def __lt__(self, other: Any) -> bool:
+        return True
+
+    def __gt__(self, other: Any) -> bool:
+        return True
+
+
+class _LyingFloat(float):
+    def as_integer_ratio(self) -> tuple[int, int]:
+        return (1, 3)
+
+
+class _LyingInt(int):
+    def __int__(self) -> int:
+        return 7
+
+    @property
+    def numerator(self) -> int:  # type: ignore[override]
+        return 7
+
+
+def test_subclasses_of_builtin_numbers_become_plain_values():
+    from quadric_contact.exact.rational import to_fraction
+
+    for value, expected in [
+        (_AlwaysLess(1, 2), Fraction(1, 2)),
+        (_LyingFloat(0.5), Fraction(1, 2)),
+        (_LyingInt(5), Fraction(5)),
+        (_LyingStr("1/3"), Fraction(1, 3)),
+    ]:
+        got = to_fraction(value)
+        assert type(got) is Fraction and got == expected
+        assert type(got.numerator) is int and type(got.denominator) is int
+
+
+def test_a_fraction_subclass_does_not_drive_classification():
+    from quadric_contact import Quadric
+
+    M = [[_AlwaysLess(v) for v in row] for row in ([1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, -1])]
+    q = Quadric(M)
+    assert all(type(v) is Fraction for row in q.matrix for v in row)
+    assert q.kind.value == Quadric.from_equation("x^2+y^2+z^2-1").kind.value
+
+
+def test_a_lying_str_does_not_bypass_the_length_bound():
+    from quadric_contact import Quadric
+
+    with pytest.raises(EquationError, match="MAX_LENGTH"):
+        Quadric.from_equation(_LyingStr("x^2 + " + "0*x + " * 1000 + "y^2 + z^2 - 1"))
+    with pytest.raises(NotANumberError, match="MAX_LENGTH"):
+        parse_number(_LyingStr("1" * (MAX_LENGTH + 1)))
+
+
+@pytest.mark.parametrize(
+    "value",
+    [
+        "Decimal('1e10000000')",
+        "Decimal('1e-10000000')",
+        "Decimal('1' * 1001)",
+        "10**1000",
+        "Fraction(1, 10**1000)",
+    ],
+)
+def test_numbers_given_as_objects_respect_the_digit_bound(value):
+    from decimal import Decimal
+
+    from quadric_contact.exact.rational import to_fraction
+
+    number = {
+        "Decimal('1e10000000')": lambda: Decimal("1e10000000"),
+        "Decimal('1e-10000000')": lambda: Decimal("1e-10000000"),
+        "Decimal('1' * 1001)": lambda: Decimal("1" * 1001),
+        "10**1000": lambda: 10**1000,
+        "Fraction(1, 10**1000)": lambda: Fraction(1, 10**1000),
+    }[value]()
+    with pytest.raises(NotANumberError, match="MAX_DIGITS"):
+        to_fraction(number)
+    assert to_fraction(Decimal("1e999")) == 10**999
+
+
+# -- names in reports ------------------------------------------------------------------------
+
+
+FORGED = ["bee\x1b[2J", "bee\r\n  first contact: t = 0", "bee\u202egnihton", "bee\u2066x\u2069", "bee\x00"]
+
+
+@pytest.mark.parametrize("name", FORGED, ids=repr)
+def test_a_scene_name_with_unsafe_characters_is_refused_when_read(name):
+    import json
+
+    from quadric_contact.exact.errors import SceneError
+    from quadric_contact.scenes.scene_toml import parse_scene
+
+    text = _drone_scene("[[0, 8], [0], [0, 30, -2.5]]", "[[4], [0], [0], [0, 1]]")
+    text = text.replace('name = "drone"', f"name = {json.dumps(name)}")
+    with pytest.raises(SceneError, match="control or format"):
+        parse_scene(text, check_smallness=False)
+
+
+def test_names_given_through_the_api_are_escaped_in_the_report():
+    from dataclasses import replace
+
+    from quadric_contact.exact.printing import unsafe_characters
+    from quadric_contact.scenes.scene import builtin_scene
+    from quadric_contact.scenes.simulate import simulate
+
+    scene = builtin_scene("bee_and_tree", check_smallness=False)
+    forged = "bee\x1b[2J\r\n  first contact: t = 0\u202e"
+    bee = replace(scene.ellipsoids[0], name=forged)
+    scene = replace(scene, ellipsoids=(bee, *scene.ellipsoids[1:]))
+    text = simulate(scene, effects=["first_contact"]).format_text()
+    assert not [c for c in unsafe_characters(text) if c != "\n"]
+    assert "\n  first contact: t = 0" not in text.replace("\\n  first contact: t = 0", "")

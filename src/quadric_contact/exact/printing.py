@@ -1,4 +1,4 @@
-"""Text of exact numbers of any size.
+"""Text of exact numbers of any size, and of user-supplied names.
 
 Python refuses to convert an integer of more than 4300 digits to text
 (``sys.get_int_max_str_digits``), and its conversion is quadratic below that.
@@ -8,16 +8,29 @@ discriminant) is larger still, so every exact number the package prints or
 serialises goes through here: small integers as Python writes them, larger ones
 through FLINT, which has no limit and is quasi-linear.  The interpreter's limit
 is left as it is (it guards ``int(text)`` in the caller's own code).
+
+Names that users give (scenes, ellipsoids, pieces) reach reports printed on a
+terminal: :func:`safe_text` escapes the characters that would not print as
+themselves.
 """
 
 from __future__ import annotations
 
+import unicodedata
 from fractions import Fraction
 from typing import Any
 
 import flint
 
-__all__ = ["JSON_INTEGER_BITS", "fraction_repr", "fraction_text", "int_text", "json_number"]
+__all__ = [
+    "JSON_INTEGER_BITS",
+    "fraction_repr",
+    "fraction_text",
+    "int_text",
+    "json_number",
+    "safe_text",
+    "unsafe_characters",
+]
 
 _SMALL_BITS = 4096
 """Integers below ``2**_SMALL_BITS`` (1233 digits) are written by Python itself."""
@@ -77,3 +90,41 @@ def json_number(x: Any) -> Any:
     if x.denominator == 1 and x.numerator.bit_length() <= JSON_INTEGER_BITS:
         return int(x.numerator)
     return fraction_text(x)
+
+
+def _escape_char(c: str) -> str:
+    if c in "\n\r\t":
+        return {"\n": "\\n", "\r": "\\r", "\t": "\\t"}[c]
+    code = ord(c)
+    return f"\\x{code:02x}" if code < 0x100 else f"\\u{code:04x}" if code < 0x10000 else f"\\U{code:08x}"
+
+
+def unsafe_characters(text: str) -> list[str]:
+    """The characters of ``text`` that a terminal or a reader would not show as
+    themselves: control characters (``Cc``: ESC, CR, LF, ...) and format
+    characters (``Cf``: the bidi overrides U+202A-U+202E and U+2066-U+2069,
+    zero-width characters).
+
+    >>> unsafe_characters("bee\\x1b[2J\\u202e")
+    ['\\x1b', '\\u202e']
+    """
+    return [c for c in text if unicodedata.category(c) in ("Cc", "Cf")]
+
+
+def safe_text(text: Any, *, keep_newlines: bool = False) -> str:
+    """``text`` with every character of :func:`unsafe_characters` written as an
+    escape (``\\x1b``, ``\\n``, ``\\u202e``), so that a user-supplied name cannot
+    move the cursor, clear the screen, reverse the rest of a line or start a
+    line of its own in a report.  ``keep_newlines`` keeps ``\\n`` (for text
+    made of several lines whose names were escaped already).
+
+    >>> safe_text("bee\\n  first contact: t = 0")
+    'bee\\\\n  first contact: t = 0'
+    """
+    text = str(text)
+    if not any(unicodedata.category(c) in ("Cc", "Cf") for c in text):
+        return text
+    return "".join(
+        c if (keep_newlines and c == "\n") or unicodedata.category(c) not in ("Cc", "Cf") else _escape_char(c)
+        for c in text
+    )

@@ -921,6 +921,7 @@ def _eval(node: Expr, alg: Algebra[T]) -> T:
 def _check_text(text: Any, what: str) -> str:
     if not isinstance(text, str):
         raise EquationError(f"{what}: expected a string, got {type(text).__name__}", text)
+    text = str.__str__(text)  # a plain copy of a subclass: its own __len__ or methods never run
     if len(text) > MAX_LENGTH:
         raise _refuse(
             text,

@@ -112,6 +112,7 @@ from typing import Any
 
 from quadric_contact.exact.bounds import MAX_MOTION_DEGREE, MAX_PLACES, MAX_SCENE_BYTES, MAX_SCENE_DEPTH
 from quadric_contact.exact.errors import QuadricContactError, SceneError
+from quadric_contact.exact.printing import safe_text, unsafe_characters
 from quadric_contact.exact.rational import to_fraction
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.parsing import (
@@ -260,6 +261,14 @@ class _Reader:
             return str(default)
         if not isinstance(v, str) or not v.strip():
             raise self.error(key, "a non-empty string", v)
+        bad = unsafe_characters(v)
+        if bad:
+            raise self.error(
+                key,
+                "a string without control or format characters (escape sequences, line breaks, "
+                f"bidi overrides), got {safe_text(v)!r} with {safe_text(''.join(bad[:5]))}",
+                cause="unsafe characters",
+            )
         return v
 
     def number(self, value: Any, key: str, *, positive: bool = False) -> Fraction:
@@ -624,6 +633,7 @@ def parse_scene(
     r = _Reader(source)
     if not isinstance(text, str):
         raise SceneError(f"{source}: expected the scene's text, got {type(text).__name__}", text, file=source)
+    text = str.__str__(text)  # a plain copy of a subclass
     if len(text) > MAX_SCENE_BYTES:
         raise SceneError(
             f"{source}: {len(text)} characters, more than {MAX_SCENE_BYTES} (MAX_SCENE_BYTES)",
