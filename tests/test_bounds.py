@@ -677,3 +677,36 @@ def test_names_given_through_the_api_are_escaped_in_the_report():
     text = simulate(scene, effects=["first_contact"]).format_text()
     assert not [c for c in unsafe_characters(text) if c != "\n"]
     assert "\n  first contact: t = 0" not in text.replace("\\n  first contact: t = 0", "")
+
+
+# -- the exact engine: a size bound before the work ------------------------------------------
+
+
+def test_a_pair_beyond_the_size_bound_is_refused_before_the_geometric_work(monkeypatch):
+    from quadric_contact.exact.bounds import MAX_PAIR_BITS
+    from quadric_contact.exact.errors import WorkLimitError
+    from quadric_contact.exact.size import pair_bits
+    from quadric_contact.theory import geometric
+
+    E, Q = _big_pair(490)
+    assert pair_bits(E, Q) > MAX_PAIR_BITS
+    monkeypatch.setattr(geometric, "_setup", lambda *a: pytest.fail("the work started"))
+    with pytest.raises(WorkLimitError, match="MAX_PAIR_BITS") as info:
+        geometric.decide_geometrically(E, Q)
+    assert "E: " in str(info.value) and "Q: " in str(info.value)  # names the pair
+    assert info.value.details["needed"] == pair_bits(E, Q)
+
+
+def test_pair_bits_counts_a_common_denominator_and_the_largest_numerator():
+    from quadric_contact import Quadric
+    from quadric_contact.exact.size import matrix_bits, pair_bits
+
+    assert matrix_bits([Fraction(1, 2), Fraction(3, 4), Fraction(-5)]) == 2 + (20).bit_length()
+    E = Quadric.from_equation("x^2 + y^2 + z^2 - 1")
+    assert pair_bits(E, E) == 2 * matrix_bits(E.upper)
+    small = Quadric.from_equation("(x - 0.1)^2 + y^2/3 + 3*(z - 5.5)^2 - 0.1")
+    from quadric_contact.exact.bounds import MAX_PAIR_BITS
+    from quadric_contact.theory.geometric import decide_geometrically
+
+    assert pair_bits(small, Quadric.from_equation("x^2 + y^2 - z^2/4 - 1")) < MAX_PAIR_BITS
+    decide_geometrically(small, "x^2 + y^2 - z^2/4 - 1")  # answered
