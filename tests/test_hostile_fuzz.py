@@ -149,7 +149,20 @@ def run_batch(cases: list[tuple[str, str, str, str]]) -> dict[str, Any]:
     for (kind, verdict, seconds), case in zip(report["results"], cases, strict=True):
         assert not verdict.startswith("UNEXPECTED"), (verdict, case)
         SLOWEST.append((seconds, verdict, f"{kind}: {case[1][:80]!r} {case[2][:60]!r} {case[3][:30]!r}"))
+    _write_report()
     return report
+
+
+def _write_report() -> None:
+    """The slowest inputs so far, to ``HOSTILE_FUZZ_REPORT`` if set (after every batch,
+    so that an interrupted run still leaves its findings)."""
+    target = os.environ.get("HOSTILE_FUZZ_REPORT")
+    if not target:
+        return
+    ranked = sorted(SLOWEST, reverse=True)
+    admitted = [r for r in ranked if r[1] == "answered"]
+    summary = {"inputs": len(SLOWEST), "slowest": ranked[:10], "slowest_answered": admitted[:10]}
+    Path(target).write_text(json.dumps(summary, indent=1))
 
 
 # -- the generators ---------------------------------------------------------------------------
@@ -265,12 +278,3 @@ def test_the_long_fuzz():
         run_batch(cases)
 
     fuzz()
-    target = os.environ.get("HOSTILE_FUZZ_REPORT")
-    if target:
-        ranked = sorted(SLOWEST, reverse=True)
-        admitted = [r for r in ranked if r[1] == "answered"]
-        Path(target).write_text(
-            json.dumps(
-                {"inputs": len(SLOWEST), "slowest": ranked[:10], "slowest_answered": admitted[:10]}, indent=1
-            )
-        )
