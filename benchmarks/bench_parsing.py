@@ -213,6 +213,12 @@ def slowest_inputs() -> list[tuple[str, str]]:
         ("a chained power", "x**2 + " + "9**9**9"),
         ("too long", "x" * (10 * MAX_LENGTH)),
         ("unknown names", fill("x2 + ")),
+        # runs that a scanning tokenizer retried at every position (quadratic: 0.4-0.8 s)
+        ("blanks then a bad character", " " * (MAX_LENGTH - 1) + "!"),
+        ("tabs then a bad character", "\t" * (MAX_LENGTH - 1) + "!"),
+        ("digits then a bare exponent", "1" * (MAX_LENGTH - 1) + "e"),
+        ("digits then a dangling underscore", "1" * (MAX_LENGTH - 1) + "_"),
+        ("a decimal then a bare exponent", "." + "1" * (MAX_LENGTH - 2) + "e"),
     ]
 
 

@@ -243,32 +243,72 @@ def test_a_check_whose_optional_dependency_is_missing_is_skipped_with_a_note(mon
 # -- discovery and selection -------------------------------------------------------------
 
 
-def test_find_proofs_dir_from_root_subdirectories_and_the_dir_itself(tmp_path, monkeypatch):
-    assert find_proofs_dir(start=ROOT) == PROOFS_DIR
-    assert find_proofs_dir(start=ROOT / "src" / "quadric_contact") == PROOFS_DIR
-    assert find_proofs_dir(start=PROOFS_DIR) == PROOFS_DIR
+def test_find_proofs_dir_is_the_checkout_or_an_explicit_dir(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert find_proofs_dir() == PROOFS_DIR
     assert find_proofs_dir(PROOFS_DIR) == PROOFS_DIR
     with pytest.raises(ProofsNotFoundError, match="not a proofs directory"):
         find_proofs_dir(tmp_path)
+
+
+def _plant_proofs(place: Path) -> Path:
+    """A proofs/ folder whose import leaves a mark, as an attacker would plant it."""
+    planted = place / "proofs"
+    planted.mkdir(parents=True)
+    mark = place / "PLANTED_PROOF_RAN"
+    (planted / "__init__.py").write_text(f"open({str(mark)!r}, 'w').close()\n")
+    (planted / "lemma_99_planted.py").write_text(f"open({str(mark)!r}, 'w').close()\n")
+    return mark
+
+
+def test_a_proofs_folder_planted_above_the_working_directory_is_never_imported(tmp_path, monkeypatch):
+    mark = _plant_proofs(tmp_path)
+    inside = tmp_path / "a" / "b"
+    inside.mkdir(parents=True)
+    monkeypatch.chdir(inside)
+    assert find_proofs_dir() == PROOFS_DIR
+    for where in (inside, tmp_path, tmp_path / "proofs"):
+        monkeypatch.chdir(where)
+        assert find_proofs_dir() == PROOFS_DIR
+    assert not mark.exists()
+
+
+def test_prove_list_run_below_a_planted_folder_imports_nothing_from_it(tmp_path):
+    import subprocess
+    import sys
+
+    mark = _plant_proofs(tmp_path)
+    (tmp_path / "quadric_contact_proofs").symlink_to(tmp_path / "proofs")  # for `python -m`'s sys.path
+    env = {"PYTHONPATH": str(ROOT / "src"), "PATH": "/usr/bin:/bin"}
+    done = subprocess.run(
+        [sys.executable, "-m", "quadric_contact", "prove", "--list"],
+        cwd=tmp_path,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert done.returncode == 0, done.stderr
+    assert "lemma_99_planted" not in done.stdout and "Lemma 3" in done.stdout
+    assert not mark.exists()
 
 
 def test_no_proofs_dir_is_a_clear_error(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     import quadric_contact.paper.proving as proving
 
-    # the module's place in a checkout: src/quadric_contact/paper/proving.py
-    checkout_place = tmp_path / "src" / "quadric_contact" / "paper" / "proving.py"
-    monkeypatch.setattr(proving, "__file__", str(checkout_place))
-    monkeypatch.setattr(proving, "installed_proofs_dir", lambda: None)
+    # the module's place outside a checkout: no pyproject.toml above src/
+    place = tmp_path / "src" / "quadric_contact" / "paper" / "proving.py"
+    monkeypatch.setattr(proving, "__file__", str(place))
     with pytest.raises(ProofsNotFoundError, match="--proofs-dir DIR") as info:
         find_proofs_dir()
     message = str(info.value)
-    assert str(tmp_path) in message and str(tmp_path / "proofs") in message  # where it looked
+    assert str(tmp_path / "proofs") in message and str(tmp_path / "src") in message  # where it looked
     assert PACKAGE_NAME in message
 
 
-def test_the_installed_proofs_are_found_outside_a_checkout(tmp_path, monkeypatch):
-    # A wheel installs proofs/ as the package quadric_contact_proofs on sys.path.
+def test_the_installed_proofs_are_found_beside_the_package(tmp_path, monkeypatch):
+    # A wheel installs proofs/ as the package quadric_contact_proofs beside quadric_contact.
     site = tmp_path / "site-packages"
     installed = site / PACKAGE_NAME
     installed.mkdir(parents=True)
@@ -276,13 +316,11 @@ def test_the_installed_proofs_are_found_outside_a_checkout(tmp_path, monkeypatch
         (installed / f.name).write_text(f.read_text())
     elsewhere = tmp_path / "elsewhere"
     elsewhere.mkdir()
+    _plant_proofs(elsewhere)
     monkeypatch.chdir(elsewhere)
     import quadric_contact.paper.proving as proving
 
-    # the module's place in a checkout: src/quadric_contact/paper/proving.py
-    checkout_place = tmp_path / "src" / "quadric_contact" / "paper" / "proving.py"
-    monkeypatch.setattr(proving, "__file__", str(checkout_place))
-    monkeypatch.syspath_prepend(str(site))
+    monkeypatch.setattr(proving, "__file__", str(site / "quadric_contact" / "paper" / "proving.py"))
     assert find_proofs_dir() == installed.resolve()
     try:
         assert [p.name for p in load_proofs()] == [p.name for p in PROOFS]

@@ -113,3 +113,24 @@ class MissingDependencyError(QuadricContactError, ImportError):
 class ProofsNotFoundError(QuadricContactError, FileNotFoundError):
     """The ``proofs/`` directory of a checkout could not be found (``quadric-contact
     prove`` runs from a checkout, or with ``--proofs DIR``)."""
+
+
+class WorkLimitError(QuadricContactError, ValueError):
+    """An input is within the bounds of what is read, but the work it asks for
+    exceeds a bound of the package's budget (:mod:`quadric_contact.exact.bounds`):
+    the terms of a family's discriminant, the size of a pair for the exact
+    engine.  Raised before that work starts; the message names the input and the
+    bound, ``.details['limit']`` is the bound and ``.details['needed']`` what the
+    input would need (an upper estimate where the work was not done)."""
+
+
+class ChoiceError(QuadricContactError, ValueError):
+    """A name chosen from a fixed set is not one of them (a ``mode=``, a
+    ``backend=``, a quantity of a family); the message lists the valid ones,
+    ``.details['choices']`` holds them."""
+
+
+class SchedulerError(QuadricContactError, ConnectionError):
+    """A dask scheduler address is malformed (not ``tcp://host:port`` or a kind
+    dask speaks), or the scheduler cannot be reached within the connection
+    timeout (:data:`~quadric_contact.exact.bounds.SCHEDULER_TIMEOUT`)."""

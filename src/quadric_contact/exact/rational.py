@@ -21,6 +21,7 @@ from typing import Any
 
 import flint
 
+from quadric_contact.exact.bounds import MAX_DIGITS
 from quadric_contact.exact.errors import (
     NonFiniteError,
     NotANumberError,
@@ -42,6 +43,10 @@ __all__ = [
     "simplest_between",
     "to_fraction",
 ]
+
+
+_LIMIT = 10**MAX_DIGITS
+_LIMIT_BITS = _LIMIT.bit_length()
 
 
 def _from_string(s: str) -> Fraction:
@@ -109,22 +114,60 @@ def to_fraction(value: Any) -> Fraction:
     >>> to_fraction(0.1) == Fraction(1, 10)
     False
     """
-    if isinstance(value, Fraction):
-        return value
+    return _bounded(_to_fraction(value), value)
+
+
+def _bounded(x: Fraction, value: Any) -> Fraction:
+    """``x``, a plain Fraction, if its numerator and denominator have at most
+    :data:`~quadric_contact.exact.bounds.MAX_DIGITS` digits (compared by bit
+    length first: no conversion to text)."""
+    big = x.numerator.bit_length() >= _LIMIT_BITS - 1 or x.denominator.bit_length() >= _LIMIT_BITS - 1
+    if big and (abs(x.numerator) >= _LIMIT or x.denominator >= _LIMIT):
+        raise NotANumberError(
+            f"a number of type {type(value).__name__} with more than {MAX_DIGITS} digits in its "
+            "numerator or denominator (MAX_DIGITS)",
+            value,
+        )
+    return x
+
+
+def _plain_int(n: Any) -> int:
+    """An ``int`` (or subclass) as a plain int, read by ``int``'s own method: a
+    subclass cannot change its value through ``__int__`` or ``numerator``."""
+    return int.__int__(n)
+
+
+def _to_fraction(value: Any) -> Fraction:
+    # Subclasses of the built-in types are read through the base type's own methods
+    # and become plain values: their overrides (a lying __len__, their own
+    # comparisons or as_integer_ratio) never reach the package.
     if isinstance(value, bool):
         raise NotANumberError("a boolean is not accepted as a number", value)
+    if isinstance(value, Fraction):
+        if type(value) is Fraction:
+            return value
+        num, den = Fraction.numerator.fget(value), Fraction.denominator.fget(value)  # type: ignore[attr-defined]
+        return Fraction(_plain_int(num), _plain_int(den))
     if isinstance(value, int):
-        return Fraction(value)
+        return Fraction(_plain_int(value))
     if isinstance(value, float):
-        if not math.isfinite(value):
-            raise NonFiniteError(f"{value!r} is not finite", value)
-        return Fraction(value)
+        f = float.__float__(value)
+        if not math.isfinite(f):
+            raise NonFiniteError(f"{f!r} is not finite", f)
+        return Fraction(*float.as_integer_ratio(f))
     if isinstance(value, str):
-        return _from_string(value)
+        return _from_string(str.__str__(value))
     if isinstance(value, Decimal):
-        if not value.is_finite():
-            raise NonFiniteError(f"{value!r} is not finite", value)
-        return Fraction(value)
+        if not Decimal.is_finite(value):
+            raise NonFiniteError(f"{Decimal.__str__(value)!r} is not finite", value)
+        sign, digits, exponent = Decimal.as_tuple(value)
+        if len(digits) > MAX_DIGITS or not -2 * MAX_DIGITS <= int(exponent) <= MAX_DIGITS:
+            raise NotANumberError(
+                f"a Decimal with {len(digits)} digits and exponent {int(exponent)}: more than {MAX_DIGITS} "
+                "digits (MAX_DIGITS)",
+                value,
+            )
+        return Fraction(*Decimal.as_integer_ratio(value))
     if isinstance(value, complex) or (
         isinstance(value, numbers.Complex) and not isinstance(value, numbers.Real)
     ):
@@ -155,6 +198,9 @@ def to_fraction(value: Any) -> Fraction:
             if not mpmath.isfinite(value):
                 raise NonFiniteError(f"{value!r} is not finite", value)
             man, exp = value.man_exp
+            if abs(int(exp)) > _LIMIT_BITS:  # refused before 2**exp is formed
+                message = f"an mpf of binary exponent {int(exp)}: more than {MAX_DIGITS} digits (MAX_DIGITS)"
+                raise NotANumberError(message, value)
             return Fraction(int(man)) * Fraction(2) ** int(exp)
         raise NotANumberError(f"{value!r} is not a real mpmath number", value)
     if mod.startswith("flint"):

@@ -87,6 +87,15 @@ from typing import Any, Protocol, TypeVar
 
 import flint
 
+from quadric_contact.exact.bounds import (
+    MAX_DEGREE,
+    MAX_DEPTH,
+    MAX_DIGITS,
+    MAX_EXPONENT,
+    MAX_LENGTH,
+    MAX_WORK,
+    WORK_BITS,
+)
 from quadric_contact.exact.errors import EquationError, NotANumberError
 
 __all__ = [
@@ -114,40 +123,8 @@ __all__ = [
     "parse_univariate",
 ]
 
-MAX_LENGTH = 5_000
-"""Longest text read, in characters: a number with a numerator and a
-denominator of :data:`MAX_DIGITS` digits fits, and so does a quadric's
-printed equation with coefficients of a few hundred digits."""
-
-MAX_DIGITS = 1_000
-"""Most decimal digits in the numerator, and in the denominator, of a literal
-(its significant digits) or of any rational that arises while evaluating.
-It keeps each arithmetic step cheap, and below Python's limit of 4300 digits
-for converting integers to and from text."""
-
-MAX_EXPONENT = 1_000
-"""Largest exponent of ``**`` / ``^`` (the result must also respect
-:data:`MAX_DIGITS` and :data:`MAX_DEGREE`)."""
-
-MAX_DEPTH = 64
-"""Deepest nesting of parentheses and unary signs (exponents are literals, and
-a power of a power needs parentheses)."""
-
-MAX_DEGREE = 8
-"""Highest total degree of any polynomial that arises while evaluating (the
-result may be required to have a lower one, 2 for a quadric); so
-``(x**2 + 1)**2 - x**4`` is read as the quadric ``2*x**2 + 1``."""
-
-MAX_WORK = 5_000
-"""Most arithmetic steps spent on one input.  A product of polynomials with
-``m`` and ``n`` terms costs ``m*n`` steps, a sum as many as the terms of the
-smaller operand (at least one); each step counts once more for every
-:data:`WORK_BITS` bits of the largest coefficient it produced (numerator and
-denominator together), since big numbers cost more."""
-
-WORK_BITS = 512
-"""Coefficient size counted as one more step; see :data:`MAX_WORK`."""
-
+# The bounds live with the package's other bounds (exact/bounds.py); they are
+# re-exported here, where the reader's documentation names them.
 _LIMIT = 10**MAX_DIGITS  # a numerator or a denominator must stay below this
 _LIMIT_BITS = _LIMIT.bit_length()
 
@@ -383,9 +360,11 @@ def _tokenize(text: str, what: str) -> list[_Token]:
     tokens: list[_Token] = []
     append = tokens.append
     pos = 0
-    for m in _TOKEN.finditer(text):
-        if m.start() != pos:  # the scan skipped characters the grammar does not know
-            break
+    match = _TOKEN.match
+    # One anchored match per token, never a search: a search would retry at
+    # every later position after a failure, and each try rescans a run of
+    # blanks or digits, which is quadratic in the length of the text.
+    while (m := match(text, pos)) is not None:
         i = m.lastindex or 4
         start, end = m.span(i)
         literal = m.group(i)
@@ -942,6 +921,7 @@ def _eval(node: Expr, alg: Algebra[T]) -> T:
 def _check_text(text: Any, what: str) -> str:
     if not isinstance(text, str):
         raise EquationError(f"{what}: expected a string, got {type(text).__name__}", text)
+    text = str.__str__(text)  # a plain copy of a subclass: its own __len__ or methods never run
     if len(text) > MAX_LENGTH:
         raise _refuse(
             text,

@@ -53,7 +53,10 @@ normalisation holds wherever ``E`` is a real ellipsoid connected to the referenc
 
 from __future__ import annotations
 
+import functools
+import inspect
 import itertools
+import keyword
 import re
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -65,15 +68,18 @@ import flint
 import sympy as sp
 
 from quadric_contact._generated.formulas import paper_deltas, pencil_coefficients
+from quadric_contact.exact.bounds import MAX_PARAMETERS, MAX_REFERENCE_POINTS
 from quadric_contact.exact.descartes import sign_variations
 from quadric_contact.exact.entries import ENTRY_INDICES
 from quadric_contact.exact.errors import (
+    ChoiceError,
     EquationError,
     NotAnEllipsoidError,
     NotSymmetricError,
     ShapeError,
 )
 from quadric_contact.exact.rational import to_fraction
+from quadric_contact.families.family_budget import CountedPolynomial, PolynomialBudget
 from quadric_contact.families.family_maps import contact_map
 from quadric_contact.families.family_numeric import lambdify
 from quadric_contact.families.family_smallness import family_smallness
@@ -110,8 +116,6 @@ __all__ = [
     "family",
 ]
 
-MAX_PARAMETERS = 8
-"""Most parameters a family may declare."""
 
 MAX_FAMILY_WORK = 20_000
 """Most term products the reader of a family's equations spends on one text (the
@@ -277,18 +281,44 @@ def _parameter_names(parameters: Any) -> tuple[str, ...]:
             f"parameters: expected names ('u w'), a list of names or sympy Symbols, got {parameters!r}",
             parameters,
         )
+    if len(names) > MAX_PARAMETERS:  # before anything is done per name
+        raise EquationError(
+            f"at most {MAX_PARAMETERS} parameters (MAX_PARAMETERS), got {len(names)}", parameters
+        )
     for n in names:
         if not _NAME.fullmatch(n):
             raise EquationError(f"parameters: {n!r} is not a name (letters, digits and _)", parameters)
         if n in _XYZ:
             raise EquationError(f"parameters: {n!r} is a coordinate, not a parameter", parameters)
+        why = _reserved_names().get(n)
+        if why is not None:
+            raise EquationError(f"parameters: {n!r} is {why}; choose another name", parameters)
     if len(set(names)) != len(names):
         raise EquationError(f"parameters: a name is repeated in {names}", parameters)
-    if len(names) > MAX_PARAMETERS:
-        raise EquationError(
-            f"at most {MAX_PARAMETERS} parameters (MAX_PARAMETERS), got {len(names)}", parameters
-        )
     return tuple(names)
+
+
+@functools.cache
+def _reserved_names() -> dict[str, str]:
+    """Names a parameter may not take, and why: a parameter named ``lambda`` would
+    merge with the pencil's variable (``P`` would come out of degree 5), one named
+    ``t`` with the time of the smallness conditions, a keyword or a keyword
+    argument of the family's methods (``fam.at(name=...)``, ``contact_map(refine=...)``)
+    could not be passed by name, and an attribute would be shadowed."""
+    out: dict[str, str] = {}
+    for n in (*keyword.kwlist, *keyword.softkwlist):
+        out[n] = "a Python keyword"
+    instance = ("parameters", "symbols", "ctx", "reference", "e_flipped", "E_reference", "Q_reference")
+    for n in (*dir(Family), *instance):
+        if not n.startswith("_"):
+            out.setdefault(n, "an attribute of a family")
+    for fn in (*(getattr(Family, n) for n in dir(Family) if not n.startswith("_")), contact_map, lambdify):
+        if callable(fn):
+            for arg in inspect.signature(fn).parameters:
+                out.setdefault(arg, "a keyword argument of a family's methods")
+    out["lambda"] = "the variable of the characteristic polynomial (lambda)"
+    out["t"] = "the variable of the smallness conditions (t)"
+    return out
 
 
 def _drop_xyz(p: Any, pctx: Any) -> Any:
@@ -632,7 +662,7 @@ class Family:
         # one side of it only).
         best: tuple[int, tuple[Fraction, ...]] | None = None
         found = 0
-        for point in _candidate_points(len(self.parameters)):
+        for point in itertools.islice(_candidate_points(len(self.parameters)), MAX_REFERENCE_POINTS):
             if self._not_an_ellipsoid(point):
                 continue
             found += 1
@@ -644,8 +674,8 @@ class Family:
         if best is not None:
             return dict(zip(self.parameters, best[1], strict=True))
         raise NotAnEllipsoidError(
-            "E is not a real ellipsoid at any of the small rational points tried; "
-            "pass at= a point where it is",
+            f"E is not a real ellipsoid at any of the first {MAX_REFERENCE_POINTS} small rational points "
+            "tried (MAX_REFERENCE_POINTS); pass at= a point where it is",
             None,
         )
 
@@ -712,18 +742,31 @@ class Family:
         q_int, d_q = clear(self._q)
         return e_int, d_e, q_int, d_q
 
+    def _budget(self, what: str) -> PolynomialBudget:
+        return PolynomialBudget(f"{what} of the family in {', '.join(self.parameters)}")
+
+    @cached_property
+    def _counted_coefficients(self) -> tuple[list[CountedPolynomial], CountedPolynomial, CountedPolynomial]:
+        """``c0 .. c4`` with the denominators cleared, and the two denominators, built
+        over counted polynomials: refused before a product that could exceed the budget."""
+        e_int, d_e, q_int, d_q = self._integer_forms
+        budget = self._budget("the characteristic polynomial")
+        C = pencil_coefficients(*(CountedPolynomial(v, budget) for v in (*e_int, *q_int)))
+        return list(C), CountedPolynomial(d_e, budget), CountedPolynomial(d_q, budget)
+
     @cached_property
     def _coefficients(self) -> tuple[RationalFunction, ...]:
-        e_int, d_e, q_int, d_q = self._integer_forms
-        C = pencil_coefficients(*e_int, *q_int)
-        return tuple(RationalFunction(C[k], d_e**k * d_q ** (4 - k)) for k in range(5))
+        C, d_e, d_q = self._counted_coefficients
+        return tuple(RationalFunction(C[k].p, (d_e**k * d_q ** (4 - k)).p) for k in range(5))
 
     @cached_property
     def _deltas(self) -> tuple[RationalFunction, ...]:
-        e_int, d_e, q_int, d_q = self._integer_forms
-        C = pencil_coefficients(*e_int, *q_int)
+        C0, d_e0, d_q0 = self._counted_coefficients
+        budget = self._budget("the discriminants Delta2, Delta3, Delta4")
+        C = [CountedPolynomial(c.p, budget) for c in C0]
+        d_e, d_q = CountedPolynomial(d_e0.p, budget), CountedPolynomial(d_q0.p, budget)
         return tuple(
-            RationalFunction(D, d_e**w * d_q ** (4 * d - w))
+            RationalFunction(D.p, (d_e**w * d_q ** (4 * d - w)).p)
             for D, (d, w) in zip(paper_deltas(*C), _DELTA_WEIGHTS, strict=True)
         )
 
@@ -738,7 +781,20 @@ class Family:
         return tuple(self.quantity(f"Delta{j}").expr for j in (2, 3, 4))
 
     def characteristic_polynomial(self, symbol: str = "lambda") -> sp.Expr:
-        """``P(lambda)`` as a sympy expression in ``symbol`` and the parameters."""
+        """``P(lambda)`` as a sympy expression in ``symbol`` and the parameters.
+
+        Raises
+        ------
+        EquationError
+            If ``symbol`` is a parameter or a coordinate (it would merge with it)."""
+        if not isinstance(symbol, str) or not _NAME.fullmatch(symbol):
+            raise EquationError(f"symbol: expected a name (letters, digits and _), got {symbol!r}", symbol)
+        if symbol in self.parameters or symbol in _XYZ:
+            raise EquationError(
+                f"symbol: {symbol!r} is a parameter or a coordinate of the family {self.parameters}; "
+                "P would merge with it: choose another name",
+                symbol,
+            )
         lam = sp.Symbol(symbol)
         return sum((c * lam**k for k, c in enumerate(self.coefficients)), sp.Integer(0))
 
@@ -798,8 +854,11 @@ class Family:
             return self._pencil_quantities[name]
         try:
             return self.quantities[name]
-        except KeyError:
-            raise KeyError(f"no quantity {name!r}; the family has {sorted(self.quantities)}") from None
+        except (KeyError, TypeError):
+            choices = sorted(self.quantities)
+            raise ChoiceError(
+                f"no quantity {name!r}; the family has {', '.join(choices)}", name, choices=choices
+            ) from None
 
     def evaluate(self, name: str, **values: Any) -> Fraction:
         """The exact value of a quantity at a point."""

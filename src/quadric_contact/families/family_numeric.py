@@ -54,6 +54,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from quadric_contact.exact.errors import ChoiceError
 from quadric_contact.exact.precision import working_precision
 from quadric_contact.exact.straight_line import (
     EXACT_INTEGER_MAX,
@@ -473,8 +474,10 @@ def lambdify(fam: Family, name: str, backend: str = "numpy", **options: Any) -> 
     array([ 1, -1,  0], dtype=int8)
     """
     if backend not in BACKENDS:
-        raise ValueError(f"backend must be one of {BACKENDS}, got {backend!r}")
-    q = fam.quantity(name)  # KeyError with the names if unknown
+        raise ChoiceError(
+            f"backend must be one of {', '.join(BACKENDS)}, got {backend!r}", backend, choices=tuple(BACKENDS)
+        )
+    q = fam.quantity(name)  # ChoiceError with the names if unknown
     if backend == "exact":
         return FamilyFunction(fam, name, backend, None, **options)
     cache = fam.__dict__.setdefault("_compiled", {})

@@ -189,14 +189,13 @@ def _exact_fmpq(value: Any) -> Any:
 
 
 def _poly_to_sympy(p: Any, symbols: Sequence[sp.Symbol]) -> sp.Expr:
-    out = sp.Integer(0)
+    # One Add of all the terms: adding them one by one re-flattens the sum each time,
+    # quadratic in the terms (a Delta4 of 2214 terms took 77 s, now 0.1 s).
+    terms = []
     for mono, c in p.to_dict().items():
-        term = sp.Rational(int(c.p), int(c.q))
-        for s, e in zip(symbols, mono, strict=True):
-            if e:
-                term *= s ** int(e)
-        out += term
-    return out
+        powers = [s ** int(e) for s, e in zip(symbols, mono, strict=True) if e]
+        terms.append(sp.Mul(sp.Rational(int(c.p), int(c.q)), *powers))
+    return sp.Add(*terms)
 
 
 def _poly_from_sympy(poly: sp.Poly, ctx: Any) -> Any:

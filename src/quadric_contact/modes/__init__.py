@@ -31,6 +31,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from quadric_contact.exact.errors import ChoiceError
 from quadric_contact.modes.base import (
     ContactCode,
     ContactKindCode,
@@ -93,6 +94,10 @@ def get_mode(mode: str | NumberMode = "certified", **options: Any) -> NumberMode
         if options:
             raise ValueError("options are only accepted with a mode name")
         return mode
-    if mode not in MODES:
-        raise ValueError(f"mode must be one of {tuple(MODES)} or a NumberMode, got {mode!r}")
+    if not isinstance(mode, str) or mode not in MODES:
+        raise ChoiceError(
+            f"mode must be one of {', '.join(MODES)} or a NumberMode, got {mode!r}",
+            mode,
+            choices=tuple(MODES),
+        )
     return MODES[mode](**options)

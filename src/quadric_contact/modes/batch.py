@@ -27,6 +27,7 @@ import numpy as np
 
 from quadric_contact.exact.errors import (
     SYMMETRIZE_HINT,
+    ChoiceError,
     NotANumberError,
     NotSymmetricError,
     ShapeError,
@@ -281,7 +282,11 @@ def run_stack(
     array shaped like the broadcast batch (dask input: chunk by chunk, computed unless
     ``compute=False``)."""
     if question not in _QUESTIONS:
-        raise ValueError(f"question must be one of {tuple(_QUESTIONS)}, got {question!r}")
+        raise ChoiceError(
+            f"question must be one of {', '.join(_QUESTIONS)}, got {question!r}",
+            question,
+            choices=tuple(_QUESTIONS),
+        )
     if _is_dask(E) or _is_dask(Q):
         return _run_dask(question, E, Q, mode, client, compute)
     m = get_mode(mode)

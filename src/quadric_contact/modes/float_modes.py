@@ -26,6 +26,7 @@ from typing import Any
 
 import numpy as np
 
+from quadric_contact.exact.errors import ChoiceError
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.modes import errorbounds as eb
 from quadric_contact.modes._jit import HAVE_NUMBA
@@ -138,7 +139,9 @@ def float_pairs(
             screen,
         )
     if backend != "numba":
-        raise ValueError(f"backend must be one of {BACKENDS}, got {backend!r}")
+        raise ChoiceError(
+            f"backend must be one of {', '.join(BACKENDS)}, got {backend!r}", backend, choices=tuple(BACKENDS)
+        )
     from quadric_contact.modes.kernels_filter import filter_kernel, float_kernel
 
     E2 = np.ascontiguousarray(E).reshape(-1, 16)
@@ -308,7 +311,9 @@ class FloatMode(NumberMode):
         super().__init__()
         self.backend = backend or BACKENDS[0]
         if self.backend not in BACKENDS:
-            raise ValueError(f"backend must be one of {BACKENDS}, got {backend!r}")
+            choices = tuple(BACKENDS)
+            message = f"backend must be one of {', '.join(choices)}, got {backend!r}"
+            raise ChoiceError(message, backend, choices=choices)
         self.threads = threads
         if not self.filtered:
             # binary64's reading of non-real roots is confirmed by the filter's (see the pipeline)

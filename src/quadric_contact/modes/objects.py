@@ -22,6 +22,7 @@ import numpy as np
 
 from quadric_contact._generated import blocks, formulas, kernels
 from quadric_contact.exact.entries import ENTRY_INDICES
+from quadric_contact.exact.errors import ChoiceError
 from quadric_contact.exact.precision import working_precision
 from quadric_contact.modes import errorbounds as eb
 from quadric_contact.modes.base import MatrixStack, Pairs
@@ -329,7 +330,8 @@ class ExactMode(ObjectMode):
     def __init__(self, backend: str = "int") -> None:
         super().__init__()
         if backend not in ("int", "fmpz"):
-            raise ValueError(f"backend must be 'int' or 'fmpz', got {backend!r}")
+            choices = ("int", "fmpz")
+            raise ChoiceError(f"backend must be one of int, fmpz, got {backend!r}", backend, choices=choices)
         self.backend = backend
 
     def convert(self, stack: MatrixStack, rows: np.ndarray) -> list[np.ndarray]:

@@ -95,6 +95,7 @@ from typing import Any
 import numpy as np
 
 from quadric_contact._generated import kernels
+from quadric_contact.exact.errors import ChoiceError
 from quadric_contact.modes import errorbounds as eb
 from quadric_contact.modes._jit import HAVE_NUMBA, numba, stamp_with_sources
 from quadric_contact.modes.base import INVALID, MatrixStack, Pairs
@@ -990,7 +991,8 @@ def _make_twins() -> None:
 
 def _use_numba(backend: str) -> bool:
     if backend not in ("numba", "numpy"):
-        raise ValueError(f"backend must be 'numba' or 'numpy', got {backend!r}")
+        choices = ("numba", "numpy")
+        raise ChoiceError(f"backend must be one of numba, numpy, got {backend!r}", backend, choices=choices)
     return backend == "numba" and HAVE_NUMBA
 
 

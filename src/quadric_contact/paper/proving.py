@@ -94,6 +94,7 @@ __all__ = [
     "Status",
     "Verdict",
     "agrees",
+    "checkout_proofs_dir",
     "differs",
     "ensure",
     "find_proofs_dir",
@@ -592,27 +593,38 @@ def _module_files(path: Path) -> list[Path]:
 
 
 def installed_proofs_dir() -> Path | None:
-    """The proofs installed with the package (the wheel ships ``proofs/`` as the package
-    ``quadric_contact_proofs``), found on ``sys.path``, or None.  Modules already loaded
-    under that name (the loader imports any proofs directory under it) do not count."""
-    import importlib.machinery
+    """The proofs installed with the package: the wheel ships ``proofs/`` as the
+    package ``quadric_contact_proofs``, installed beside ``quadric_contact`` itself
+    (the same ``site-packages``), or None.
 
-    spec = importlib.machinery.PathFinder.find_spec(PACKAGE_NAME)
-    if spec is None or not spec.submodule_search_locations:
-        return None
-    path = Path(next(iter(spec.submodule_search_locations))).resolve()
+    Only that place counts, never a search of ``sys.path``: with ``python -m`` the
+    first entry of ``sys.path`` is the current directory, so a search would import
+    a ``quadric_contact_proofs`` planted there."""
+    path = Path(__file__).resolve().parents[2] / PACKAGE_NAME
     return path if _is_proofs_dir(path) else None
 
 
-def find_proofs_dir(explicit: str | Path | None = None, start: str | Path | None = None) -> Path:
+def checkout_proofs_dir() -> Path | None:
+    """``proofs/`` of the checkout holding this package's source
+    (``<checkout>/src/quadric_contact/...`` beside ``<checkout>/pyproject.toml``),
+    or None when the package is not run from a checkout."""
+    here = Path(__file__).resolve()
+    src, root = here.parents[2], here.parents[3]
+    if src.name != "src" or not (root / "pyproject.toml").is_file():
+        return None
+    path = root / "proofs"
+    return path if _is_proofs_dir(path) else None
+
+
+def find_proofs_dir(explicit: str | Path | None = None) -> Path:
     """Locate the proofs.
 
-    Looked for, in order: ``explicit``; the current directory (or ``start``)
-    if it is the ``proofs/`` directory itself; ``proofs/`` in it or in one of
-    its parents (run from anywhere inside a checkout); ``proofs/`` beside the
-    ``src/`` holding this package (a checkout or an editable install); the
-    proofs installed with the package (``quadric_contact_proofs``, shipped in
-    the wheel).
+    ``explicit`` if given; else ``proofs/`` of the checkout holding this
+    package's source (a checkout or an editable install); else the proofs
+    installed with the package (``quadric_contact_proofs``, shipped in the
+    wheel, beside ``quadric_contact``).  Never the current directory or its
+    parents: importing a proof runs its code, and a ``proofs/`` folder planted
+    above the working directory would run as whoever calls ``prove`` there.
 
     Raises
     ------
@@ -629,22 +641,16 @@ def find_proofs_dir(explicit: str | Path | None = None, start: str | Path | None
                 str(path),
             )
         return path
-    here = Path(start if start is not None else Path.cwd()).resolve()
-    candidates = [here, *(parent / "proofs" for parent in (here, *here.parents))]
-    beside_src = Path(__file__).resolve().parents[3] / "proofs"
-    candidates.append(beside_src)
-    for c in candidates:
-        if c.name == "proofs" and _is_proofs_dir(c):
-            return c
-    installed = installed_proofs_dir()
-    if installed is not None:
-        return installed
+    for found in (checkout_proofs_dir(), installed_proofs_dir()):
+        if found is not None:
+            return found
+    here = Path(__file__).resolve()
     raise ProofsNotFoundError(
-        f"no proofs found: looked for a proofs/ directory in {here} and its parents, beside the "
-        f"package's source ({beside_src}), and for the proofs installed with the package (module "
-        f"{PACKAGE_NAME}, not installed); pass --proofs-dir DIR, the proofs/ directory of a checkout "
-        "of quadric-contact",
-        str(here),
+        f"no proofs found: looked for proofs/ of a checkout around the package's source "
+        f"({here.parents[3] / 'proofs'}) and for the proofs installed with the package (module "
+        f"{PACKAGE_NAME} in {here.parents[2]}, not installed); pass --proofs-dir DIR, the proofs/ "
+        "directory of a checkout of quadric-contact",
+        str(here.parents[2]),
     )
 
 

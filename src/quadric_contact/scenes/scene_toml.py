@@ -63,7 +63,7 @@ Motions (``[ellipsoid.motion]``; the default is ``type = "still"``):
     [x...], [y...], [z...]]``: the rotation about the centre of the
     quaternion with these polynomial components.  A component may also be
     written as a polynomial in ``t`` (``"2*t - 5*t^2"``, degree at most
-    :data:`~quadric_contact.model.parsing.MAX_DEGREE`).
+    :data:`~quadric_contact.exact.bounds.MAX_MOTION_DEGREE`).
 ``type = "keyframes"``
     ``keys = [{ t = ..., at = [x, y, z], rotation = [w, x, y, z] }, ...]``:
     the centre passes through ``at`` at time ``t`` (linear in between);
@@ -112,6 +112,8 @@ Every error names the file, the key and what was expected
 
 from __future__ import annotations
 
+import os
+import stat
 import tomllib
 from collections.abc import Mapping, Sequence
 from fractions import Fraction
@@ -119,11 +121,12 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
+from quadric_contact.exact.bounds import MAX_MOTION_DEGREE, MAX_PLACES, MAX_SCENE_BYTES, MAX_SCENE_DEPTH
 from quadric_contact.exact.errors import QuadricContactError, SceneError
+from quadric_contact.exact.printing import safe_text, unsafe_characters
 from quadric_contact.exact.rational import to_fraction
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.parsing import (
-    MAX_DEGREE,
     MAX_DIGITS,
     parse_number,
     parse_univariate,
@@ -145,7 +148,7 @@ from quadric_contact.scenes.trajectory import (
 )
 from quadric_contact.theory.results import Region
 
-__all__ = ["builtin_scene", "builtin_scene_names", "load_scene", "parse_scene"]
+__all__ = ["builtin_scene", "builtin_scene_names", "load_scene", "parse_scene", "read_scene_file"]
 
 
 class _BadFloat:
@@ -158,6 +161,40 @@ class _BadFloat:
 
     def __repr__(self) -> str:
         return self.text
+
+
+def _nesting_depth(text: str) -> int:
+    """An upper bound of how deep arrays and inline tables nest in TOML ``text``:
+    the deepest run of open ``[`` / ``{`` not yet closed, counted outside strings
+    and comments, in one pass (``tomllib`` reads nesting by recursion, so a deep
+    enough file would raise :class:`RecursionError` in it)."""
+    depth = deepest = 0
+    i, n = 0, len(text)
+    while i < n:
+        c = text[i]
+        if c == "#":
+            j = text.find("\n", i)
+            i = n if j < 0 else j
+            continue
+        if c in "\"'":
+            triple = text.startswith(c * 3, i)
+            quote = c * 3 if triple else c
+            i += len(quote)
+            while i < n and not text.startswith(quote, i):
+                if c == '"' and text[i] == "\\":
+                    i += 1
+                elif not triple and text[i] == "\n":
+                    break
+                i += 1
+            i += len(quote)
+            continue
+        if c in "[{":
+            depth += 1
+            deepest = max(deepest, depth)
+        elif c in "]}":
+            depth = max(0, depth - 1)
+        i += 1
+    return deepest
 
 
 def _parse_float(text: str) -> Any:
@@ -236,6 +273,14 @@ class _Reader:
             return str(default)
         if not isinstance(v, str) or not v.strip():
             raise self.error(key, "a non-empty string", v)
+        bad = unsafe_characters(v)
+        if bad:
+            raise self.error(
+                key,
+                "a string without control or format characters (escape sequences, line breaks, "
+                f"bidi overrides), got {safe_text(v)!r} with {safe_text(''.join(bad[:5]))}",
+                cause="unsafe characters",
+            )
         return v
 
     def number(self, value: Any, key: str, *, positive: bool = False) -> Fraction:
@@ -273,14 +318,21 @@ class _Reader:
                 raise self.error(
                     f"{key}[{i}]", "a list of coefficients (ascending powers of t) or a polynomial in t", comp
                 )
+            if len(comp) > MAX_MOTION_DEGREE + 1:  # before any coefficient is read
+                raise self.error(
+                    f"{key}[{i}]",
+                    f"at most {MAX_MOTION_DEGREE + 1} coefficients, a degree of at most {MAX_MOTION_DEGREE} "
+                    "in t (MAX_MOTION_DEGREE)",
+                    f"{len(comp)} coefficients",
+                )
             out.append(tuple(self.number(c, f"{key}[{i}][{j}]") for j, c in enumerate(comp)))
         return tuple(out)
 
     def polynomial_in_t(self, text: str, key: str) -> tuple[Fraction, ...]:
         """A polynomial in ``t`` written as text (``"3 - 2*t^2"``), as coefficients."""
-        expected = f"a polynomial in t of degree at most {MAX_DEGREE}"
+        expected = f"a polynomial in t of degree at most {MAX_MOTION_DEGREE} (MAX_MOTION_DEGREE)"
         try:
-            return parse_univariate(text, "t")
+            return parse_univariate(text, "t", max_degree=MAX_MOTION_DEGREE)
         except QuadricContactError as exc:
             raise self.error(key, expected, text, str(exc)) from exc
 
@@ -591,10 +643,28 @@ def parse_scene(
     ((Fraction(0, 1), Fraction(4, 1)), (Fraction(-2, 1), Fraction(0, 1), Fraction(2, 1)))
     """
     r = _Reader(source)
+    if not isinstance(text, str):
+        raise SceneError(f"{source}: expected the scene's text, got {type(text).__name__}", text, file=source)
+    text = str.__str__(text)  # a plain copy of a subclass
+    if len(text) > MAX_SCENE_BYTES:
+        raise SceneError(
+            f"{source}: {len(text)} characters, more than {MAX_SCENE_BYTES} (MAX_SCENE_BYTES)",
+            source,
+            file=source,
+        )
+    depth = _nesting_depth(text)
+    if depth > MAX_SCENE_DEPTH:
+        raise SceneError(
+            f"{source}: tables or arrays nested {depth} deep, more than {MAX_SCENE_DEPTH} (MAX_SCENE_DEPTH)",
+            source,
+            file=source,
+        )
     try:
         data = tomllib.loads(text, parse_float=_parse_float)
     except (tomllib.TOMLDecodeError, ValueError) as exc:  # ValueError: an integer beyond 4300 digits
         raise SceneError(f"{source}: not valid TOML: {exc}", text, file=source) from exc
+    except RecursionError:  # pragma: no cover - the depth is checked first
+        raise SceneError(f"{source}: nested too deep (MAX_SCENE_DEPTH)", source, file=source) from None
     r.keys(data, "", ("scene", "object", "ellipsoid", "effects"))
     meta = r.table(data, "scene", "scene")
     r.keys(
@@ -633,8 +703,9 @@ def parse_scene(
     if policy not in ("refuse", "warn"):
         raise r.error("scene.on_not_small", "'refuse' or 'warn'", policy)
     places_raw = meta.get("places", 12)
-    if isinstance(places_raw, bool) or not isinstance(places_raw, int) or not 0 <= places_raw <= 1000:
-        raise r.error("scene.places", "an integer number of decimal places in [0, 1000]", places_raw)
+    if isinstance(places_raw, bool) or not isinstance(places_raw, int) or not 0 <= places_raw <= MAX_PLACES:
+        expected = f"an integer number of decimal places in [0, {MAX_PLACES}] (MAX_PLACES)"
+        raise r.error("scene.places", expected, places_raw)
     reading = r.string(meta, "reading", "scene.reading", default="geometry")
     if reading not in READINGS:
         raise r.error("scene.reading", " or ".join(repr(x) for x in READINGS), reading)
@@ -761,8 +832,39 @@ def load_scene(path: str | Path, **kwargs: Any) -> Scene:
             str(path),
             file=str(path),
         )
+    return parse_scene(read_scene_file(p), str(path), **kwargs)
+
+
+def read_scene_file(path: str | Path) -> str:
+    """The text of a scene file: a regular file (not a device such as ``/dev/zero``,
+    a FIFO that would block, or a directory) of at most
+    :data:`~quadric_contact.exact.bounds.MAX_SCENE_BYTES` bytes, in UTF-8.  The file
+    is opened without blocking and checked on the open descriptor, so what is read
+    is what was checked."""
+
+    def refuse(why: str, exc: BaseException | None = None) -> SceneError:
+        return SceneError(f"{path}: cannot read the scene file: {why}", str(path), file=str(path))
+
+    path = Path(path)
     try:
-        text = p.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise SceneError(f"{path}: cannot read the scene file: {exc}", str(path), file=str(path)) from exc
-    return parse_scene(text, str(path), **kwargs)
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0))
+    except OSError as exc:
+        raise refuse(exc.strerror or str(exc)) from exc
+    try:
+        info = os.fstat(fd)
+        if not stat.S_ISREG(info.st_mode):
+            raise refuse("not a regular file (a directory, a device, a FIFO or a socket)")
+        if info.st_size > MAX_SCENE_BYTES:
+            raise refuse(f"{info.st_size} bytes, more than {MAX_SCENE_BYTES} (MAX_SCENE_BYTES)")
+        with os.fdopen(fd, "rb", closefd=False) as f:
+            data = f.read(MAX_SCENE_BYTES + 1)
+    except OSError as exc:
+        raise refuse(exc.strerror or str(exc)) from exc
+    finally:
+        os.close(fd)
+    if len(data) > MAX_SCENE_BYTES:
+        raise refuse(f"more than {MAX_SCENE_BYTES} bytes (MAX_SCENE_BYTES)")
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise refuse(f"not UTF-8 text ({exc.reason} at byte {exc.start})") from exc

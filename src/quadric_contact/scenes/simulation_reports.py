@@ -11,6 +11,7 @@ from typing import Any
 
 from quadric_contact.exact.algebraic import RealAlgebraic
 from quadric_contact.exact.errors import SceneError
+from quadric_contact.exact.printing import safe_text
 from quadric_contact.scenes.composite import Composite
 from quadric_contact.scenes.events import (
     PieceValue,
@@ -246,9 +247,9 @@ class Event:
                 return
             if x != z:
                 tail = f" (at the instant: {y})" if y not in (x, z) else ""
-                out.append(f"{kind}{name}: {x} -> {z}{tail}")
+                out.append(f"{kind}{safe_text(name)}: {x} -> {z}{tail}")
             else:
-                out.append(f"{kind}{name}: {y} at the instant only (before and after: {x})")
+                out.append(f"{kind}{safe_text(name)}: {y} at the instant only (before and after: {x})")
 
         zb, zt, za = dict(b.zones), dict(self.at.zones), dict(a.zones)
         for name in dict.fromkeys([*zb, *zt, *za]):
@@ -508,7 +509,7 @@ class SimulationResult:
             show_zones = "zone" in own
             show_timeline = bool({"zone", "contact", "contact_kind", "relative_position"} & set(own))
             lines.append("")
-            lines.append(f"{p.ellipsoid} vs {p.object.name}")
+            lines.append(f"{safe_text(p.ellipsoid)} vs {safe_text(p.object.name)}")
             if p.complete and show_timeline:
                 start = p.initial.summary(p.object, with_zones=show_zones)
                 lines.append(f"  t = {_fmt_time(self.scene.span[0], places)}: start: {start}")
@@ -544,9 +545,8 @@ class SimulationResult:
                 else:
                     t, names = p.first_contact
                     extra = "" if p.complete else f" (stopped there, after {p.segments_done} segment(s))"
-                    lines.append(
-                        f"  first contact: t = {_fmt_time(t, places)} with {', '.join(names)}{extra}"
-                    )
+                    who = ", ".join(map(safe_text, names))
+                    lines.append(f"  first contact: t = {_fmt_time(t, places)} with {who}{extra}")
             shown_lines += len(lines) - before
         if hidden:
             n_events = sum(self._listed(p) for p in hidden)
@@ -568,4 +568,25 @@ class SimulationResult:
         lines.append("work ledger (full = every effect for every piece on every segment):")
         lines += ["  " + line for line in self.ledger.format().splitlines()]
         lines.append(f"time: {self.seconds:.3f} s")
-        return "\n".join(lines)
+        # Names reach the other lines too (the scene's description, warnings, smallness
+        # reports): each name with a control or format character (a line break, an
+        # escape sequence, a bidi override) is replaced by its escaped form first, then
+        # no such character is printed raw, so a name can neither forge a line nor
+        # rewrite the terminal.
+        text = "\n".join(lines)
+        for name in sorted(_user_names(self.scene), key=len, reverse=True):
+            text = text.replace(name, safe_text(name))
+        return safe_text(text, keep_newlines=True)
+
+
+def _user_names(scene: Any) -> set[str]:
+    """The names in ``scene`` given by its user that a terminal would not print as
+    themselves (see :func:`~quadric_contact.exact.printing.safe_text`)."""
+    names = {scene.name}
+    for e in scene.ellipsoids:
+        names.add(e.name)
+    for obj in scene.objects:
+        names.add(obj.name)
+        names.update(p.name for p in obj.pieces)
+        names.update(sp.name for sp in obj.splits())
+    return {n for n in names if isinstance(n, str) and n and safe_text(n) != n}

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import hashlib
 import random
+import re
 import statistics
 import sys
 import time
@@ -26,13 +27,14 @@ from dataclasses import dataclass, replace
 from fractions import Fraction
 from typing import Any
 
-from quadric_contact.exact.errors import MissingDependencyError, SceneError
+from quadric_contact.exact.bounds import SCHEDULER_TIMEOUT
+from quadric_contact.exact.errors import MissingDependencyError, SceneError, SchedulerError
 from quadric_contact.scenes.scene_model import MovingEllipsoid, Scene
 from quadric_contact.scenes.scene_toml import parse_scene
 from quadric_contact.scenes.simulate import simulate
 from quadric_contact.scenes.trajectory import Keyframes, Stationary
 
-__all__ = ["SweepResult", "perturbed", "run_sweep", "summarize"]
+__all__ = ["SweepResult", "check_scheduler_address", "perturbed", "run_sweep", "summarize"]
 
 _SCENES: dict[str, Scene] = {}
 
@@ -190,6 +192,32 @@ def where_text(where: str) -> str:
     return "serially" if where == "serial" else f"on {where}"
 
 
+_ADDRESS = re.compile(r"(?:(tcp|tls|ucx|ws|wss)://)?(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9][A-Za-z0-9.-]{0,252}):([0-9]{1,5})")
+
+
+def check_scheduler_address(address: Any) -> str:
+    """``address`` if it is a scheduler address dask connects to over the network:
+    ``[tcp|tls|ucx|ws|wss://]host:port`` with a port in 1..65535.
+
+    A scheduler is a trust boundary: the sweep sends it tasks and runs what its
+    workers send back, so only a cluster one trusts should be named.  Anything
+    else (``file://``, ``inproc://``, code, a path) is refused before any
+    connection.
+
+    Raises
+    ------
+    SchedulerError
+        Naming the address and what was expected.
+    """
+    if not isinstance(address, str) or not (m := _ADDRESS.fullmatch(address)) or not 0 < int(m[3]) < 65536:
+        raise SchedulerError(
+            f"--scheduler: {str(address)[:100]!r} is not a scheduler address: expected "
+            "tcp://host:port (or tls://, ucx://, ws://, wss://), a port in 1..65535",
+            address,
+        )
+    return address
+
+
 def run_sweep(
     text: str,
     source: str = "<scene>",
@@ -323,7 +351,15 @@ def _run_on_dask(
             )
             client = Client(cluster)
         else:
-            client = Client(scheduler)
+            address = check_scheduler_address(scheduler)
+            try:
+                client = Client(address, timeout=SCHEDULER_TIMEOUT)
+            except (OSError, TimeoutError) as exc:
+                raise SchedulerError(
+                    f"--scheduler {address}: cannot connect within {SCHEDULER_TIMEOUT:g} s "
+                    f"(SCHEDULER_TIMEOUT): {exc}",
+                    address,
+                ) from exc
     where = (
         f"a LocalCluster of {workers} worker(s)"
         if cluster is not None

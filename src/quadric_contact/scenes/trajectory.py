@@ -34,6 +34,7 @@ linearly, again a rational rotation).
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
@@ -42,6 +43,7 @@ from typing import Any
 import flint
 
 from quadric_contact.exact.algebraic import real_roots
+from quadric_contact.exact.bounds import MAX_MOTION_DEGREE
 from quadric_contact.exact.errors import SceneError, ShapeError
 from quadric_contact.exact.rational import fmpq_of, fmpq_poly_of, to_fraction
 from quadric_contact.model.motions import RigidMotion, rotation_from_quaternion
@@ -223,14 +225,26 @@ def _check_quaternion_nonzero(q: Sequence[Any], t0: Fraction, t1: Fraction, what
         )
 
 
-def _coefficients(component: Any) -> tuple[Fraction, ...]:
+def _coefficients(component: Any, what: str) -> tuple[Fraction, ...]:
     """Coefficients (ascending powers of ``t``) of a coefficient sequence or of
-    a polynomial in ``t`` written as text."""
+    a polynomial in ``t`` written as text, of degree at most
+    :data:`~quadric_contact.exact.bounds.MAX_MOTION_DEGREE`: a list is cut
+    after one entry too many, before any entry is read."""
     if isinstance(component, str):
         from quadric_contact.model.parsing import parse_univariate
 
-        return parse_univariate(component, "t")
-    return tuple(to_fraction(c) for c in component)
+        return parse_univariate(component, "t", max_degree=MAX_MOTION_DEGREE, what=what)
+    try:
+        items = list(itertools.islice(iter(component), MAX_MOTION_DEGREE + 2))
+    except TypeError:
+        raise ShapeError(f"{what}: expected a list of coefficients or a polynomial in t", component) from None
+    if len(items) > MAX_MOTION_DEGREE + 1:
+        raise ShapeError(
+            f"{what}: more than {MAX_MOTION_DEGREE + 1} coefficients, a degree above "
+            f"{MAX_MOTION_DEGREE} in t (MAX_MOTION_DEGREE)",
+            component,
+        )
+    return tuple(to_fraction(c) for c in items)
 
 
 class PolynomialMotion(Trajectory):
@@ -242,8 +256,10 @@ class PolynomialMotion(Trajectory):
         ``d_x, d_y, d_z``: coefficients (ascending powers of ``t``) of the
         displacement of the centre from its initial position: ``p(t) = c0 + d(t)``;
         a component may be text such as ``"2*t - 5*t^2"`` (read by
-        :func:`~quadric_contact.model.parsing.parse_polynomial`, degree at most
-        :data:`~quadric_contact.model.parsing.MAX_DEGREE`).
+        :func:`~quadric_contact.model.parsing.parse_polynomial`).  Each
+        component has degree at most
+        :data:`~quadric_contact.exact.bounds.MAX_MOTION_DEGREE` (a list at most
+        one entry more).
     quaternion : four sequences of numbers, or polynomials in ``t`` as text, optional
         Components ``w, x, y, z`` of ``q(t)`` (ascending powers of ``t``); the
         ellipsoid is turned about its centre by the rotation of ``q(t)``
@@ -269,12 +285,15 @@ class PolynomialMotion(Trajectory):
     ):
         if len(translation) != 3:
             raise ShapeError("translation needs three coefficient lists (x, y, z)", translation)
-        self.translation = tuple(_coefficients(comp) for comp in translation)
+        self.translation = tuple(
+            _coefficients(comp, f"translation {axis}") for axis, comp in zip("xyz", translation, strict=True)
+        )
         if quaternion is not None:
             if len(quaternion) != 4:
                 raise ShapeError("quaternion needs four coefficient lists (w, x, y, z)", quaternion)
             self.quaternion: tuple[tuple[Fraction, ...], ...] | None = tuple(
-                _coefficients(comp) for comp in quaternion
+                _coefficients(comp, f"quaternion {part}")
+                for part, comp in zip("wxyz", quaternion, strict=True)
             )
         else:
             self.quaternion = None

@@ -69,6 +69,7 @@ from quadric_contact.exact.algebraic import (
 from quadric_contact.exact.errors import ExcludedQuadricError
 from quadric_contact.exact.linalg import nullspace, solve
 from quadric_contact.exact.rational import fmpq_of, fmpq_poly_of
+from quadric_contact.exact.size import check_pair_size
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import Quadric
 from quadric_contact.theory.pencil import as_quadric
@@ -323,6 +324,9 @@ def decide_geometrically(E: Any, Q: Any) -> GeometricDecision:
         If ``E`` is not a real ellipsoid.
     ExcludedQuadricError
         If ``Q`` is the zero matrix.
+    WorkLimitError
+        If the pair is larger than :data:`~quadric_contact.exact.bounds.MAX_PAIR_BITS`
+        (refused before the work).
 
     References
     ----------
@@ -345,6 +349,7 @@ def decide_geometrically(E: Any, Q: Any) -> GeometricDecision:
     """
     e = as_quadric(E, "E").as_ellipsoid()
     q = as_quadric(Q, "Q")
+    check_pair_size(e, q, "the exact geometric decision")
     if q.kind is QuadricKind.ZERO:
         raise ExcludedQuadricError("Q is the zero matrix: every point satisfies X^T Q X = 0", q, kind=q.kind)
     D, Ap, bp, cp, r = _setup(e, q)

@@ -28,6 +28,7 @@ from typing import Any
 from quadric_contact._generated.formulas import pencil_coefficients
 from quadric_contact.exact.descartes import RootSigns, root_signs
 from quadric_contact.exact.discriminants import RootStructure, paper_deltas, root_structure
+from quadric_contact.exact.printing import int_text
 from quadric_contact.model.quadric import Quadric, as_quadric
 
 __all__ = ["CharacteristicPolynomial", "as_quadric", "characteristic_polynomial"]
@@ -172,7 +173,24 @@ class CharacteristicPolynomial:
         )
 
     def __str__(self) -> str:
-        return str(self.as_sympy())
+        """``P`` in descending powers of ``lambda``, in sympy's notation
+        (``-2*lambda**3/3 + 1``), written here so that coefficients of any size
+        print (see :mod:`~quadric_contact.exact.printing`)."""
+        terms = []
+        for k in range(len(self.coefficients) - 1, -1, -1):
+            c = self.coefficients[k]
+            if not c:
+                continue
+            p, q = abs(c.numerator), c.denominator
+            power = "" if k == 0 else "lambda" if k == 1 else f"lambda**{k}"
+            body = int_text(p) if not power else power if p == 1 else f"{int_text(p)}*{power}"
+            if q != 1:
+                body += f"/{int_text(q)}"
+            terms.append(("-" if c < 0 else "+", body))
+        if not terms:
+            return "0"
+        first_sign, first = terms[0]
+        return ("-" if first_sign == "-" else "") + first + "".join(f" {s} {b}" for s, b in terms[1:])
 
     def __repr__(self) -> str:
         return f"CharacteristicPolynomial({self})"

@@ -13,6 +13,7 @@ from fractions import Fraction
 from typing import TYPE_CHECKING, Any
 
 from quadric_contact.exact.errors import UndecidedError
+from quadric_contact.exact.printing import json_number
 
 if TYPE_CHECKING:
     from quadric_contact.exact.descartes import RootSigns
@@ -48,9 +49,7 @@ class Region(StrEnum):
 
 
 def _json_number(x: Any) -> Any:
-    if isinstance(x, Fraction):
-        return str(x) if x.denominator != 1 else int(x)
-    return x
+    return json_number(x) if isinstance(x, Fraction) else x
 
 
 def _poly_dict(P: CharacteristicPolynomial) -> dict[str, Any]:

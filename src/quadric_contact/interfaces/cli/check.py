@@ -7,6 +7,7 @@ import json
 from fractions import Fraction
 from typing import Any
 
+from quadric_contact.exact.printing import fraction_text, int_text
 from quadric_contact.interfaces.cli.exits import EXIT_OK, EXIT_UNDECIDED
 
 DEFAULT_E = "(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1"
@@ -47,8 +48,12 @@ def register(sub: Any) -> None:
 
 def _fmt(x: Fraction) -> str:
     if x.denominator == 1:
-        return str(x.numerator)
-    return f"{x}  (~ {float(x):.6g})"
+        return int_text(x.numerator)
+    try:
+        approx = f"{float(x):.6g}"
+    except OverflowError:  # beyond the range of a float
+        approx = "-inf" if x < 0 else "inf"
+    return f"{fraction_text(x)}  (~ {approx})"
 
 
 def _touching(analysis: Any) -> str:

@@ -42,8 +42,8 @@ def register(sub: Any) -> None:
         "--proofs",
         dest="proofs_dir",
         metavar="DIR",
-        help="the proofs directory (default: proofs/ of the checkout around the current directory, "
-        "else the proofs installed with the package)",
+        help="the proofs directory (default: proofs/ of the checkout the package runs from, else the "
+        "proofs installed with the package; never the current directory, whose code would run)",
     )
     p.add_argument(
         "--full",

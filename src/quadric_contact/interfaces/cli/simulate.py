@@ -11,6 +11,14 @@ import warnings
 from pathlib import Path
 from typing import Any
 
+from quadric_contact.exact.bounds import (
+    MAX_CLI_BODIES,
+    MAX_CLI_COUNT,
+    MAX_CLI_PROCESSES,
+    MAX_FRAMES,
+    MAX_PLACES,
+)
+from quadric_contact.interfaces.cli.arguments import check_output_path, integer
 from quadric_contact.interfaces.cli.exits import EXIT_BAD_INPUT, EXIT_OK
 
 
@@ -42,8 +50,17 @@ def register(sub: Any) -> None:
         metavar="FILE.gif",
         help="an animated GIF of the bodies moving, coloured by state, with the timeline",
     )
-    p.add_argument("--frames", type=int, default=40, help="frames of the animation (default 40)")
-    p.add_argument("--places", type=int, help="decimal places of the event times (default: the scene's)")
+    p.add_argument(
+        "--frames",
+        type=integer("--frames", 2, MAX_FRAMES),
+        default=40,
+        help="frames of the animation (default 40)",
+    )
+    p.add_argument(
+        "--places",
+        type=integer("--places", 0, MAX_PLACES),
+        help="decimal places of the event times (default: the scene's)",
+    )
     p.add_argument(
         "--broad-phase",
         action="store_true",
@@ -52,15 +69,28 @@ def register(sub: Any) -> None:
     )
     p.add_argument(
         "--workers",
-        type=int,
+        type=integer("--workers", 0, MAX_CLI_PROCESSES),
         default=None,
         help="processes to share the ellipsoids (0: one per core; default 1)",
     )
     p.add_argument(
-        "--bodies", type=int, default=1000, help="many_bodies: number of ellipsoids (default 1000)"
+        "--bodies",
+        type=integer("--bodies", 1, MAX_CLI_BODIES),
+        default=1000,
+        help="many_bodies: number of ellipsoids (default 1000)",
     )
-    p.add_argument("--pieces", type=int, default=16, help="many_bodies: pieces of the totem (default 16)")
-    p.add_argument("--seed", type=int, default=0, help="many_bodies: the seed of the generated scene")
+    p.add_argument(
+        "--pieces",
+        type=integer("--pieces", 1, MAX_CLI_BODIES),
+        default=16,
+        help="many_bodies: pieces of the totem (default 16)",
+    )
+    p.add_argument(
+        "--seed",
+        type=integer("--seed", 0, MAX_CLI_COUNT),
+        default=0,
+        help="many_bodies: the seed of the generated scene",
+    )
     p.add_argument(
         "--mutual",
         action="store_true",
@@ -132,17 +162,9 @@ def run(args: argparse.Namespace) -> int:
             raise SceneError(
                 f"--effects: expected a comma-separated subset of {', '.join(EFFECTS)}, got {args.effects!r}"
             )
-    if args.places is not None and not 0 <= args.places <= 1000:
-        raise SceneError(f"--places: expected an integer in [0, 1000], got {args.places}")
-    if args.frames < 2:
-        raise SceneError(f"--frames: expected at least 2, got {args.frames}")
-    if args.workers is not None and args.workers < 0:
-        raise SceneError(f"--workers: expected a number of processes >= 0, got {args.workers}")
-    for out in (args.output, args.plot, args.animate):
+    for option, out in (("--output", args.output), ("--plot", args.plot), ("--animate", args.animate)):
         if out is not None:
-            folder = Path(out).parent
-            if str(folder) and not folder.is_dir():
-                raise SceneError(f"{out}: the folder {folder} does not exist")
+            check_output_path(option, out)  # before the run, not after it
     from quadric_contact.scenes.manybody import GENERATED_SCENES, many_body_scene
 
     broad_phase = args.broad_phase

@@ -9,6 +9,15 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
+from quadric_contact.exact.bounds import (
+    MAX_AMPLITUDE,
+    MAX_AMPLITUDE_DIGITS,
+    MAX_CLI_COUNT,
+    MAX_CLI_PROCESSES,
+    MAX_PLACES,
+)
+from quadric_contact.interfaces.cli.arguments import check_output_path, integer, rational
+
 
 def register(sub: Any) -> None:
     p = sub.add_parser(
@@ -20,25 +29,56 @@ def register(sub: Any) -> None:
         "Exit status: 0 done, 2 bad scene or option.",
     )
     p.add_argument("scene", nargs="?", default="bee_and_tree", help="a scene file, or a built-in scene name")
-    p.add_argument("--perturbations", "-n", type=int, default=10_000, help="number of runs (default 10000)")
     p.add_argument(
-        "--amplitude", default="1/20", help="largest offset per coordinate, a rational such as 1/20 or 0.05"
+        "--perturbations",
+        "-n",
+        type=integer("--perturbations", 1, MAX_CLI_COUNT),
+        default=10_000,
+        help="number of runs (default 10000)",
     )
-    p.add_argument("--seed", type=int, default=0, help="seed of the perturbations (default 0)")
+    p.add_argument(
+        "--amplitude",
+        type=rational("--amplitude", Fraction(0), Fraction(MAX_AMPLITUDE), max_digits=MAX_AMPLITUDE_DIGITS),
+        default=Fraction(1, 20),
+        help="largest offset per coordinate, a rational such as 1/20 or 0.05",
+    )
+    p.add_argument(
+        "--seed",
+        type=integer("--seed", 0, MAX_CLI_COUNT),
+        default=0,
+        help="seed of the perturbations (default 0)",
+    )
     p.add_argument(
         "--effects",
         default="first_contact",
         help="comma-separated effects of every run (default: first_contact; 'scene': the scene's own)",
     )
-    p.add_argument("--places", type=int, default=12, help="decimal places of the times kept (default 12)")
+    p.add_argument(
+        "--places",
+        type=integer("--places", 0, MAX_PLACES),
+        default=12,
+        help="decimal places of the times kept (default 12)",
+    )
     where = p.add_mutually_exclusive_group()
     where.add_argument("--scheduler", metavar="ADDRESS", help="the address of a dask.distributed scheduler")
     where.add_argument("--serial", action="store_true", help="run here, one run after another")
-    p.add_argument("--workers", type=int, default=2, help="workers of the LocalCluster (default 2)")
     p.add_argument(
-        "--threads", type=int, default=1, help="threads per worker of the LocalCluster (default 1)"
+        "--workers",
+        type=integer("--workers", 1, MAX_CLI_PROCESSES),
+        default=2,
+        help="workers of the LocalCluster (default 2)",
     )
-    p.add_argument("--chunk", type=int, help="runs per task (default: about 8 tasks per worker)")
+    p.add_argument(
+        "--threads",
+        type=integer("--threads", 1, MAX_CLI_PROCESSES),
+        default=1,
+        help="threads per worker of the LocalCluster (default 1)",
+    )
+    p.add_argument(
+        "--chunk",
+        type=integer("--chunk", 1, MAX_CLI_COUNT),
+        help="runs per task (default: about 8 tasks per worker)",
+    )
     p.add_argument("--output", "-o", metavar="FILE", help="write every run's summary as JSON to FILE")
     prog = p.add_mutually_exclusive_group()
     prog.add_argument("--progress", dest="progress", action="store_true", default=None, help="show progress")
@@ -50,23 +90,12 @@ def run(args: argparse.Namespace) -> int:
     from quadric_contact.exact.errors import SceneError
     from quadric_contact.interfaces.cli.simulate import _write_atomically
     from quadric_contact.scenes.scene import EFFECTS, builtin_scene_names
-    from quadric_contact.scenes.sweep import run_sweep
+    from quadric_contact.scenes.scene_toml import read_scene_file
+    from quadric_contact.scenes.sweep import check_scheduler_address, run_sweep
 
-    try:
-        amplitude = Fraction(args.amplitude)
-    except (ValueError, ZeroDivisionError) as exc:
-        raise SceneError(
-            f"--amplitude: expected a rational such as 1/20 or 0.05, got {args.amplitude!r}"
-        ) from exc
-    if (
-        args.perturbations < 1
-        or args.workers < 1
-        or args.threads < 1
-        or (args.chunk is not None and args.chunk < 1)
-    ):
-        raise SceneError("--perturbations, --workers, --threads and --chunk: expected positive numbers")
-    if not 0 <= args.places <= 1000:
-        raise SceneError(f"--places: expected an integer in [0, 1000], got {args.places}")
+    if args.scheduler is not None:
+        check_scheduler_address(args.scheduler)  # before the scene is read
+
     effects: list[str] | None = None
     if args.effects.strip() != "scene":
         effects = [e.strip() for e in args.effects.split(",") if e.strip()]
@@ -77,10 +106,7 @@ def run(args: argparse.Namespace) -> int:
             )
     path = Path(args.scene)
     if path.exists():
-        try:
-            text, source = path.read_text(encoding="utf-8"), str(path)
-        except (OSError, UnicodeDecodeError) as exc:
-            raise SceneError(f"{path}: cannot read the scene file: {exc}") from exc
+        text, source = read_scene_file(path), str(path)
     elif args.scene in builtin_scene_names():
         from importlib import resources
 
@@ -89,15 +115,13 @@ def run(args: argparse.Namespace) -> int:
     else:
         raise SceneError(f"{args.scene}: no such file (built-in scenes: {', '.join(builtin_scene_names())})")
     if args.output:
-        folder = Path(args.output).parent
-        if str(folder) and not folder.is_dir():
-            raise SceneError(f"{args.output}: the folder {folder} does not exist")
+        check_output_path("--output", args.output)
     result = run_sweep(
         text,
         source,
         args.perturbations,
         seed=args.seed,
-        amplitude=amplitude,
+        amplitude=args.amplitude,
         effects=effects,
         places=args.places,
         scheduler=args.scheduler,
