@@ -36,12 +36,18 @@ def test_bench_smoke_profile_writes_table_json_and_reports_targets(tmp_path, cap
         "filter vs float, distinct pairs",
         "certified criterion vs reading its inputs (distinct)",
         "first array call after install (empty cache)",
-        # the complete decision
-        "complete decision, small ellipsoids vs one environment",
-        "complete decision, pairs of similar sizes",
-        "pairs of similar sizes reaching the exact pair stage",
     } <= names
     assert "Kernels at the memory limit" in out
+    # the complete decision, as a fraction of the criterion kernel, per population and question
+    assert "The complete decision against the certified criterion kernel" in out
+    methods = {(r["population"], r["method"]) for r in data["complete"]}
+    for population in ("environment", "similar sizes", "every type"):
+        for question in ("contact", "region", "overlap"):
+            assert (population, f"{question}, certified") in methods
+            assert (population, f"{question}, float") in methods
+    assert "The exact scalar decision" in out and len(data["exact_scalar"]) == 2
+    # the float mode on symmetric placements and near-tangent ladders: no wrong answer
+    assert [f["float wrong"] for f in data["float_families"]] == [0, 0]
     wrong = {(m["population"], m["method"]): m["wrong"] for m in data["measurements"]}
     assert all(
         wrong[(pop, method)] == 0 for pop, method in wrong if method in ("certified", "exact", "filter")

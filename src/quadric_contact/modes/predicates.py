@@ -345,7 +345,9 @@ def relative_position(
     >>> S2 = "x**2 + y**2 - 0.25*(z-3)**2 - 1"
     >>> r = relative_position(bee, S2)
     >>> r.region, r.decided_by, r.polynomial.signs.pattern
-    (<Region.R_PLUS: 'R+'>, 'Theorem 13 / Table 4', '-+++')
+    (<Region.R_PLUS: 'R+'>, 'signature sequence', '-+++')
+    >>> relative_position(bee, S2, method="theory").decided_by     # the paper's route agrees
+    'Theorem 13 / Table 4'
     >>> relative_position(bee, S2, mode="float").region, relative_position([bee], S2)
     (<Region.R_PLUS: 'R+'>, array([1], dtype=int8))
     """

@@ -8,19 +8,21 @@ rounding turns such a root into a pair of non-real roots, and a decision that tr
 rounded discriminants answers "transversal contact" for a ball far inside the pipe.
 
 :func:`axis_family` lays out such pairs, exactly representable in binary64 (every entry a
-dyadic rational), at distances from ``10^-1`` to ``10`` on both sides of the surface: the
-answers are stable under relative perturbations of ``10^-12``, so every number mode must give
-the exact answer on all of them.
+dyadic rational), at distances from ``10^-1`` to ``10`` on both sides of the surface.  Where
+the distance is only bounded (cones, paraboloids, hyperboloids of two sheets) a placement can
+happen to touch; :func:`stable` picks out the placements whose answer survives a small
+perturbation, and on those every number mode must give the exact answer.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
-__all__ = ["AxisPair", "axis_family"]
+__all__ = ["AxisPair", "axis_family", "stable"]
 
 DISTANCES = (0.125, 0.5, 1.0, 4.0, 10.0)
 """Clearances (or overlaps) between the body and the surface, dyadic, ``10^-1 .. 10``."""
@@ -97,4 +99,21 @@ def axis_family() -> list[AxisPair]:
                         out.append(
                             AxisPair(f"{shape} r={radius} at z={height} vs {qname} ({label} {d})", E, Q)
                         )
+    return out
+
+
+def stable(pairs: list[AxisPair], answer: Any, scale: float = 2.0**-30) -> np.ndarray:
+    """Which placements keep their answer when the body grows or shrinks by the relative
+    amount ``scale`` (its constant term moved by that fraction of its own size): ``answer(E, Q)``
+    is an exact predicate on stacks.  The room of a cone, a paraboloid or a hyperboloid of two
+    sheets above is only a bound, so an overlapping placement may happen to touch the surface;
+    the answers that matter are the ones that survive a perturbation."""
+    E = np.stack([p.E for p in pairs])
+    Q = np.stack([p.Q for p in pairs])
+    base = answer(E, Q)
+    out = np.ones(len(pairs), dtype=bool)
+    for f in (1.0 - scale, 1.0 + scale):
+        moved = E.copy()
+        moved[:, 3, 3] = E[:, 3, 3] * f
+        out &= answer(moved, Q) == base
     return out

@@ -100,7 +100,7 @@ class ContactResult:
     >>> r.transversal, r.decided_by
     (False, 'signature sequence')
     >>> r.reason
-    'the member 160/9 E + Q is positive definite: X^T Q X > 0 on E (R+, strictly)'
+    'the member 3675/32 E + Q is positive definite: X^T Q X > 0 on E (R+, strictly)'
     >>> f"{float(r.delta4):.6g}", r.root_signs.pattern
     ('6.90965e+08', '-+++')
     """
