@@ -147,15 +147,12 @@ def test_errata_state_their_confidence_where_the_extraction_may_be_at_fault():
 
 def test_module_names_follow_the_numbering():
     for p in PROOFS:
-        if p.result in paper.FURTHER_RESULTS and not p.result[-4:].isdigit():  # the package's own
-            assert p.name == p.result.lower().replace(" ", "_"), (p.name, p.result)
+        if p.result in paper.FURTHER_RESULTS and not p.result[-4:].isdigit():
+            # the package's own result: named after its label
+            assert p.name == p.result.lower().replace("-", " ").replace(" ", "_"), (p.name, p.result)
             continue
         if p.result in paper.FURTHER_RESULTS:  # named after its authors and year instead
             authors, _, year = p.result.rpartition(" ")
-            if not year.isdigit():  # the package's own result: named after its label
-                label = p.result.lower().replace("-", " ").replace(" ", "_")
-                assert p.name.startswith(label), (p.name, p.result)
-                continue
             initials = "".join(w[0] for w in authors.split("-")).lower()
             assert p.name.startswith(f"{initials}_{year}_"), (p.name, p.result)
             continue
