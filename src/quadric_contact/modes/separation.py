@@ -258,21 +258,32 @@ def _guarded(x: float) -> bool:
 
 
 @_njit(inline=True)
+def _member(s: float, e: Any, q: Any) -> tuple[Any, Any, bool]:
+    """The computed entries of the member ``s E + Q``, their magnitudes ``|s| |e| + |q|`` (the
+    arguments of the magnitude programs) and whether every one of them, and ``s``, passes the
+    filter's guard (:mod:`quadric_contact.modes.errorbounds`)."""
+    m = (
+        s * e[0] + q[0], s * e[1] + q[1], s * e[2] + q[2], s * e[3] + q[3], s * e[4] + q[4],
+        s * e[5] + q[5], s * e[6] + q[6], s * e[7] + q[7], s * e[8] + q[8], s * e[9] + q[9],
+    )  # fmt: skip
+    a = abs(s)
+    w = (
+        a * abs(e[0]) + abs(q[0]), a * abs(e[1]) + abs(q[1]), a * abs(e[2]) + abs(q[2]),
+        a * abs(e[3]) + abs(q[3]), a * abs(e[4]) + abs(q[4]), a * abs(e[5]) + abs(q[5]),
+        a * abs(e[6]) + abs(q[6]), a * abs(e[7]) + abs(q[7]), a * abs(e[8]) + abs(q[8]),
+        a * abs(e[9]) + abs(q[9]),
+    )  # fmt: skip
+    ok = s == 0.0 or _SAMPLE_MIN <= a <= _SAMPLE_MAX
+    for k in range(10):
+        ok = ok and _guarded(m[k]) and _guarded(w[k])
+    return m, w, ok
+
+
+@_njit(inline=True)
 def _member_count(s: float, e: Any, q: Any, K: Any, certified: bool) -> int:
     """``n+`` of the member ``s E + Q`` (-1 if uncertain)."""
-    if certified and s != 0.0 and not (_SAMPLE_MIN <= abs(s) <= _SAMPLE_MAX):
-        return -1
-    m0 = s * e[0] + q[0]
-    m1 = s * e[1] + q[1]
-    m2 = s * e[2] + q[2]
-    m3 = s * e[3] + q[3]
-    m4 = s * e[4] + q[4]
-    m5 = s * e[5] + q[5]
-    m6 = s * e[6] + q[6]
-    m7 = s * e[7] + q[7]
-    m8 = s * e[8] + q[8]
-    m9 = s * e[9] + q[9]
-    inv = _invariants(m0, m1, m2, m3, m4, m5, m6, m7, m8, m9)
+    m, w, ok = _member(s, e, q)
+    inv = _invariants(m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8], m[9])
     if not certified:
         return positive_count(
             _sign(inv[3], 0.0, False),
@@ -280,26 +291,9 @@ def _member_count(s: float, e: Any, q: Any, K: Any, certified: bool) -> int:
             _sign(inv[5], 0.0, False),
             _sign(inv[6], 0.0, False),
         )
-    a = abs(s)
-    w0 = a * abs(e[0]) + abs(q[0])
-    w1 = a * abs(e[1]) + abs(q[1])
-    w2 = a * abs(e[2]) + abs(q[2])
-    w3 = a * abs(e[3]) + abs(q[3])
-    w4 = a * abs(e[4]) + abs(q[4])
-    w5 = a * abs(e[5]) + abs(q[5])
-    w6 = a * abs(e[6]) + abs(q[6])
-    w7 = a * abs(e[7]) + abs(q[7])
-    w8 = a * abs(e[8]) + abs(q[8])
-    w9 = a * abs(e[9]) + abs(q[9])
-    ok = (
-        _guarded(m0) and _guarded(m1) and _guarded(m2) and _guarded(m3) and _guarded(m4)
-        and _guarded(m5) and _guarded(m6) and _guarded(m7) and _guarded(m8) and _guarded(m9)
-        and _guarded(w0) and _guarded(w1) and _guarded(w2) and _guarded(w3) and _guarded(w4)
-        and _guarded(w5) and _guarded(w6) and _guarded(w7) and _guarded(w8) and _guarded(w9)
-    )  # fmt: skip
     if not ok:
         return -1
-    mag = _invariants_mag(w0, w1, w2, w3, w4, w5, w6, w7, w8, w9)
+    mag = _invariants_mag(w[0], w[1], w[2], w[3], w[4], w[5], w[6], w[7], w[8], w[9])
     return positive_count(
         _sign(inv[3], K[0] * mag[3], True),
         _sign(inv[4], K[1] * mag[4], True),
@@ -368,43 +362,15 @@ def _member_definite(s: float, e: Any, q: Any, KD: Any, certified: bool) -> int:
     """Is the member ``s E + Q`` definite?  Sylvester's minors of its computed entries against
     :data:`~quadric_contact.modes.errorbounds.MEMBER_MINORS_ERRBOUND` (certified), or their plain
     signs."""
-    if certified and s != 0.0 and not (_SAMPLE_MIN <= abs(s) <= _SAMPLE_MAX):
-        return _DEF_UNKNOWN
-    m0 = s * e[0] + q[0]
-    m1 = s * e[1] + q[1]
-    m2 = s * e[2] + q[2]
-    m3 = s * e[3] + q[3]
-    m4 = s * e[4] + q[4]
-    m5 = s * e[5] + q[5]
-    m6 = s * e[6] + q[6]
-    m7 = s * e[7] + q[7]
-    m8 = s * e[8] + q[8]
-    m9 = s * e[9] + q[9]
-    d = _minors4(m0, m1, m2, m3, m4, m5, m6, m7, m8, m9)
+    m, w, ok = _member(s, e, q)
+    d = _minors4(m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8], m[9])
     if not certified:
         return _definite_from_signs(
             _sign(d[0], 0.0, False), _sign(d[1], 0.0, False), _sign(d[2], 0.0, False), _sign(d[3], 0.0, False)
         )
-    a = abs(s)
-    w0 = a * abs(e[0]) + abs(q[0])
-    w1 = a * abs(e[1]) + abs(q[1])
-    w2 = a * abs(e[2]) + abs(q[2])
-    w3 = a * abs(e[3]) + abs(q[3])
-    w4 = a * abs(e[4]) + abs(q[4])
-    w5 = a * abs(e[5]) + abs(q[5])
-    w6 = a * abs(e[6]) + abs(q[6])
-    w7 = a * abs(e[7]) + abs(q[7])
-    w8 = a * abs(e[8]) + abs(q[8])
-    w9 = a * abs(e[9]) + abs(q[9])
-    ok = (
-        _guarded(m0) and _guarded(m1) and _guarded(m2) and _guarded(m3) and _guarded(m4)
-        and _guarded(m5) and _guarded(m6) and _guarded(m7) and _guarded(m8) and _guarded(m9)
-        and _guarded(w0) and _guarded(w1) and _guarded(w2) and _guarded(w3) and _guarded(w4)
-        and _guarded(w5) and _guarded(w6) and _guarded(w7) and _guarded(w8) and _guarded(w9)
-    )  # fmt: skip
     if not ok:
         return _DEF_UNKNOWN
-    mag = _minors4_mag(w0, w1, w2, w3, w4, w5, w6, w7, w8, w9)
+    mag = _minors4_mag(w[0], w[1], w[2], w[3], w[4], w[5], w[6], w[7], w[8], w[9])
     return _definite_from_signs(
         _sign(d[0], KD[0] * mag[0], True),
         _sign(d[1], KD[1] * mag[1], True),

@@ -5,7 +5,7 @@ One table, written once, decides transversal contact and the region for every pa
 Its inputs are four facts about the pencil ``lambda E + Q`` and ``P(lambda) = det(lambda E + Q)``
 that any number mode can read (exactly, with a certified error bound, or in plain binary64);
 the exact scalar path, every number mode and the compiled kernels all look their answer up
-here.  The argument is :mod:`quadric_contact_proofs.twmw_2009_signature_decision`; in short:
+here.  The argument is ``proofs/twmw_2009_signature_decision.py``; in short:
 
 * ``E`` has no real point at infinity, so the surfaces share a real point iff the forms
   ``X^T E X`` and ``X^T Q X`` have a common non-trivial real zero;  by Finsler-Calabi (four
