@@ -859,6 +859,8 @@ def _complete(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> 
         except ImportError:
             continue
         k = min(n, cfg["fcl_complete_pairs"])
+        if k == 0:
+            continue
         t0 = time.perf_counter()
         got = peer_fcl(geometry[0], geometry[1], range(k))
         seconds = time.perf_counter() - t0
