@@ -836,6 +836,29 @@ def verify_minor_row_bounds() -> None:
             raise AssertionError(f"the magnitude program of the {size}x{size} minor exceeds the general one")
 
 
+def verify_member_minor_row_bounds() -> None:
+    """Raise AssertionError unless the magnitude program of each leading minor ``d_k`` of the
+    generated ``kernels.leading_minors_4`` is at most ``k! R0 .. R_(k-1)`` (``R_r`` a bound of
+    every entry of row ``r``): coefficient by coefficient it is at most the general ``k x k``
+    determinant's ``k!`` products at the symmetric point, each of which takes one entry per row
+    (the semi-static bound :data:`~quadric_contact.modes.errorbounds.MEMBER_MINORS_SEMI`)."""
+    from itertools import permutations
+
+    from quadric_contact._generated import kernels
+
+    A, args = symmetric_matrix("m")
+    magnitude = kernels.leading_minors_4_magnitude(*args)
+    for size in range(1, 5):
+        general = sp.Integer(0)
+        for sigma in permutations(range(size)):
+            general += sp.prod([A[r, sigma[r]] for r in range(size)])
+        if len(list(permutations(range(size)))) != math.factorial(size):
+            raise AssertionError("permutation count")
+        gap = sp.Poly(sp.expand(general - sp.expand(magnitude[size - 1])), *args)
+        if any(c < 0 for c in gap.coeffs()):
+            raise AssertionError(f"the magnitude program of d{size} exceeds the general determinant")
+
+
 def verify_plane_zeros() -> None:
     """Raise AssertionError unless, for ``Q`` with a zero quadratic part (a plane), every
     product that the pencil program adds up into ``c0`` and ``c1`` has a factor (a 2x2 minor)
@@ -1093,6 +1116,7 @@ def regenerate_blocks(path: Path = BLOCKS_PATH, check: bool = False) -> bool:
     """Write (or with ``check=True`` only compare) ``_generated/blocks.py``."""
     verify_row_bound()
     verify_minor_row_bounds()
+    verify_member_minor_row_bounds()
     verify_plane_zeros()
     text = emit_blocks()
     current = path.read_text() if path.exists() else None

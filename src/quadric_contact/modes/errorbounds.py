@@ -50,6 +50,7 @@ __all__ = [
     "INPUT_MAX",
     "INPUT_MIN",
     "MEMBER_MINORS_ERRBOUND",
+    "MEMBER_MINORS_SEMI",
     "MINORS_ERRBOUND",
     "PENCIL_ERRBOUND",
     "RHO_MAX",
@@ -289,6 +290,39 @@ criterion, :func:`~quadric_contact._generated.kernels.leading_minors_4`), keyed 
 rounded": ``|d_k^ - d_k(s E + Q)| <= fl(K_k * M_k)`` with ``M_k`` the magnitude program at ``W^``
 (the same argument as for ``E1 .. E4``: the member's entries carry ``(1 + u)^(2 + r)`` each, the
 program ``k`` of them on every path)."""
+
+
+# Semi-static form (the signature kernel, :mod:`quadric_contact.modes.kernels_signature`): instead
+# of the magnitude program at W^, one product of row maxima.  With R*_r the largest entry of row
+# r of W* (the whole row of the symmetric matrix), every path of the program leading_minors_4 for
+# d_k takes one entry from each of the rows 0 .. k-1 (codegen.verify_member_minor_row_bounds), so
+# p~(W*) <= k! R*_0 .. R*_(k-1).  The kernel's row maxima of W^ are at least (1 - u)^(2 + r) R*_r,
+# their product takes k - 1 roundings and the final product by the constant one more, so
+#     |d_k^ - d_k(s E + Q)| <= fl(S_k * fl(..fl(R^_0 R^_1)..R^_(k-1))),
+#     S_k = ((1 + gamma_N)(1 + a)^k - 1) k! / (1 - u)^((2 + r) k + k).
+# The guards are those of the member (every non-zero entry of M^ and W^ in [INPUT_MIN,
+# INPUT_MAX], s in [SAMPLE_MIN, SAMPLE_MAX]); a non-zero product of k <= 4 row maxima is then at
+# least 2^-720 and the bound a normal number.  A row of W^ that is all zeros is a row of exact
+# zeros of M^: every path of d_k (k past that row) has a zero factor, so d_k^ = 0 exactly, and so
+# is its bound.
+
+
+def _member_minor_semi(k: int, rounded: bool) -> float:
+    rc = _counts("leading_minors_4")
+    j = rc["outputs"].index(f"d{k}")
+    n = rc["value"][j]
+    r = 1 if rounded else 0
+    a = (1 + _U) ** (2 + r) - 1
+    numerator = ((1 + gamma(n)) * (1 + a) ** k - 1) * math.factorial(k)
+    return round_up(numerator / (1 - _U) ** ((2 + r) * k + k))
+
+
+MEMBER_MINORS_SEMI = {
+    rounded: tuple(_member_minor_semi(k, rounded) for k in range(1, 5)) for rounded in (False, True)
+}
+"""``S_k`` for the leading principal minors ``d1 .. d4`` of a member ``s E + Q`` from the row
+maxima of its magnitudes (keyed by "inputs are rounded"): ``|d_k^ - d_k(s E + Q)| <= fl(S_k *
+fl(R0 .. R_(k-1)))``, the product of row maxima rounded left to right."""
 
 
 def _check_member_guard() -> None:

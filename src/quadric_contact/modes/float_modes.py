@@ -451,9 +451,9 @@ class FloatMode(NumberMode):
         return super().with_candidates(method, pairs)
 
     def separation(self, pairs: Pairs) -> np.ndarray:
-        from quadric_contact.modes.separation import separation_float
+        from quadric_contact.modes.kernels_signature import signature_float
 
-        return separation_float(pairs, certified=self.filtered, backend=self.backend, threads=self.threads)
+        return signature_float(pairs, certified=self.filtered, backend=self.backend, threads=self.threads)
 
     def smallness(self, pairs: Pairs) -> np.ndarray:
         from quadric_contact.modes import smallness_float
