@@ -342,20 +342,25 @@ def _make_signature(certified: bool) -> Any:
                 c0, c1, c2, c3, c4 = _pencil(e, q)
                 s1, s2, s3, ok = critical_points_fast(c1, c2, c3, c4)
                 d1, g1 = _member(s1, e, q, SKt, inputs_ok, certified)
-                d2, g2 = _member(s2, e, q, SKt, inputs_ok, certified)
                 d3, g3 = _member(s3, e, q, SKt, inputs_ok, certified)
                 fb[i] = 1.0 if ok else 0.0
                 fb[S + i] = d1
-                fb[2 * S + i] = d2
+                fb[2 * S + i] = s2
                 fb[3 * S + i] = d3
                 fb[4 * S + i] = g1
-                fb[5 * S + i] = g2
+                fb[5 * S + i] = 1.0 if inputs_ok else 0.0
                 fb[6 * S + i] = g3
             for i in range(m):
-                code = decide_signature(
-                    fb[i] == 1.0, fb[S + i], fb[2 * S + i], fb[3 * S + i], fb[4 * S + i], fb[5 * S + i],
-                    fb[6 * S + i], certified,
-                )  # fmt: skip
+                d1 = fb[S + i]
+                d3 = fb[3 * S + i]
+                if d3 == _POSITIVE or d1 == _NEGATIVE:
+                    d2, g2 = _DEF_UNKNOWN, _UNC  # a witness already: the middle point is not needed
+                else:
+                    # the middle member only for the pairs that need it (most have a witness)
+                    e = _load(eb_, i, S)
+                    q = _load(qb_, i, S)
+                    d2, g2 = _member(fb[2 * S + i], e, q, SKt, fb[5 * S + i] == 1.0, certified)
+                code = decide_signature(fb[i] == 1.0, d1, d2, d3, fb[4 * S + i], g2, fb[6 * S + i], certified)
                 if code == UNCERTAIN and certified:
                     # a second reading: trigonometric sample points and magnitude programs
                     for k in range(10):

@@ -98,6 +98,11 @@ _ROW_CLASS = np.array([_class_of_kind(k) for k in KINDS for _ in (1, -1)] + [_CL
 _ROW_SIGN = np.array([s for _ in KINDS for s in (1, -1)] + [0], dtype=np.int8)
 _ROW_ELLIPSOID = np.array([k is QuadricKind.ELLIPSOID for k in KINDS for _ in (1, -1)] + [False], dtype=bool)
 _ROW_REFUSED = np.array([k in REFUSED_KINDS for k in KINDS for _ in (1, -1)] + [False], dtype=bool)
+_ROW_PLANE = np.array([k is QuadricKind.PLANE for k in KINDS for _ in (1, -1)] + [False], dtype=bool)
+_ROW_CHECK_SOLID = np.array(
+    [k not in TABLE_1_KINDS and k is not QuadricKind.PLANE for k in KINDS for _ in (1, -1)] + [False],
+    dtype=bool,
+)
 
 
 def _classes(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -421,16 +426,19 @@ def _solids(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, np.ndarray, np.
     from quadric_contact.theory.overlap import solid_of
 
     used, where = unique_rows(pairs.q_rows(), len(pairs.Q), return_inverse=True)
-    rows = rows_from_masks(mode.classify(pairs.Q, used))
-    plane = np.zeros(used.size, dtype=bool)
-    ellipsoid = np.zeros(used.size, dtype=bool)
-    sign = np.ones(used.size, dtype=np.int8)
-    for k, row in enumerate(rows):
+    rows = rows_from_masks(mode.classify(pairs.Q, used)).astype(np.intp)
+    plane = _ROW_PLANE[rows]
+    ellipsoid = _ROW_ELLIPSOID[rows]
+    sign = np.where(_ROW_SIGN[rows] < 0, -1, 1).astype(np.int8)
+    # the quadrics whose type the mode could not tell, and those of a type whose solid must be
+    # checked (neither a Table 1 type nor a plane), one by one
+    for k in np.flatnonzero((rows == UNCERTAIN_ROW) | _ROW_CHECK_SOLID[rows]):
+        row = int(rows[k])
         if row == UNCERTAIN_ROW:
             q = exact_matrix(pairs.Q, int(used[k]))
             kind, s = q.kind, q.canonical_sign  # type: ignore[attr-defined]
         else:
-            kind, s = KINDS[int(row) // 2], (-1 if int(row) % 2 else 1)
+            kind, s = KINDS[row // 2], (-1 if row % 2 else 1)
         if kind not in TABLE_1_KINDS and kind is not QuadricKind.PLANE:
             q = exact_matrix(pairs.Q, int(used[k]))
             try:
