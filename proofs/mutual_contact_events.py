@@ -32,6 +32,11 @@ Claim.
    the double root ``-s0 / s1`` of the first subresultant ``s1 l + s0`` of ``P`` and ``P'`` is
    positive; ``s1 = -2 a^5 (p - q)^2 (p - s)^2 (q - s)^2`` for ``P = a (l - p)^2 (l - q) (l - s)``
    vanishes only at a triple root or two double roots (left undecided, never guessed).
+   Between roots of ``Δ4`` the state at a rational time needs no root isolation:
+   ``Δ4 < 0`` means exactly two real roots, the two negative ones of Wang-Wang-Kim
+   (overlapping); ``Δ4 > 0`` means four real roots (not none: two are negative), where
+   Descartes' rule of signs is exact (two sign changes of ``c0 .. c4``: apart; none:
+   overlapping).
 3. *The structural double root.*  When the quadratic blocks satisfy ``S_b(t) = k S_a(t)`` for
    a constant ``k`` (similar bodies in the same orientation that only translate, congruent
    ones, two spheres), ``k > 0`` (both blocks are positive definite) and ``N = B - k A`` has a
@@ -40,7 +45,9 @@ Claim.
    ``Δ4 ≡ 0``, and ``P = (l + k)^2 (r2 l^2 + r1 l + r0)`` with ``r2 = c4``,
    ``r1 = c3 - 2 k r2``, ``r0 = c2 - 2 k r1 - k^2 r2``.  The positive roots are those of the
    quadratic (``r2 = c4 != 0``, ``r0 = c0 / k^2 != 0``), and the argument of step 2 runs with
-   its discriminant ``r1^2 - 4 r2 r0`` in place of ``Δ4`` and its double root ``-r1 / (2 r2)``.
+   its discriminant ``r1^2 - 4 r2 r0`` in place of ``Δ4`` and its double root ``-r1 / (2 r2)``;
+   where it is positive the two real roots have the sign of their sum ``-r1 / r2`` (their
+   product ``r0 / r2`` is positive): apart iff ``r1 r2 < 0``.
 4. *The broad phase.*  On a window ``[a, b]`` the swept box of a body contains every placement:
    the centre ``p(m + s) = Σ a_k s^k`` (the Taylor shift, exact) stays within
    ``a_0 ± Σ_{k>=1} |a_k| h^k`` for ``|s| <= h``; a body ``(x - c)^T S (x - c) <= m`` reaches
@@ -49,12 +56,16 @@ Claim.
    ``S - L I`` positive definite (so under any rotation); the rational square roots are rounded
    up, and the floats of the sweep rounded outwards.  Boxes that do not meet hold bodies that do
    not meet, at any time of the window: a pruned pair is apart there, as the pencil would say.
+   Likewise a kept pair whose centres stay farther apart than the sum of the two bounds of the
+   largest semi-axes (``|p_a(t) - p_b(t)|^2 - (rho_a + rho_b)^2`` positive at ``a`` without a
+   real root in ``[a, b]``, decided exactly) is apart on the window without a pencil.
 
 What is checked and how.  Symbolic identities: the rotation's determinant and the degrees of
 freedom of the moved matrix (``moved_determinant``), the pencil's end coefficients and its
 scaling (``pencil_ends_and_scaling``), the package's ``Δ4`` is the discriminant
 (``delta4_is_the_discriminant``), the subresultant's double root and where it vanishes
-(``subresultant_double_root``), the structural double root (``structural_double_root``) and
+(``subresultant_double_root``), the sign of the discriminant by the roots' kinds
+(``discriminant_sign``), the structural double root (``structural_double_root``) and
 the quotient's coefficients (``quadratic_factor``), the Taylor shift and Cauchy-Schwarz of the
 swept box (``swept_box_bounds``).  Exact computation: a turning body's pencil in the frame of
 the other equals ``n_a^8`` times the pencil on both sides (``relative_frame``); the rational
@@ -190,6 +201,25 @@ def subresultant_double_root() -> Finding:
         "at a root of Δ4 with one double root p (q, s distinct from p and each other, possibly non-real), "
         "s1 != 0 and p = -s0 / s1 is real: the pair touches iff it is positive; s1 = 0 means a triple root "
         "or two double roots (then the state is left undecided, not guessed)"
+    )
+
+
+@proof.check(
+    "a quartic with two real roots and a conjugate pair has Δ4 < 0; with two conjugate pairs Δ4 > 0",
+    method=Method.IDENTITY,
+)
+def discriminant_sign() -> Finding:
+    a, p, q, u, v, u2, w = sp.symbols("a p q u v u2 w", real=True)
+    two = sp.Poly(sp.expand(a * (LAM - p) * (LAM - q) * ((LAM - u) ** 2 + v**2)), LAM)
+    closed = -4 * a**6 * v**2 * (p - q) ** 2 * ((p - u) ** 2 + v**2) ** 2 * ((q - u) ** 2 + v**2) ** 2
+    ensure(sp.expand(sp.discriminant(two) - closed) == 0, "two real roots")
+    none = sp.Poly(sp.expand(a * ((LAM - u) ** 2 + v**2) * ((LAM - u2) ** 2 + w**2)), LAM)
+    pairs = ((u - u2) ** 2 + (v - w) ** 2) * ((u - u2) ** 2 + (v + w) ** 2)
+    ensure(sp.expand(sp.discriminant(none) - 16 * a**6 * v**2 * w**2 * pairs**2) == 0, "no real root")
+    return agrees(
+        "Δ4 = -4 a^6 v^2 (p - q)^2 |p - z|^4 |q - z|^4 < 0 with two simple real roots p, q and z = u + iv; "
+        "a square times 16 a^6 v^2 w^2 > 0 with none; a product of squares > 0 with four: where Δ4 != 0 "
+        "its sign tells two real roots (< 0) from four or none (> 0)"
     )
 
 
