@@ -203,3 +203,29 @@ def test_mutual_in_a_scene_file():
         _scene(body, 'mutual = ["z"]')
     with pytest.raises(SceneError, match=r"scene\.mutual"):
         _scene(body, "mutual = 3")
+
+
+def _dense(bodies, pieces, meeting, near, samples, workers=1):
+    from quadric_contact.scenes.manybody import many_body_scene
+    from quadric_contact.testing.mutual_sampling import dense_check, near_pairs
+
+    scene = many_body_scene(bodies, pieces, seed=2, check_smallness=False, mutual=True)
+    found = mutual_contacts(scene)
+    pairs = near_pairs(scene, found, meeting=meeting, near=near, seed=2)
+    assert len(pairs) == meeting + near
+    return dense_check(scene, found, pairs, samples=samples, workers=workers)
+
+
+def test_no_contact_interval_missed_against_dense_exact_sampling():
+    """Pairs of the generated many-body scene that meet and near misses: the timeline's state
+    equals the static exact decision at every sample, so no sampled contact is missed."""
+    check = _dense(120, 4, meeting=4, near=2, samples=48)
+    assert check.disagreements == [] and check.missed == 0
+    assert check.sampled_intervals >= 4 and check.exact_intervals >= 4
+
+
+@pytest.mark.slow
+def test_no_contact_interval_missed_on_the_1000_body_scene():
+    check = _dense(1000, 16, meeting=40, near=20, samples=400, workers=2)
+    assert check.disagreements == [] and check.missed == 0
+    assert check.sampled_intervals >= 40
