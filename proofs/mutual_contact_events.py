@@ -37,17 +37,27 @@ Claim.
    (overlapping); ``Δ4 > 0`` means four real roots (not none: two are negative), where
    Descartes' rule of signs is exact (two sign changes of ``c0 .. c4``: apart; none:
    overlapping).
-3. *The structural double root.*  When the quadratic blocks satisfy ``S_b(t) = k S_a(t)`` for
-   a constant ``k`` (similar bodies in the same orientation that only translate, congruent
-   ones, two spheres), ``k > 0`` (both blocks are positive definite) and ``N = B - k A`` has a
-   zero quadratic block, so ``adj N = 0`` and ``det(e A + N)`` has no terms of degree 0 or 1 in
-   ``e`` (Jacobi's formula): ``l = -k < 0`` is a root of multiplicity at least 2 at every time,
-   ``Δ4 ≡ 0``, and ``P = (l + k)^2 (r2 l^2 + r1 l + r0)`` with ``r2 = c4``,
-   ``r1 = c3 - 2 k r2``, ``r0 = c2 - 2 k r1 - k^2 r2``.  The positive roots are those of the
-   quadratic (``r2 = c4 != 0``, ``r0 = c0 / k^2 != 0``), and the argument of step 2 runs with
-   its discriminant ``r1^2 - 4 r2 r0`` in place of ``Δ4`` and its double root ``-r1 / (2 r2)``;
-   where it is positive the two real roots have the sign of their sum ``-r1 / r2`` (their
-   product ``r0 / r2`` is positive): apart iff ``r1 r2 < 0``.
+3. *The structural double root.*  When the quadratic blocks satisfy ``q S_b(t) = p S_a(t)``
+   for polynomials ``p``, ``q`` without a common factor (similar bodies in the same
+   orientation: congruent ones that only translate, ``q = 1``, and two spheres whatever their
+   rotations, whose matrices are varying positive multiples ``n(t)^2`` of a sphere's),
+   ``k = p / q > 0`` (a ratio of positive definite blocks; ``q`` never vanishes) and
+   ``N = q B - p A`` has a zero quadratic block, so ``adj N = 0`` and ``det(e A + N)`` has no
+   terms of degree 0 or 1 in ``e`` (Jacobi's formula): ``q^4 P(l) = det((q l + p) A + N)`` has
+   the root ``l = -k < 0`` of multiplicity at least 2 at every time, ``Δ4 ≡ 0``, and
+   ``P = (q l + p)^2 (r2 l^2 + r1 l + r0)`` over ``Q[t]`` (Gauss's lemma: ``q l + p`` is
+   primitive) with ``r2 = c4 / q^2``, ``r1 = (c3 - 2 p q r2) / q^2``,
+   ``r0 = (c2 - 2 p q r1 - p^2 r2) / q^2``.  The positive roots are those of the quadratic
+   (``r2``, ``r0`` never vanish), and the argument of step 2 runs with its discriminant
+   ``r1^2 - 4 r2 r0`` in place of ``Δ4`` and its double root ``-r1 / (2 r2)``; where it is
+   positive the two real roots have the sign of their sum ``-r1 / r2`` (their product
+   ``r0 / r2`` is positive): apart iff ``r1 r2 < 0``.  Any other pencil with ``Δ4 ≡ 0``
+   (coaxial spheroids moving along their common axis) is split into its irreducible factors
+   over ``Q[t]``: each is square-free in ``l`` with a leading coefficient dividing ``c4``, so
+   its roots are simple and continuous, and they meet another factor's only at roots of the
+   resultant; the state changes only at real roots of these discriminants and resultants, and
+   at one of them the common root ``-s0 / s1`` of the first subresultant decides a touch
+   (undecided where ``s1`` vanishes too).
 4. *The broad phase.*  On a window ``[a, b]`` the swept box of a body contains every placement:
    the centre ``p(m + s) = Σ a_k s^k`` (the Taylor shift, exact) stays within
    ``a_0 ± Σ_{k>=1} |a_k| h^k`` for ``|s| <= h``; a body ``(x - c)^T S (x - c) <= m`` reaches
@@ -67,20 +77,19 @@ scaling (``pencil_ends_and_scaling``), the package's ``Δ4`` is the discriminant
 (``subresultant_double_root``), the sign of the discriminant by the roots' kinds
 (``discriminant_sign``), the structural double root (``structural_double_root``) and
 the quotient's coefficients (``quadratic_factor``), the Taylor shift and Cauchy-Schwarz of the
-swept box (``swept_box_bounds``).  Exact computation: a turning body's pencil in the frame of
+swept box (``swept_box_bounds``).  Exact computation: two spheres, one turning, have a
+ratio ``k(t)`` that is not constant and the factorization over ``Q[t]`` (``turning_spheres``);
+a turning body's pencil in the frame of
 the other equals ``n_a^8`` times the pencil on both sides (``relative_frame``); the rational
 square root is an upper bound (``square_root_rounded_up``).  Cross-checks (the full profile),
-no part of the proof: the timelines of random moving pairs (translating, turning, similar)
-against the static exact decision at sampled rational times and at the rational events
-(``timelines_sampled``); random swept boxes contain the exact extents of the body at sampled times
-(``boxes_contain_the_bodies``).
+no part of the proof: the timelines of random moving pairs (translating, turning, similar, two
+spheres one of which turns) against the static exact decision at sampled rational times and at
+the rational events (``timelines_sampled``); random swept boxes contain the exact extents of the
+body at sampled times (``boxes_contain_the_bodies``).
 
 Not proven here: that the roots of a polynomial of constant degree depend continuously on its
-coefficients (a standard result), used in step 2; the correct rounding of ``float`` of a
-rational (Python's documented behaviour), used for the sweep's outward rounding; the case
-``Δ4 ≡ 0`` with no constant ``k`` (a structural multiple root of another kind, such as coaxial
-spheroids moving along their common axis), which the module leaves to the sampled state of
-the window.
+coefficients (a standard result), used in steps 2 and 3; the correct rounding of ``float`` of a
+rational (Python's documented behaviour), used for the sweep's outward rounding.
 """
 
 from __future__ import annotations
@@ -100,11 +109,10 @@ from ._plane_pencil import LAM, ellipsoid_matrix
 proof = Proof(
     "Mutual contact events",
     "two moving ellipsoids change state only at real roots of the discriminant in t of det(l A(t) + B(t)); "
-    "the structural double root of similar translating bodies; sound swept boxes",
+    "the structural double root of similar bodies; sound swept boxes",
     not_proven=(
         "the continuity of the roots of a polynomial of constant degree in its coefficients and the "
-        "correct rounding of float(Fraction), standard facts not re-derived; the case of a discriminant "
-        "identically zero without a constant ratio of the quadratic blocks, not treated"
+        "correct rounding of float(Fraction), standard facts not re-derived"
     ),
     relies_on=("Wang-Wang-Kim 2001",),
 )
@@ -224,7 +232,7 @@ def discriminant_sign() -> Finding:
 
 
 @proof.check(
-    "S_b = k S_a: N = B - k A has a zero quadratic block, adj N = 0 and det(e A + N) = O(e^2)",
+    "q S_b = p S_a: N = q B - p A has a zero quadratic block, adj N = 0 and det(e A + N) = O(e^2)",
     method=Method.IDENTITY,
 )
 def structural_double_root() -> Finding:
@@ -255,22 +263,55 @@ def structural_double_root() -> Finding:
 
 
 @proof.check(
-    "(l + k)^2 (r2 l^2 + r1 l + r0): r2 = c4, r1 = c3 - 2 k r2, r0 = c2 - 2 k r1 - k^2 r2, "
-    "c1 = 2 k r0 + k^2 r1, c0 = k^2 r0",
+    "(q l + p)^2 (r2 l^2 + r1 l + r0): r2 = c4 / q^2, r1 = (c3 - 2 p q r2) / q^2, "
+    "r0 = (c2 - 2 p q r1 - p^2 r2) / q^2, c1 = 2 p q r0 + p^2 r1, c0 = p^2 r0",
     method=Method.IDENTITY,
 )
 def quadratic_factor() -> Finding:
-    k, r0, r1, r2 = sp.symbols("k r0 r1 r2", real=True)
-    P = sp.Poly(sp.expand((LAM + k) ** 2 * (r2 * LAM**2 + r1 * LAM + r0)), LAM)
+    p, q, r0, r1, r2 = sp.symbols("p q r0 r1 r2", real=True)
+    P = sp.Poly(sp.expand((q * LAM + p) ** 2 * (r2 * LAM**2 + r1 * LAM + r0)), LAM)
     c = [P.coeff_monomial(LAM**j) for j in range(5)]
-    ensure(sp.expand(c[4] - r2) == 0, "r2")
-    ensure(sp.expand(c[3] - 2 * k * r2 - r1) == 0, "r1")
-    ensure(sp.expand(c[2] - 2 * k * r1 - k * k * r2 - r0) == 0, "r0")
-    ensure(sp.expand(c[1] - 2 * k * r0 - k * k * r1) == 0 and sp.expand(c[0] - k * k * r0) == 0, "c1, c0")
+    ensure(sp.expand(c[4] - q**2 * r2) == 0, "r2")
+    ensure(sp.expand(c[3] - 2 * p * q * r2 - q**2 * r1) == 0, "r1")
+    ensure(sp.expand(c[2] - 2 * p * q * r1 - p**2 * r2 - q**2 * r0) == 0, "r0")
+    ensure(sp.expand(c[1] - 2 * p * q * r0 - p**2 * r1) == 0 and sp.expand(c[0] - p**2 * r0) == 0, "c1, c0")
     return agrees(
-        "the quotient is read off c4, c3, c2 and checked on c1, c0; r2 = c4 < 0 and r0 = c0 / k^2 < 0 "
+        "the quotient is read off c4, c3, c2 and checked on c1, c0; r2 = c4 / q^2 < 0 and r0 = c0 / p^2 < 0 "
         "never vanish, so its positive roots change only at roots of r1^2 - 4 r2 r0, and a double one is "
         "-r1 / (2 r2)"
+    )
+
+
+@proof.check(
+    "two spheres, one turning: the quadratic blocks keep a ratio k(t) that is not constant, and "
+    "P = (q l + p)^2 R exactly",
+    method=Method.COMPUTATION,
+)
+def turning_spheres() -> Finding:
+    from quadric_contact import Quadric
+    from quadric_contact._generated.formulas import pencil_coefficients
+    from quadric_contact.scenes.mutual import _exact_quotient, _homothety
+    from quadric_contact.scenes.trajectory import PolynomialMotion
+
+    F = Fraction
+    Sa, Sb = Quadric.sphere(F(1, 5), (0, 0, 1)), Quadric.sphere(F(3, 10), (-2, 0, 1))
+    (sa,) = PolynomialMotion(((0,), (0,), (0,)), ((1,), (0, F(1, 4)), (0,), (0, F(1, 4)))).segments(
+        F(0), F(4), Sa.center()
+    )
+    (sb,) = PolynomialMotion(((0, 1), (0,), (0,))).segments(F(0), F(4), Sb.center())
+    A, B = sa.moved_upper(-Sa, Sa.center()), sb.moved_upper(-Sb, Sb.center())
+    k = _homothety(A, B)
+    ensure(k is not None and k[1].degree() > 0, "a ratio of polynomials, not a constant")
+    assert k is not None
+    p, q = k
+    c = pencil_coefficients(*A, *B)
+    r2 = _exact_quotient(c[4], q * q)
+    r1 = _exact_quotient(c[3] - 2 * p * q * r2, q * q)
+    r0 = _exact_quotient(c[2] - 2 * p * q * r1 - p * p * r2, q * q)
+    ensure((c[1] - 2 * p * q * r0 - p * p * r1).is_zero() and (c[0] - p * p * r0).is_zero(), "c1, c0")
+    return agrees(
+        f"k(t) = ({p}) / ({q}); the quotient's coefficients are polynomials of degrees "
+        f"{r0.degree()}, {r1.degree()}, {r2.degree()} in t"
     )
 
 
@@ -411,18 +452,20 @@ def _random_pairs(rng: random.Random, n: int) -> list[Any]:
     F = Fraction
     scenes = []
     for i in range(n):
-        kind = i % 3  # 0: generic shapes, 1: congruent translates, 2: one turning
+        kind = i % 4  # 0: generic shapes, 1: congruent translates, 2: one turning, 3: spheres, one turning
         bodies = []
         shape = tuple(F(rng.randint(2, 6), 10) for _ in range(3))
         meet = (F(rng.randint(-4, 4), 8), F(rng.randint(-4, 4), 8), F(rng.randint(-4, 4), 8))
         for b in range(2):
             axes = shape if kind == 1 else tuple(F(rng.randint(2, 6), 10) for _ in range(3))
+            if kind == 3:
+                axes = (axes[0],) * 3
             start = tuple(F(rng.randint(-12, 12), 4) for _ in range(3))
             # aim at a point near the common one at a time in the span
             at = F(rng.randint(1, 3))
             velocity = tuple((meet[k] + F(rng.randint(-2, 2), 10) - start[k]) / at for k in range(3))
             q = None
-            if kind == 2 and b == 0:
+            if kind in (2, 3) and b == 0:
                 axis = rng.randrange(3)
                 q = ((1,), *(((0, F(rng.randint(1, 4), 4)) if k == axis else (0,)) for k in range(3)))
             motion = PolynomialMotion(tuple((F(0), v) for v in velocity), q)
@@ -448,7 +491,7 @@ def _static(scene: Any, t: Fraction) -> str:
     examples=0,
     large=60,
     unit="random pairs",
-    detail="a third congruent translates, a third turning; 17 even times, every gap, rational events",
+    detail="generic, congruent translates, one turning, spheres; 17 even times, every gap, rational events",
     method=Method.CROSS_CHECK,
     requires=(),
 )

@@ -20,10 +20,14 @@ positive power of ``|q(t)|^2`` times the fixed negative determinants.  So the
 state is decided at one rational time between consecutive real roots of
 ``Δ4`` and, at each root, by the sign of the double root ``-s0/s1`` of the
 first subresultant ``s1 λ + s0`` of ``P`` and ``P'``: touching iff it is
-positive.  Similar bodies that only translate (congruent ones, spheres) have
-the structural double root ``λ = -k < 0`` where the quadratic part vanishes:
-``P = (λ + k)^2 R(λ)``, and the discriminant of the quadratic ``R`` takes
-the place of ``Δ4`` (identically zero then).  At a rational time between
+positive.  Similar bodies in the same orientation (congruent ones that only translate,
+spheres whatever their rotations) have the structural double root
+``λ = -k(t) < 0`` where the quadratic part vanishes, ``k = p / q`` a ratio of
+polynomials: ``P = (q λ + p)^2 R(λ)``, and the discriminant of the quadratic
+``R`` takes the place of ``Δ4`` (identically zero then).  Any other pencil
+whose ``Δ4`` vanishes identically (coaxial spheroids moving along their axis)
+is split into its irreducible factors, whose roots meet only at roots of
+their discriminants and resultants.  At a rational time between
 roots the state needs no root isolation: the sign of ``Δ4`` tells two real
 roots (the two negative ones: overlapping) from four, where Descartes' rule of
 signs is exact (two sign changes: apart).  The reduction is proved in
@@ -57,7 +61,7 @@ import flint
 import numpy as np
 
 from quadric_contact._generated.formulas import paper_deltas, pencil_coefficients
-from quadric_contact.exact.algebraic import RealAlgebraic, rational_between, real_roots, sign_at
+from quadric_contact.exact.algebraic import RealAlgebraic, rational_between, real_roots, sign_at, sort_roots
 from quadric_contact.exact.rational import fmpq_of, fraction_of
 from quadric_contact.model.quadric import Quadric
 from quadric_contact.scenes.broadphase import _swept_box_q, ellipsoid_extents
@@ -97,18 +101,17 @@ def _negative_inside(q: Quadric) -> Quadric:
 _QUADRATIC = (0, 1, 2, 4, 5, 7)  # q00 q01 q02 q11 q12 q22 among the ten upper entries
 
 
-def _homothety(A: Sequence[Any], B: Sequence[Any]) -> Fraction | None:
-    """``k`` with the quadratic part of ``B(t)`` equal to ``k`` times that of ``A(t)`` for
-    every ``t`` (congruent or similar bodies that only translate, two spheres), else None."""
-    i = next(j for j in _QUADRATIC if not A[j].is_zero())
-    q, r = divmod(B[i], A[i])
-    if not r.is_zero() or q.degree() > 0 or q.is_zero():
-        return None
-    k = fmpq_of(q[0])
-    if all((B[j] - k * A[j]).is_zero() for j in _QUADRATIC):
-        from quadric_contact.exact.rational import fraction_of
-
-        return fraction_of(k)
+def _homothety(A: Sequence[Any], B: Sequence[Any]) -> tuple[Any, Any] | None:
+    """``(p, q)``, polynomials in ``t`` without a common factor, with the quadratic part of
+    ``q B(t)`` equal to that of ``p A(t)`` at every time (similar bodies in the same
+    orientation, such as congruent translates or two spheres, whatever their rotations),
+    else None.  ``k = p / q > 0``: the ratio of the entries ``00`` of positive definite
+    blocks (``q`` never vanishes; constant ``q = 1`` for bodies that only translate)."""
+    a, b = A[0], B[0]
+    g = a.gcd(b)
+    p, q = b / g, a / g
+    if all((q * B[j] - p * A[j]).is_zero() for j in _QUADRATIC):
+        return p, q
     return None
 
 
@@ -183,14 +186,16 @@ class _PairWindow:
         k = _homothety(A, B)
         self.similar = k is not None
         if k is not None:
-            # λ = -k < 0 makes the quadratic part vanish: P = (λ + k)^2 (r2 λ^2 + r1 λ + r0), and
-            # the positive roots are those of the quadratic factor
-            kq = fmpq_of(k)
+            # λ = -p/q < 0 makes the quadratic part vanish: P = (q λ + p)^2 (r2 λ^2 + r1 λ + r0)
+            # over Q[t] (Gauss: q λ + p is primitive), and the positive roots are those of the
+            # quadratic factor
+            p, q = k
             c0, c1, c2, c3, c4 = self.c
-            r2 = c4
-            r1 = c3 - 2 * kq * r2
-            r0 = c2 - 2 * kq * r1 - kq * kq * r2
-            assert (c1 - (2 * kq * r0 + kq * kq * r1)).is_zero() and (c0 - kq * kq * r0).is_zero()
+            q2 = q * q
+            r2 = _exact_quotient(c4, q2)
+            r1 = _exact_quotient(c3 - 2 * p * q * r2, q2)
+            r0 = _exact_quotient(c2 - 2 * p * q * r1 - p * p * r2, q2)
+            assert (c1 - (2 * p * q * r0 + p * p * r1)).is_zero() and (c0 - p * p * r0).is_zero()
             self.r = (r0, r1, r2)
             disc = r1 * r1 - 4 * r2 * r0
             self.D4 = reduce_positive(disc) if not disc.is_zero() else disc
@@ -199,7 +204,16 @@ class _PairWindow:
             self.D4 = reduce_positive(d4) if not d4.is_zero() else d4
             s1, s0 = _subresultant_1()
             self.s1, self.s0 = s1(*self.c, const=fmpq_of), s0(*self.c, const=fmpq_of)
-        self.roots = [] if self.D4.is_zero() else real_roots(self.D4, t0, t1, ledger=ledger)
+        self.meetings: list[tuple[Any, Any, Any]] = []
+        if self.D4.is_zero() and not self.similar:
+            # a multiple root at every time without a constant ratio (coaxial spheroids moving
+            # along their axis, ...): the roots of the distinct irreducible factors meet only
+            # at roots of their discriminants and of their resultants
+            self.meetings = _factor_meetings(self.c)
+            found = [r for _, _, g in self.meetings for r in real_roots(g, t0, t1, ledger=ledger)]
+            self.roots = sort_roots(found)
+        else:
+            self.roots = [] if self.D4.is_zero() else real_roots(self.D4, t0, t1, ledger=ledger)
 
     def at_rational(self, t: Fraction) -> str:
         """The state at a rational time: by the sign of the discriminant and, where all four
@@ -241,10 +255,62 @@ class _PairWindow:
         if self.similar:  # the double root of the quadratic factor is -r1 / (2 r2)
             r0, r1, r2 = self.r
             return TOUCHING if -sign_at(r1, r) * sign_at(r2, r) > 0 else left
+        if self.meetings:  # the common root -s0 / s1 of the factors that meet here
+            for s1p, s0p, g in self.meetings:
+                if sign_at(g, r) != 0:
+                    continue
+                s1 = sign_at(s1p, r)
+                if s1 == 0:
+                    return UNDECIDED
+                if -sign_at(s0p, r) * s1 > 0:
+                    return TOUCHING
+            return left
         s1 = sign_at(self.s1, r)
         if s1 == 0:  # the gcd of P and P' has degree 2 or more here
             return UNDECIDED
         return TOUCHING if -sign_at(self.s0, r) * s1 > 0 else left
+
+
+def _exact_quotient(a: Any, b: Any) -> Any:
+    q, r = divmod(a, b)
+    assert r.is_zero(), "an exact division"
+    return q
+
+
+def _factor_meetings(c: Sequence[Any]) -> list[tuple[Any, Any, Any]]:
+    """For ``P = Σ c_k(t) l^k`` whose discriminant in ``l`` vanishes identically: for each
+    irreducible factor ``f`` of ``P`` over Q (of degree >= 2 in ``l``) with ``f' = ∂f/∂l``,
+    and each pair of distinct factors ``f, g``: ``(s1, s0, R)`` with ``R(t)`` the resultant
+    in ``l`` (the discriminant of ``f`` up to a factor) and ``s1 l + s0`` the first
+    subresultant, whose root ``-s0 / s1`` is the common root where ``R`` vanishes and
+    ``s1`` does not (``s1 = s0 = 0`` when the pair has no subresultant of degree 1).
+    Exact, with sympy: the path of a rare structural case."""
+    import sympy as sp
+
+    lam, t = sp.symbols("lam t")
+
+    def expr(p: Any) -> Any:
+        return sum(sp.Rational(int(v.p), int(v.q)) * t**i for i, v in enumerate(p.coeffs()))
+
+    def poly_t(e: Any) -> Any:
+        q = sp.Poly(sp.expand(e), t)
+        return flint.fmpq_poly([fmpq_of(Fraction(int(v.p), int(v.q))) for v in reversed(q.all_coeffs())])
+
+    P = sp.expand(sum(expr(ck) * lam**k for k, ck in enumerate(c)))
+    _, factors = sp.factor_list(P, lam, t)
+    fs = [sp.Poly(f, lam) for f, _ in factors if sp.degree(f, lam) >= 1]
+    pairs = [(f, f.diff(lam)) for f in fs if f.degree() >= 2]
+    pairs += [(fs[i], fs[j]) for i in range(len(fs)) for j in range(i + 1, len(fs))]
+    out = []
+    for f, g in pairs:
+        res = sp.resultant(f, g)
+        linear = [sp.Poly(q, lam) for q in sp.subresultants(f, g) if sp.Poly(q, lam).degree() == 1]
+        s1 = poly_t(linear[0].coeff_monomial(lam)) if linear else flint.fmpq_poly([])
+        s0 = poly_t(linear[0].coeff_monomial(1)) if linear else flint.fmpq_poly([])
+        R = poly_t(res)
+        assert not R.is_zero(), "distinct irreducible factors: a resultant that is not zero"
+        out.append((s1, s0, reduce_positive(R)))
+    return out
 
 
 def _far_apart(x: MotionSegment, y: MotionSegment, a: Fraction, b: Fraction, reach: Any) -> bool:
