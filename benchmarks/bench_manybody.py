@@ -38,6 +38,7 @@ The machine is shared: the figures are indicative.
 from __future__ import annotations
 
 import argparse
+import resource
 import sys
 import time
 from fractions import Fraction
@@ -157,6 +158,12 @@ def same_timelines(a, b):
     )
 
 
+def _cpu_seconds():
+    """CPU time of this process and of its finished children (the workers)."""
+    own, children = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+    return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
+
+
 def _mutual_report(scene, broad, args):
     """The mutual part of the whole job, and the dense exact sampling of a subset of pairs."""
     from quadric_contact.testing.mutual_sampling import dense_check, near_pairs
@@ -209,10 +216,13 @@ def main(argv=None):
         qc.transversal_contact(unit[None], plane_or_piece)
         qc.relative_position(unit[None], plane_or_piece)
 
+    cpu = _cpu_seconds()
     broad = simulate(scene, broad_phase=True, workers=args.workers, progress=False)
+    cpu = _cpu_seconds() - cpu
     events = sum(len(p.events) for p in broad.pairs)
     print(
-        f"\nbroad phase + exact events, {args.workers} processes: {broad.seconds:8.2f} s  ({events} events)"
+        f"\nbroad phase + exact events, {args.workers} processes: {broad.seconds:8.2f} s  ({events} events; "
+        f"{cpu:.2f} s of CPU in all processes: the machine may be shared)"
     )
     if args.mutual:
         _mutual_report(scene, broad, args)
