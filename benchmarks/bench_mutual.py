@@ -13,13 +13,18 @@ one in ten turning) is run with ``mutual`` on:
   intervals (maximal intervals where a pair touches or overlaps) in which no sample saw
   the contact.
 
+The exact timelines themselves are compared, on a subset of pairs (``--dense-pairs``: pairs
+that meet and near misses), with the static exact decision at ``--dense-samples`` evenly
+spaced rational times (``quadric_contact.testing.mutual_sampling``): the row "dense exact
+sampling" counts the sampled contact intervals the timelines miss (0 expected).
+
 And the whole scene with the totem and mutual contacts (``simulate``, broad phase on
 two workers) for the time of the complete job.
 
 Usage::
 
     PYTHONPATH=src python benchmarks/bench_mutual.py [--n 1000] [--m 16] [--steps 10,100,1000]
-        [--check] [--whole]
+        [--check] [--whole] [--dense-pairs 30] [--dense-samples 256]
 
 The machine is shared: the figures are indicative.
 """
@@ -128,6 +133,8 @@ def main(argv=None):
     ap.add_argument("--steps", default="10,100,1000")
     ap.add_argument("--check", action="store_true", help="also the run without the broad phase (N^2 pencils)")
     ap.add_argument("--whole", action="store_true", help="also the whole scene: totem and mutual contacts")
+    ap.add_argument("--dense-pairs", type=int, default=30, help="pairs checked by dense exact sampling")
+    ap.add_argument("--dense-samples", type=int, default=256, help="sample times per pair of the dense check")
     args = ap.parse_args(argv)
     scene = many_body_scene(args.n, args.m, seed=args.seed, check_smallness=False, mutual=True)
     ledger = Ledger()
@@ -148,7 +155,20 @@ def main(argv=None):
         ]
         n_every = len(intervals(every, scene.span[0]))
         print(f"{'exact, every pair':38s} {every_s:9.2f} {n_every:18d} {0:7d}  same: {same}")
-    for steps in [int(s) for s in args.steps.split(",")]:
+    if args.dense_pairs > 0:
+        from quadric_contact.testing.mutual_sampling import dense_check, near_pairs
+
+        meeting = (2 * args.dense_pairs + 2) // 3
+        pairs = near_pairs(scene, exact, meeting=meeting, near=args.dense_pairs - meeting, seed=args.seed)
+        started = time.perf_counter()
+        check = dense_check(scene, exact, pairs, samples=args.dense_samples, workers=2)
+        seconds = time.perf_counter() - started
+        label = f"dense exact sampling, {check.pairs} pairs x {check.samples + 1}"
+        print(
+            f"{label:38s} {seconds:9.2f} {check.sampled_intervals:18d} {check.missed:7d}"
+            f"  (timelines against samples: {len(check.disagreements)} disagreements)"
+        )
+    for steps in [int(s) for s in args.steps.split(",") if s.strip()]:
         seconds, seen = sampling(scene, steps)
         label = f"fixed-step sampling, {steps} steps"
         print(f"{label:38s} {seconds:9.2f} {'':18s} {missed(found, seen):7d}")

@@ -203,3 +203,103 @@ def test_mutual_in_a_scene_file():
         _scene(body, 'mutual = ["z"]')
     with pytest.raises(SceneError, match=r"scene\.mutual"):
         _scene(body, "mutual = 3")
+
+
+def _dense(bodies, pieces, meeting, near, samples, workers=1):
+    from quadric_contact.scenes.manybody import many_body_scene
+    from quadric_contact.testing.mutual_sampling import dense_check, near_pairs
+
+    scene = many_body_scene(bodies, pieces, seed=2, check_smallness=False, mutual=True)
+    found = mutual_contacts(scene)
+    pairs = near_pairs(scene, found, meeting=meeting, near=near, seed=2)
+    assert len(pairs) == meeting + near
+    return dense_check(scene, found, pairs, samples=samples, workers=workers)
+
+
+def test_no_contact_interval_missed_against_dense_exact_sampling():
+    """Pairs of the generated many-body scene that meet and near misses: the timeline's state
+    equals the static exact decision at every sample, so no sampled contact is missed."""
+    check = _dense(120, 4, meeting=4, near=2, samples=48)
+    assert check.disagreements == [] and check.missed == 0
+    assert check.sampled_intervals >= 3 and check.exact_intervals >= 4
+
+
+@pytest.mark.slow
+def test_no_contact_interval_missed_on_the_1000_body_scene():
+    check = _dense(1000, 16, meeting=40, near=20, samples=400, workers=2)
+    assert check.disagreements == [] and check.missed == 0
+    assert check.sampled_intervals >= 40
+
+
+def test_coaxial_spheroids_along_their_axis():
+    """A multiple root at every time without a constant ratio (Δ4 ≡ 0, not similar): two
+    spheroids with the common axis x fly head-on along it; their tips touch when the distance
+    of the centres, |4 - 2t|, is 3/10 + 1/2."""
+    common = {"y": 0, "z": 1}
+    bodies = [
+        {"name": "a", "a": F(3, 10), "b": F(1, 5), "c": F(1, 5), "x": -2, "motion": _linear(1, 0), **common},
+        {"name": "b", "a": F(1, 2), "b": F(1, 10), "c": F(1, 10), "x": 2, "motion": _linear(-1, 0), **common},
+    ]
+    scene = _scene(bodies)
+    [pair] = mutual_contacts(scene)
+    assert [(e.time.as_fraction(), e.before, e.at, e.after) for e in pair.events] == [
+        (F(8, 5), SEPARATE, TOUCHING, OVERLAPPING),
+        (F(12, 5), OVERLAPPING, TOUCHING, SEPARATE),
+    ]
+    for k in range(17):
+        t = F(k, 4)
+        assert _static(scene, "a", "b", t) == _code(pair.state_at(t))
+    # a sphere passing a spheroid along the spheroid's axis, off the beat of the samples
+    bodies[1] = {"name": "b", "a": F(1, 7), "b": F(1, 7), "c": F(1, 7), "x": 2, "y": 0, "z": 1,
+                 "motion": _linear(F(-3, 2), 0)}  # fmt: skip
+    scene = _scene(bodies)
+    [pair] = mutual_contacts(scene)
+    times = [e.time for e in pair.events]
+    assert [e.time.as_fraction() for e in pair.events] == [
+        F(4 - F(3, 10) - F(1, 7), F(5, 2)),
+        F(4 + F(3, 10) + F(1, 7), F(5, 2)),
+    ]
+    assert len(times) == 2
+    for k in range(33):
+        t = F(k, 8)
+        assert _static(scene, "a", "b", t) == _code(pair.state_at(t))
+
+
+def test_a_spinning_sphere_and_a_passing_one():
+    """Two spheres, one turning (its matrix a varying positive multiple of a sphere's): the
+    quadratic parts are proportional with a ratio k(t) that is not constant, Δ4 ≡ 0; they
+    touch when the centres are 1/5 + 3/10 apart, at t = 2 ± 1/2."""
+    text = (
+        HEAD.format(mutual="mutual = true")
+        + """
+[[ellipsoid]]
+name = "spin"
+standard = "sphere"
+radius = 0.2
+center = [0, 0, 1]
+[ellipsoid.motion]
+type = "keyframes"
+keys = [
+    { t = 0, at = [0, 0, 1], rotation = [1, 0, 0, 0] },
+    { t = 4, at = [0, 0, 1], rotation = [1, 1, 0, 1] },
+]
+
+[[ellipsoid]]
+name = "pass"
+standard = "sphere"
+radius = 0.3
+center = [-2, 0, 1]
+[ellipsoid.motion]
+type = "linear"
+velocity = [1, 0, 0]
+"""
+    )
+    scene = parse_scene(text, "spin.toml")
+    [pair] = mutual_contacts(scene)
+    assert [(e.time.as_fraction(), e.before, e.at, e.after) for e in pair.events] == [
+        (F(3, 2), SEPARATE, TOUCHING, OVERLAPPING),
+        (F(5, 2), OVERLAPPING, TOUCHING, SEPARATE),
+    ]
+    for k in range(17):
+        t = F(k, 4)
+        assert _static(scene, "spin", "pass", t) == _code(pair.state_at(t))

@@ -320,6 +320,8 @@ def fmpq_of(x: Any) -> Any:
     >>> fmpq_of(Fraction(-3, 4))
     -3/4
     """
+    if type(x) is Fraction:  # the common case first, without building a new Fraction
+        return flint.fmpq(x.numerator, x.denominator)
     if isinstance(x, flint.fmpq):
         return x
     if isinstance(x, flint.fmpz):

@@ -47,6 +47,7 @@ FURTHER_RESULTS: tuple[str, ...] = (
     "Tu-Wang-Mourrain-Wang 2009",
     "Pieces as cut",
     "First-contact scale",
+    "Mutual contact events",
 )
 """Results from outside the paper that the package relies on and proves in ``proofs/``
 alongside the paper's (after them, in this order): the separation condition of two
@@ -56,7 +57,9 @@ region and overlap of an ellipsoid and any quadric from the signature sequence o
 (after Tu, Wang, Mourrain and Wang, CAGD 26, 2009), which needs no smallness: beyond the
 paper; the package's own reduction of contact with a piece as cut by a plane to the plane
 section's pencil (:mod:`quadric_contact.theory.sections`), on which the geometric reading of
-scenes rests; and the choice of the root that :func:`quadric_contact.contact_scale` returns."""
+scenes rests; the choice of the root that :func:`quadric_contact.contact_scale` returns; and the
+reduction of the contacts of two moving ellipsoids with each other to the real roots of a
+discriminant in time (:mod:`quadric_contact.scenes.mutual`)."""
 
 PRINTED: dict[str, str] = {
     # Section 3.2, the two members of the discrimination system used by Corollary 10.

@@ -55,6 +55,10 @@ Counted items
 ``mutual_pencils``
     Pencils ``det(λ A(t) + B(t))`` of two moving ellipsoids (one per pair the
     broad phase keeps and window of time).
+``separated_windows``
+    (Pair of moving ellipsoids, window of time) that the broad phase keeps but
+    that are certified apart without a pencil: their centres stay farther apart
+    than the sum of their radii (an exact polynomial in ``t`` without roots).
 ``level_sweeps``
     Does the curve ``E ∩ Q`` lie on the kept side, decided by sweeping the
     levels of the cutting plane (at a sample time where it does not meet it).
@@ -85,6 +89,7 @@ ITEMS: tuple[str, ...] = (
     "section_samples",
     "level_sweeps",
     "mutual_pencils",
+    "separated_windows",
 )
 """The counted items, in report order."""
 
@@ -98,6 +103,7 @@ OPTIONAL_ITEMS: frozenset[str] = frozenset(
         "section_samples",
         "level_sweeps",
         "mutual_pencils",
+        "separated_windows",
     }
 )
 """Items printed only when something was counted (the broad phase's)."""

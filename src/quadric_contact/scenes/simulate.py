@@ -90,7 +90,8 @@ def simulate(
         happen, before any pencil is formed (:mod:`quadric_contact.scenes.broadphase`);
         the timelines are the same.  A full evaluation (``full``) does without it.
     workers : int
-        Processes to share the ellipsoids between (``0``: one per core).
+        Processes to share the ellipsoids between, and the pairs of bodies whose
+        mutual contacts are wanted (``0``: one per core).
     reading : {"geometry", "paper"}, optional
         Override the scene's reading of its pieces: as cut by the planes on
         their paths (``"geometry"``), or as whole quadrics (``"paper"``,
@@ -167,7 +168,7 @@ def simulate(
     if len(scene.mutual) >= 2:
         from quadric_contact.scenes.mutual import mutual_contacts
 
-        mutual = mutual_contacts(scene, scene.mutual, ledger=ledger)
+        mutual = mutual_contacts(scene, scene.mutual, ledger=ledger, workers=workers)
     return SimulationResult(
         scene, plan, pairs, ledger, time.perf_counter() - started, list(scene.warnings), mutual=mutual
     )

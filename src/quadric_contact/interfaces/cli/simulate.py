@@ -71,7 +71,7 @@ def register(sub: Any) -> None:
         "--workers",
         type=integer("--workers", 0, MAX_CLI_PROCESSES),
         default=None,
-        help="processes to share the ellipsoids (0: one per core; default 1)",
+        help="processes to share the ellipsoids and the pairs of bodies (0: one per core; default 1)",
     )
     p.add_argument(
         "--bodies",
