@@ -260,7 +260,7 @@ class MatrixStack:
         input came packed.
     """
 
-    __slots__ = ("_floats", "checked", "exact", "name", "packed", "shape")
+    __slots__ = ("_exact_signs", "_floats", "checked", "exact", "name", "packed", "shape")
 
     def __init__(
         self,
@@ -279,6 +279,16 @@ class MatrixStack:
         self.name = name
         self.shape = shape
         self.packed = packed
+        self._exact_signs: tuple[np.ndarray, np.ndarray] | None = None
+
+    def exact_signs_memo(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(known, signs)``: per matrix, whether its exact invariant signs (``(8,)`` int8, as
+        :meth:`quadric_contact.modes.objects.ObjectMode.invariant_signs` gives them) have been
+        computed, and those signs; filled by the exact mode, once per matrix and stack."""
+        if self._exact_signs is None:
+            n = len(self)
+            self._exact_signs = (np.zeros(n, dtype=bool), np.zeros((n, 8), dtype=np.int8))
+        return self._exact_signs
 
     @property
     def floats(self) -> np.ndarray:

@@ -25,7 +25,8 @@ The facts, for ``E`` an ellipsoid (``det E < 0``, so ``P`` tends to ``-inf`` at 
   root, so it is 0 or 2 on ``(r1, r2)``, 1 or 3 on ``(r2, r3)`` and 2 or 4 on ``(r3, r4)``: only
   the first gap can hold a negative definite member and only the last a positive definite one.
   Members at ``s1`` and ``s3`` certainly not definite mean no definite member at all: the
-  surfaces cross (the table's row for four simple roots and no definite member).
+  surfaces cross (the table's row for four simple roots and no definite member).  The inertia
+  paths are enumerated in ``proofs/twmw_2009_signature_decision.py`` (check ``inertia_paths``).
 
 Where the fast reading is not certain (a tangency, a multiple root, a sample point too close to
 a root for the semi-static bound), the pair is read again by the scalar certificate of

@@ -334,6 +334,19 @@ class ExactMode(ObjectMode):
             raise ChoiceError(f"backend must be one of int, fmpz, got {backend!r}", backend, choices=choices)
         self.backend = backend
 
+    def invariant_signs(self, Q: MatrixStack, rows: np.ndarray) -> np.ndarray:
+        """As :meth:`ObjectMode.invariant_signs`, once per quadric of the stack: the exact signs
+        are facts about the matrices, kept with the stack (which lives for one call) so that
+        the stages of a decision that need them (the cascade's types, the structural zeros of
+        the criterion) share one computation."""
+        rows = np.asarray(rows, dtype=np.intp)
+        known, signs = Q.exact_signs_memo()
+        need = np.unique(rows[~known[rows]])
+        if need.size:
+            signs[need] = super().invariant_signs(Q, need)
+            known[need] = True
+        return signs[rows]
+
     def convert(self, stack: MatrixStack, rows: np.ndarray) -> list[np.ndarray]:
         cols = integer_rows(stack, rows)
         if self.backend == "fmpz":
