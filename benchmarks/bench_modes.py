@@ -8,8 +8,9 @@ installed command runs it too; this script is the same thing from a checkout::
 which is ``quadric-contact bench`` with the same options: a table per mode and
 peer (time per test, wrong, undecided) on random pairs and on the near-tangent
 ladder, throughput against batch size with peak memory, the memory-bandwidth
-limit of reading the inputs, escalation rates, the targets as ratios measured in
-the same run, and a plot of time against error.
+limit of reading the inputs, escalation rates, a summary of ratios against the peers and
+the read bandwidth measured in the same run, and a plot of time against error, written to
+``--out`` (default: the user cache directory, ``~/.cache/quadric-contact/bench`` on Linux).
 """
 
 from __future__ import annotations

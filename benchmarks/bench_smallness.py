@@ -294,11 +294,10 @@ def corollary_10_rates(rng: random.Random, n: int) -> None:
                 r[2] += c10 != g.transversal
         for how, (cnt, contact, wrong) in rows.items():
             totals[how] = [a + b for a, b in zip(totals[how], (cnt, contact, wrong), strict=True)]
-            rate = wrong / cnt if cnt else float("nan")
-            rate_c = wrong / contact if contact else float("nan")
-            print(
-                f"{kind.value:<26} {how:<12} {cnt:>5} {contact:>8} {wrong:>11} {rate:>7.1%} {rate_c:>14.1%}"
-            )
+            # a rate over no pair is not a number: "n/a" (no pairs, or none in contact)
+            rate = f"{wrong / cnt:.1%}" if cnt else "n/a"
+            rate_c = f"{wrong / contact:.1%}" if contact else "n/a"
+            print(f"{kind.value:<26} {how:<12} {cnt:>5} {contact:>8} {wrong:>11} {rate:>7} {rate_c:>14}")
     for how, (cnt, contact, wrong) in totals.items():
         print(
             f"{'all types':<26} {how:<12} {cnt:>5} {contact:>8} {wrong:>11}"

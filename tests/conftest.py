@@ -1,11 +1,14 @@
-"""Shared test configuration: hypothesis profiles (``default`` for CI,
-``slow`` for the exhaustive runs selected with ``-m slow``), the working
-precision restored around every test, and Example 17's scene text."""
+"""Shared test configuration: the array kernels compiled (or loaded) once before the tests,
+hypothesis profiles (``default`` for CI, ``slow`` for the exhaustive runs selected with
+``-m slow``), the working precision restored around every test, and Example 17's scene text."""
 
 from __future__ import annotations
 
 import os
+import subprocess
+import sys
 from collections.abc import Callable, Iterator
+from pathlib import Path
 
 import flint
 import mpmath
@@ -26,6 +29,46 @@ settings.register_profile(
     suppress_health_check=[HealthCheck.too_slow],
 )
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "default"))
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_sessionstart(session: pytest.Session) -> None:
+    """Compile the array kernels into numba's on-disk cache, or load them from it, once, before
+    the tests: under pytest-xdist in the controller, before its workers start (they then load
+    the kernels from the cache instead of each compiling them at once, behind the capture that
+    would hide the package's compile notice).  Cold, this takes minutes, and says so; warm, a
+    few seconds.  The work runs in a process of its own (:mod:`tests.kernel_warmup`) that
+    imports the package from ``src/`` as the tests do, so it fills the cache they read.
+    ``QUADRIC_CONTACT_WARMUP=0`` skips it."""
+    config = session.config
+    if hasattr(config, "workerinput") or config.option.collectonly:
+        return  # an xdist worker (the controller warmed the kernels), or nothing will run
+    if os.environ.get("QUADRIC_CONTACT_WARMUP", "1") == "0":
+        return  # asked not to (a run of tests that need no kernel, with a cold cache)
+    reporter = config.pluginmanager.get_plugin("terminalreporter")
+
+    def say(line: str) -> None:
+        if reporter is not None:
+            reporter.write_line(line)
+        else:  # pragma: no cover - the terminal reporter is disabled
+            print(line, file=sys.stderr, flush=True)
+
+    say("quadric-contact: compiling the array kernels once (cached afterwards), or loading them ...")
+    root = Path(__file__).resolve().parents[1]
+    paths = [str(root / "src"), str(root), os.environ.get("PYTHONPATH", "")]
+    done = subprocess.run(
+        [sys.executable, "-m", "tests.kernel_warmup"],
+        cwd=root,
+        env=dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, paths))),
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        check=False,
+    )
+    for line in done.stdout.splitlines():
+        say(line)
+    if done.returncode:
+        say(f"quadric-contact: the warm-up failed (exit status {done.returncode}); the tests compile them")
 
 
 @pytest.fixture(autouse=True)

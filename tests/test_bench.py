@@ -1,42 +1,70 @@
-"""``quadric-contact bench`` runs, reports every target and writes its files (smoke
-profile: seconds; the timings themselves are not asserted)."""
+"""``quadric-contact bench`` runs, writes its table, JSON and plot to ``--out`` (by default the
+user cache directory, never the current one) and says where; the table speaks of what it
+measured (smoke profile: seconds; the timings themselves are not asserted)."""
 
 import json
+import re
 
 import pytest
 
 from quadric_contact.interfaces import benchmark
 from quadric_contact.interfaces.cli import main
+from quadric_contact.interfaces.cli.arguments import user_cache_dir
 
 
-def test_bench_smoke_profile_writes_table_json_and_reports_targets(tmp_path, capsys):
-    assert main(["bench", "--profile", "smoke", "--out", str(tmp_path)]) == 0
+def _assert_speaks_of_measurements(table):
+    """No pass/fail rows, no row of an unmeasured figure."""
+    assert not re.search(r"\bnan\b", table, re.IGNORECASE)
+    assert not re.search(r"target|\bgoal\b|\| met \|", table, re.IGNORECASE)
+    assert not re.search(r"\|\s*(yes|no)\b", table, re.IGNORECASE)
+
+
+def test_bench_smoke_profile_writes_to_out_and_nothing_to_the_current_directory(
+    tmp_path, capsys, monkeypatch
+):
+    cwd, out_dir = tmp_path / "cwd", tmp_path / "out"
+    cwd.mkdir()
+    monkeypatch.chdir(cwd)
+    assert main(["bench", "--profile", "smoke", "--out", str(out_dir)]) == 0
     out = capsys.readouterr().out
+    assert list(cwd.iterdir()) == []
+    assert f"to {out_dir.resolve()}" in out.splitlines()[-1]
+    _assert_speaks_of_measurements(out)
+    table = (out_dir / "bench_smoke.md").read_text()
+    _assert_speaks_of_measurements(table)
+    assert table in out
     for needle in (
         "Time per test",
         "certified",
         "numpy eigvals",
         "Near-tangent ladder",
-        "Targets",
+        "## Summary",
         "pairs/s",
+        "read bandwidth",
     ):
         assert needle in out
-    data = json.loads((tmp_path / "bench_smoke.json").read_text())
-    names = {t["name"] for t in data["targets"]}
+    # a figure the smoke profile does not measure is named with its reason, not shown as a value
+    assert "Not measured: the first array call with an empty numba cache" in out
+    data = json.loads((out_dir / "bench_smoke.json").read_text())
+    assert "targets" not in data
+    figures = {(f["name"], f["against"]) for f in data["summary"]}
     assert {
-        "certified vs numpy batch eigvals",
-        "certified vs plain float kernel",
-        "exact mode per pair (float input)",
-        "float kernel vs reading its inputs",
-        "escalated past the float stage",
-        # the kernel targets: the criterion alone at the memory limit, first use
-        "certified criterion, distinct (N, 4, 4) pairs",
-        "certified criterion, one matrix against a stack",
-        "certified criterion vs numpy batch eigvals, one matrix against a stack",
-        "filter vs float, distinct pairs",
-        "certified criterion vs reading its inputs (distinct)",
-        "first array call after install (empty cache)",
-    } <= names
+        ("certified criterion, pairs per second", "numpy batch eigvals"),
+        ("certified criterion, pairs per second", "the plain float kernel"),
+        ("float kernel, time", "reading its inputs once (read bandwidth)"),
+        ("exact mode, time per pair (binary64 input)", "python-flint fmpz backend, sympy"),
+        ("pairs escalated past the float stage (certified)", ""),
+        # the kernels: the criterion alone at the memory limit
+        ("certified criterion, distinct (N, 4, 4) pairs", ""),
+        ("certified criterion, one matrix against a stack", ""),
+        (
+            "certified criterion, one matrix against a stack, pairs per second",
+            "numpy batch eigvals, same pairs",
+        ),
+        ("filter, time, distinct pairs", "the plain float kernel"),
+        ("certified criterion, distinct pairs, pairs per second", "reading its inputs once (read bandwidth)"),
+    } <= figures
+    assert all(f["measured"] == f["measured"] for f in data["summary"])  # no NaN
     assert "Kernels at the memory limit" in out
     # the complete decision, as a fraction of the criterion kernel, per population and question
     assert "The complete decision against the certified criterion kernel" in out
@@ -52,7 +80,33 @@ def test_bench_smoke_profile_writes_table_json_and_reports_targets(tmp_path, cap
     assert all(
         wrong[(pop, method)] == 0 for pop, method in wrong if method in ("certified", "exact", "filter")
     )
-    assert (tmp_path / "bench_smoke.md").exists()
+
+
+def test_bench_writes_to_the_user_cache_directory_by_default(tmp_path, capsys, monkeypatch):
+    cwd, cache = tmp_path / "cwd", tmp_path / "cache"
+    cwd.mkdir()
+    monkeypatch.chdir(cwd)
+    monkeypatch.setenv("XDG_CACHE_HOME", str(cache))
+    # the measurement itself is the smoke test's; here only where the files go
+    monkeypatch.setattr(benchmark, "run", lambda profile, **_: benchmark.Report(profile, {"cpus": 1}))
+    assert main(["bench", "--profile", "smoke", "--no-plot"]) == 0
+    out = capsys.readouterr().out
+    where = cache / "quadric-contact" / "bench"
+    assert list(cwd.iterdir()) == []
+    assert sorted(p.name for p in where.iterdir()) == ["bench_smoke.json", "bench_smoke.md"]
+    assert f"to {where}" in out
+
+
+def test_user_cache_directory(tmp_path, monkeypatch):
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
+    monkeypatch.setattr("sys.platform", "linux")
+    assert user_cache_dir("bench") == tmp_path / "quadric-contact" / "bench"
+    # a relative XDG_CACHE_HOME is ignored (the XDG specification), so never the current directory
+    monkeypatch.setenv("XDG_CACHE_HOME", "cache")
+    monkeypatch.setenv("HOME", str(tmp_path / "home"))
+    assert user_cache_dir() == tmp_path / "home" / ".cache" / "quadric-contact"
+    monkeypatch.delenv("XDG_CACHE_HOME")
+    assert user_cache_dir("hypothesis") == tmp_path / "home" / ".cache" / "quadric-contact" / "hypothesis"
 
 
 def test_peers_agree_with_exact_far_from_tangency():

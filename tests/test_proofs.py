@@ -290,6 +290,48 @@ def test_prove_list_run_below_a_planted_folder_imports_nothing_from_it(tmp_path)
     assert not mark.exists()
 
 
+def test_prove_leaves_the_current_directory_empty(tmp_path):
+    """A result whose default profile runs a hypothesis search: hypothesis's files go to the user
+    cache directory, nothing to the directory ``prove`` runs in."""
+    import subprocess
+    import sys
+
+    cwd, cache = tmp_path / "cwd", tmp_path / "cache"
+    cwd.mkdir()
+    env = {
+        "PYTHONPATH": str(ROOT / "src"),
+        "PATH": "/usr/bin:/bin",
+        "HOME": str(tmp_path / "home"),
+        "XDG_CACHE_HOME": str(cache),
+    }
+    done = subprocess.run(
+        [sys.executable, "-m", "quadric_contact", "prove", "wwk_2001_ellipsoid_separation", "-v"],
+        cwd=cwd,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "PASS     root_reading_against_geometry" in done.stdout  # the search ran
+    assert list(cwd.iterdir()) == []
+    assert (cache / "quadric-contact" / "hypothesis").is_dir()
+
+
+def test_prove_restores_hypothesis_storage(tmp_path, monkeypatch):
+    from hypothesis import configuration
+
+    from quadric_contact.interfaces.cli.prove import hypothesis_files_in_the_user_cache
+
+    monkeypatch.delenv("HYPOTHESIS_STORAGE_DIRECTORY", raising=False)
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
+    before = configuration.storage_directory(intent_to_write=False).home_directory
+    with hypothesis_files_in_the_user_cache():
+        inside = configuration.storage_directory(intent_to_write=False).home_directory
+    assert inside == tmp_path / "quadric-contact" / "hypothesis"
+    assert configuration.storage_directory(intent_to_write=False).home_directory == before
+
+
 def test_no_proofs_dir_is_a_clear_error(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     import quadric_contact.paper.proving as proving

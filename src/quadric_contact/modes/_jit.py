@@ -167,6 +167,10 @@ if HAVE_NUMBA:  # pragma: no branch
             module = getattr(getattr(dispatcher, "py_func", None), "__module__", "") or ""
             if not module.startswith("quadric_contact"):
                 return
+            if not _cache_dir(dispatcher):
+                # not a cache miss: an uncached helper (inline="always") called from Python is
+                # compiled in every process, in a few seconds, and no cache would keep it
+                return
             _notice_printed = True
             print(COMPILE_NOTICE.format(where=_cache_dir(dispatcher)), file=sys.stderr, flush=True)
 

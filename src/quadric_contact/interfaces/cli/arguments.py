@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import sys
 from collections.abc import Callable
 from fractions import Fraction
 from pathlib import Path
@@ -18,7 +19,7 @@ from pathlib import Path
 from quadric_contact.exact.errors import QuadricContactError, SceneError
 from quadric_contact.exact.reading import parse_number
 
-__all__ = ["check_output_path", "integer", "rational"]
+__all__ = ["check_output_path", "integer", "rational", "user_cache_dir"]
 
 
 def _read(option: str, text: str) -> Fraction:
@@ -76,3 +77,24 @@ def check_output_path(option: str, path: str) -> None:
         raise SceneError(f"{option} {path}: the folder {folder} does not exist", path)
     if not os.access(folder, os.W_OK | os.X_OK):
         raise SceneError(f"{option} {path}: the folder {folder} is not writable", path)
+
+
+def user_cache_dir(*parts: str) -> Path:
+    """The package's folder in the user's cache directory, with ``parts`` below it: where the
+    commands keep what they write unless told otherwise (``bench``'s tables, ``prove``'s
+    hypothesis cache), never the current directory.
+
+    ``$XDG_CACHE_HOME/quadric-contact`` (an absolute ``XDG_CACHE_HOME`` only, as the XDG
+    specification asks), else ``~/.cache/quadric-contact`` on Linux and other Unix systems;
+    ``~/Library/Caches/quadric-contact`` on macOS; ``%LOCALAPPDATA%\\quadric-contact\\Cache``
+    on Windows.  The folder is not created here."""
+    if sys.platform == "win32":
+        local = os.environ.get("LOCALAPPDATA", "").strip()
+        base = (Path(local) if local else Path.home() / "AppData" / "Local") / "quadric-contact" / "Cache"
+    elif sys.platform == "darwin":
+        base = Path.home() / "Library" / "Caches" / "quadric-contact"
+    else:
+        xdg = os.environ.get("XDG_CACHE_HOME", "").strip()
+        root = Path(xdg) if xdg and Path(xdg).is_absolute() else Path.home() / ".cache"
+        base = root / "quadric-contact"
+    return base.joinpath(*parts)

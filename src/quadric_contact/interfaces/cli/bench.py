@@ -2,9 +2,10 @@
 
 Prints a table (markdown) of every mode and peer (time per test, fraction wrong,
 fraction undecided) on random and hard pairs, throughput against batch size,
-the memory-bandwidth limit, the escalation rate and the targets as measured
-ratios; writes the table, a JSON dump and a plot (time against error,
-throughput) to ``--out`` (default ``benchmarks/results/``).
+the memory-bandwidth limit, the escalation rate and a summary of ratios against the
+peers and the read bandwidth measured in the same run; writes the table, a JSON dump and
+a plot (time against error, throughput) to ``--out`` (default: the user cache directory,
+``~/.cache/quadric-contact/bench`` on Linux) and says where.
 """
 
 from __future__ import annotations
@@ -14,6 +15,8 @@ import importlib.util
 import sys
 from pathlib import Path
 from typing import Any
+
+from quadric_contact.interfaces.cli.arguments import user_cache_dir
 
 BENCH_EXTRAS = ("matplotlib", "fcl")
 
@@ -31,7 +34,12 @@ def register(sub: Any) -> None:
         help="quick (default, about a minute), full (several minutes), smoke (seconds: a check that it runs)",
     )
     p.add_argument(
-        "--out", type=Path, default=Path("benchmarks") / "results", help="directory for table, JSON and plot"
+        "--out",
+        type=Path,
+        default=None,
+        metavar="DIR",
+        help="directory for table, JSON and plot (default: the user cache directory, "
+        "$XDG_CACHE_HOME/quadric-contact/bench or ~/.cache/quadric-contact/bench on Linux)",
     )
     p.add_argument("--no-plot", action="store_true", help="do not draw the plot")
     p.add_argument("--seed", type=int, default=0, help="seed of the random pairs")
@@ -68,13 +76,15 @@ def run(args: argparse.Namespace) -> int:
         huge_pairs=int(args.huge_pairs),
         log=lambda msg: print(msg, file=sys.stderr),
     )
-    out: Path = args.out
+    out: Path = args.out if args.out is not None else user_cache_dir("bench")
     out.mkdir(parents=True, exist_ok=True)
     plot_path = None if args.no_plot else benchmark.plot(report, out / f"bench_{args.profile}.png")
     table = report.table()
-    (out / f"bench_{args.profile}.md").write_text(table)
-    (out / f"bench_{args.profile}.json").write_text(report.to_json())
+    written = [out / f"bench_{args.profile}.md", out / f"bench_{args.profile}.json"]
+    written[0].write_text(table)
+    written[1].write_text(report.to_json())
     print(table)
-    print(f"wrote {out / f'bench_{args.profile}.md'}, {out / f'bench_{args.profile}.json'}", end="")
-    print(f", {plot_path}" if plot_path else " (no plot: matplotlib missing or --no-plot)")
+    files = ", ".join(p.name for p in [*written, *([plot_path] if plot_path else [])])
+    why = "" if plot_path else " (no plot: matplotlib missing or --no-plot)"
+    print(f"wrote {files} to {out.resolve()}{why}")
     return 0

@@ -7,16 +7,23 @@ evidence only).  The default profile (every proof and the small evidence
 searches) takes about half a minute; ``--full`` adds the large searches and
 the cross-checks of the package.  Exit status 0 when every check that ran
 matched its recorded expectation, 1 otherwise, 2 for bad input (an unknown
-name, no proofs found).
+name, no proofs found).  Nothing is written to the current directory: hypothesis, whose
+searches some checks run, keeps its files in the user cache directory
+(``~/.cache/quadric-contact/hypothesis`` on Linux) unless ``HYPOTHESIS_STORAGE_DIRECTORY``
+names another.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
+import os
 import sys
 import time
+from collections.abc import Iterator
 from typing import Any
 
+from quadric_contact.interfaces.cli.arguments import user_cache_dir
 from quadric_contact.interfaces.cli.exits import EXIT_BAD_INPUT, EXIT_FAILED, EXIT_OK
 
 
@@ -62,7 +69,35 @@ def register(sub: Any) -> None:
     p.set_defaults(func=run)
 
 
+@contextlib.contextmanager
+def hypothesis_files_in_the_user_cache() -> Iterator[None]:
+    """hypothesis keeps its files (the example database, which the proofs' searches do not use,
+    and a cache of the constants of the code under test, which they fill) in ``.hypothesis/`` of
+    the current directory.  While the proofs run they go to the user cache directory instead;
+    ``HYPOTHESIS_STORAGE_DIRECTORY``, when set, is left to choose.  The folder hypothesis used
+    before is restored afterwards (for a caller that runs ``prove`` in its own process)."""
+    try:
+        from hypothesis import configuration
+    except ImportError:  # the checks that need hypothesis say so and do not run
+        yield
+        return
+    if os.environ.get("HYPOTHESIS_STORAGE_DIRECTORY"):
+        yield
+        return
+    before = configuration.storage_directory(intent_to_write=False).home_directory
+    configuration.set_hypothesis_home_dir(user_cache_dir("hypothesis"))
+    try:
+        yield
+    finally:
+        configuration.set_hypothesis_home_dir(before)
+
+
 def run(args: argparse.Namespace) -> int:
+    with hypothesis_files_in_the_user_cache():
+        return _run(args)
+
+
+def _run(args: argparse.Namespace) -> int:
     from quadric_contact.paper.proving import (
         REPORT_NAME,
         CheckRecord,

@@ -1,0 +1,140 @@
+"""The array kernels, compiled (or loaded from numba's on-disk cache) once before the tests run.
+
+numba compiles a kernel the first time it is called with a new signature and keeps the machine
+code in its cache; the first compilation of the complete decision takes minutes.  Under
+pytest-xdist every worker that reaches a kernel first would compile it at the same time, each
+behind pytest's capture, so the notice the package prints (:data:`quadric_contact.modes._jit.
+COMPILE_NOTICE`) would not be seen.  :func:`warm_kernels` calls every question of the array
+API in the float, filter and certified modes, on distinct pairs, on one matrix against a stack
+(either side), float64 and packed, and on nearly touching pairs (the later stages), and the
+bench's read of its inputs, so that the workers load the kernels from the cache.
+``python -m tests.kernel_warmup`` (from the root of the checkout, ``src`` on ``PYTHONPATH``)
+is what ``tests/conftest.py`` runs.
+"""
+
+from __future__ import annotations
+
+import functools
+import time
+from collections.abc import Callable
+from typing import Any
+
+WARM_PAIRS = 64
+
+
+def _calls() -> list[tuple[str, Callable[[], Any]]]:
+    import numpy as np
+
+    import quadric_contact as qc
+    from quadric_contact.testing.samples import random_ellipsoids, random_pairs
+
+    rng = np.random.default_rng(0)
+    E, Q, _ = random_pairs(WARM_PAIRS, rng)
+    Es, _ = random_ellipsoids(WARM_PAIRS, rng, axes=(0.5, 2.0))
+    Qs, _ = random_ellipsoids(WARM_PAIRS, rng, axes=(2.0, 5.0))
+    Et, Qt = _near_touching()
+    PE, PQ = qc.Packed(qc.pack(Es)), qc.Packed(qc.pack(Qs))
+    inputs = {
+        "distinct": (E, Q),
+        "one against a stack": (E, Q[0]),
+        "a stack against one": (E[0], Q),
+        "ellipsoids": (Es, Qs),
+        "ellipsoids, one against a stack": (Es, Qs[0]),
+        "ellipsoids, a stack against one": (Es[0], Qs),
+        "ellipsoids, nearly touching": (Et, Qt),
+        "packed": (PE, PQ),
+    }
+    questions: dict[str, Callable[..., Any]] = {
+        "corollary_10": qc.corollary_10,
+        "transversal_contact": qc.transversal_contact,
+        "relative_position": qc.relative_position,
+        "smallness": qc.smallness,
+        "overlap": qc.overlap,
+    }
+    calls = []
+    for label, (e, q) in inputs.items():
+        for name, fn in questions.items():
+            if name == "overlap" and not label.startswith(("ellipsoids", "packed")):
+                continue  # overlap asks about two ellipsoids
+            for mode in ("float", "filter", "certified"):
+                call = functools.partial(fn, e, q, mode=mode)
+                calls.append((f"{name}({label}, mode={mode!r})", call))
+    from quadric_contact.modes.float64 import read_all
+
+    calls.append(("read_all (the bench's read-bandwidth limit)", functools.partial(read_all, Es, Qs)))
+    return calls
+
+
+def _near_touching() -> tuple[Any, Any]:
+    """Pairs of spheres and ellipsoids touching from outside, moved apart by ``1e-12`` to
+    ``1e-16`` of their size, equal sizes among them: the float stages cannot decide them, so the
+    later stages (tighter enclosures, the exact pencil) are compiled too."""
+    import numpy as np
+
+    pairs = []
+    for a, b in (((1.0, 1.0, 1.0), (1.0, 1.0, 1.0)), ((0.5, 0.7, 0.9), (2.0, 3.0, 4.0))):
+        for d in (1e-12, 1e-14, 1e-15, 1e-16, -1e-15):
+            shift = (a[0] + b[0]) * (1 + d)
+            pairs.append((_ellipsoid(a, (shift, 0.0, 0.0)), _ellipsoid(b, (0.0, 0.0, 0.0))))
+    return np.stack([e for e, _ in pairs]), np.stack([q for _, q in pairs])
+
+
+def _ellipsoid(axes: tuple[float, float, float], center: tuple[float, float, float]) -> Any:
+    """``sum ((x_i - c_i) / a_i)^2 - 1`` as a 4 x 4 matrix (homogeneous coordinate last)."""
+    import numpy as np
+
+    M = np.zeros((4, 4))
+    for i, (a, c) in enumerate(zip(axes, center, strict=True)):
+        M[i, i] = 1 / a**2
+        M[i, 3] = M[3, i] = -c / a**2
+        M[3, 3] += c**2 / a**2
+    M[3, 3] -= 1.0
+    return M
+
+
+def warm_kernels(log: Callable[[str], None] = print) -> tuple[float, int]:
+    """Call every kernel the array API compiles, once; return the seconds it took and how many
+    kernels missed numba's on-disk cache (were compiled).  A call that raises is reported on
+    ``log`` and skipped (the tests will say what is wrong with it)."""
+    from numba.core import event
+
+    missed = []
+
+    class CacheMisses(event.Listener):
+        """Compilations of the package's cached kernels (its uncached inline helpers, which a
+        Python-level call compiles in every process, do not count)."""
+
+        def on_start(self, ev: Any) -> None:
+            dispatcher = (ev.data or {}).get("dispatcher")
+            module = getattr(getattr(dispatcher, "py_func", None), "__module__", "") or ""
+            cache = getattr(dispatcher, "_cache", None)
+            if module.startswith("quadric_contact") and getattr(cache, "_cache_path", None):
+                missed.append(dispatcher)
+
+        def on_end(self, ev: Any) -> None:
+            pass
+
+    listener = CacheMisses()
+    event.register("numba:compile", listener)
+    start = time.perf_counter()
+    try:
+        for what, call in _calls():
+            try:
+                call()
+            except Exception as exc:  # reported, not raised: the tests themselves fail on it
+                log(f"  {what}: {type(exc).__name__}: {exc}")
+    finally:
+        event.unregister("numba:compile", listener)
+    return time.perf_counter() - start, len(missed)
+
+
+def main() -> None:
+    """What the test run's first process calls (in a process of its own, whose memory, several
+    GB while numba compiles, is returned when it ends): one line with the time it took."""
+    seconds, compiled = warm_kernels(log=lambda line: print(line, flush=True))
+    how = f"{compiled} compiled" if compiled else "loaded from numba's on-disk cache"
+    print(f"quadric-contact: array kernels {how} in {seconds:.1f} s", flush=True)
+
+
+if __name__ == "__main__":
+    main()
