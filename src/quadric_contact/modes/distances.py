@@ -17,6 +17,7 @@ distance, tens to hundreds for an exact first-contact scale.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
@@ -27,13 +28,54 @@ from quadric_contact.exact.algebraic import RealAlgebraic
 from quadric_contact.exact.errors import UndecidedError
 from quadric_contact.exact.precision import working_precision
 from quadric_contact.modes.batch import is_stack
+from quadric_contact.model.classification import QuadricKind
+from quadric_contact.model.quadric import as_quadric
 from quadric_contact.modes.distance_certified import DistanceEnclosure, distance_certified
 from quadric_contact.theory.contact_scale import contact_scale_exact
-from quadric_contact.theory.distance import DistanceResult, distance_exact
+from quadric_contact.theory.distance import CONVEX_SOLIDS, DistanceResult, distance_exact, is_sphere
+from quadric_contact.theory.distance_critical import critical_distance_binary64
+from quadric_contact.theory.overlap import overlap_exact, solid_of
+from quadric_contact.theory.results import OverlapCode
 
-__all__ = ["contact_scale", "distance", "enclosure"]
+__all__ = ["FloatDistance", "contact_scale", "distance", "enclosure"]
 
-_MODES = ("certified", "exact")
+_MODES = ("certified", "exact", "float")
+
+
+@dataclass(frozen=True)
+class FloatDistance:
+    """The signed distance in binary64, with a bound on its error.
+
+    Attributes
+    ----------
+    distance : float
+        The midpoint of a rigorous binary64 enclosure (nan where ``uncertain``).
+    error : float
+        ``|distance - exact| <= error``, rounded up; ``inf`` where ``uncertain``.
+    uncertain : bool
+        The critical points were not all isolated (a degenerate, symmetric configuration):
+        no claim is made; the certified or exact mode decides such a pair.
+    """
+
+    distance: float
+    error: float
+    uncertain: bool
+
+    def __float__(self) -> float:
+        return self.distance
+
+    @property
+    def bounds(self) -> tuple[float, float]:
+        return _down(Fraction(self.distance) - Fraction(self.error)), _up(Fraction(self.distance) + Fraction(self.error))
+
+    @staticmethod
+    def of(lo: float, hi: float) -> FloatDistance:
+        """The midpoint and a rounded-up half-width of ``[lo, hi]``."""
+        if not (math.isfinite(lo) and math.isfinite(hi)):
+            return FloatDistance(math.nan, math.inf, True)
+        mid = 0.5 * lo + 0.5 * hi
+        err = max(Fraction(mid) - Fraction(lo), Fraction(hi) - Fraction(mid))
+        return FloatDistance(mid, _up(err), False)
 
 
 def enclosure(x: RealAlgebraic, bits: int = 60) -> tuple[float, float]:
@@ -91,9 +133,9 @@ def _pairs(E: Any, Q: Any) -> tuple[list[Any], list[Any], tuple[int, ...]]:
     return es, qs, shape
 
 
-def _check(mode: str) -> None:
-    if mode not in _MODES:
-        raise ValueError(f"mode must be one of {_MODES}, got {mode!r}")
+def _check(mode: str, modes: tuple[str, ...] = _MODES) -> None:
+    if mode not in modes:
+        raise ValueError(f"mode must be one of {modes}, got {mode!r}")
 
 
 def contact_scale(E: Any, Q: Any, *, scale: str = "E", mode: str = "certified") -> Any:
@@ -131,7 +173,7 @@ def contact_scale(E: Any, Q: Any, *, scale: str = "E", mode: str = "certified") 
     array([[3., 3.],
            [3., 3.]])
     """
-    _check(mode)
+    _check(mode, ("certified", "exact"))
     if not (is_stack(E) or is_stack(Q)):
         return contact_scale_exact(E, Q, scale=scale)
     es, qs, shape = _pairs(E, Q)
@@ -142,13 +184,42 @@ def contact_scale(E: Any, Q: Any, *, scale: str = "E", mode: str = "certified") 
 
 
 def _certified(E: Any, Q: Any, digits: int) -> DistanceEnclosure | None:
-    """The certified enclosure, or None for a symmetric configuration (the exact path's)."""
+    """The certified enclosure, or None for a symmetric configuration of a pair the exact path
+    answers (an ellipsoid against a plane, a sphere against a quadric)."""
     try:
         return distance_certified(E, Q, digits=digits)
     except UndecidedError as exc:
-        if "symmetric configuration" in str(exc):
+        if "symmetric configuration" in str(exc) and _exact_answers(E, Q):
             return None
         raise
+
+
+def _exact_answers(E: Any, Q: Any) -> bool:
+    e = as_quadric(E, "E").as_ellipsoid()
+    return is_sphere(e) or solid_of(Q).kind is QuadricKind.PLANE
+
+
+def _float(E: Any, Q: Any) -> FloatDistance:
+    """The float mode for one pair: binary64 intervals where the pair needs the search (a
+    curved quadric against an ellipsoid that is not a sphere), the certified balls rounded
+    outwards otherwise; uncertain where the critical points are not isolated."""
+    e = as_quadric(E, "E").as_ellipsoid()
+    K = solid_of(Q)
+    try:
+        if K.kind is QuadricKind.PLANE or is_sphere(e):
+            return FloatDistance.of(*_float_bounds(*distance_certified(e, K, digits=17).bounds))
+        convex = K.kind in CONVEX_SOLIDS
+        if not convex:
+            code = overlap_exact(e, K).code
+            if code is OverlapCode.OVERLAPPING:
+                distance_certified(e, K)  # raises with the reason
+            if code is OverlapCode.TOUCHING:
+                return FloatDistance(0.0, 0.0, False)
+        return FloatDistance.of(*critical_distance_binary64(e, K, convex=convex))
+    except UndecidedError as exc:
+        if "not convex" in str(exc):
+            raise
+        return FloatDistance(math.nan, math.inf, True)
 
 
 def _as_enclosure(r: DistanceResult, digits: int) -> DistanceEnclosure:
@@ -179,13 +250,18 @@ def distance(E: Any, Q: Any, *, mode: str = "certified", digits: int = 15) -> An
     penetration depth (the length of the shortest translation of ``E`` after which the
     interiors are disjoint).  See :mod:`quadric_contact.theory.distance` for the solids, the
     witnesses and the normal, and for which pairs have an exact answer (an ellipsoid against
-    a plane; a sphere against any solid, the depth where the solid is convex).
+    a plane; a sphere against any solid, the depth where the solid is convex).  Any other
+    ellipsoid against a curved quadric is answered in the ``certified`` and ``float`` modes
+    (:mod:`quadric_contact.theory.distance_critical`).
 
     Parameters
     ----------
     E : Quadric, equation, matrix-like; or a stack ``(..., 4, 4)``
     Q : Quadric, equation, matrix-like; or a stack
-    mode : {"certified", "exact"}
+    mode : {"certified", "exact", "float"}
+        ``float``: binary64 interval arithmetic rounded outwards, a
+        :class:`FloatDistance` (value and error bound, or marked uncertain); on stacks
+        ``[lo, hi]`` as the other modes, ``[-inf, inf]`` where uncertain.
     digits : int
         ``certified``: significant digits of the enclosure.
 
@@ -217,10 +293,16 @@ def distance(E: Any, Q: Any, *, mode: str = "certified", digits: int = 15) -> An
     if not (is_stack(E) or is_stack(Q)):
         if mode == "exact":
             return distance_exact(E, Q)
+        if mode == "float":
+            return _float(E, Q)
         return _certified(E, Q, digits) or _as_enclosure(distance_exact(E, Q), digits)
     es, qs, shape = _pairs(E, Q)
     out = np.empty((len(es), 2))
     for k, (e, q) in enumerate(zip(es, qs, strict=True)):
+        if mode == "float":
+            f = _float(e, q)
+            out[k] = (-math.inf, math.inf) if f.uncertain else f.bounds
+            continue
         c = _certified(e, q, max(digits, 17)) if mode == "certified" else None
         out[k] = _float_bounds(*c.bounds) if c is not None else enclosure(distance_exact(e, q).distance)
     return out.reshape(*shape, 2)

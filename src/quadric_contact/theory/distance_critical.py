@@ -72,7 +72,14 @@ from quadric_contact.exact.errors import UndecidedError
 from quadric_contact.exact.precision import working_precision
 from quadric_contact.model.quadric import Quadric
 
-__all__ = ["CriticalDistance", "FACES", "critical_distance", "ldl_frame"]
+__all__ = [
+    "FACES",
+    "CriticalDistance",
+    "critical_boxes",
+    "critical_distance",
+    "critical_distance_binary64",
+    "ldl_frame",
+]
 
 FACES: tuple[tuple[int, int, int, int], ...] = tuple(
     (i, (i + 1) % 3, (i + 2) % 3, s) for i in range(3) for s in (1, -1)
@@ -467,6 +474,11 @@ def _disjoint(Kx: list[IV], X: list[IV]) -> Any:
 
 
 def _newton_float(m: list[Any], Cf: _Pair, face: tuple[int, int, int, int], steps: int = 4) -> list[Any]:
+    with np.errstate(all="ignore"):
+        return _newton_steps(m, Cf, face, steps)
+
+
+def _newton_steps(m: list[Any], Cf: _Pair, face: tuple[int, int, int, int], steps: int) -> list[Any]:
     fo = _float_ops()
     m = [np.array(v, dtype=float) for v in m]
     for _ in range(steps):
@@ -559,9 +571,29 @@ def _search(
     return found
 
 
+def _merge(found: list[_Found]) -> list[_Found]:
+    """One entry per chart (the boxes of a chart stacked)."""
+    out = []
+    for face in FACES:
+        mine = [f for f in found if f.face == face]
+        if mine:
+            out.append(
+                _Found(
+                    face,
+                    [
+                        IV(np.concatenate([f.box[r].lo for f in mine]), np.concatenate([f.box[r].hi for f in mine]))
+                        for r in range(3)
+                    ],
+                )
+            )
+    return out
+
+
 def _contract_iv(f: _Found, C: _Pair, Cf: _Pair, rounds: int = 6) -> _Found:
     X = f.box
     for _ in range(rounds):
+        if float(np.max(X[2].width / (1 + np.abs(X[2].mid)))) < 1e-14:
+            break
         m = [X[r].mid for r in range(3)]
         Kx = _krawczyk_iv(X, m, C, Cf, f.face)
         X = [
@@ -622,6 +654,11 @@ class CriticalDistance:
 
 def _seeds(Cf: _Pair, C: _Pair) -> list[_Found]:
     """Float candidates from a grid of directions, polished by Newton and certified."""
+    with np.errstate(all="ignore"):
+        return _seed_points(Cf, C)
+
+
+def _seed_points(Cf: _Pair, C: _Pair) -> list[_Found]:
     out = []
     fo = _float_ops()
     g = np.linspace(-1, 1, 9)
@@ -674,24 +711,17 @@ def _eval_iv(f: _Found, C: _Pair) -> tuple[Any, ...]:
     return _system(f.box[0], f.box[1], f.box[2], C, f.face, _iv_ops())
 
 
-def critical_distance(E: Quadric, K: Quadric, *, convex: bool, digits: int = 15) -> CriticalDistance:
-    """The signed distance of the ellipsoid ``E`` from the solid ``K`` as the extremal contact
-    critical point: the largest ``t`` when ``K`` is convex, the least ``t >= 0`` when it is not
-    (the caller has decided that the solids are apart), certified.
-
-    Examples
-    --------
-    >>> E = Quadric.ellipsoid(2, 1, 1, center=(6, 0, 0))
-    >>> r = critical_distance(E, Quadric.ellipsoid(1, 2, 2), convex=True, digits=20)
-    >>> r.distance.str(20, radius=False)
-    '3.0000000000000000000'
-    """
+def critical_boxes(
+    E: Quadric, K: Quadric, *, convex: bool
+) -> list[tuple[tuple[int, int, int, int], list[tuple[float, float]]]]:
+    """Every contact critical point that can be the extremum, each in a chart and a binary64
+    box ``[(a_lo, a_hi), (b_lo, b_hi), (t_lo, t_hi)]`` holding it alone."""
     C = _constants(E, K, "iv")
     Cf = _constants(E, K, "float")
     seeds = _seeds(Cf, C)
     if not seeds:
         raise UndecidedError("no critical point of the contact system was found to start from", E, other=K)
-    seeds = [_contract_iv(s, C, Cf) for s in seeds]
+    seeds = [_contract_iv(s, C, Cf, rounds=3) for s in _merge(seeds)]
     t_abs_hi = np.inf
     t_best_lo = -np.inf
     for s in seeds:
@@ -713,7 +743,7 @@ def critical_distance(E: Quadric, K: Quadric, *, convex: bool, digits: int = 15)
     lo_t = float(_dn(lo_t - margin))
     hi_t = float(_up(hi_t + margin))
     found = _search(C, Cf, lo_t, hi_t, 1.0)
-    found = [_contract_iv(f, C, Cf) for f in found]
+    found = [_contract_iv(f, C, Cf) for f in _merge(found)]
     # one entry per certified box: (face, box), with its t interval
     boxes: list[tuple[tuple[int, int, int, int], list[tuple[float, float]]]] = []
     for f in found:
@@ -721,7 +751,50 @@ def critical_distance(E: Quadric, K: Quadric, *, convex: bool, digits: int = 15)
             boxes.append((f.face, [(float(f.box[r].lo[n]), float(f.box[r].hi[n])) for r in range(3)]))
     if not boxes:
         raise UndecidedError("no contact critical point in the searched range", E, other=K)
-    return _extremum(boxes, E, K, convex, digits)
+    return boxes
+
+
+def critical_distance(E: Quadric, K: Quadric, *, convex: bool, digits: int = 15) -> CriticalDistance:
+    """The signed distance of the ellipsoid ``E`` from the solid ``K`` as the extremal contact
+    critical point: the largest ``t`` when ``K`` is convex, the least ``t >= 0`` when it is not
+    (the caller has decided that the solids are apart), certified to ``digits`` digits.
+
+    Examples
+    --------
+    >>> E = Quadric.ellipsoid(2, 1, 1, center=(6, 0, 0))
+    >>> r = critical_distance(E, Quadric.ellipsoid(1, 2, 2), convex=True, digits=20)
+    >>> r.distance.str(20, radius=False)
+    '3.0000000000000000000'
+    """
+    return _extremum(critical_boxes(E, K, convex=convex), E, K, convex, digits)
+
+
+def critical_distance_binary64(E: Quadric, K: Quadric, *, convex: bool) -> tuple[float, float]:
+    """``(lo, hi)``: the same extremum enclosed in binary64 intervals rounded outwards (no arb
+    stage): a rigorous enclosure, typically 1e-15 relative wide.
+
+    Examples
+    --------
+    >>> E = Quadric.ellipsoid(2, 1, 1, center=(6, 0, 0))
+    >>> lo, hi = critical_distance_binary64(E, Quadric.ellipsoid(1, 2, 2), convex=True)
+    >>> lo <= 3 <= hi, hi - lo < 1e-13
+    (True, True)
+    """
+    C = _constants(E, K, "iv")
+    los, his = [], []
+    for face, box in critical_boxes(E, K, convex=convex):
+        X = [IV(lo, hi) for lo, hi in box]
+        orient = _system(X[0], X[1], X[2], C, face, _iv_ops())[3]
+        if float(orient.lo) > 0 or (not convex and box[2][1] < 0):
+            continue
+        los.append(box[2][0])
+        his.append(box[2][1])
+    if not los:
+        raise UndecidedError("no contact critical point of the needed kind", E, other=K)
+    if convex:
+        return max(los), max(his)
+    his_sure = [h for lo, h in zip(los, his, strict=True) if lo >= 0]
+    return max(0.0, min(los)), min(his_sure) if his_sure else min(his)
 
 
 def _extremum(
