@@ -10,8 +10,10 @@ configurations the balls leave).  A stack answers with, for every pair, an enclo
 ``[lo, hi]`` of that same number in binary64 (``lo <= value <= hi``, rounded outwards), in an
 array of shape ``(..., 2)``: a stack of one holds the enclosure of the pair's value.
 
-The stack path runs the scalar path pair by pair: about a millisecond a pair for a certified
-distance, tens to hundreds for an exact first-contact scale.
+The first-contact scale (``scale="E"``) of float64 stacks runs a compiled kernel that certifies
+each pair's enclosure (:mod:`quadric_contact.modes.scale_kernel`) and leaves the pairs it cannot
+certify (a centre on the surface, a degenerate ``Q`` other than a plane) to the exact path.
+Otherwise stacks run the scalar path pair by pair.
 """
 
 from __future__ import annotations
@@ -25,7 +27,7 @@ import flint
 import numpy as np
 
 from quadric_contact.exact.algebraic import RealAlgebraic
-from quadric_contact.exact.errors import UndecidedError
+from quadric_contact.exact.errors import SYMMETRIZE_HINT, NonFiniteError, NotSymmetricError, UndecidedError
 from quadric_contact.exact.precision import working_precision
 from quadric_contact.modes.batch import is_stack
 from quadric_contact.model.classification import QuadricKind
@@ -176,10 +178,45 @@ def contact_scale(E: Any, Q: Any, *, scale: str = "E", mode: str = "certified") 
     _check(mode, ("certified", "exact"))
     if not (is_stack(E) or is_stack(Q)):
         return contact_scale_exact(E, Q, scale=scale)
+    if scale == "E" and _float_stack(E) and _float_stack(Q):
+        return _scale_kernel(E, Q)
     es, qs, shape = _pairs(E, Q)
     out = np.empty((len(es), 2))
     for k, (e, q) in enumerate(zip(es, qs, strict=True)):
         out[k] = enclosure(contact_scale_exact(e, q, scale=scale).scale)
+    return out.reshape(*shape, 2)
+
+
+def _float_stack(v: Any) -> bool:
+    """A float64 array ``(..., 4, 4)`` (a stack, or one matrix broadcast)."""
+    return isinstance(v, np.ndarray) and v.dtype == np.float64 and v.ndim >= 2 and v.shape[-2:] == (4, 4)
+
+
+def _validated(v: np.ndarray, name: str) -> np.ndarray:
+    flat = v.reshape(-1, 4, 4)
+    finite = np.isfinite(flat).all(axis=(1, 2))
+    if not finite.all():
+        k = int(np.argmin(finite))
+        i, j = (int(x) for x in np.argwhere(~np.isfinite(flat[k]))[0])
+        raise NonFiniteError(f"{name}[{k}] has a non-finite entry at ({i}, {j})", flat[k], entry=(i, j), index=k)
+    sym = (flat == flat.transpose(0, 2, 1)).all(axis=(1, 2))
+    if not sym.all():
+        k = int(np.argmin(sym))
+        raise NotSymmetricError(f"{name}[{k}] is not symmetric; {SYMMETRIZE_HINT}", flat[k], index=k)
+    return flat
+
+
+def _scale_kernel(E: np.ndarray, Q: np.ndarray) -> np.ndarray:
+    """The compiled kernel (:mod:`quadric_contact.modes.scale_kernel`) on float64 stacks; the
+    pairs it leaves go to the exact scalar path."""
+    from quadric_contact.modes.scale_kernel import scale_stack
+
+    shape = np.broadcast_shapes(E.shape[:-2], Q.shape[:-2])
+    Es = _validated(np.broadcast_to(E, (*shape, 4, 4)), "E")
+    Qs = _validated(np.broadcast_to(Q, (*shape, 4, 4)), "Q")
+    out, rest = scale_stack(Es, Qs)
+    for k in np.flatnonzero(rest):
+        out[k] = enclosure(contact_scale_exact(Es[k], Qs[k]).scale)
     return out.reshape(*shape, 2)
 
 
