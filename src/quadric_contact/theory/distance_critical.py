@@ -71,6 +71,8 @@ import numpy as np
 from quadric_contact.exact.errors import UndecidedError
 from quadric_contact.exact.precision import working_precision
 from quadric_contact.model.quadric import Quadric
+from quadric_contact.theory.overlap import overlap_exact
+from quadric_contact.theory.results import OverlapCode
 
 __all__ = [
     "FACES",
@@ -735,6 +737,13 @@ def critical_boxes(
         if not np.isfinite(t_best_lo):
             raise UndecidedError("no oriented critical point was found to start from", E, other=K)
         lo_t, hi_t = t_best_lo, float(_up(t_abs_hi))
+        # the exact overlap decision halves the range: crossing solids have every critical
+        # t < 0 (the origin is inside the Minkowski difference), separated ones the largest > 0
+        code = overlap_exact(E, K).code
+        if code is OverlapCode.OVERLAPPING:
+            hi_t = min(hi_t, 0.0)
+        elif code is OverlapCode.SEPARATE:
+            lo_t = max(lo_t, 0.0)
     else:
         lo_t, hi_t = -1e-9 * (1 + t_abs_hi), float(_up(t_abs_hi))
     # a margin: a zero on the edge of the searched slab could not be certified
