@@ -82,3 +82,28 @@ def test_bad_input_is_refused():
     bad[0, 2, 2] = np.nan
     with pytest.raises(NonFiniteError):
         qc.contact_scale(bad, Es[1])
+
+
+def test_the_kernel_identities_in_exact_arithmetic():
+    """``adj(E + mu Q) e_4 = det(A_mu) (x(mu), 1)``, ``f det(A_mu)^2 = Y^T Q Y``, the formula of
+    ``s(mu)^2``, and ``f' = -2 g^T A_mu^-1 g``, derived with sympy on rational pairs."""
+    import sympy as sp
+
+    mu = sp.Symbol("mu")
+    E = sp.Matrix(Quadric.ellipsoid(2, 1, Fraction(1, 2), center=(1, -2, Fraction(1, 3))).matrix)
+    Q = sp.Matrix(Quadric.from_equation("x**2 - 2*y**2 + z**2/3 + x*y - z + 5").matrix)
+    A, a = E[:3, :3], E[:3, 3]
+    Am = A + mu * Q[:3, :3]
+    x = -Am.inv() * (a + mu * Q[:3, 3])
+    X = x.col_join(sp.Matrix([1]))
+    Y = (E + mu * Q).adjugate()[:, 3]
+    assert sp.simplify(Y - Am.det() * X) == sp.zeros(4, 1)
+    f = sp.simplify((X.T * Q * X)[0])
+    assert sp.simplify(f * Am.det() ** 2 - (Y.T * Q * Y)[0]) == 0
+    c = -A.inv() * a
+    r = (c.T * A * c)[0] - E[3, 3]
+    s2 = ((x - c).T * A * (x - c))[0] / r
+    formula = (Y[3] ** 2 * E.det() - (Y.T * E * Y)[0] * A.det()) / (Y[3] ** 2 * E.det())
+    assert sp.simplify(s2 - formula) == 0
+    g = Q[:3, :3] * x + Q[:3, 3]
+    assert sp.simplify(sp.diff(f, mu) + 2 * (g.T * Am.inv() * g)[0]) == 0

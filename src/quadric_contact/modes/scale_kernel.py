@@ -20,8 +20,8 @@ of ``f`` between two definite ends ``mu1 < mu2`` holds exactly one root, which i
 
 and ``s(mu)^2`` is monotone in ``|mu|`` on the definite interval (it is ``|p(mu)|^2`` in the
 coordinates where ``E`` is the unit ball, ``p_i = mu b_i / (1 + mu m_i)`` on the eigenbasis), so
-``s*^2`` lies between its values at ``mu1`` and ``mu2`` (``proofs/first_contact_scale.py``
-proves the identities).
+``s*^2`` lies between its values at ``mu1`` and ``mu2`` (``tests/test_contact_scale_kernel.py``
+checks the identities in exact arithmetic).
 
 Every sign and every bound is computed in binary64 with a static error bound: a straight-line
 program of ``+ - *`` whose every path has at most ``D`` roundings errs by at most
