@@ -353,7 +353,8 @@ def _ellipsoid_tables(rng: np.random.Generator, methods: dict[str, Callable[...,
             errs = [_error(float(fn(*q)), r) for q, r in zip(pairs, refs, strict=True)]
             ok = [e for e in errs if e is not None]
             cells.append(
-                (f"{max(ok):.1e}" if ok else "-") + (f" ({len(errs) - len(ok)} failed)" if len(ok) < len(errs) else "")
+                (f"{max(ok):.1e}" if ok else "-")
+                + (f" ({len(errs) - len(ok)} failed)" if len(ok) < len(errs) else "")
             )
         print(f"| {k} | {float(refs[0]):.3e} | " + " | ".join(cells) + " |")
 

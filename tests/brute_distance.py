@@ -250,7 +250,7 @@ def surface_gap(E, Q, *, digits=40, shift=None, n_points=900, n_dirs=2500, polis
                 return hit(c + T * (u / mpmath.norm(u)), w / mpmath.norm(w))
 
             def grad(*z):
-                return [mpmath.diff(lambda h, k=k: g(*(z[:k] + (h,) + z[k + 1 :])), z[k]) for k in range(4)]
+                return [mpmath.diff(lambda h, k=k: g(*z[:k], h, *z[k + 1 :]), z[k]) for k in range(4)]
 
             zero = mpmath.mpf(0)
             try:

@@ -86,9 +86,7 @@ def _marks(kind):
     return () if kind in FAST else (pytest.mark.slow,)
 
 
-@pytest.mark.parametrize(
-    "kind", [pytest.param(k, marks=_marks(k), id=k.name.lower()) for k in APART]
-)
+@pytest.mark.parametrize("kind", [pytest.param(k, marks=_marks(k), id=k.name.lower()) for k in APART])
 def test_separated_distance_equals_the_brute_force_minimum(kind):
     q = TYPES[kind].moved(MOTION)
     e = _ellipsoid(APART[kind])
@@ -103,7 +101,10 @@ def test_separated_distance_equals_the_brute_force_minimum(kind):
 
 @pytest.mark.parametrize(
     "kind",
-    [pytest.param(k, marks=() if k is QuadricKind.ELLIPSOID else (pytest.mark.slow,), id=k.name.lower()) for k in CROSSING],
+    [
+        pytest.param(k, marks=() if k is QuadricKind.ELLIPSOID else (pytest.mark.slow,), id=k.name.lower())
+        for k in CROSSING
+    ],
 )
 def test_depth_moves_e_to_touch(kind):
     """Moving ``E`` by ``depth + delta`` along the normal leaves it ``delta`` apart from the
@@ -137,8 +138,11 @@ def test_sphere_through_the_contact_system_equals_the_secular_equation(kind):
         got = critical_distance(e, K, convex=kind in CONVEX_SOLIDS, digits=30).distance
         exact.distance.refine(Fraction(1, 10**40))
         lo, hi = exact.distance.interval
-        assert got.overlaps(flint.arb(flint.fmpq(lo.numerator, lo.denominator)).union(
-            flint.arb(flint.fmpq(hi.numerator, hi.denominator))))
+        assert got.overlaps(
+            flint.arb(flint.fmpq(lo.numerator, lo.denominator)).union(
+                flint.arb(flint.fmpq(hi.numerator, hi.denominator))
+            )
+        )
         assert got.rad() < 1e-29 * max(1, abs(float(got.mid())))
 
 
@@ -148,7 +152,9 @@ def _value(K, p):
     return sum(X[i] * M[i][j] * X[j] for i in range(4) for j in range(4))
 
 
-@pytest.mark.parametrize("kind", [QuadricKind.ELLIPSOID, QuadricKind.HYPERBOLIC_PARABOLOID], ids=lambda k: k.name.lower())
+@pytest.mark.parametrize(
+    "kind", [QuadricKind.ELLIPSOID, QuadricKind.HYPERBOLIC_PARABOLOID], ids=lambda k: k.name.lower()
+)
 def test_witnesses_lie_on_the_surfaces_along_the_normal(kind):
     q = TYPES[kind].moved(MOTION)
     K = solid_of(q)

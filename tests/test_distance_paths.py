@@ -27,8 +27,9 @@ def test_family_distance_and_scale_follow_the_parameter():
 def test_closest_approach_of_a_ball_passing_a_sphere():
     # centre (t, 3, 0) for t in [-2, 3]: distance sqrt(t^2 + 9) - 1 - 1/4, least 7/4 at t = 0
     path = PolynomialMotion([[0, 1], [3], [0]])
-    r = path_distance(Quadric.sphere(Fraction(1, 4)), "x**2 + y**2 + z**2 - 1", path, -2, 3,
-                      tolerance=Fraction(1, 10**3))
+    r = path_distance(
+        Quadric.sphere(Fraction(1, 4)), "x**2 + y**2 + z**2 - 1", path, -2, 3, tolerance=Fraction(1, 10**3)
+    )
     lo, hi = r.minimum
     assert lo <= Fraction(7, 4) <= hi and hi - lo <= Fraction(1, 10**3)
     assert any(a <= 0 <= b for a, b in r.times)

@@ -29,9 +29,9 @@ import numpy as np
 from quadric_contact.exact.algebraic import RealAlgebraic
 from quadric_contact.exact.errors import SYMMETRIZE_HINT, NonFiniteError, NotSymmetricError, UndecidedError
 from quadric_contact.exact.precision import working_precision
-from quadric_contact.modes.batch import is_stack
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import as_quadric
+from quadric_contact.modes.batch import is_stack
 from quadric_contact.modes.distance_certified import DistanceEnclosure, distance_certified
 from quadric_contact.theory.contact_scale import contact_scale_exact
 from quadric_contact.theory.distance import CONVEX_SOLIDS, DistanceResult, distance_exact, is_sphere
@@ -68,7 +68,9 @@ class FloatDistance:
 
     @property
     def bounds(self) -> tuple[float, float]:
-        return _down(Fraction(self.distance) - Fraction(self.error)), _up(Fraction(self.distance) + Fraction(self.error))
+        return _down(Fraction(self.distance) - Fraction(self.error)), _up(
+            Fraction(self.distance) + Fraction(self.error)
+        )
 
     @staticmethod
     def of(lo: float, hi: float) -> FloatDistance:
@@ -198,7 +200,9 @@ def _validated(v: np.ndarray, name: str) -> np.ndarray:
     if not finite.all():
         k = int(np.argmin(finite))
         i, j = (int(x) for x in np.argwhere(~np.isfinite(flat[k]))[0])
-        raise NonFiniteError(f"{name}[{k}] has a non-finite entry at ({i}, {j})", flat[k], entry=(i, j), index=k)
+        raise NonFiniteError(
+            f"{name}[{k}] has a non-finite entry at ({i}, {j})", flat[k], entry=(i, j), index=k
+        )
     sym = (flat == flat.transpose(0, 2, 1)).all(axis=(1, 2))
     if not sym.all():
         k = int(np.argmin(sym))

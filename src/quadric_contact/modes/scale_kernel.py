@@ -52,7 +52,9 @@ _TINY = 1e-290
 
 
 @njit(inline=True)
-def _det3(m00: float, m01: float, m02: float, m11: float, m12: float, m22: float, m10: float, m20: float, m21: float) -> float:
+def _det3(
+    m00: float, m01: float, m02: float, m11: float, m12: float, m22: float, m10: float, m20: float, m21: float
+) -> float:
     return m00 * (m11 * m22 - m12 * m21) - m01 * (m10 * m22 - m12 * m20) + m02 * (m10 * m21 - m11 * m20)
 
 
@@ -299,7 +301,7 @@ def _kernel(Es: Any, Qs: Any, out: Any, flag: Any, start: int, stop: int) -> Non
                     mid = 0.5 * (lo + hi)
             else:
                 mid = 0.5 * (lo + hi)
-            if mid == lo or mid == hi:
+            if mid == lo or mid == hi:  # noqa: SIM109 (compiled: two float comparisons)
                 break
             f, definite = _plain(E, Q, mid / (1.0 - abs(mid)), P)
             if definite and side * f > 0:

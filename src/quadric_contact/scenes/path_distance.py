@@ -27,7 +27,7 @@ from typing import Any
 
 from quadric_contact.exact.errors import UndecidedError
 from quadric_contact.exact.rational import to_fraction
-from quadric_contact.model.quadric import Quadric, as_quadric
+from quadric_contact.model.quadric import as_quadric
 from quadric_contact.modes.distances import distance
 from quadric_contact.scenes.trajectory import Trajectory, _poly_coeffs
 
@@ -135,7 +135,9 @@ def path_distance(
     while True:
         best = min(hi for lo, hi in (d(a) for a, _, _ in work))
         best = min(best, min(d(b)[1] for _, b, _ in work))
-        bounds = [((d(a)[0] + d(b)[0]) / 2 - _speed_bound(V, a, b) * (b - a) / 2, a, b, V) for a, b, V in work]
+        bounds = [
+            ((d(a)[0] + d(b)[0]) / 2 - _speed_bound(V, a, b) * (b - a) / 2, a, b, V) for a, b, V in work
+        ]
         live = [x for x in bounds if x[0] <= best]
         low = min(x[0] for x in live)
         if best - low <= tol or len(cache) >= max_evaluations:
@@ -151,5 +153,3 @@ def path_distance(
     times = tuple((a, b) for _, a, b, _ in live)
     samples = tuple(sorted((t, lo, hi) for t, (lo, hi) in cache.items()))
     return PathDistance(minimum, times, samples)
-
-

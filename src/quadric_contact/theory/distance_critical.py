@@ -235,7 +235,7 @@ class Dual:
         return Dual(-self.v, None if self.d is None else [-p for p in self.d])
 
     def __sub__(self, o: Any) -> Dual:
-        return self + (-o if isinstance(o, Dual) else -o)
+        return self + (-o)
 
     def __rsub__(self, o: Any) -> Dual:
         return (-self) + o
@@ -400,7 +400,9 @@ def _system(a: Any, b: Any, t: Any, C: _Pair, face: tuple[int, int, int, int], o
     return F1, F2, F3, orient, x, y, nu
 
 
-def _jacobian(a: Any, b: Any, t: Any, C: _Pair, face: tuple[int, int, int, int], base: _Ops, zero: Any) -> list[list[Any]]:
+def _jacobian(
+    a: Any, b: Any, t: Any, C: _Pair, face: tuple[int, int, int, int], base: _Ops, zero: Any
+) -> list[list[Any]]:
     """The Jacobian of ``(F1, F2, F3)`` over ``(a, b, t)`` (forward derivatives)."""
     one = zero + 1
     da = Dual(a, [one, zero, zero])
@@ -434,9 +436,7 @@ def _inv3(M: np.ndarray) -> np.ndarray:
     return np.where(np.isfinite(out), out, np.nan)
 
 
-def _krawczyk_iv(
-    X: list[IV], m: list[Any], C: _Pair, Cf: _Pair, face: tuple[int, int, int, int]
-) -> list[IV]:
+def _krawczyk_iv(X: list[IV], m: list[Any], C: _Pair, Cf: _Pair, face: tuple[int, int, int, int]) -> list[IV]:
     """The Krawczyk image ``m - Y F(m) + (I - Y F'(X)) (X - m)`` of boxes ``X`` (a list of three
     IV), at the points ``m`` inside them, ``Y`` a float inverse of ``F'(m)``."""
     ivo = _iv_ops()
@@ -445,7 +445,9 @@ def _krawczyk_iv(
     mi = [IV(v) for v in m]
     Fm = _system(mi[0], mi[1], mi[2], C, face, ivo)[:3]
     Jf = _jacobian(m[0], m[1], m[2], Cf, face, _float_ops(), np.zeros_like(m[0]))
-    Jm = np.stack([np.stack([np.broadcast_to(Jf[p][q], m[0].shape) for q in range(3)], -1) for p in range(3)], -2)
+    Jm = np.stack(
+        [np.stack([np.broadcast_to(Jf[p][q], m[0].shape) for q in range(3)], -1) for p in range(3)], -2
+    )
     Y = _inv3(Jm)
     out = []
     for r in range(3):
@@ -486,7 +488,9 @@ def _newton_steps(m: list[Any], Cf: _Pair, face: tuple[int, int, int, int], step
     for _ in range(steps):
         F = _system(m[0], m[1], m[2], Cf, face, fo)[:3]
         J = _jacobian(m[0], m[1], m[2], Cf, face, fo, np.zeros_like(m[0]))
-        Jm = np.stack([np.stack([np.broadcast_to(J[p][q], m[0].shape) for q in range(3)], -1) for p in range(3)], -2)
+        Jm = np.stack(
+            [np.stack([np.broadcast_to(J[p][q], m[0].shape) for q in range(3)], -1) for p in range(3)], -2
+        )
         Y = _inv3(Jm)
         step = [sum(Y[..., r, q] * F[q] for q in range(3)) for r in range(3)]
         m = [m[r] - step[r] for r in range(3)]
@@ -501,9 +505,7 @@ class _Found:
     box: list[IV]
 
 
-def _search(
-    C: _Pair, Cf: _Pair, t_lo: float, t_hi: float, scale: float
-) -> list[_Found]:
+def _search(C: _Pair, Cf: _Pair, t_lo: float, t_hi: float, scale: float) -> list[_Found]:
     """Branch and bound over the six charts and ``t`` in ``[t_lo, t_hi]``: the certified boxes
     holding every zero with the right orientation."""
     ivo = _iv_ops()
@@ -583,7 +585,10 @@ def _merge(found: list[_Found]) -> list[_Found]:
                 _Found(
                     face,
                     [
-                        IV(np.concatenate([f.box[r].lo for f in mine]), np.concatenate([f.box[r].hi for f in mine]))
+                        IV(
+                            np.concatenate([f.box[r].lo for f in mine]),
+                            np.concatenate([f.box[r].hi for f in mine]),
+                        )
                         for r in range(3)
                     ],
                 )
@@ -599,8 +604,10 @@ def _contract_iv(f: _Found, C: _Pair, Cf: _Pair, rounds: int = 6) -> _Found:
         m = [X[r].mid for r in range(3)]
         Kx = _krawczyk_iv(X, m, C, Cf, f.face)
         X = [
-            IV(np.maximum(X[r].lo, np.where(np.isfinite(Kx[r].lo), Kx[r].lo, X[r].lo)),
-               np.minimum(X[r].hi, np.where(np.isfinite(Kx[r].hi), Kx[r].hi, X[r].hi)))
+            IV(
+                np.maximum(X[r].lo, np.where(np.isfinite(Kx[r].lo), Kx[r].lo, X[r].lo)),
+                np.minimum(X[r].hi, np.where(np.isfinite(Kx[r].hi), Kx[r].hi, X[r].hi)),
+            )
             for r in range(3)
         ]
     return _Found(f.face, X)
@@ -826,7 +833,9 @@ def _extremum(
                     if Y is None:
                         break
                     X = Y
-                    if X[2].rad() <= abs(X[2].mid()) * flint.arb(2) ** (-bits - 8) or X[2].rad() < flint.arb(2) ** (-2 * bits):
+                    if X[2].rad() <= abs(X[2].mid()) * flint.arb(2) ** (-bits - 8) or X[2].rad() < flint.arb(
+                        2
+                    ) ** (-2 * bits):
                         break
                 F1, F2, F3, orient, x, y, nu = _system(X[0], X[1], X[2], Ca, face, _arb_ops())
                 if orient > 0:
