@@ -10,13 +10,18 @@ two bounds meet.  The kernel finds ``u`` by Newton's method on ``grad phi(u) + l
 ``|u| = 1`` (``phi(u) = h_E(u) + h_K(-u)``, convex), then
 
 * ``L``: a certified lower bound of ``-phi(u) / |u|``, with ``h`` read off the matrix
-  ``[[A, a], [a^T, e]]`` itself: ``h(u) = (-u^T adj(A) a + sqrt(-det(E) u^T adj(A) u)) / det A``
-  (``c = -A^-1 a``, ``r = -det E / det A``), every polynomial in binary64 with a static error
-  bound (at most ``D`` roundings on every path: error ``<= gamma_D`` times the program on
-  absolute values), the last divisions and the root in interval arithmetic rounded outwards;
+  ``[[A, a], [a^T, e]]`` itself around a float point ``c`` near the centre:
+  ``h(v) = v . c - v^T adj(A) g / det A + sqrt(r v^T adj(A) v / det A)`` with ``g = A c + a``
+  and ``r = -X_c^T E X_c + g^T adj(A) g / det A`` (exact identities), ``g`` and ``X_c^T E X_c``
+  in twice the working precision (error-free transformations, Ogita, Rump and Oishi's Dot2),
+  the other polynomials in binary64 with a static error bound (at most ``D`` roundings on
+  every path: error ``<= gamma_D`` times the program on absolute values), the divisions and
+  the root in interval arithmetic rounded outwards;
 * ``U``: points ``x``, ``y`` near the support points, pulled towards the centres by a relative
   ``delta`` until ``X^T E X < 0`` and ``Y^T K Y < 0`` are certified (the points lie in the
-  solids), and ``|x - y|`` rounded up.
+  solids; the forms are evaluated in twice the working precision by error-free
+  transformations, Ogita, Rump and Oishi's Dot2, so that ``delta`` can be ``1e-15``), and
+  ``|x - y|`` rounded up.
 
 ``L <= dist <= U``; a pair is accepted when ``L > 0`` and ``U - L <= tol L``.
 """
@@ -155,48 +160,128 @@ def _mv(M: Any, u: Any, out: Any) -> float:
 
 
 @njit(inline=True)
-def _form(M: Any, x0: float, x1: float, x2: float) -> tuple[float, float]:
-    """``X^T M X`` with ``X = (x, 1)`` and its error bound."""
+def _split(a: float) -> tuple[float, float]:
+    c = 134217729.0 * a  # 2^27 + 1 (Dekker)
+    h = c - (c - a)
+    return h, a - h
+
+
+@njit(inline=True)
+def _two_product(a: float, b: float) -> tuple[float, float]:
+    """``a b = p + e`` exactly (Dekker; no overflow or underflow assumed: checked by the
+    caller's finiteness of the result)."""
+    p = a * b
+    ah, al = _split(a)
+    bh, bl = _split(b)
+    e = al * bl - (((p - ah * bh) - al * bh) - ah * bl)
+    return p, e
+
+
+@njit(inline=True)
+def _two_sum(a: float, b: float) -> tuple[float, float]:
+    s = a + b
+    z = s - a
+    return s, (a - (s - z)) + (b - z)
+
+
+@njit(inline=True)
+def _form_accurate(M: Any, x0: float, x1: float, x2: float) -> tuple[float, float]:
+    """``X^T M X`` (``X = (x, 1)``) as a dot product of length 32 with exact terms: ``X_i X_j``
+    split exactly into ``h + l``, then Ogita-Rump-Oishi's Dot2, whose result errs by at most
+    ``u |exact| + gamma_n^2 |M| . |X X^T|`` (a twice-working-precision accuracy)."""
     X = (x0, x1, x2, 1.0)
-    v = 0.0
-    m = 0.0
+    p = 0.0
+    s = 0.0
+    mag = 0.0
     for i in range(4):
         for j in range(4):
-            v += X[i] * M[i, j] * X[j]
-            m += abs(X[i] * M[i, j] * X[j])
-    return v, m * _GAMMA + _TINY
+            hi_, lo_ = _two_product(X[i], X[j])
+            for f in (hi_, lo_):
+                t, r = _two_product(M[i, j], f)
+                p, q = _two_sum(p, t)
+                s = s + (q + r)
+                mag += abs(M[i, j] * f)
+    res = p + s
+    g32 = 32 * _U / (1 - 32 * _U)
+    err = (2 * _U * abs(res) + 2 * g32 * g32 * mag) * (1 + 2.0**-40) + _TINY
+    if not math.isfinite(res) or not math.isfinite(mag) or mag > 1e290:
+        return res, np.inf
+    return res, err
+
+
+@njit(inline=True)
+def _dot_accurate(M: Any, i: int, c0: float, c1: float, c2: float) -> tuple[float, float]:
+    """``g_i = M[i, :3] . c + M[i, 3]`` in twice the working precision (Dot2) and its bound."""
+    X = (c0, c1, c2, 1.0)
+    p = 0.0
+    s = 0.0
+    mag = 0.0
+    for j in range(4):
+        t, r = _two_product(M[i, j], X[j])
+        p, q = _two_sum(p, t)
+        s = s + (q + r)
+        mag += abs(M[i, j] * X[j])
+    res = p + s
+    g4 = 4 * _U / (1 - 4 * _U)
+    return res, (2 * _U * abs(res) + 2 * g4 * g4 * mag) * (1 + 2.0**-40) + _TINY
 
 
 @njit(inline=True)
 def _support(
-    M: Any, adj: Any, adja: Any, detA: float, eA: float, detM: float, eM: float, u: Any, sgn: float
+    M: Any, adj: Any, adja: Any, detA: float, eA: float, c: Any, u: Any, sgn: float
 ) -> tuple[float, float]:
-    """An enclosure of ``h(sgn u)``, the support function of the solid ``X^T M X <= 0``."""
-    # p1 = (sgn u)^T adj(A) a, p2 = u^T adj(A) u, with magnitudes
-    p1 = 0.0
-    m1 = 0.0
+    """An enclosure of ``h(v)``, ``v = sgn u``, the support function of ``X^T M X <= 0``, read
+    off the matrix around a float point ``c`` (near the centre): with ``g = A c + a`` and
+    ``k = X_c^T M X_c``, ``h(v) = v . c - v^T adj(A) g / det A + sqrt(r v^T adj(A) v / det A)``,
+    ``r = -k + g^T adj(A) g / det A`` (exact identities: the centre is ``c - A^-1 g``)."""
+    g0, e0 = _dot_accurate(M, 0, c[0], c[1], c[2])
+    g1, e1 = _dot_accurate(M, 1, c[0], c[1], c[2])
+    g2, e2 = _dot_accurate(M, 2, c[0], c[1], c[2])
+    g = (g0, g1, g2)
+    eg = (e0, e1, e2)
+    k, ek = _form_accurate(M, c[0], c[1], c[2])
+    # w = v^T adj g, q = g^T adj g, p2 = u^T adj u: values and error bounds
+    w = 0.0
+    wm = 0.0
+    wd = 0.0
+    q = 0.0
+    qm = 0.0
+    qd = 0.0
     p2 = 0.0
     m2 = 0.0
     for i in range(3):
         for j in range(3):
-            p1 += sgn * u[i] * adj[i, j] * M[j, 3]
-            m1 += abs(u[i]) * adja[i, j] * abs(M[j, 3])
+            aij = abs(adj[i, j]) + adja[i, j] * _GAMMA
+            w += sgn * u[i] * adj[i, j] * g[j]
+            wm += abs(u[i]) * adja[i, j] * abs(g[j])
+            wd += abs(u[i]) * aij * eg[j]
+            q += g[i] * adj[i, j] * g[j]
+            qm += abs(g[i]) * adja[i, j] * abs(g[j])
+            qd += aij * (eg[i] * (abs(g[j]) + eg[j]) + abs(g[i]) * eg[j])
             p2 += u[i] * adj[i, j] * u[j]
             m2 += abs(u[i]) * adja[i, j] * abs(u[j])
-    e1 = m1 * _GAMMA + _TINY
-    e2 = m2 * _GAMMA + _TINY
-    # q = -det(M) p2, an enclosure
-    ql = (-detM - eM) * (p2 - e2) if (p2 - e2) > 0 else 0.0
-    qh = (-detM + eM) * (p2 + e2)
-    ql = max(_dn(ql), 0.0)
-    qh = _up(qh)
-    sl = _dn(math.sqrt(ql))
-    sh = _up(math.sqrt(qh))
-    nl = _dn(-(p1 + e1) + sl)
-    nh = _up(-(p1 - e1) + sh)
+    ew = (wm * _GAMMA + wd) * (1 + 2.0**-40) + _TINY
+    eq = (qm * _GAMMA + qd) * (1 + 2.0**-40) + _TINY
+    ep2 = m2 * _GAMMA + _TINY
     dl, dh = detA - eA, detA + eA
-    lo = _dn(nl / dh) if nl >= 0 else _dn(nl / dl)
-    hi = _up(nh / dl) if nh >= 0 else _up(nh / dh)
+    # r = -k + q / det A, an enclosure (q >= 0 up to its error)
+    ql, qh = q - eq, q + eq
+    rl = _dn(-(k + ek) + (_dn(ql / dh) if ql >= 0 else _dn(ql / dl)))
+    rh = _up(-(k - ek) + (_up(qh / dl) if qh >= 0 else _up(qh / dh)))
+    # the root term sqrt(r p2 / det A)
+    pl, ph = max(p2 - ep2, 0.0), p2 + ep2
+    tl = _dn(_dn(max(rl, 0.0) * pl) / dh)
+    th = _up(_up(rh * ph) / dl)
+    sl = _dn(math.sqrt(max(tl, 0.0)))
+    sh = _up(math.sqrt(th))
+    # the linear terms: v . c and -w / det A
+    vc = sgn * (u[0] * c[0] + u[1] * c[1] + u[2] * c[2])
+    evc = (abs(u[0] * c[0]) + abs(u[1] * c[1]) + abs(u[2] * c[2])) * 3 * _U * (1 + 2.0**-40) + _TINY
+    wl, wh = -(w + ew), -(w - ew)
+    tl2 = _dn(wl / dh) if wl >= 0 else _dn(wl / dl)
+    th2 = _up(wh / dl) if wh >= 0 else _up(wh / dh)
+    lo = _dn(_dn(_dn(vc - evc) + tl2) + sl)
+    hi = _up(_up(_up(vc + evc) + th2) + sh)
     return lo, hi
 
 
@@ -297,8 +382,8 @@ def _kernel(
         if not (lam > 0):
             continue
         # L: a certified lower bound of -phi(u) / |u|
-        h1l, h1h = _support(E, adj1, ad1, detA1, eA1, detE, eE, u, 1.0)
-        h2l, h2h = _support(K, adj2, ad2, detA2, eA2, detK, eK, u, -1.0)
+        h1l, h1h = _support(E, adj1, ad1, detA1, eA1, c1, u, 1.0)
+        h2l, h2h = _support(K, adj2, ad2, detA2, eA2, c2, u, -1.0)
         phih = _up(h1h + h2h)
         if not (phih < 0):
             continue
@@ -317,8 +402,8 @@ def _kernel(
             y0 = c2[0] - (1 - delta) * m2[0] / s2
             y1 = c2[1] - (1 - delta) * m2[1] / s2
             y2 = c2[2] - (1 - delta) * m2[2] / s2
-            vE, eEx = _form(E, x0, x1, x2)
-            vK, eKy = _form(K, y0, y1, y2)
+            vE, eEx = _form_accurate(E, x0, x1, x2)
+            vK, eKy = _form_accurate(K, y0, y1, y2)
             if vE < -eEx and vK < -eKy:
                 d0 = max(abs(_up(x0 - y0)), abs(_dn(x0 - y0)))
                 d1 = max(abs(_up(x1 - y1)), abs(_dn(x1 - y1)))
