@@ -32,7 +32,9 @@ Tables:
    placed so that the supporting planes with a common normal are ``10^-k`` apart), where the
    package isolates every critical point of the contact system by the Krawczyk operator (the
    reference: the same method asked for 30 digits; no exact path exists for this pair);
-6. *first-contact scale*: the compiled certified kernel's throughput on a float64 stack of
+6. *stack distance*: the compiled duality kernel on a float64 stack of ellipsoid pairs (time
+   a pair, widths), the scalar path on the pairs it leaves, coal on the same pairs;
+7. *first-contact scale*: the compiled certified kernel's throughput on a float64 stack of
    ellipsoid pairs, against the exact scalar path.
 
 The ``float`` mode of the package is a binary64 interval enclosure (its error is bounded).
@@ -242,6 +244,7 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--seed", type=int, default=31)
     ap.add_argument("--ellipsoid-pairs", type=int, default=16)
     ap.add_argument("--scale-pairs", type=int, default=1_000_000)
+    ap.add_argument("--stack-pairs", type=int, default=200_000)
     args = ap.parse_args(argv)
     rng = np.random.default_rng(args.seed)
 
@@ -289,6 +292,7 @@ def main(argv: list[str] | None = None) -> None:
     _run("half-spaces: ellipsoid against a half-space", half, methods, 3)
 
     _ellipsoid_tables(rng, methods, args.ellipsoid_pairs)
+    _distance_stack(rng, args.stack_pairs)
     _scale_throughput(rng, args.scale_pairs)
 
     print("\n### near tangency: the sphere at 10^-k from touching (max abs. error over the directions)\n")
@@ -357,6 +361,87 @@ def _ellipsoid_tables(rng: np.random.Generator, methods: dict[str, Callable[...,
                 + (f" ({len(errs) - len(ok)} failed)" if len(ok) < len(errs) else "")
             )
         print(f"| {k} | {float(refs[0]):.3e} | " + " | ".join(cells) + " |")
+
+
+def _ellipsoid_stack(rng: np.random.Generator, m: int, spread: float = 4.0) -> np.ndarray:
+    """``m`` random rotated ellipsoids (semi-axes 0.3-1.5, centres in ``[-spread, spread]^3``)."""
+    out = np.zeros((m, 4, 4))
+    for k in range(m):
+        R, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+        A = R @ np.diag(1 / rng.uniform(0.3, 1.5, 3) ** 2) @ R.T
+        A = (A + A.T) / 2
+        c = rng.uniform(-spread, spread, 3)
+        out[k, :3, :3] = A
+        out[k, :3, 3] = out[k, 3, :3] = -A @ c
+        out[k, 3, 3] = c @ A @ c - 1
+    return out
+
+
+def _distance_stack(rng: np.random.Generator, n: int) -> None:
+    """The certified distance on a float64 stack of ellipsoid pairs: the compiled duality
+    kernel (separated pairs, 1e-12 relative) and the scalar path for the pairs it leaves; coal
+    on the same pairs for the ratio."""
+    if n <= 0:
+        return
+    from quadric_contact.modes.distance_kernel import separated_ellipsoids
+
+    base = min(n, 4096)
+    Es, Ks = _ellipsoid_stack(rng, base), _ellipsoid_stack(rng, base)
+    reps = max(1, n // base)
+    Es, Ks = np.tile(Es, (reps, 1, 1)), np.tile(Ks, (reps, 1, 1))
+    separated_ellipsoids(Es[:10], Ks[:10])  # compiled or loaded
+    t0 = time.perf_counter()
+    enc, rest = separated_ellipsoids(Es, Ks)
+    dt = time.perf_counter() - t0
+    width = (enc[~rest, 1] - enc[~rest, 0]) / enc[~rest, 0]
+    left = np.flatnonzero(rest[:base])
+    t1 = time.perf_counter()
+    sample = left[:3]
+    for k in sample:
+        distance(Quadric.from_matrix(Es[k]), Quadric.from_matrix(Ks[k]), digits=12)
+    scalar = (time.perf_counter() - t1) / max(1, len(sample))
+    print(f"\n### certified distance on a stack of {len(Es):,} ellipsoid pairs\n")
+    print("| path | pairs | time / pair | median rel. width | max rel. width |")
+    print("| --- | ---: | ---: | ---: | ---: |")
+    print(
+        f"| compiled duality kernel (separated pairs) | {int((~rest).sum()):,} | "
+        f"{dt / len(Es) * 1e6:.2f} µs | {np.median(width):.1e} | {np.max(width):.1e} |"
+    )
+    print(
+        f"| scalar certified path (the pairs left: crossing, touching) | {int(rest.sum()):,} | "
+        f"{scalar * 1e6:,.0f} µs | - | - |"
+    )
+    share = float(rest.mean())
+    print(
+        f"\nmedian time a pair: {'kernel' if share < 0.5 else 'scalar path'}; mean with the pairs left: "
+        f"{(dt / len(Es) + share * scalar) * 1e6:,.0f} µs"
+    )
+    coal_fn = _coal()
+    if coal_fn is None:
+        return
+    import coal
+
+    req = coal.DistanceRequest()
+    req.enable_signed_distance = True
+    res = coal.DistanceResult()
+    shapes = []
+    for k in range(min(base, 2000)):
+        pair = []
+        for M in (Es[k], Ks[k]):
+            A, a = M[:3, :3], M[:3, 3]
+            c = -np.linalg.solve(A, a)
+            r = c @ A @ c - M[3, 3]
+            w, V = np.linalg.eigh(A / r)
+            pair.append((coal.Ellipsoid(*(1 / np.sqrt(w))), coal.Transform3s(V, c)))
+        shapes.append(pair)
+    t2 = time.perf_counter()
+    for (s1, t1_), (s2, t2_) in shapes:
+        coal.distance(s1, t1_, s2, t2_, req, res)
+    dc = (time.perf_counter() - t2) / len(shapes)
+    print(
+        f"coal (GJK/EPA, default tolerances, one call a pair) on the same pairs: {dc * 1e6:.2f} µs a pair; "
+        f"ratio kernel / coal: {dt / len(Es) / dc:.2f}"
+    )
 
 
 def _scale_throughput(rng: np.random.Generator, n: int) -> None:
