@@ -322,7 +322,7 @@ def _kernel(Es: Any, Qs: Any, out: Any, flag: Any, start: int, stop: int) -> Non
         # the certificate: mu1 before the root, mu2 after it, both definite, widened until the
         # signs are certified
         mu = 0.5 * (lo + hi)
-        rel = 1e-15
+        rel = 1e-13  # typical: the signs are certified from 1e-13 to 1e-12
         for _ in range(11):
             m1 = mu * (1.0 - rel)
             m2 = mu * (1.0 + rel)
@@ -344,7 +344,13 @@ def _kernel(Es: Any, Qs: Any, out: Any, flag: Any, start: int, stop: int) -> Non
                 break
             if not (ok1 and ok2) and rel > 1e-9:
                 break
-            rel *= 10.0 if rel < 1e-9 else 4.0
+            # the next offset from the slope of Y^T Q Y between the two points and the larger
+            # error bound (then by factors, should the slope mislead)
+            nxt = rel * 10.0 if rel < 1e-9 else rel * 4.0
+            if abs(s2 - s1) > 8.0 * max(e1, e2):  # a slope above the noise
+                slope = abs(s2 - s1) / abs(m2 - m1)
+                nxt = max(rel * 1.5, min(nxt, 3.0 * max(e1, e2) / slope / abs(mu)))
+            rel = nxt
 
 
 def scale_stack(Es: np.ndarray, Qs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
