@@ -264,6 +264,21 @@ def _exact_answers(E: Any, Q: Any) -> bool:
     return is_sphere(e) or solid_of(Q).kind is QuadricKind.PLANE
 
 
+def _separated_pair(e: Any, K: Any) -> FloatDistance | None:
+    """Two ellipsoids whose entries are binary64 numbers: the compiled duality certificate
+    (:mod:`quadric_contact.modes.distance_kernel`), or None (not certified there)."""
+    from quadric_contact.modes.distance_kernel import separated_ellipsoids
+
+    mats = []
+    for q in (e, K):
+        m = np.array([[float(q[i, j]) for j in range(4)] for i in range(4)])
+        if any(Fraction(m[i, j]) != q[i, j] for i in range(4) for j in range(4)):
+            return None  # not binary64 numbers: the kernel would answer another pair
+        mats.append(m)
+    enc, rest = separated_ellipsoids(mats[0][None], mats[1][None])
+    return None if rest[0] else FloatDistance.of(float(enc[0, 0]), float(enc[0, 1]))
+
+
 def _float(E: Any, Q: Any) -> FloatDistance:
     """The float mode for one pair: binary64 intervals where the pair needs the search (a
     curved quadric against an ellipsoid that is not a sphere), the certified balls rounded
@@ -273,6 +288,10 @@ def _float(E: Any, Q: Any) -> FloatDistance:
     try:
         if K.kind is QuadricKind.PLANE or is_sphere(e):
             return FloatDistance.of(*_float_bounds(*distance_certified(e, K, digits=17).bounds))
+        if K.kind is QuadricKind.ELLIPSOID:
+            fast = _separated_pair(e, K)
+            if fast is not None:
+                return fast
         convex = K.kind in CONVEX_SOLIDS
         if not convex:
             code = overlap_exact(e, K).code
