@@ -98,6 +98,7 @@ def path_distance(
     A unit ball flying over the half-space ``z <= 0``, its centre at height ``2 + (t - 1)^2``
     (the distance ``1 + (t - 1)^2``, least at ``t = 1``):
 
+    >>> from quadric_contact import Quadric
     >>> from quadric_contact.scenes.trajectory import PolynomialMotion
     >>> path = PolynomialMotion([[0], [0], [3, -2, 1]])
     >>> r = path_distance(Quadric.sphere(1), "z", path, 0, 2, tolerance="1/1000")
