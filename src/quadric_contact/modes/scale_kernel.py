@@ -234,6 +234,37 @@ def _plain(E: Any, Q: Any, mu: float, P: Any) -> tuple[float, bool]:
     return s / (y3 * y3), definite
 
 
+@njit(inline=True)
+def _plain_slope(E: Any, Q: Any, mu: float, P: Any) -> tuple[float, float, bool]:
+    """``f(mu)``, ``f'(mu) = -2 g^T (A + mu Q00)^-1 g`` (``g = Q00 x + b``) and "definite", in
+    plain binary64 (the search)."""
+    for i in range(4):
+        for j in range(4):
+            P[i, j] = E[i, j] + mu * Q[i, j]
+    y0 = -_minor(P, 1, 2, 3, 0, 1, 2)
+    y1 = _minor(P, 0, 2, 3, 0, 1, 2)
+    y2 = -_minor(P, 0, 1, 3, 0, 1, 2)
+    y3 = _minor(P, 0, 1, 2, 0, 1, 2)
+    definite = P[0, 0] > 0 and P[0, 0] * P[1, 1] - P[0, 1] * P[1, 0] > 0 and y3 > 0
+    x0, x1, x2 = y0 / y3, y1 / y3, y2 / y3
+    f = 0.0
+    X = (x0, x1, x2, 1.0)
+    for i in range(4):
+        for j in range(4):
+            f += X[i] * Q[i, j] * X[j]
+    g0 = Q[0, 0] * x0 + Q[0, 1] * x1 + Q[0, 2] * x2 + Q[0, 3]
+    g1 = Q[1, 0] * x0 + Q[1, 1] * x1 + Q[1, 2] * x2 + Q[1, 3]
+    g2 = Q[2, 0] * x0 + Q[2, 1] * x1 + Q[2, 2] * x2 + Q[2, 3]
+    a00 = P[1, 1] * P[2, 2] - P[1, 2] * P[2, 1]
+    a01 = P[0, 2] * P[2, 1] - P[0, 1] * P[2, 2]
+    a02 = P[0, 1] * P[1, 2] - P[0, 2] * P[1, 1]
+    a11 = P[0, 0] * P[2, 2] - P[0, 2] * P[2, 0]
+    a12 = P[0, 2] * P[1, 0] - P[0, 0] * P[1, 2]
+    a22 = P[0, 0] * P[1, 1] - P[0, 1] * P[1, 0]
+    q = a00 * g0 * g0 + a11 * g1 * g1 + a22 * g2 * g2 + 2.0 * (a01 * g0 * g1 + a02 * g0 * g2 + a12 * g1 * g2)
+    return f, -2.0 * q / y3, definite
+
+
 @njit
 def _kernel(Es: Any, Qs: Any, out: Any, flag: Any, start: int, stop: int) -> None:  # pragma: no cover
     P = np.empty((4, 4))
@@ -287,41 +318,36 @@ def _kernel(Es: Any, Qs: Any, out: Any, flag: Any, start: int, stop: int) -> Non
         if abs(s0) <= e0:
             continue  # the centre is on (or too near) the surface: the exact path
         side = 1.0 if s0 > 0 else -1.0
-        # the search runs in w = mu / (1 + |mu|), in (-1, 1): lo before the root (definite,
-        # side f > 0), hi after it; Illinois where f is finite, bisection otherwise
+        # the search: Newton's method on f in mu, kept inside a bracket in w = mu / (1 + |mu|)
+        # ((-1, 1)): lo before the root (definite, side f > 0), hi after it; a step that
+        # leaves the bracket bisects it in w
         lo = 0.0
-        flo = s0 / (detA * detA)
         hi = side
-        fhi = -side * np.inf
-        last = 0
+        mu = 0.0
         for _ in range(200):
-            if math.isfinite(fhi):
-                mid = (lo * fhi - hi * flo) / (fhi - flo)
-                if not (min(lo, hi) < mid < max(lo, hi)):
-                    mid = 0.5 * (lo + hi)
-            else:
-                mid = 0.5 * (lo + hi)
-            if mid == lo or mid == hi:  # noqa: SIM109 (compiled: two float comparisons)
-                break
-            f, definite = _plain(E, Q, mid / (1.0 - abs(mid)), P)
-            if definite and side * f > 0:
-                lo, flo = mid, f
-                if last == 1 and math.isfinite(fhi):
-                    fhi *= 0.5
-                last = 1
-            else:
-                hi = mid
-                fhi = f if definite and math.isfinite(f) else -side * np.inf
-                if last == -1:
-                    flo *= 0.5
-                last = -1
+            f, df, definite = _plain_slope(E, Q, mu, P)
+            w = mu / (1.0 + abs(mu))
+            if definite and math.isfinite(f) and side * f > 0:
+                lo = w
+            elif w != 0.0:
+                hi = w
             if abs(hi - lo) <= 2e-16 * abs(hi):
                 break
-        lo = lo / (1.0 - abs(lo))
-        hi = hi / (1.0 - abs(hi))
+            nxt = 2.0  # outside: bisect
+            if definite and math.isfinite(f) and math.isfinite(df) and df != 0.0:
+                m2 = mu - f / df
+                if abs(m2 - mu) <= 4e-16 * abs(mu):
+                    break  # converged (mu evaluated, at the root to rounding)
+                nxt = m2 / (1.0 + abs(m2))
+            if not (min(lo, hi) < nxt < max(lo, hi)):
+                nxt = 0.5 * (lo + hi)
+            if nxt == lo or nxt == hi:  # noqa: SIM109 (compiled: two float comparisons)
+                break
+            mu = nxt / (1.0 - abs(nxt))
         # the certificate: mu1 before the root, mu2 after it, both definite, widened until the
         # signs are certified
-        mu = 0.5 * (lo + hi)
+        if not math.isfinite(mu):
+            continue
         rel = 1e-13  # typical: the signs are certified from 1e-13 to 1e-12
         for _ in range(11):
             m1 = mu * (1.0 - rel)
