@@ -381,18 +381,77 @@ def _constants(E: Quadric, K: Quadric, kind: str) -> _Pair:
     return _Pair([num(x) for x in c], P, N, K00, [num(K[i, 3]) for i in range(3)], num(K[3, 3]))
 
 
-def _system(a: Any, b: Any, t: Any, C: _Pair, face: tuple[int, int, int, int], ops: _Ops) -> tuple[Any, ...]:
-    """``(F1, F2, F3, orient, x, y, nu)`` at ``(a, b, t)`` in the chart ``face``."""
+_FI = np.array([f[0] for f in FACES])
+_FJ = np.array([f[1] for f in FACES])
+_FK = np.array([f[2] for f in FACES])
+_FS = np.array([float(f[3]) for f in FACES])
+
+
+class _Faces:
+    """The charts of a stack of boxes (face numbers ``0..5`` into :data:`FACES`): the columns
+    ``i, j, k`` of ``P`` and ``N`` gathered per box, for binary64 intervals or floats."""
+
+    def __init__(self, idx: np.ndarray) -> None:
+        self.idx = idx
+        self._cache: dict[int, tuple[Any, ...]] = {}
+
+    def take(self, keep: np.ndarray) -> _Faces:
+        return _Faces(self.idx[keep])
+
+    def columns(self, C: _Pair) -> tuple[Any, ...]:
+        key = id(C)
+        if key not in self._cache:
+            iv = isinstance(C.P[0][0], IV)
+
+            def gather(M: list[list[Any]], cols: np.ndarray) -> list[Any]:
+                if iv:
+                    lo = np.array([[float(M[r][c].lo) for c in range(3)] for r in range(3)])
+                    hi = np.array([[float(M[r][c].hi) for c in range(3)] for r in range(3)])
+                    return [IV(lo[r, cols], hi[r, cols]) for r in range(3)]
+                v = np.array([[float(M[r][c]) for c in range(3)] for r in range(3)])
+                return [v[r, cols] for r in range(3)]
+
+            fi, fj, fk = _FI[self.idx], _FJ[self.idx], _FK[self.idx]
+            self._cache[key] = (
+                gather(C.P, fi),
+                gather(C.P, fj),
+                gather(C.P, fk),
+                gather(C.N, fi),
+                gather(C.N, fj),
+                gather(C.N, fk),
+                _FS[self.idx],
+            )
+        return self._cache[key]
+
+
+def _columns(C: _Pair, face: Any) -> tuple[Any, ...]:
+    if isinstance(face, _Faces):
+        return face.columns(C)
     i, j, k, s = face
+    return (
+        [C.P[r][i] for r in range(3)],
+        [C.P[r][j] for r in range(3)],
+        [C.P[r][k] for r in range(3)],
+        [C.N[r][i] for r in range(3)],
+        [C.N[r][j] for r in range(3)],
+        [C.N[r][k] for r in range(3)],
+        s,
+    )
+
+
+def _system(a: Any, b: Any, t: Any, C: _Pair, face: Any, ops: _Ops) -> tuple[Any, ...]:
+    """``(F1, F2, F3, orient, x, y, nu)`` at ``(a, b, t)`` in the chart ``face`` (a tuple of
+    :data:`FACES`, or :class:`_Faces` for a stack of boxes in several charts)."""
+    Pi, Pj, Pk, Ni, Nj, Nk, s = _columns(C, face)
     rho = ops.sqrt(ops.sq(a) + ops.sq(b) + 1)
-    x = [C.c[r] + (C.P[r][i] * s + C.P[r][j] * a + C.P[r][k] * b) / rho for r in range(3)]
-    m = [C.N[r][i] * s + C.N[r][j] * a + C.N[r][k] * b for r in range(3)]
+    x = [C.c[r] + (Pi[r] * s + Pj[r] * a + Pk[r] * b) / rho for r in range(3)]
+    m = [Ni[r] * s + Nj[r] * a + Nk[r] * b for r in range(3)]
     mn = ops.sqrt(ops.sq(m[0]) + ops.sq(m[1]) + ops.sq(m[2]))
     nu = [m[r] / mn for r in range(3)]
     y = [x[r] + t * nu[r] for r in range(3)]
     g = [C.K00[r][0] * y[0] + C.K00[r][1] * y[1] + C.K00[r][2] * y[2] + C.k[r] for r in range(3)]
-    pw1 = [C.P[r][j] - a * (C.P[r][i] * s) for r in range(3)]
-    pw2 = [C.P[r][k] - b * (C.P[r][i] * s) for r in range(3)]
+    pw1 = [Pj[r] - a * (Pi[r] * s) for r in range(3)]
+    pw2 = [Pk[r] - b * (Pi[r] * s) for r in range(3)]
     F1 = g[0] * pw1[0] + g[1] * pw1[1] + g[2] * pw1[2]
     F2 = g[0] * pw2[0] + g[1] * pw2[1] + g[2] * pw2[2]
     F3 = y[0] * (g[0] + C.k[0]) + y[1] * (g[1] + C.k[1]) + y[2] * (g[2] + C.k[2]) + C.k33
@@ -400,9 +459,7 @@ def _system(a: Any, b: Any, t: Any, C: _Pair, face: tuple[int, int, int, int], o
     return F1, F2, F3, orient, x, y, nu
 
 
-def _jacobian(
-    a: Any, b: Any, t: Any, C: _Pair, face: tuple[int, int, int, int], base: _Ops, zero: Any
-) -> list[list[Any]]:
+def _jacobian(a: Any, b: Any, t: Any, C: _Pair, face: Any, base: _Ops, zero: Any) -> list[list[Any]]:
     """The Jacobian of ``(F1, F2, F3)`` over ``(a, b, t)`` (forward derivatives)."""
     one = zero + 1
     da = Dual(a, [one, zero, zero])
@@ -436,7 +493,7 @@ def _inv3(M: np.ndarray) -> np.ndarray:
     return np.where(np.isfinite(out), out, np.nan)
 
 
-def _krawczyk_iv(X: list[IV], m: list[Any], C: _Pair, Cf: _Pair, face: tuple[int, int, int, int]) -> list[IV]:
+def _krawczyk_iv(X: list[IV], m: list[Any], C: _Pair, Cf: _Pair, face: Any) -> list[IV]:
     """The Krawczyk image ``m - Y F(m) + (I - Y F'(X)) (X - m)`` of boxes ``X`` (a list of three
     IV), at the points ``m`` inside them, ``Y`` a float inverse of ``F'(m)``."""
     ivo = _iv_ops()
@@ -477,12 +534,12 @@ def _disjoint(Kx: list[IV], X: list[IV]) -> Any:
     return out
 
 
-def _newton_float(m: list[Any], Cf: _Pair, face: tuple[int, int, int, int], steps: int = 4) -> list[Any]:
+def _newton_float(m: list[Any], Cf: _Pair, face: Any, steps: int = 4) -> list[Any]:
     with np.errstate(all="ignore"):
         return _newton_steps(m, Cf, face, steps)
 
 
-def _newton_steps(m: list[Any], Cf: _Pair, face: tuple[int, int, int, int], steps: int) -> list[Any]:
+def _newton_steps(m: list[Any], Cf: _Pair, face: Any, steps: int) -> list[Any]:
     fo = _float_ops()
     m = [np.array(v, dtype=float) for v in m]
     for _ in range(steps):
@@ -512,65 +569,71 @@ def _search(C: _Pair, Cf: _Pair, t_lo: float, t_hi: float, scale: float) -> list
     found: list[_Found] = []
     examined = 0
     tw = max(t_hi - t_lo, 1e-300)
-    for face in FACES:
-        n0 = 4
-        g = np.linspace(-1.0, 1.0, n0 + 1)
-        A, B = np.meshgrid(g[:-1], g[:-1], indexing="ij")
-        lo = [A.ravel(), B.ravel(), np.full(n0 * n0, t_lo)]
-        hi = [A.ravel() + 2.0 / n0, B.ravel() + 2.0 / n0, np.full(n0 * n0, t_hi)]
-        while lo[0].size:
-            examined += lo[0].size
-            if examined > MAX_BOXES:
-                raise UndecidedError(
-                    "the critical points of the contact system were not isolated within the box "
-                    f"budget ({MAX_BOXES}): a degenerate (symmetric) configuration"
-                )
-            X = [IV(lo[r], hi[r]) for r in range(3)]
-            F1, F2, F3, orient, *_ = _system(X[0], X[1], X[2], C, face, ivo)
-            keep = np.ones(lo[0].shape, dtype=bool)
-            for f in (F1, F2, F3):
-                keep &= ~((f.lo > 0) | (f.hi < 0))
-            keep &= ~(orient.lo > 0)
-            lo = [v[keep] for v in lo]
-            hi = [v[keep] for v in hi]
-            if not lo[0].size:
-                break
-            # Krawczyk on the box inflated by 10% about its centre (it then holds the box)
-            ctr = [0.5 * (lo[r] + hi[r]) for r in range(3)]
-            half = [0.55 * (hi[r] - lo[r]) for r in range(3)]
-            Xi = [IV(_dn(ctr[r] - half[r]), _up(ctr[r] + half[r])) for r in range(3)]
-            m = _newton_float(ctr, Cf, face, steps=3)
-            inbox = np.ones(lo[0].shape, dtype=bool)
-            for r in range(3):
-                inbox &= np.isfinite(m[r]) & (m[r] > Xi[r].lo) & (m[r] < Xi[r].hi)
-            m = [np.where(inbox, m[r], ctr[r]) for r in range(3)]
-            Kx = _krawczyk_iv(Xi, m, C, Cf, face)
-            ok = _inside(Kx, Xi)
-            if ok.any():
-                found.append(_Found(face, [Xi[r].take(ok) for r in range(3)]))
-            gone = ok | _disjoint(Kx, Xi)
-            rest = ~gone
-            lo = [v[rest] for v in lo]
-            hi = [v[rest] for v in hi]
-            if not lo[0].size:
-                break
-            # narrow to the Krawczyk image (the zeros of the box lie in it), then bisect
-            Kr = [Kx[r].take(rest) for r in range(3)]
-            for r in range(3):
-                nl = np.where(np.isfinite(Kr[r].lo), np.maximum(lo[r], Kr[r].lo), lo[r])
-                nh = np.where(np.isfinite(Kr[r].hi), np.minimum(hi[r], Kr[r].hi), hi[r])
-                lo[r], hi[r] = nl, nh
-            w = np.stack([hi[0] - lo[0], hi[1] - lo[1], (hi[2] - lo[2]) / tw * 2.0])
-            if np.any(w.max(axis=0) < 1e-11):
-                raise UndecidedError(
-                    "a critical point of the contact system is not isolated (a degenerate, "
-                    "symmetric configuration)"
-                )
-            axis = np.argmax(w, axis=0)
-            mid = [0.5 * (lo[r] + hi[r]) for r in range(3)]
-            lo2 = [np.concatenate([lo[r], np.where(axis == r, mid[r], lo[r])]) for r in range(3)]
-            hi2 = [np.concatenate([np.where(axis == r, mid[r], hi[r]), hi[r]]) for r in range(3)]
-            lo, hi = lo2, hi2
+    n0 = 4
+    g = np.linspace(-1.0, 1.0, n0 + 1)
+    A, B = np.meshgrid(g[:-1], g[:-1], indexing="ij")
+    nf = len(FACES)
+    idx = np.repeat(np.arange(nf), n0 * n0)
+    lo = [np.tile(A.ravel(), nf), np.tile(B.ravel(), nf), np.full(nf * n0 * n0, t_lo)]
+    hi = [lo[0] + 2.0 / n0, lo[1] + 2.0 / n0, np.full(nf * n0 * n0, t_hi)]
+    while lo[0].size:
+        examined += lo[0].size
+        if examined > MAX_BOXES:
+            raise UndecidedError(
+                "the critical points of the contact system were not isolated within the box "
+                f"budget ({MAX_BOXES}): a degenerate (symmetric) configuration"
+            )
+        faces = _Faces(idx)
+        X = [IV(lo[r], hi[r]) for r in range(3)]
+        F1, F2, F3, orient, *_ = _system(X[0], X[1], X[2], C, faces, ivo)
+        keep = np.ones(lo[0].shape, dtype=bool)
+        for f in (F1, F2, F3):
+            keep &= ~((f.lo > 0) | (f.hi < 0))
+        keep &= ~(orient.lo > 0)
+        lo = [v[keep] for v in lo]
+        hi = [v[keep] for v in hi]
+        idx = idx[keep]
+        if not lo[0].size:
+            break
+        faces = _Faces(idx)
+        # Krawczyk on the box inflated by 10% about its centre (it then holds the box)
+        ctr = [0.5 * (lo[r] + hi[r]) for r in range(3)]
+        half = [0.55 * (hi[r] - lo[r]) for r in range(3)]
+        Xi = [IV(_dn(ctr[r] - half[r]), _up(ctr[r] + half[r])) for r in range(3)]
+        m = _newton_float(ctr, Cf, faces, steps=3)
+        inbox = np.ones(lo[0].shape, dtype=bool)
+        for r in range(3):
+            inbox &= np.isfinite(m[r]) & (m[r] > Xi[r].lo) & (m[r] < Xi[r].hi)
+        m = [np.where(inbox, m[r], ctr[r]) for r in range(3)]
+        Kx = _krawczyk_iv(Xi, m, C, Cf, faces)
+        ok = _inside(Kx, Xi)
+        for n in np.flatnonzero(ok):
+            found.append(_Found(FACES[int(idx[n])], [Xi[r].take(np.array([n])) for r in range(3)]))
+        gone = ok | _disjoint(Kx, Xi)
+        rest = ~gone
+        lo = [v[rest] for v in lo]
+        hi = [v[rest] for v in hi]
+        idx = idx[rest]
+        if not lo[0].size:
+            break
+        # narrow to the Krawczyk image (the zeros of the box lie in it), then bisect
+        Kr = [Kx[r].take(rest) for r in range(3)]
+        for r in range(3):
+            nl = np.where(np.isfinite(Kr[r].lo), np.maximum(lo[r], Kr[r].lo), lo[r])
+            nh = np.where(np.isfinite(Kr[r].hi), np.minimum(hi[r], Kr[r].hi), hi[r])
+            lo[r], hi[r] = nl, nh
+        w = np.stack([hi[0] - lo[0], hi[1] - lo[1], (hi[2] - lo[2]) / tw * 2.0])
+        if np.any(w.max(axis=0) < 1e-11):
+            raise UndecidedError(
+                "a critical point of the contact system is not isolated (a degenerate, "
+                "symmetric configuration)"
+            )
+        axis = np.argmax(w, axis=0)
+        mid = [0.5 * (lo[r] + hi[r]) for r in range(3)]
+        lo2 = [np.concatenate([lo[r], np.where(axis == r, mid[r], lo[r])]) for r in range(3)]
+        hi2 = [np.concatenate([np.where(axis == r, mid[r], hi[r]), hi[r]]) for r in range(3)]
+        lo, hi = lo2, hi2
+        idx = np.concatenate([idx, idx])
     del scale
     return found
 
