@@ -788,6 +788,13 @@ def critical_boxes(
 ) -> list[tuple[tuple[int, int, int, int], list[tuple[float, float]]]]:
     """Every contact critical point that can be the extremum, each in a chart and a binary64
     box ``[(a_lo, a_hi), (b_lo, b_hi), (t_lo, t_hi)]`` holding it alone."""
+    with np.errstate(all="ignore"):  # unbounded intervals are expected; every test handles them
+        return _critical_boxes(E, K, convex)
+
+
+def _critical_boxes(
+    E: Quadric, K: Quadric, convex: bool
+) -> list[tuple[tuple[int, int, int, int], list[tuple[float, float]]]]:
     C = _constants(E, K, "iv")
     Cf = _constants(E, K, "float")
     seeds = _seeds(Cf, C)
