@@ -27,7 +27,17 @@ Tables:
    outward normal of a point of the ellipsoid, in ``--directions`` directions: the error of
    each method at each gap;
 3. *deep penetration*: the centre of the sphere inside the ellipsoid;
-4. *half-spaces*: random ellipsoids against random half-spaces, both sides of touching.
+4. *half-spaces*: random ellipsoids against random half-spaces, both sides of touching;
+5. *two ellipsoids*: random pairs, deep penetration and near tangency (the second ellipsoid
+   placed so that the supporting planes with a common normal are ``10^-k`` apart), where the
+   package isolates every critical point of the contact system by the Krawczyk operator (the
+   reference: the same method asked for 30 digits; no exact path exists for this pair);
+6. *stack distance*: the compiled duality kernel on a float64 stack of ellipsoid pairs (time
+   a pair, widths), the scalar path on the pairs it leaves, coal on the same pairs;
+7. *first-contact scale*: the compiled certified kernel's throughput on a float64 stack of
+   ellipsoid pairs, against the exact scalar path.
+
+The ``float`` mode of the package is a binary64 interval enclosure (its error is bounded).
 
 Times are medians of wall-clock time per pair on a shared machine, with the Python call
 included for every method (coal and python-fcl through their bindings, one pair per call):
@@ -48,6 +58,7 @@ import numpy as np
 
 from quadric_contact import Quadric
 from quadric_contact.modes.distance_certified import distance_certified
+from quadric_contact.modes.distances import distance
 from quadric_contact.theory.distance import distance_exact
 
 
@@ -84,6 +95,10 @@ def _coal(tolerance: float | None = None) -> Callable[..., float] | None:
             rho, centre = other
             t = coal.Transform3s(np.eye(3), np.asarray(centre, dtype=float))
             return float(coal.distance(coal.Sphere(rho), t, e, ident, req, res))
+        if kind == "ellipsoid":
+            axes2, centre = other
+            t = coal.Transform3s(np.eye(3), np.asarray(centre, dtype=float))
+            return float(coal.distance(e, ident, coal.Ellipsoid(*axes2), t, req, res))
         n, d = other
         return float(coal.distance(e, ident, coal.Halfspace(np.asarray(n, dtype=float), d), ident, req, res))
 
@@ -98,9 +113,13 @@ def _fcl() -> Callable[..., float] | None:
     req = fcl.DistanceRequest(enable_nearest_points=False, enable_signed_distance=True)
 
     def run(kind: str, axes: Any, other: Any) -> float | None:
-        if kind != "sphere":
+        if kind == "halfspace":
             return None  # FCL has no distance between an ellipsoid and a half-space ("not supported")
         e = fcl.CollisionObject(fcl.Ellipsoid(*axes), fcl.Transform())
+        if kind == "ellipsoid":
+            axes2, centre = other
+            o = fcl.CollisionObject(fcl.Ellipsoid(*axes2), fcl.Transform(np.asarray(centre, dtype=float)))
+            return float(fcl.distance(e, o, req, fcl.DistanceResult()))
         rho, centre = other
         o = fcl.CollisionObject(fcl.Sphere(rho), fcl.Transform(np.asarray(centre, dtype=float)))
         return float(fcl.distance(o, e, req, fcl.DistanceResult()))
@@ -108,8 +127,14 @@ def _fcl() -> Callable[..., float] | None:
     return run
 
 
+def _moved(axes: Any, centre: Any) -> Quadric:
+    return Quadric.ellipsoid(*(Fraction(a) for a in axes), center=[Fraction(float(x)) for x in centre])
+
+
 def _ours(kind: str, axes: Any, other: Any, digits: int = 16) -> Any:
     e = _ellipsoid(axes)
+    if kind == "ellipsoid":
+        return distance_certified(e, _moved(*other), digits=digits)
     if kind == "sphere":
         rho, centre = other
         return distance_certified(_sphere(rho, centre), e, digits=digits)
@@ -120,6 +145,17 @@ def _ours(kind: str, axes: Any, other: Any, digits: int = 16) -> Any:
 def _reference(kind: str, axes: Any, other: Any) -> Fraction:
     lo, hi = _ours(kind, axes, other, digits=30).bounds
     return (lo + hi) / 2
+
+
+def _float_mode(kind: str, axes: Any, other: Any) -> float:
+    e = _ellipsoid(axes)
+    if kind == "ellipsoid":
+        q = _moved(*other)
+    elif kind == "sphere":
+        e, q = _sphere(*other), e
+    else:
+        q = _halfspace(*other)
+    return distance(e, q, mode="float").distance
 
 
 def _exact(kind: str, axes: Any, other: Any) -> Any:
@@ -163,6 +199,8 @@ def _run(
 ) -> dict:
     refs = [_reference(*p) for p in pairs]
     for p, r in zip(pairs[:check_exact], refs, strict=False):
+        if p[0] == "ellipsoid":
+            break  # no exact path for two ellipsoids: the reference is the certified enclosure
         x = _exact(*p)
         assert abs(Fraction(x.decimal(40)) - r) <= abs(r) * Fraction(1, 10**28) + Fraction(1, 10**40), (
             p,
@@ -204,13 +242,19 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--pairs", type=int, default=200)
     ap.add_argument("--directions", type=int, default=4)
     ap.add_argument("--seed", type=int, default=31)
+    ap.add_argument("--ellipsoid-pairs", type=int, default=16)
+    ap.add_argument("--scale-pairs", type=int, default=1_000_000)
+    ap.add_argument("--stack-pairs", type=int, default=200_000)
     args = ap.parse_args(argv)
     rng = np.random.default_rng(args.seed)
 
     def ours(kind: str, axes: Any, other: Any) -> float:
         return float(_ours(kind, axes, other))
 
-    methods: dict[str, Callable[..., Any]] = {"quadric-contact certified (16 digits)": ours}
+    methods: dict[str, Callable[..., Any]] = {
+        "quadric-contact certified (16 digits)": ours,
+        "quadric-contact float (interval bound)": _float_mode,
+    }
     peers: tuple[tuple[str, Callable[[], Any]], ...] = (
         ("coal (GJK/EPA, default tolerances)", _coal),
         ("coal (tolerances 1e-12)", lambda: _coal(1e-12)),
@@ -247,6 +291,10 @@ def main(argv: list[str] | None = None) -> None:
         half.append(("halfspace", ax, (n, d)))
     _run("half-spaces: ellipsoid against a half-space", half, methods, 3)
 
+    _ellipsoid_tables(rng, methods, args.ellipsoid_pairs)
+    _distance_stack(rng, args.stack_pairs)
+    _scale_throughput(rng, args.scale_pairs)
+
     print("\n### near tangency: the sphere at 10^-k from touching (max abs. error over the directions)\n")
     header = "| k | reference distance | " + " | ".join(methods) + " |"
     print(header)
@@ -273,6 +321,171 @@ def main(argv: list[str] | None = None) -> None:
                 + (f" ({len(errs) - len(ok)} failed)" if len(ok) < len(errs) else "")
             )
         print(f"| {k} | {float(refs[0]):.3e} | " + " | ".join(cells) + " |")
+
+
+def _support(axes: Any, n: np.ndarray) -> np.ndarray:
+    """The point of the axis-aligned ellipsoid at the origin whose outward normal is ``n``."""
+    a2 = np.asarray(axes) ** 2
+    return a2 * n / math.sqrt(float(np.sum(a2 * n * n)))
+
+
+def _ellipsoid_tables(rng: np.random.Generator, methods: dict[str, Callable[..., Any]], count: int) -> None:
+    """Two ellipsoids (axis-aligned, the second translated): random, deep, near tangency."""
+
+    def axes() -> tuple[float, float, float]:
+        return tuple(float(x) for x in rng.uniform(0.5, 2.0, 3))  # type: ignore[return-value]
+
+    rand = [("ellipsoid", axes(), (axes(), rng.uniform(-4, 4, 3))) for _ in range(count)]
+    _run("random pairs: ellipsoid against ellipsoid", rand, methods, 0)
+    deep = []
+    for _ in range(max(4, count // 2)):
+        a, b = axes(), axes()
+        deep.append(("ellipsoid", a, (b, rng.uniform(-0.4, 0.4, 3) * min(a))))
+    _run("deep penetration: two ellipsoids, centres close", deep, methods, 0)
+    print("\n### near tangency: two ellipsoids at 10^-k from touching (max abs. error over 2 directions)\n")
+    print("| k | reference distance | " + " | ".join(methods) + " |")
+    print("| ---: | ---: |" + " ---: |" * len(methods))
+    a, b = (1.5, 1.0, 0.5), (0.7, 1.2, 0.9)
+    dirs = [_unit(rng) for _ in range(2)]
+    for k in (1, 3, 5, 7, 9, 11, 13, 15):
+        gap = 10.0**-k
+        # supporting planes with the common normal n, gap apart: the distance is the gap
+        pairs = [("ellipsoid", a, (b, _support(a, n) + gap * n + _support(b, n))) for n in dirs]
+        refs = [_reference(*q) for q in pairs]
+        cells = []
+        for fn in methods.values():
+            errs = [_error(float(fn(*q)), r) for q, r in zip(pairs, refs, strict=True)]
+            ok = [e for e in errs if e is not None]
+            cells.append(
+                (f"{max(ok):.1e}" if ok else "-")
+                + (f" ({len(errs) - len(ok)} failed)" if len(ok) < len(errs) else "")
+            )
+        print(f"| {k} | {float(refs[0]):.3e} | " + " | ".join(cells) + " |")
+
+
+def _ellipsoid_stack(rng: np.random.Generator, m: int, spread: float = 4.0) -> np.ndarray:
+    """``m`` random rotated ellipsoids (semi-axes 0.3-1.5, centres in ``[-spread, spread]^3``)."""
+    out = np.zeros((m, 4, 4))
+    for k in range(m):
+        R, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+        A = R @ np.diag(1 / rng.uniform(0.3, 1.5, 3) ** 2) @ R.T
+        A = (A + A.T) / 2
+        c = rng.uniform(-spread, spread, 3)
+        out[k, :3, :3] = A
+        out[k, :3, 3] = out[k, 3, :3] = -A @ c
+        out[k, 3, 3] = c @ A @ c - 1
+    return out
+
+
+def _distance_stack(rng: np.random.Generator, n: int) -> None:
+    """The certified distance on a float64 stack of ellipsoid pairs: the compiled duality
+    kernel (separated pairs, 1e-12 relative) and the scalar path for the pairs it leaves; coal
+    on the same pairs for the ratio."""
+    if n <= 0:
+        return
+    from quadric_contact.modes.distance_kernel import separated_ellipsoids
+
+    base = min(n, 4096)
+    Es, Ks = _ellipsoid_stack(rng, base), _ellipsoid_stack(rng, base)
+    reps = max(1, n // base)
+    Es, Ks = np.tile(Es, (reps, 1, 1)), np.tile(Ks, (reps, 1, 1))
+    separated_ellipsoids(Es[:10], Ks[:10])  # compiled or loaded
+    t0 = time.perf_counter()
+    enc, rest = separated_ellipsoids(Es, Ks)
+    dt = time.perf_counter() - t0
+    width = (enc[~rest, 1] - enc[~rest, 0]) / enc[~rest, 0]
+    left = np.flatnonzero(rest[:base])
+    t1 = time.perf_counter()
+    sample = left[:3]
+    for k in sample:
+        distance(Quadric.from_matrix(Es[k]), Quadric.from_matrix(Ks[k]), digits=12)
+    scalar = (time.perf_counter() - t1) / max(1, len(sample))
+    print(f"\n### certified distance on a stack of {len(Es):,} ellipsoid pairs\n")
+    print("| path | pairs | time / pair | median rel. width | max rel. width |")
+    print("| --- | ---: | ---: | ---: | ---: |")
+    print(
+        f"| compiled duality kernel (separated pairs) | {int((~rest).sum()):,} | "
+        f"{dt / len(Es) * 1e6:.2f} µs | {np.median(width):.1e} | {np.max(width):.1e} |"
+    )
+    print(
+        f"| scalar certified path (the pairs left: crossing, touching) | {int(rest.sum()):,} | "
+        f"{scalar * 1e6:,.0f} µs | - | - |"
+    )
+    share = float(rest.mean())
+    print(
+        f"\nmedian time a pair: {'kernel' if share < 0.5 else 'scalar path'}; mean with the pairs left: "
+        f"{(dt / len(Es) + share * scalar) * 1e6:,.0f} µs"
+    )
+    coal_fn = _coal()
+    if coal_fn is None:
+        return
+    import coal
+
+    req = coal.DistanceRequest()
+    req.enable_signed_distance = True
+    res = coal.DistanceResult()
+    shapes = []
+    for k in range(min(base, 2000)):
+        pair = []
+        for M in (Es[k], Ks[k]):
+            A, a = M[:3, :3], M[:3, 3]
+            c = -np.linalg.solve(A, a)
+            r = c @ A @ c - M[3, 3]
+            w, V = np.linalg.eigh(A / r)
+            pair.append((coal.Ellipsoid(*(1 / np.sqrt(w))), coal.Transform3s(V, c)))
+        shapes.append(pair)
+    t2 = time.perf_counter()
+    for (s1, t1_), (s2, t2_) in shapes:
+        coal.distance(s1, t1_, s2, t2_, req, res)
+    dc = (time.perf_counter() - t2) / len(shapes)
+    print(
+        f"coal (GJK/EPA, default tolerances, one call a pair) on the same pairs: {dc * 1e6:.2f} µs a pair; "
+        f"ratio kernel / coal: {dt / len(Es) / dc:.2f}"
+    )
+
+
+def _scale_throughput(rng: np.random.Generator, n: int) -> None:
+    """The certified first-contact scale on a float64 stack of ellipsoid pairs (the compiled
+    kernel), against the exact scalar path on a few of them."""
+    if n <= 0:
+        return
+    from quadric_contact.modes.distances import contact_scale
+    from quadric_contact.modes.scale_kernel import scale_stack
+
+    def stack(m: int) -> np.ndarray:
+        out = np.zeros((m, 4, 4))
+        for k in range(m):
+            R, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+            A = R @ np.diag(1 / rng.uniform(0.3, 1.5, 3) ** 2) @ R.T
+            A = (A + A.T) / 2
+            c = rng.uniform(-4, 4, 3)
+            out[k, :3, :3] = A
+            out[k, :3, 3] = out[k, 3, :3] = -A @ c
+            out[k, 3, 3] = c @ A @ c - 1
+        return out
+
+    base = min(n, 4096)
+    Es, Qs = stack(base), stack(base)
+    reps = max(1, n // base)
+    Es, Qs = np.tile(Es, (reps, 1, 1)), np.tile(Qs, (reps, 1, 1))
+    scale_stack(Es[:10], Qs[:10])  # compiled or loaded
+    t0 = time.perf_counter()
+    enc, rest = scale_stack(Es, Qs)
+    dt = time.perf_counter() - t0
+    width = (enc[:, 1] - enc[:, 0]) / enc[:, 1]
+    t1 = time.perf_counter()
+    for k in range(5):
+        contact_scale(Quadric.from_matrix(Es[k]), Quadric.from_matrix(Qs[k]))
+    exact = (time.perf_counter() - t1) / 5
+    print(f"\n### first-contact scale on a stack of {len(Es):,} ellipsoid pairs (certified kernel)\n")
+    print("| method | pairs / s | median rel. width | max rel. width | left to the exact path |")
+    print("| --- | ---: | ---: | ---: | ---: |")
+    print(
+        f"| compiled kernel | {len(Es) / dt:,.0f} | {np.median(width[~rest]):.1e} | "
+        f"{np.max(width[~rest]):.1e} | {int(rest.sum())} |"
+    )
+    print(f"| exact scalar path | {1 / exact:,.0f} | 0 | 0 | - |")
+    print(f"\nratio kernel / exact: {len(Es) / dt * exact:,.0f}x")
 
 
 if __name__ == "__main__":

@@ -5,6 +5,10 @@ The same number as :func:`quadric_contact.theory.distance.distance_exact` (same 
 same pairs), enclosed by arb balls (python-flint):
 
 * an ellipsoid against a plane: the closed form ``(n . c - d - sqrt(r k)) / |n|`` in balls;
+* any other ellipsoid against a curved quadric: the extremal critical point of the contact
+  system, every critical point isolated by the Krawczyk operator
+  (:mod:`quadric_contact.theory.distance_critical`; the least ``t >= 0`` for a non-convex solid,
+  whose solids must be apart, decided exactly);
 * a sphere against a quadric: every critical point of ``|p - c|^2`` on the surface of ``Q`` is
   regular (``det(I + mu Q00) != 0``) when the secular polynomial ``S`` and ``det(I + mu Q00)``
   have no common factor (an eigen critical set at ``mu_e`` makes ``adj(I + mu_e Q00)(c - mu_e b)``
@@ -35,7 +39,9 @@ from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import Quadric, as_quadric
 from quadric_contact.theory.contact_scale import centred_form
 from quadric_contact.theory.distance import CONVEX_SOLIDS, is_sphere
-from quadric_contact.theory.overlap import solid_of
+from quadric_contact.theory.distance_critical import critical_distance
+from quadric_contact.theory.overlap import overlap_exact, solid_of
+from quadric_contact.theory.results import OverlapCode
 
 __all__ = ["DistanceEnclosure", "distance_certified"]
 
@@ -231,8 +237,8 @@ def distance_certified(E: Any, Q: Any, *, digits: int = 15) -> DistanceEnclosure
     Raises
     ------
     UndecidedError
-        Outside the pairs with a closed form, for the depth into a non-convex solid, and for
-        a symmetric configuration (eigen critical sets), which the exact path answers.
+        For the depth into a non-convex solid, and for a symmetric configuration (critical
+        points that are not isolated), which the exact path answers for a sphere.
 
     Examples
     --------
@@ -248,9 +254,25 @@ def distance_certified(E: Any, Q: Any, *, digits: int = 15) -> DistanceEnclosure
         return _plane(e, K, digits)
     if is_sphere(e):
         return _sphere(e, K, digits)
-    raise UndecidedError(
-        "a certified distance is given for an ellipsoid against a plane and a sphere against a "
-        f"quadric; here an ellipsoid that is not a sphere against {K.kind.value}",
-        e,
-        other=K,
-    )
+    return _curved(e, K, digits)
+
+
+def _curved(E: Quadric, K: Quadric, digits: int) -> DistanceEnclosure:
+    """Any ellipsoid against a curved quadric: the extremal contact critical point
+    (:mod:`quadric_contact.theory.distance_critical`); a non-convex solid needs the solids
+    apart, decided exactly first."""
+    convex = K.kind in CONVEX_SOLIDS
+    touching = False
+    if not convex:
+        code = overlap_exact(E, K).code
+        if code is OverlapCode.OVERLAPPING:
+            raise UndecidedError(
+                f"the ellipsoid crosses the solid of {K.kind.value}, which is not convex: its "
+                "penetration depth (the translation distance) is not computed",
+                E,
+                other=K,
+            )
+        touching = code is OverlapCode.TOUCHING
+    r = critical_distance(E, K, convex=convex, digits=digits)
+    dist = flint.arb(0) if touching else r.distance
+    return DistanceEnclosure(dist, r.point_E, r.point_Q, r.normal, r.bits, "ellipsoid-quadric")

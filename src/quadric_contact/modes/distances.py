@@ -10,13 +10,19 @@ configurations the balls leave).  A stack answers with, for every pair, an enclo
 ``[lo, hi]`` of that same number in binary64 (``lo <= value <= hi``, rounded outwards), in an
 array of shape ``(..., 2)``: a stack of one holds the enclosure of the pair's value.
 
-The stack path runs the scalar path pair by pair: about a millisecond a pair for a certified
-distance, tens to hundreds for an exact first-contact scale.
+The first-contact scale (``scale="E"``) of float64 stacks runs a compiled kernel that certifies
+each pair's enclosure (:mod:`quadric_contact.modes.scale_kernel`) and leaves the pairs it cannot
+certify (a centre on the surface, a degenerate ``Q`` other than a plane) to the exact path.
+The distance of float64 stacks runs a compiled kernel for separated ellipsoid pairs (a
+duality certificate, :mod:`quadric_contact.modes.distance_kernel`: enclosures at most
+``max(10^-digits, 1e-12)`` relative wide); the other pairs, and every other stack, run the
+scalar path pair by pair.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
@@ -24,16 +30,59 @@ import flint
 import numpy as np
 
 from quadric_contact.exact.algebraic import RealAlgebraic
-from quadric_contact.exact.errors import UndecidedError
+from quadric_contact.exact.errors import SYMMETRIZE_HINT, NonFiniteError, NotSymmetricError, UndecidedError
 from quadric_contact.exact.precision import working_precision
+from quadric_contact.model.classification import QuadricKind
+from quadric_contact.model.quadric import as_quadric
 from quadric_contact.modes.batch import is_stack
 from quadric_contact.modes.distance_certified import DistanceEnclosure, distance_certified
 from quadric_contact.theory.contact_scale import contact_scale_exact
-from quadric_contact.theory.distance import DistanceResult, distance_exact
+from quadric_contact.theory.distance import CONVEX_SOLIDS, DistanceResult, distance_exact, is_sphere
+from quadric_contact.theory.distance_critical import critical_distance_binary64
+from quadric_contact.theory.overlap import overlap_exact, solid_of
+from quadric_contact.theory.results import OverlapCode
 
-__all__ = ["contact_scale", "distance", "enclosure"]
+__all__ = ["FloatDistance", "contact_scale", "distance", "enclosure"]
 
-_MODES = ("certified", "exact")
+_MODES = ("certified", "exact", "float")
+
+
+@dataclass(frozen=True)
+class FloatDistance:
+    """The signed distance in binary64, with a bound on its error.
+
+    Attributes
+    ----------
+    distance : float
+        The midpoint of a rigorous binary64 enclosure (nan where ``uncertain``).
+    error : float
+        ``|distance - exact| <= error``, rounded up; ``inf`` where ``uncertain``.
+    uncertain : bool
+        The critical points were not all isolated (a degenerate, symmetric configuration):
+        no claim is made; the certified or exact mode decides such a pair.
+    """
+
+    distance: float
+    error: float
+    uncertain: bool
+
+    def __float__(self) -> float:
+        return self.distance
+
+    @property
+    def bounds(self) -> tuple[float, float]:
+        return _down(Fraction(self.distance) - Fraction(self.error)), _up(
+            Fraction(self.distance) + Fraction(self.error)
+        )
+
+    @staticmethod
+    def of(lo: float, hi: float) -> FloatDistance:
+        """The midpoint and a rounded-up half-width of ``[lo, hi]``."""
+        if not (math.isfinite(lo) and math.isfinite(hi)):
+            return FloatDistance(math.nan, math.inf, True)
+        mid = 0.5 * lo + 0.5 * hi
+        err = max(Fraction(mid) - Fraction(lo), Fraction(hi) - Fraction(mid))
+        return FloatDistance(mid, _up(err), False)
 
 
 def enclosure(x: RealAlgebraic, bits: int = 60) -> tuple[float, float]:
@@ -91,9 +140,9 @@ def _pairs(E: Any, Q: Any) -> tuple[list[Any], list[Any], tuple[int, ...]]:
     return es, qs, shape
 
 
-def _check(mode: str) -> None:
-    if mode not in _MODES:
-        raise ValueError(f"mode must be one of {_MODES}, got {mode!r}")
+def _check(mode: str, modes: tuple[str, ...] = _MODES) -> None:
+    if mode not in modes:
+        raise ValueError(f"mode must be one of {modes}, got {mode!r}")
 
 
 def contact_scale(E: Any, Q: Any, *, scale: str = "E", mode: str = "certified") -> Any:
@@ -131,9 +180,11 @@ def contact_scale(E: Any, Q: Any, *, scale: str = "E", mode: str = "certified") 
     array([[3., 3.],
            [3., 3.]])
     """
-    _check(mode)
+    _check(mode, ("certified", "exact"))
     if not (is_stack(E) or is_stack(Q)):
         return contact_scale_exact(E, Q, scale=scale)
+    if scale == "E" and _float_stack(E) and _float_stack(Q):
+        return _scale_kernel(E, Q)
     es, qs, shape = _pairs(E, Q)
     out = np.empty((len(es), 2))
     for k, (e, q) in enumerate(zip(es, qs, strict=True)):
@@ -141,14 +192,118 @@ def contact_scale(E: Any, Q: Any, *, scale: str = "E", mode: str = "certified") 
     return out.reshape(*shape, 2)
 
 
+def _float_stack(v: Any) -> bool:
+    """A float64 array ``(..., 4, 4)`` (a stack, or one matrix broadcast)."""
+    return isinstance(v, np.ndarray) and v.dtype == np.float64 and v.ndim >= 2 and v.shape[-2:] == (4, 4)
+
+
+def _validated(v: np.ndarray, name: str) -> np.ndarray:
+    flat = v.reshape(-1, 4, 4)
+    finite = np.isfinite(flat).all(axis=(1, 2))
+    if not finite.all():
+        k = int(np.argmin(finite))
+        i, j = (int(x) for x in np.argwhere(~np.isfinite(flat[k]))[0])
+        raise NonFiniteError(
+            f"{name}[{k}] has a non-finite entry at ({i}, {j})", flat[k], entry=(i, j), index=k
+        )
+    sym = (flat == flat.transpose(0, 2, 1)).all(axis=(1, 2))
+    if not sym.all():
+        k = int(np.argmin(sym))
+        raise NotSymmetricError(f"{name}[{k}] is not symmetric; {SYMMETRIZE_HINT}", flat[k], index=k)
+    return flat
+
+
+def _distance_kernel(E: np.ndarray, Q: np.ndarray, mode: str, digits: int) -> np.ndarray:
+    """Float64 stacks: separated ellipsoid pairs by the compiled duality certificate
+    (:mod:`quadric_contact.modes.distance_kernel`, enclosures at most ``max(10^-digits, 1e-12)``
+    relative wide); the other pairs by the scalar path."""
+    from quadric_contact.modes.distance_kernel import separated_ellipsoids
+
+    shape = np.broadcast_shapes(E.shape[:-2], Q.shape[:-2])
+    Es = _validated(np.broadcast_to(E, (*shape, 4, 4)), "E")
+    Qs = _validated(np.broadcast_to(Q, (*shape, 4, 4)), "Q")
+    out, rest = separated_ellipsoids(Es, Qs, max(10.0**-digits, 1e-12))
+    for k in np.flatnonzero(rest):
+        e, q = Es[k], Qs[k]
+        if mode == "float":
+            f = _float(e, q)
+            out[k] = (-math.inf, math.inf) if f.uncertain else f.bounds
+            continue
+        c = _certified(e, q, max(digits, 17))
+        out[k] = _float_bounds(*c.bounds) if c is not None else enclosure(distance_exact(e, q).distance)
+    return out.reshape(*shape, 2)
+
+
+def _scale_kernel(E: np.ndarray, Q: np.ndarray) -> np.ndarray:
+    """The compiled kernel (:mod:`quadric_contact.modes.scale_kernel`) on float64 stacks; the
+    pairs it leaves go to the exact scalar path."""
+    from quadric_contact.modes.scale_kernel import scale_stack
+
+    shape = np.broadcast_shapes(E.shape[:-2], Q.shape[:-2])
+    Es = _validated(np.broadcast_to(E, (*shape, 4, 4)), "E")
+    Qs = _validated(np.broadcast_to(Q, (*shape, 4, 4)), "Q")
+    out, rest = scale_stack(Es, Qs)
+    for k in np.flatnonzero(rest):
+        out[k] = enclosure(contact_scale_exact(Es[k], Qs[k]).scale)
+    return out.reshape(*shape, 2)
+
+
 def _certified(E: Any, Q: Any, digits: int) -> DistanceEnclosure | None:
-    """The certified enclosure, or None for a symmetric configuration (the exact path's)."""
+    """The certified enclosure, or None for a symmetric configuration of a pair the exact path
+    answers (an ellipsoid against a plane, a sphere against a quadric)."""
     try:
         return distance_certified(E, Q, digits=digits)
     except UndecidedError as exc:
-        if "symmetric configuration" in str(exc):
+        if "symmetric configuration" in str(exc) and _exact_answers(E, Q):
             return None
         raise
+
+
+def _exact_answers(E: Any, Q: Any) -> bool:
+    e = as_quadric(E, "E").as_ellipsoid()
+    return is_sphere(e) or solid_of(Q).kind is QuadricKind.PLANE
+
+
+def _separated_pair(e: Any, K: Any) -> FloatDistance | None:
+    """Two ellipsoids whose entries are binary64 numbers: the compiled duality certificate
+    (:mod:`quadric_contact.modes.distance_kernel`), or None (not certified there)."""
+    from quadric_contact.modes.distance_kernel import separated_ellipsoids
+
+    mats = []
+    for q in (e, K):
+        m = np.array([[float(q[i, j]) for j in range(4)] for i in range(4)])
+        if any(Fraction(m[i, j]) != q[i, j] for i in range(4) for j in range(4)):
+            return None  # not binary64 numbers: the kernel would answer another pair
+        mats.append(m)
+    enc, rest = separated_ellipsoids(mats[0][None], mats[1][None])
+    return None if rest[0] else FloatDistance.of(float(enc[0, 0]), float(enc[0, 1]))
+
+
+def _float(E: Any, Q: Any) -> FloatDistance:
+    """The float mode for one pair: binary64 intervals where the pair needs the search (a
+    curved quadric against an ellipsoid that is not a sphere), the certified balls rounded
+    outwards otherwise; uncertain where the critical points are not isolated."""
+    e = as_quadric(E, "E").as_ellipsoid()
+    K = solid_of(Q)
+    try:
+        if K.kind is QuadricKind.PLANE or is_sphere(e):
+            return FloatDistance.of(*_float_bounds(*distance_certified(e, K, digits=17).bounds))
+        if K.kind is QuadricKind.ELLIPSOID:
+            fast = _separated_pair(e, K)
+            if fast is not None:
+                return fast
+        convex = K.kind in CONVEX_SOLIDS
+        if not convex:
+            code = overlap_exact(e, K).code
+            if code is OverlapCode.OVERLAPPING:
+                distance_certified(e, K)  # raises with the reason
+            if code is OverlapCode.TOUCHING:
+                return FloatDistance(0.0, 0.0, False)
+        return FloatDistance.of(*critical_distance_binary64(e, K, convex=convex))
+    except UndecidedError as exc:
+        if "not convex" in str(exc):
+            raise
+        return FloatDistance(math.nan, math.inf, True)
 
 
 def _as_enclosure(r: DistanceResult, digits: int) -> DistanceEnclosure:
@@ -179,13 +334,18 @@ def distance(E: Any, Q: Any, *, mode: str = "certified", digits: int = 15) -> An
     penetration depth (the length of the shortest translation of ``E`` after which the
     interiors are disjoint).  See :mod:`quadric_contact.theory.distance` for the solids, the
     witnesses and the normal, and for which pairs have an exact answer (an ellipsoid against
-    a plane; a sphere against any solid, the depth where the solid is convex).
+    a plane; a sphere against any solid, the depth where the solid is convex).  Any other
+    ellipsoid against a curved quadric is answered in the ``certified`` and ``float`` modes
+    (:mod:`quadric_contact.theory.distance_critical`).
 
     Parameters
     ----------
     E : Quadric, equation, matrix-like; or a stack ``(..., 4, 4)``
     Q : Quadric, equation, matrix-like; or a stack
-    mode : {"certified", "exact"}
+    mode : {"certified", "exact", "float"}
+        ``float``: binary64 interval arithmetic rounded outwards, a
+        :class:`FloatDistance` (value and error bound, or marked uncertain); on stacks
+        ``[lo, hi]`` as the other modes, ``[-inf, inf]`` where uncertain.
     digits : int
         ``certified``: significant digits of the enclosure.
 
@@ -217,10 +377,18 @@ def distance(E: Any, Q: Any, *, mode: str = "certified", digits: int = 15) -> An
     if not (is_stack(E) or is_stack(Q)):
         if mode == "exact":
             return distance_exact(E, Q)
+        if mode == "float":
+            return _float(E, Q)
         return _certified(E, Q, digits) or _as_enclosure(distance_exact(E, Q), digits)
+    if mode in ("certified", "float") and _float_stack(E) and _float_stack(Q):
+        return _distance_kernel(E, Q, mode, digits)
     es, qs, shape = _pairs(E, Q)
     out = np.empty((len(es), 2))
     for k, (e, q) in enumerate(zip(es, qs, strict=True)):
+        if mode == "float":
+            f = _float(e, q)
+            out[k] = (-math.inf, math.inf) if f.uncertain else f.bounds
+            continue
         c = _certified(e, q, max(digits, 17)) if mode == "certified" else None
         out[k] = _float_bounds(*c.bounds) if c is not None else enclosure(distance_exact(e, q).distance)
     return out.reshape(*shape, 2)
