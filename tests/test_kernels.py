@@ -129,11 +129,14 @@ def test_the_first_compilation_says_so_once(monkeypatch, capsys):
     monkeypatch.setattr(_jit, "_notice_printed", False)
     listener = _jit._CompileNotice()
 
-    def event(module):
+    def event(module, cached=True):
         func = types.SimpleNamespace(__module__=module)
-        return types.SimpleNamespace(data={"dispatcher": types.SimpleNamespace(py_func=func)})
+        cache = types.SimpleNamespace(_cache_path="/some/cache" if cached else None)
+        return types.SimpleNamespace(data={"dispatcher": types.SimpleNamespace(py_func=func, _cache=cache)})
 
     listener.on_start(event("somebody_else"))
+    # an uncached helper compiled for a call from Python is not a cache miss: no notice
+    listener.on_start(event("quadric_contact.modes.separation", cached=False))
     assert capsys.readouterr().err == ""
     listener.on_start(event("quadric_contact.modes.kernels_criterion"))
     listener.on_start(event("quadric_contact.modes.separation"))
