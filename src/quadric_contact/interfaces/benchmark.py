@@ -207,11 +207,12 @@ class Report:
         lines += [f"machine: {self.machine}", ""]
         if self.missing:
             lines += [f"not measured (missing optional packages): {', '.join(self.missing)}", ""]
-        lines += ["## Time per test and errors", ""]
-        lines += [
-            "| population | method | pairs | time per test | wrong | undecided | note |",
-            "|---|---|---:|---:|---:|---:|---|",
-        ]
+        if self.measurements:
+            lines += ["## Time per test and errors", ""]
+            lines += [
+                "| population | method | pairs | time per test | wrong | undecided | note |",
+                "|---|---|---:|---:|---:|---:|---|",
+            ]
         for m in self.measurements:
             lines.append(
                 f"| {m.population} | {m.method} | {m.n} | {_fmt_time(m.per_test)} | "
