@@ -302,6 +302,43 @@ def test_binary64_criterion_goes_from_the_filter_to_the_exact_stage(monkeypatch)
     assert (got == transversal_contact_batch(Fe, Fq, mode="exact")).all()
 
 
+def test_binary64_types_go_from_the_filter_to_the_exact_stage(monkeypatch):
+    """The type of a quadric the filter cannot tell (a rotated cylinder, whose det Q is a
+    rounding's worth from 0) is read by the exact stage on binary64 input, not by the balls
+    first; the types are the exact ones, and the exact invariants are computed once per
+    quadric and stack."""
+    from quadric_contact.modes import objects
+    from quadric_contact.modes.batch import as_stack
+    from quadric_contact.modes.decisions import rows_from_masks
+
+    asked = []
+    ball = objects.BallMode.classify
+    computed = []
+    exact = objects.ObjectMode.invariant_signs
+
+    def spy(self, Q, rows=None):
+        asked.append(len(rows))
+        return ball(self, Q, rows)
+
+    def count(self, Q, rows):
+        computed.append(len(rows))
+        return exact(self, Q, rows)
+
+    monkeypatch.setattr(objects.BallMode, "classify", spy)
+    monkeypatch.setattr(objects.ObjectMode, "invariant_signs", count)
+    _, Q, _ = random_pairs(60, np.random.default_rng(43))
+    stack = as_stack(Q, "Q")
+    mode = CertifiedMode()
+    got = rows_from_masks(mode.classify(stack))
+    assert asked == []
+    want = rows_from_masks(objects.ExactMode().classify(as_stack(Q, "Q")))
+    assert (got == want).all()
+    before = sum(computed)
+    assert before > 0  # the filter left some types to the exact stage
+    mode.classify(stack)  # the same stack again: the exact signs are kept with it
+    assert sum(computed) == before
+
+
 def test_stage_counts_merge():
     a = StageCounts({"filter": 3}, 1)
     a.merge(StageCounts({"filter": 2, "exact": 1}))

@@ -117,7 +117,10 @@ class CertifiedMode(NumberMode):
     def classify(self, Q: MatrixStack, rows: np.ndarray | None = None) -> np.ndarray:
         index = np.arange(len(Q)) if rows is None else np.asarray(rows)
         out = self.stages[0].classify(Q, index)
+        skip = _skipped_classify_on_binary64(self.stages, Q)
         for stage in self.stages[1:]:
+            if stage in skip:
+                continue
             # rows_from_masks(out) == UNCERTAIN_ROW without finding the rows: not exactly one
             # candidate row (a single bit), or the uncertain row itself
             todo = np.flatnonzero((out == 0) | ((out & (out - 1)) != 0) | (out == _UNCERTAIN_BIT))
@@ -143,6 +146,18 @@ def _skipped_on_binary64(stages: tuple[NumberMode, ...], method: str, pairs: Pai
         return ()
     return tuple(
         s for s in stages[1:-1] if isinstance(s, BallMode) and method not in s.before_exact_on_binary64
+    )
+
+
+def _skipped_classify_on_binary64(stages: tuple[NumberMode, ...], Q: MatrixStack) -> tuple[NumberMode, ...]:
+    """The middle stages of a type reading that would only cost time: binary64 input and an
+    exact last stage, whose integer invariants (kept with the stack, so the structural facts of
+    the criterion reuse them) cost less than 128-bit balls: on 5e4 quadrics of every type the
+    ball stage took 0.58 s before the exact one, the exact one alone 0.19 s."""
+    if Q.rounded or not isinstance(stages[-1], ExactMode):
+        return ()
+    return tuple(
+        s for s in stages[1:-1] if isinstance(s, BallMode) and "classify" not in s.before_exact_on_binary64
     )
 
 

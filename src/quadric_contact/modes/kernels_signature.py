@@ -89,6 +89,7 @@ _S_MIN = eb.SAMPLE_MIN
 _S_MAX = eb.SAMPLE_MAX
 
 _load = _njit(blocks.load_upper, inline=True)
+_gather_full = _njit(blocks.gather_full, inline=True)
 _pencil = _njit(blocks.pencil, inline=True)
 _minors4 = _njit(kernels.leading_minors_4, inline=True)
 _REGION_OF = decision.REGION_OF
@@ -286,7 +287,7 @@ def _make_signature(certified: bool) -> Any:
 
     def kernel(
         E: Any,
-        Q: Any,
+        Q: Any,  # (n, 16): row-major 4x4 matrices
         eidx: Any,
         qidx: Any,
         es: int,
@@ -311,27 +312,11 @@ def _make_signature(certified: bool) -> Any:
                 p = blo + t
                 ie = eidx[p] if eidx.shape[0] > 0 else p * es
                 iq = qidx[p] if qidx.shape[0] > 0 else p * qs
-                sg = -1.0 if E[ie, 0, 0] < 0.0 else 1.0  # the paper's sign: det E < 0
-                eb_[t] = sg * E[ie, 0, 0]
-                eb_[S + t] = sg * E[ie, 0, 1]
-                eb_[2 * S + t] = sg * E[ie, 0, 2]
-                eb_[3 * S + t] = sg * E[ie, 0, 3]
-                eb_[4 * S + t] = sg * E[ie, 1, 1]
-                eb_[5 * S + t] = sg * E[ie, 1, 2]
-                eb_[6 * S + t] = sg * E[ie, 1, 3]
-                eb_[7 * S + t] = sg * E[ie, 2, 2]
-                eb_[8 * S + t] = sg * E[ie, 2, 3]
-                eb_[9 * S + t] = sg * E[ie, 3, 3]
-                qb_[t] = Q[iq, 0, 0]
-                qb_[S + t] = Q[iq, 0, 1]
-                qb_[2 * S + t] = Q[iq, 0, 2]
-                qb_[3 * S + t] = Q[iq, 0, 3]
-                qb_[4 * S + t] = Q[iq, 1, 1]
-                qb_[5 * S + t] = Q[iq, 1, 2]
-                qb_[6 * S + t] = Q[iq, 1, 3]
-                qb_[7 * S + t] = Q[iq, 2, 2]
-                qb_[8 * S + t] = Q[iq, 2, 3]
-                qb_[9 * S + t] = Q[iq, 3, 3]
+                _gather_full(E, ie, eb_, t, S)
+                _gather_full(Q, iq, qb_, t, S)
+                if eb_[t] < 0.0:  # the paper's sign: det E < 0
+                    for k in range(10):
+                        eb_[k * S + t] = -eb_[k * S + t]
             for i in range(m):
                 e = _load(eb_, i, S)
                 q = _load(qb_, i, S)
@@ -408,7 +393,7 @@ def signature_float(
     K = np.array(eb.MEMBER_ERRBOUND[rounded])
     KD = np.array(eb.MEMBER_MINORS_ERRBOUND[rounded])
     eidx, qidx, es, qs = pairs.kernel_indices()
-    E, Q = pairs.E.floats, pairs.Q.floats
+    E, Q = pairs.E.floats.reshape(-1, 16), pairs.Q.floats.reshape(-1, 16)  # flat rows, as gathered
     if backend == "numpy" or not HAVE_NUMBA:
         _kernel(certified, False)(E, Q, eidx, qidx, es, qs, 0, n, SK, K, KD, out)
         return out
