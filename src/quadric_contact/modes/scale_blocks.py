@@ -15,20 +15,24 @@ computes the same signs and the same enclosure for many pairs at once:
      ``A`` certainly positive definite; ``det E`` certainly negative; the sign of ``f(0)``
      certain);
    * :data:`NEWTON` steps of the search, each kept inside the bracket of the scalar kernel (in
-     ``w = mu / (1 + |mu|)``; a step that leaves it bisects it).  Where ``Q`` is an ellipsoid
+     ``w = mu / (1 + |mu|)``; a step that leaves it bisects it, except a step shorter than
+     ``10^-12 |mu|``, Newton's near the root, which is taken as it is).  Where ``Q`` is an ellipsoid
      and the root is at ``mu > 0`` the step is Newton's on
      ``phi(mu) = (f(mu) - f_inf)^(-1/2)`` rather than on ``f`` (``f_inf = Q(c_Q)``, the value of
      ``Q`` at its centre and the limit of ``f`` at ``+inf``): ``phi`` is affine in ``mu`` for two
      spheres, and the search ends in about five steps where Newton's method on ``f`` takes
      fifteen.  The search is floats only: nothing trusts it;
    * the offset ``rel`` of the two certificate points ``mu (1 -+ rel)`` from the error bound of
-     ``Y^T Q Y`` at the root over its slope (about four times the noise);
+     ``Y^T Q Y`` at the root over its slope (four times the noise, within ``[1e-13, 1e-5]``);
    * the certificate at the two points, as the scalar kernel computes it: the leading minors of
      ``A + mu Q00`` and ``Y^T Q Y`` with their bounds ``gamma_D`` times the magnitude program,
      and the enclosure of ``s(mu)^2`` from ``Y^T E Y``, ``Y_4``, ``det A`` and ``det E``;
 3. a scalar loop writes the enclosures and hands every pair not certified in the block (a check
-   that failed, a search not finished after :data:`NEWTON` steps, a certificate not reached at
-   the first offset) to the scalar kernel, which answers it or leaves it to the exact path.
+   that failed, or signs not certain at the two points: mostly a search not finished in
+   :data:`NEWTON` steps) to the scalar kernel, which answers it or leaves it to the exact path.
+
+The blocks read the upper triangles of ``E`` and ``Q``: the inputs are symmetric (the public
+functions check it).
 
 Two things differ from the scalar kernel in how the numbers are computed, not in what is
 certified.  The quadratic forms ``Y^T W Y`` are summed row by row (``sum_i y_i (sum_j W_ij
@@ -56,7 +60,7 @@ __all__ = ["NB", "NEWTON", "scale_blocks"]
 NB = 32
 """Pairs per block."""
 NEWTON = 8
-"""Steps of the search in the block; a pair whose search has not ended goes to the scalar kernel."""
+"""Steps of the search in the block; a pair not certified after them goes to the scalar kernel."""
 
 _G = _GAMMA
 _T = _TINY

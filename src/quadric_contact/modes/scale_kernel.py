@@ -390,7 +390,8 @@ def scale_stack(
     and a mask of the pairs left to the exact path (their rows ``[-inf, inf]``).
 
     ``blocks``: the block kernel of :mod:`quadric_contact.modes.scale_blocks` (the scalar kernel
-    answering the pairs it does not certify), or the scalar kernel alone.
+    answering the pairs it does not certify), or the scalar kernel alone.  The matrices are
+    symmetric (the block kernel reads their upper triangles; the public functions check it).
 
     Examples
     --------
