@@ -107,3 +107,97 @@ def test_the_kernel_identities_in_exact_arithmetic():
     assert sp.simplify(s2 - formula) == 0
     g = Q[:3, :3] * x + Q[:3, 3]
     assert sp.simplify(sp.diff(f, mu) + 2 * (g.T * Am.inv() * g)[0]) == 0
+
+
+# -- the block kernel against the scalar kernel ----------------------------------------------------
+
+
+def _random_pairs(n, seed):
+    from quadric_contact.testing.samples import random_ellipsoids
+
+    rng = np.random.default_rng(seed)
+    Es, _ = random_ellipsoids(n, rng)
+    Qs, _ = random_ellipsoids(n, rng)
+    return Es, Qs
+
+
+def _agree(Es, Qs):
+    """Blocks and the scalar kernel on the same pairs: a pair the blocks leave to the exact path
+    is one the scalar kernel leaves too, and the two enclosures of every other pair meet."""
+    from quadric_contact.modes.scale_kernel import _scale_flags
+
+    enc, flag = _scale_flags(Es, Qs)
+    ref, rflag = _scale_flags(Es, Qs, blocks=False)
+    assert set(np.unique(rflag)) <= {0, 1}
+    assert not (flag == 1)[rflag == 0].any()
+    both = (flag != 1) & (rflag == 0)
+    assert (enc[both, 0] <= ref[both, 1]).all() and (ref[both, 0] <= enc[both, 1]).all()
+    assert (enc[flag == 1] == [-np.inf, np.inf]).all()
+    assert (enc[flag != 1, 0] >= 0).all() and (enc[flag != 1, 0] <= enc[flag != 1, 1]).all()
+    return enc, flag, ref
+
+
+def test_blocks_agree_with_the_scalar_kernel():
+    Es, Qs = _random_pairs(20000, 7)
+    enc, flag, ref = _agree(Es, Qs)
+    ok = flag == 0
+    assert ok.mean() > 0.99  # the blocks certify nearly every pair themselves
+    width = (enc[ok, 1] - enc[ok, 0]) / enc[ok, 1]
+    rwidth = (ref[ok, 1] - ref[ok, 0]) / ref[ok, 1]
+    assert np.median(width) < 1e-9 and np.median(width) < 4 * np.median(rwidth)
+    for k in np.flatnonzero(ok)[:6]:
+        assert _holds(enc[k], Es[k], Qs[k])
+
+
+@pytest.mark.parametrize("name", ["hyperboloid", "two sheets", "paraboloid", "saddle", "plane", "cylinder"])
+def test_blocks_agree_on_other_types(name):
+    Q = np.array(Quadric.from_equation(OTHERS[name]).matrix, dtype=float)
+    Es, _ = _random_pairs(300, 8)
+    Qs = np.broadcast_to(Q, Es.shape).copy()
+    enc, flag, _ = _agree(Es, Qs)
+    if name == "cylinder":
+        assert (flag == 1).all()
+    for k in range(3):
+        if flag[k] != 1:
+            assert _holds(enc[k], Es[k], Q)
+
+
+def _scaled(E, t):
+    """``E`` scaled by ``t`` about its centre."""
+    A, a = E[:3, :3], E[:3, 3]
+    c = -np.linalg.solve(A, a)
+    r = c @ A @ c - E[3, 3]
+    out = E.copy()
+    out[3, 3] = E[3, 3] - (t * t - 1) * r
+    return out
+
+
+@pytest.mark.parametrize("delta", [1e-12, -1e-12, 1e-8, -1e-8, 1e-4])
+def test_blocks_on_near_touching_pairs(delta):
+    """``E`` grown until it all but touches ``Q`` (scale ``1 / (1 + delta)``)."""
+    Es, Qs = _random_pairs(2000, 9)
+    enc, rest = scale_stack(Es, Qs)
+    keep = ~rest & (enc[:, 0] > 0.5)
+    s = 0.5 * (enc[keep, 0] + enc[keep, 1])
+    near = np.array([_scaled(e, t * (1 + delta)) for e, t in zip(Es[keep], s, strict=True)])
+    enc2, flag, _ = _agree(near, Qs[keep])
+    done = flag != 1
+    assert done.mean() > 0.95
+    target = 1 / (1 + delta)
+    assert np.median(np.abs(0.5 * (enc2[done, 0] + enc2[done, 1]) - target)) < 1e-9
+    for k in np.flatnonzero(done)[:2]:
+        assert _holds(enc2[k], near[k], Qs[keep][k])
+
+
+def test_a_pair_the_blocks_leave_goes_to_the_scalar_kernel():
+    """``E``'s centre inside a long ``Q``: the root is far along the negative side, past the
+    steps the blocks take; the scalar kernel answers, exactly as alone."""
+    from quadric_contact.modes.scale_kernel import _scale_flags
+
+    E = np.array(Quadric.ellipsoid(0.1, 0.2, 0.3, center=(0.5, 0.3, 0.1)).matrix, dtype=float)
+    Q = np.array(Quadric.ellipsoid(40, 1, 1).matrix, dtype=float)
+    enc, flag = _scale_flags(E[None], Q[None])
+    ref, rflag = _scale_flags(E[None], Q[None], blocks=False)
+    assert flag[0] == 2 and rflag[0] == 0
+    assert (enc == ref).all()
+    assert _holds(enc[0], E, Q)

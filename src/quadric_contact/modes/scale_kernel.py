@@ -31,6 +31,10 @@ sum of 16 terms), has 25, and ``D = 32`` is used for all of them.
 A pair whose signs cannot be certified (a touch at ``mu = 0``, a singular ``Q``, a root too
 close to the end of the definite interval, an ``E`` that is not certainly an ellipsoid) is
 flagged, and the caller answers it with the exact path.
+
+:func:`scale_stack` runs the same certificate in blocks laid out for the vector unit
+(:mod:`quadric_contact.modes.scale_blocks`), with this kernel for the pairs the blocks do not
+certify.
 """
 
 from __future__ import annotations
@@ -379,9 +383,15 @@ def _kernel(Es: Any, Qs: Any, out: Any, flag: Any, start: int, stop: int) -> Non
             rel = nxt
 
 
-def scale_stack(Es: np.ndarray, Qs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def scale_stack(
+    Es: np.ndarray, Qs: np.ndarray, *, blocks: bool = True, threads: int | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """Enclosures ``(n, 2)`` of the one-sided first-contact scale of float64 stacks ``(n, 4, 4)``
     and a mask of the pairs left to the exact path (their rows ``[-inf, inf]``).
+
+    ``blocks``: the block kernel of :mod:`quadric_contact.modes.scale_blocks` (the scalar kernel
+    answering the pairs it does not certify), or the scalar kernel alone.  The matrices are
+    symmetric (the block kernel reads their upper triangles; the public functions check it).
 
     Examples
     --------
@@ -390,10 +400,23 @@ def scale_stack(Es: np.ndarray, Qs: np.ndarray) -> tuple[np.ndarray, np.ndarray]
     >>> bool(enc[0, 0] <= 3.0 <= enc[0, 1]), bool(rest[0]), float(enc[0, 1] - enc[0, 0]) < 1e-11
     (True, False, True)
     """
+    out, flag = _scale_flags(Es, Qs, blocks=blocks, threads=threads)
+    return out, flag == 1
+
+
+def _scale_flags(
+    Es: np.ndarray, Qs: np.ndarray, *, blocks: bool = True, threads: int | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """The enclosures and, for each pair, who answered it: 0 the block kernel, 2 the scalar
+    kernel after the block kernel, 1 nobody (left to the exact path); the scalar kernel alone
+    (``blocks=False``) gives 0 or 1."""
+    from quadric_contact.modes.scale_blocks import scale_blocks
+
     Es = np.ascontiguousarray(Es, dtype=np.float64).reshape(-1, 4, 4)
     Qs = np.ascontiguousarray(Qs, dtype=np.float64).reshape(-1, 4, 4)
     n = Es.shape[0]
     out = np.empty((n, 2))
     flag = np.empty(n, dtype=np.uint8)
-    run_parallel(lambda a, b: _kernel(Es, Qs, out, flag, a, b), n)
-    return out, flag.astype(bool)
+    kernel = scale_blocks if blocks else _kernel
+    run_parallel(lambda a, b: kernel(Es, Qs, out, flag, a, b), n, threads)
+    return out, flag
