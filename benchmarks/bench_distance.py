@@ -451,7 +451,7 @@ def _scale_throughput(rng: np.random.Generator, n: int) -> None:
     if n <= 0:
         return
     from quadric_contact.modes.distances import contact_scale
-    from quadric_contact.modes.scale_kernel import scale_stack
+    from quadric_contact.modes.scale_blocks import scale_stack
 
     def stack(m: int) -> np.ndarray:
         out = np.zeros((m, 4, 4))

@@ -237,7 +237,7 @@ def _distance_kernel(E: np.ndarray, Q: np.ndarray, mode: str, digits: int) -> np
 def _scale_kernel(E: np.ndarray, Q: np.ndarray) -> np.ndarray:
     """The compiled kernel (:mod:`quadric_contact.modes.scale_kernel`) on float64 stacks; the
     pairs it leaves go to the exact scalar path."""
-    from quadric_contact.modes.scale_kernel import scale_stack
+    from quadric_contact.modes.scale_blocks import scale_stack
 
     shape = np.broadcast_shapes(E.shape[:-2], Q.shape[:-2])
     Es = _validated(np.broadcast_to(E, (*shape, 4, 4)), "E")

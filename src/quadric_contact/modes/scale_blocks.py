@@ -54,8 +54,9 @@ from quadric_contact._generated import blocks
 from quadric_contact.modes._jit import njit
 from quadric_contact.modes.scale_kernel import _GAMMA, _TINY, _U
 from quadric_contact.modes.scale_kernel import _kernel as _scalar
+from quadric_contact.modes.threads import run_parallel
 
-__all__ = ["NB", "NEWTON", "scale_blocks"]
+__all__ = ["NB", "NEWTON", "scale_blocks", "scale_stack"]
 
 NB = 32
 """Pairs per block."""
@@ -462,3 +463,41 @@ def scale_blocks(Es: Any, Qs: Any, out: Any, flag: Any, start: int, stop: int) -
                 _scalar(Es, Qs, out, flag, k, k + 1)
                 if flag[k] == 0:
                     flag[k] = 2
+
+
+def scale_stack(
+    Es: np.ndarray, Qs: np.ndarray, *, blocks: bool = True, threads: int | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """Enclosures ``(n, 2)`` of the one-sided first-contact scale of float64 stacks ``(n, 4, 4)``
+    and a mask of the pairs left to the exact path (their rows ``[-inf, inf]``).
+
+    ``blocks``: the block kernel of this module (the scalar kernel of
+    :mod:`quadric_contact.modes.scale_kernel`
+    answering the pairs it does not certify), or the scalar kernel alone.  The matrices are
+    symmetric (the block kernel reads their upper triangles; the public functions check it).
+
+    Examples
+    --------
+    >>> E = np.diag([1.0, 1.0, 1.0, -1.0]); Q = np.zeros((4, 4)); Q[0, 3] = Q[3, 0] = 0.5; Q[3, 3] = -3.0
+    >>> enc, rest = scale_stack(E[None], Q[None])   # the unit ball and the plane x = 3
+    >>> bool(enc[0, 0] <= 3.0 <= enc[0, 1]), bool(rest[0]), float(enc[0, 1] - enc[0, 0]) < 1e-11
+    (True, False, True)
+    """
+    out, flag = _scale_flags(Es, Qs, blocks=blocks, threads=threads)
+    return out, flag == 1
+
+
+def _scale_flags(
+    Es: np.ndarray, Qs: np.ndarray, *, blocks: bool = True, threads: int | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """The enclosures and, for each pair, who answered it: 0 the block kernel, 2 the scalar
+    kernel after the block kernel, 1 nobody (left to the exact path); the scalar kernel alone
+    (``blocks=False``) gives 0 or 1."""
+    Es = np.ascontiguousarray(Es, dtype=np.float64).reshape(-1, 4, 4)
+    Qs = np.ascontiguousarray(Qs, dtype=np.float64).reshape(-1, 4, 4)
+    n = Es.shape[0]
+    out = np.empty((n, 2))
+    flag = np.empty(n, dtype=np.uint8)
+    kernel = scale_blocks if blocks else _scalar
+    run_parallel(lambda a, b: kernel(Es, Qs, out, flag, a, b), n, threads)
+    return out, flag
