@@ -200,14 +200,11 @@ def _up(x: float) -> float:
 
 
 @njit(inline=True)
-def _point(
-    e: Any, ea: Any, q: Any, qa: Any, mu: float, detA: float, eA: float, detE: float, eE: float
-) -> tuple[bool, float, float, float, float]:
-    """At ``mu``: is ``A + mu Q00`` certainly positive definite, ``Y^T Q Y`` and its bound, and an
-    enclosure of ``s(mu)^2`` (``-inf, inf`` when the denominator's sign is not certain)."""
-    p = _pencil(e, q, mu)
+def _pencil_magnitude(ea: Any, qa: Any, mu: float) -> Any:
+    """The magnitudes ``|E| + |mu| |Q|`` of the member's upper entries (``ea``, ``qa``: the
+    absolute entries), the arguments of the magnitude programs."""
     am = abs(mu)
-    pa = (
+    return (
         ea[0] + am * qa[0],
         ea[1] + am * qa[1],
         ea[2] + am * qa[2],
@@ -219,6 +216,16 @@ def _point(
         ea[8] + am * qa[8],
         ea[9] + am * qa[9],
     )
+
+
+@njit(inline=True)
+def _point(
+    e: Any, ea: Any, q: Any, qa: Any, mu: float, detA: float, eA: float, detE: float, eE: float
+) -> tuple[bool, float, float, float, float]:
+    """At ``mu``: is ``A + mu Q00`` certainly positive definite, ``Y^T Q Y`` and its bound, and an
+    enclosure of ``s(mu)^2`` (``-inf, inf`` when the denominator's sign is not certain)."""
+    p = _pencil(e, q, mu)
+    pa = _pencil_magnitude(ea, qa, mu)
     y = _cofactors(p)
     ya = _cofactors_mag(pa)
     # the leading minors of A + mu Q00 (the third is Y_4)
@@ -422,18 +429,7 @@ def scale_blocks(Es: Any, Qs: Any, out: Any, flag: Any, start: int, stop: int) -
             df = st[12 * S + i]
             p = _pencil(e, q, mu)
             am = abs(mu)
-            pa = (
-                ea[0] + am * qa[0],
-                ea[1] + am * qa[1],
-                ea[2] + am * qa[2],
-                ea[3] + am * qa[3],
-                ea[4] + am * qa[4],
-                ea[5] + am * qa[5],
-                ea[6] + am * qa[6],
-                ea[7] + am * qa[7],
-                ea[8] + am * qa[8],
-                ea[9] + am * qa[9],
-            )
+            pa = _pencil_magnitude(ea, qa, mu)
             y3 = _det3(p[0], p[1], p[2], p[1], p[4], p[5], p[2], p[5], p[7])
             ya = _cofactors_mag(pa)
             noise = _form(ya, qa) * _G + _T
