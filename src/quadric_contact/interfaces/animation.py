@@ -244,4 +244,8 @@ def _frames_bar(total: int, enabled: bool | None) -> Any:
         return None
     from tqdm import tqdm
 
-    return tqdm(total=total, desc="animating", unit="frame", file=sys.stderr, leave=False)
+    # every frame is drawn: a frame takes tenths of a second, and a bar that skips
+    # updates by time may never show the last one before it is cleared
+    return tqdm(
+        total=total, desc="animating", unit="frame", file=sys.stderr, leave=False, miniters=1, mininterval=0
+    )
