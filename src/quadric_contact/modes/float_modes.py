@@ -450,6 +450,18 @@ class FloatMode(NumberMode):
             return self._codes(pairs, self._region_types(pairs))
         return super().with_candidates(method, pairs)
 
+    def decide_ellipsoids(
+        self, pairs: Pairs, *, outside_too: bool
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+        """The decision kernel's reading of every pair
+        (:func:`~quadric_contact.modes.kernels_decision.decide_ellipsoids`: certified, in one pass),
+        or None where it does not apply (input rounded from exact numbers, the numpy backend)."""
+        if not self._fast(pairs):
+            return None
+        from quadric_contact.modes.kernels_decision import decide_ellipsoids
+
+        return decide_ellipsoids(pairs, outside_too=outside_too, threads=self.threads)
+
     def separation(self, pairs: Pairs) -> np.ndarray:
         from quadric_contact.modes.kernels_signature import signature_float
 

@@ -41,7 +41,17 @@ from quadric_contact.modes.base import INVALID
 from quadric_contact.modes.decisions import CONTACT_TABLE, ROWS, region_code_masked
 from quadric_contact.modes.kernels_support import certified_ellipsoid
 
-__all__ = ["FALLBACK", "NB", "fast_codes", "kernel"]
+__all__ = [
+    "CONTACT_CODES",
+    "FALLBACK",
+    "FALL_INDEX",
+    "NB",
+    "fast_codes",
+    "gather_block",
+    "kernel",
+    "region_out",
+    "screen_pair",
+]
 
 NB = 32
 """Pairs per block: 10 rows of 32 doubles per matrix (2.5 KB), in L1 with everything else;
@@ -129,7 +139,8 @@ def _sgnf(x: float) -> float:
 
 @njit(inline=True)
 def _screen_core(e: Any, R: Any, c: Any, W: Any, plane: bool, guard: bool) -> Any:
-    """The screen on one pair: ``(ok, table index, signs of c0 .. c4)`` (floats).  ``e``,
+    """The screen on one pair: ``(ok, table index, signs of c0 .. c4, E certainly an ellipsoid
+    and the guard holds)`` (floats but the flags).  ``e``,
     ``R``: the upper entries of ``E`` and its row maxima; ``c``: the coefficients;
     ``W``: the row bound; ``plane``: ``Q`` has a zero quadratic part; ``guard``: both inputs
     pass the input guard."""
@@ -163,7 +174,19 @@ def _screen_core(e: Any, R: Any, c: Any, W: Any, plane: bool, guard: bool) -> An
         + _sidx(d3, (_SR3 * rho + _SG3) * A3, 4.0)
         + _sidx(d4, (_SR4 * rho + _SG4) * A4, 16.0)
     )
-    return ok, idx, _sgnf(c0), _sgnf(x1), _sgnf(c2), _sgnf(x3), _sgnf(c4)
+    return ok, idx, _sgnf(c0), _sgnf(x1), _sgnf(c2), _sgnf(x3), _sgnf(c4), ell & guard
+
+
+@njit(inline=True)
+def screen_pair(e: Any, q: Any, c: Any, R: Any, T: Any, W: Any, ae: Any, aq: Any, sym: bool) -> Any:
+    """The screen's reading of one pair as the criterion kernels take it (the guards of both
+    matrices, ``Q``'s zero quadratic part read from ``aq``): ``(ok, table index, signs of
+    c0 .. c4, E certainly an ellipsoid and every guard holds)``.  ``c``: the coefficients;
+    ``R``, ``T``: the row maxima of ``ae = |E|`` and ``aq = |Q|``; ``W``: the row bound;
+    ``sym``: both matrices are symmetric.  For the decision kernel
+    (:mod:`quadric_contact.modes.kernels_decision`)."""
+    guard = _guard_ok(ae, R) & _guard_ok(aq, T) & sym
+    return _screen_core(e, R, c, W, _plane(aq), guard)
 
 
 @njit(inline=True)
@@ -207,10 +230,12 @@ _TABLE = np.concatenate(
 uncertain, and two more entries: 64 fall back, 65 invalid."""
 _FALL_INDEX = 64.0
 _INVALID_INDEX = 65.0
+CONTACT_CODES = _TABLE
+FALL_INDEX = _FALL_INDEX
 
 
 @njit(inline=True)
-def _region_out(idx: float, sb: Any, i: int, S: int, row: int, mask: int) -> int:
+def region_out(idx: float, sb: Any, i: int, S: int, row: int, mask: int) -> int:
     """The region code of the pair in column ``i``."""
     code = _TABLE[int(idx)]
     if code in (FALLBACK, INVALID):
@@ -223,7 +248,7 @@ def _region_out(idx: float, sb: Any, i: int, S: int, row: int, mask: int) -> int
 
 
 @njit(inline=True)
-def _gather_block(
+def gather_block(
     M: Any, idx: Any, stride: int, packed: bool, blo: int, m: int, b: Any, asym: Any, first: bool, S: int
 ) -> None:  # fmt: skip
     """Gather the block ``blo .. blo + m`` of one side into ``b`` (rows ``idx[p]``, or ``p * stride``
@@ -279,7 +304,7 @@ def _one_pair(
     other branch needs (``E``'s row maxima and guard for plain float)."""
     if filtered:
         W = _row_bound(R[0], R[1], R[2], R[3], T[0], T[1], T[2], T[3])
-        ok, idx, s0, s1, s2, s3, s4 = _screen_core(e, R, c, W, plane, eguard & qguard)
+        ok, idx, s0, s1, s2, s3, s4, _ = _screen_core(e, R, c, W, plane, eguard & qguard)
         x = idx if ok else _FALL_INDEX
     else:
         r0 = _SP0 * ((T[0] * T[1]) * (T[2] * T[3]))
@@ -312,10 +337,7 @@ def _write_block(
     in ``fb[lo:]`` as they are written (``nfb`` so far; returned updated), so that the caller
     need not search the batch for them."""
     for i in range(m):
-        if region:
-            code = _region_out(xb[i], sb, i, S, qrows[qi[i]], qmasks[qi[i]])
-        else:
-            code = int(_TABLE[int(xb[i])])
+        code = region_out(xb[i], sb, i, S, qrows[qi[i]], qmasks[qi[i]]) if region else int(_TABLE[int(xb[i])])
         out[blo + i] = code
         if code == FALLBACK:
             fb[lo + nfb] = blo + i
@@ -347,8 +369,8 @@ def _make_pairs(filtered: bool, region: bool) -> Any:
                     bad_q = _gather_full(Q, (blo + t) * qs, qb_, t, S)
                     asym[t] = 1.0 if (bad_e | bad_q) else 0.0
             else:
-                _gather_block(E, eidx, es, epacked, blo, m, eb_, asym, True, S)
-                _gather_block(Q, qidx, qs, qpacked, blo, m, qb_, asym, False, S)
+                gather_block(E, eidx, es, epacked, blo, m, eb_, asym, True, S)
+                gather_block(Q, qidx, qs, qpacked, blo, m, qb_, asym, False, S)
             for i in range(m):
                 e = _load(eb_, i, S)
                 q = _load(qb_, i, S)
@@ -393,7 +415,7 @@ def _make_fixed_q(filtered: bool, region: bool) -> Any:
         nfb = 0
         for blo in range(lo, hi, S):
             m = min(S, hi - blo)
-            _gather_block(E, eidx, es, epacked, blo, m, eb_, asym, True, S)
+            gather_block(E, eidx, es, epacked, blo, m, eb_, asym, True, S)
             for i in range(m):
                 e = _load(eb_, i, S)
                 ae = _abs10(e)
@@ -432,7 +454,7 @@ def _make_fixed_e(filtered: bool, region: bool) -> Any:
         nfb = 0
         for blo in range(lo, hi, S):
             m = min(S, hi - blo)
-            _gather_block(Q, qidx, qs, qpacked, blo, m, qb_, asym, True, S)
+            gather_block(Q, qidx, qs, qpacked, blo, m, qb_, asym, True, S)
             for i in range(m):
                 q = _load(qb_, i, S)
                 aq = _abs10(q)

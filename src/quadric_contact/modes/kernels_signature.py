@@ -58,6 +58,8 @@ __all__ = [
     "decide_signature",
     "member_minors_bounded",
     "signature_float",
+    "signature_prepare",
+    "signature_rows",
 ]
 
 NB = 32
@@ -281,6 +283,85 @@ def decide_signature(
     return int(_REGION_OF[_table_index(_SURFACE_UNKNOWN, roots, definite, _PLANE_UNKNOWN)])
 
 
+@_njit(inline=True)
+def signature_prepare(eb_: Any, qb_: Any, m: int, S: int, cb: Any) -> None:
+    """For the ``m`` pairs in the column buffers (``E`` in the paper's sign): the coefficients
+    ``c1 .. c4`` of ``P`` and the input guard, into ``cb`` as :func:`signature_rows` reads them
+    (first sample point: the first critical point).  A straight-line loop."""
+    for i in range(m):
+        e = _load(eb_, i, S)
+        q = _load(qb_, i, S)
+        inputs_ok = _g(e[0]) & _g(e[1]) & _g(e[2]) & _g(e[3]) & _g(e[4]) & _g(e[5]) & _g(e[6])
+        inputs_ok = inputs_ok & _g(e[7]) & _g(e[8]) & _g(e[9]) & _g(q[0]) & _g(q[1]) & _g(q[2])
+        inputs_ok = inputs_ok & _g(q[3]) & _g(q[4]) & _g(q[5]) & _g(q[6]) & _g(q[7]) & _g(q[8]) & _g(q[9])
+        c0, c1, c2, c3, c4 = _pencil(e, q)
+        cb[i] = c1
+        cb[S + i] = c2
+        cb[2 * S + i] = c3
+        cb[3 * S + i] = c4
+        cb[4 * S + i] = 1.0 if inputs_ok else 0.0
+        cb[5 * S + i] = 0.0
+
+
+@_njit(inline=True)
+def signature_rows(
+    eb_: Any, qb_: Any, cb: Any, m: int, S: int, SK: Any, K: Any, KD: Any, certified: bool, fb: Any, e1: Any,
+    q1: Any, at: Any, out: Any,
+) -> None:  # fmt: skip
+    """The separation codes of the ``m`` pairs in the column buffers ``eb_``, ``qb_`` (one row of
+    ``S`` per upper entry, ``E`` in the paper's sign), written to ``out[at[i]]``.
+
+    ``cb`` holds six rows of ``S``: the coefficients ``c1 .. c4`` of ``P`` (they only place the
+    sample points, which nothing trusts), whether both matrices pass the input guard (1/0), and
+    which sample point to try first (1: the last critical point, where a positive definite
+    member lies when ``E`` is outside; 0: the first, where a negative definite one lies when
+    ``E`` is inside).  A straight-line loop computes the sample points and the member at the
+    first point to try; a scalar loop adds the other members only where no witness was found
+    (the last or first, then the middle), looks the facts up in the decision table, and reads
+    a pair again with the scalar certificate where the fast reading is uncertain.  ``fb``
+    (``6 S``), ``e1``, ``q1`` (10): scratch.  Shared by the signature kernel and the decision
+    kernel (:mod:`quadric_contact.modes.kernels_decision`)."""
+    SKt = (SK[0], SK[1], SK[2], SK[3])  # scalars: no store in the loop may alias them
+    for i in range(m):
+        e = _load(eb_, i, S)
+        q = _load(qb_, i, S)
+        s1, s2, s3, ok = critical_points_fast(cb[i], cb[S + i], cb[2 * S + i], cb[3 * S + i])
+        last = cb[5 * S + i] == 1.0
+        da, ga = _member(s3 if last else s1, e, q, SKt, cb[4 * S + i] == 1.0, certified)
+        fb[i] = 1.0 if ok else 0.0
+        fb[S + i] = da
+        fb[2 * S + i] = s2
+        fb[3 * S + i] = s1 if last else s3
+        fb[4 * S + i] = ga
+    for i in range(m):
+        last = cb[5 * S + i] == 1.0
+        da = fb[S + i]
+        ga = fb[4 * S + i]
+        if (da == _POSITIVE) if last else (da == _NEGATIVE):
+            # a witness at the first point tried: the other members are not needed
+            db, gb, d2, g2 = _DEF_UNKNOWN, _UNC, _DEF_UNKNOWN, _UNC
+        else:
+            e = _load(eb_, i, S)
+            q = _load(qb_, i, S)
+            inputs_ok = cb[4 * S + i] == 1.0
+            db, gb = _member(fb[3 * S + i], e, q, SKt, inputs_ok, certified)
+            if (db == _NEGATIVE) if last else (db == _POSITIVE):
+                d2, g2 = _DEF_UNKNOWN, _UNC
+            else:
+                d2, g2 = _member(fb[2 * S + i], e, q, SKt, inputs_ok, certified)
+        if last:
+            code = decide_signature(fb[i] == 1.0, db, d2, da, gb, g2, ga, certified)
+        else:
+            code = decide_signature(fb[i] == 1.0, da, d2, db, ga, g2, gb, certified)
+        if code == UNCERTAIN and certified:
+            # a second reading: trigonometric sample points and magnitude programs
+            for k in range(10):
+                e1[k] = eb_[k * S + i]
+                q1[k] = qb_[k * S + i]
+            code = _separation_one(e1, q1, K, KD, True)
+        out[at[i]] = code
+
+
 def _make_signature(certified: bool) -> Any:
     """The block kernel for the certified reading or the plain one (a constant of the compiled
     code, so that the straight-line loop has no branch on it)."""
@@ -300,12 +381,13 @@ def _make_signature(certified: bool) -> Any:
         out: Any,
     ) -> None:
         S = NB
-        SKt = (SK[0], SK[1], SK[2], SK[3])  # scalars: no store in the loop may alias them
         eb_ = np.empty(10 * S)
         qb_ = np.empty(10 * S)
-        fb = np.empty(7 * S)
+        fb = np.empty(6 * S)
+        cb = np.empty(6 * S)
         e1 = np.empty(10)
         q1 = np.empty(10)
+        at = np.empty(S, np.intp)
         for blo in range(lo, hi, S):
             m = min(S, hi - blo)
             for t in range(m):
@@ -317,43 +399,9 @@ def _make_signature(certified: bool) -> Any:
                 if eb_[t] < 0.0:  # the paper's sign: det E < 0
                     for k in range(10):
                         eb_[k * S + t] = -eb_[k * S + t]
-            for i in range(m):
-                e = _load(eb_, i, S)
-                q = _load(qb_, i, S)
-                inputs_ok = _g(e[0]) & _g(e[1]) & _g(e[2]) & _g(e[3]) & _g(e[4]) & _g(e[5]) & _g(e[6])
-                inputs_ok = inputs_ok & _g(e[7]) & _g(e[8]) & _g(e[9]) & _g(q[0]) & _g(q[1]) & _g(q[2])
-                inputs_ok = (
-                    inputs_ok & _g(q[3]) & _g(q[4]) & _g(q[5]) & _g(q[6]) & _g(q[7]) & _g(q[8]) & _g(q[9])
-                )
-                c0, c1, c2, c3, c4 = _pencil(e, q)
-                s1, s2, s3, ok = critical_points_fast(c1, c2, c3, c4)
-                d1, g1 = _member(s1, e, q, SKt, inputs_ok, certified)
-                d3, g3 = _member(s3, e, q, SKt, inputs_ok, certified)
-                fb[i] = 1.0 if ok else 0.0
-                fb[S + i] = d1
-                fb[2 * S + i] = s2
-                fb[3 * S + i] = d3
-                fb[4 * S + i] = g1
-                fb[5 * S + i] = 1.0 if inputs_ok else 0.0
-                fb[6 * S + i] = g3
-            for i in range(m):
-                d1 = fb[S + i]
-                d3 = fb[3 * S + i]
-                if d3 == _POSITIVE or d1 == _NEGATIVE:
-                    d2, g2 = _DEF_UNKNOWN, _UNC  # a witness already: the middle point is not needed
-                else:
-                    # the middle member only for the pairs that need it (most have a witness)
-                    e = _load(eb_, i, S)
-                    q = _load(qb_, i, S)
-                    d2, g2 = _member(fb[2 * S + i], e, q, SKt, fb[5 * S + i] == 1.0, certified)
-                code = decide_signature(fb[i] == 1.0, d1, d2, d3, fb[4 * S + i], g2, fb[6 * S + i], certified)
-                if code == UNCERTAIN and certified:
-                    # a second reading: trigonometric sample points and magnitude programs
-                    for k in range(10):
-                        e1[k] = eb_[k * S + i]
-                        q1[k] = qb_[k * S + i]
-                    code = _separation_one(e1, q1, K, KD, True)
-                out[blo + i] = code
+                at[t] = p
+            signature_prepare(eb_, qb_, m, S, cb)
+            signature_rows(eb_, qb_, cb, m, S, SK, K, KD, certified, fb, e1, q1, at, out)
 
     return kernel
 

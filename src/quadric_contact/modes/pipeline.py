@@ -206,15 +206,90 @@ def decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
 
 
 def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
-    """:func:`decide`, step by step."""
+    """:func:`decide`: the pairs of two ellipsoids in one pass (:func:`_lane`), the others, and
+    what the lane leaves, step by step (:func:`_decide_steps`)."""
     if question not in QUESTIONS:
         raise ValueError(f"question must be one of {QUESTIONS}, got {question!r}")
-    n = pairs.n
     counts = StageCounts()
-    out = np.full(n, _UNC, dtype=np.int8)
-    if n == 0:
+    if pairs.n == 0:
         mode._record(counts)
-        return out
+        return np.full(0, _UNC, dtype=np.int8)
+    lane = _lane(mode, pairs, question, counts)
+    if lane is None:
+        out = _decide_steps(mode, pairs, question, counts)
+    else:
+        out, rest = lane
+        if rest.size:
+            out[rest] = _decide_steps(mode, pairs.take(rest), question, counts)
+    mode._record(counts)
+    return out
+
+
+def _lane(
+    mode: NumberMode, pairs: Pairs, question: str, counts: StageCounts
+) -> tuple[np.ndarray, np.ndarray] | None:
+    """Steps 1 and 2 for the pairs of two ellipsoids, in one pass over the input: the decision
+    kernel (:mod:`quadric_contact.modes.kernels_decision`) reads the criterion and, where it
+    does not settle the pair, the signature sequence; the answers follow from its codes by the
+    rules of the steps (:func:`_criterion_answers`, :func:`_from_separation`).  Returns the
+    codes and the pairs left to the steps (not two certain ellipsoids, a guard failed, or
+    uncertain), or None where the mode has no such kernel."""
+    first = getattr(mode, "stages", (mode,))[0]
+    kernel = getattr(first, "decide_ellipsoids", None)
+    if kernel is None:
+        return None
+    facts = kernel(pairs, outside_too=question != "contact" and question != "region")
+    if facts is None:
+        return None
+    crit, sep, qsign = facts
+    name = str(getattr(first, "stage", first.name))
+    out = np.full(pairs.n, _UNC, dtype=np.int8)
+    todo = qsign != 0
+    by_crit = _criterion_answers(crit, qsign, question, out, todo)
+    counts.add(f"criterion ({name})", by_crit)
+    values = _from_separation(sep, question)
+    hit = todo & (values != _UNC)
+    k = int(np.count_nonzero(hit))
+    if k:
+        _blend(out, hit, values)
+        np.logical_and(todo, np.logical_not(hit), out=todo)
+    counts.add(f"separation ({name})", k)
+    rest = np.flatnonzero(todo | (qsign == 0))
+    return out, rest
+
+
+def _criterion_answers(crit: np.ndarray, qsign: Any, question: str, out: np.ndarray, todo: np.ndarray) -> int:
+    """Steps 1 and 1b on codes of the region criterion for pairs of two ellipsoids (``qsign``:
+    the canonical sign of ``Q``): non-real roots of ``P`` are a crossing (Remark 9); two
+    positive roots put ``E`` in the closed ``R+`` of ``Q`` (Wang-Wang-Kim), which answers the
+    contact and the region questions (not the kind of contact: ``E`` may touch).  Writes the
+    answers into ``out`` where ``todo``, clears ``todo`` there; returns how many."""
+    crossing = crit == int(RegionCode.CONTACT)
+    if question == "region":
+        answer: Any = RegionCode.CONTACT
+    elif question == "contact":
+        answer = ContactCode.CONTACT
+    else:
+        answer = ContactKindCode.TRANSVERSAL
+    hit = todo & crossing
+    k = int(np.count_nonzero(hit))
+    if k:
+        _blend(out, hit, answer)
+        np.logical_and(todo, np.logical_not(hit), out=todo)
+    if question in ("contact", "region"):
+        outside = todo & (crit * qsign == int(RegionCode.R_PLUS)) & (np.abs(crit) == 1)
+        j = int(np.count_nonzero(outside))
+        if j:
+            _blend(out, outside, ContactCode.NO_CONTACT if question == "contact" else crit)
+            np.logical_and(todo, np.logical_not(outside), out=todo)
+        k += j
+    return k
+
+
+def _decide_steps(mode: NumberMode, pairs: Pairs, question: str, counts: StageCounts) -> np.ndarray:
+    """:func:`decide`, step by step (the counts go to ``counts``)."""
+    n = pairs.n
+    out = np.full(n, _UNC, dtype=np.int8)
     todo = np.ones(n, dtype=bool)
 
     def settle(which: np.ndarray | bool, values: Any, label: str) -> None:
@@ -312,8 +387,7 @@ def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
     rest = np.flatnonzero(todo)
     if rest.size and getattr(mode, "complete", False):
         settle_at(rest, _exact_pairs(pairs, rest, question), "exact pair")
-    counts.undecided = int(np.count_nonzero(todo))
-    mode._record(counts)
+    counts.undecided += int(np.count_nonzero(todo))
     return out
 
 
@@ -483,13 +557,29 @@ def _decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
 
     The abstaining modes answer ``UNCERTAIN`` where 1-2 leave a pair; the plain modes answer
     everything at step 2 (never ``TOUCHING``: a touch is a tangency, which binary64 cannot
-    see).  Records the stage counts in ``mode``."""
-    n = pairs.n
+    see).  Records the stage counts in ``mode``.
+
+    The pairs of two ellipsoids take steps 1 and 2 in one pass (:func:`_overlap_lane`); the
+    others, and what it leaves, take them here."""
     counts = StageCounts()
-    out = np.full(n, _UNC, dtype=np.int8)
-    if n == 0:
+    if pairs.n == 0:
         mode._record(counts)
-        return out
+        return np.full(0, _UNC, dtype=np.int8)
+    lane = _overlap_lane(mode, pairs, counts)
+    if lane is None:
+        out = _overlap_steps(mode, pairs, counts)
+    else:
+        out, rest = lane
+        if rest.size:
+            out[rest] = _overlap_steps(mode, pairs.take(rest), counts)
+    mode._record(counts)
+    return out
+
+
+def _overlap_steps(mode: NumberMode, pairs: Pairs, counts: StageCounts) -> np.ndarray:
+    """:func:`_decide_overlap`, step by step (the counts go to ``counts``)."""
+    n = pairs.n
+    out = np.full(n, _UNC, dtype=np.int8)
     todo = np.ones(n, dtype=bool)
 
     def settle(which: np.ndarray, values: Any, label: str) -> None:
@@ -503,13 +593,11 @@ def _decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
     # 1. criterion: root structure and signs (validates the input on the way).
     crit, names, which = _staged(mode, "criterion_region", pairs)
     plane, ellipsoid, qsign = _solids(mode, pairs)
-    sided = (crit == int(RegionCode.R_MINUS)) | (crit == int(RegionCode.R_PLUS))
-    side = np.where(sided, crit * qsign, _UNC).astype(np.int8)  # -1 in the solid, 1 outside
+    side = _side(crit, qsign)
+    said = _overlap_from_criterion(crit, side, plane | ellipsoid)
     for k, name in enumerate(names):
         here = which == k
-        label = f"criterion ({name})"
-        settle(here & (crit == int(RegionCode.CONTACT)), OverlapCode.OVERLAPPING, label)
-        settle(here & (side == int(RegionCode.R_MINUS)) & (plane | ellipsoid), OverlapCode.OVERLAPPING, label)
+        settle(here & (said != _UNC), said, f"criterion ({name})")
     said = np.flatnonzero(~todo & (crit == int(RegionCode.CONTACT)))
     _confirm_crossings(mode, pairs, said, out, todo, counts, f"criterion ({names[0]})")
 
@@ -517,13 +605,7 @@ def _decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
     rest = np.flatnonzero(todo)
     if rest.size:
         sep, names, which = _staged(mode, "separation", pairs.take(rest))
-        sep_side = np.where((sep == SEP_MINUS) | (sep == SEP_PLUS), sep * qsign[rest], sep)
-        values = np.full(rest.size, _UNC, dtype=np.int8)
-        values[(sep_side == CROSSING) | (sep_side == SEP_MINUS)] = OverlapCode.OVERLAPPING
-        outside = sep_side == SEP_PLUS
-        two_positive = side[rest] == int(RegionCode.R_PLUS)
-        sure = two_positive if mode.certified else np.ones(rest.size, dtype=bool)
-        values[outside & (~ellipsoid[rest] | sure)] = OverlapCode.SEPARATE
+        values = _overlap_from_separation(sep, qsign[rest], ellipsoid[rest], side[rest], mode.certified)
         for k, name in enumerate(names):
             here = np.zeros(n, dtype=bool)
             here[rest[which == k]] = True
@@ -539,9 +621,68 @@ def _decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
         here = np.zeros(n, dtype=bool)
         here[rest] = True
         settle(here, full, "exact pair")
-    counts.undecided = int(np.count_nonzero(todo))
-    mode._record(counts)
+    counts.undecided += int(np.count_nonzero(todo))
     return out
+
+
+def _side(crit: np.ndarray, qsign: Any) -> np.ndarray:
+    """The criterion's side of ``Q``'s solid: -1 in it, 1 outside (``R-``/``R+`` of the canonical
+    sign), ``UNCERTAIN`` where the criterion read no side."""
+    sided = (crit == int(RegionCode.R_MINUS)) | (crit == int(RegionCode.R_PLUS))
+    return np.where(sided, crit * qsign, _UNC).astype(np.int8)
+
+
+def _overlap_from_criterion(crit: np.ndarray, side: np.ndarray, sided_solid: Any) -> np.ndarray:
+    """Step 1 of the overlap question: non-real roots, the surfaces cross (Remark 9); ``E`` on
+    the solid's side of a plane (Theorem 14) or, for two ellipsoids, no positive root
+    (Wang-Wang-Kim): overlapping (``sided_solid``: ``Q`` a plane or an ellipsoid)."""
+    values = np.full(crit.shape, _UNC, dtype=np.int8)
+    values[crit == int(RegionCode.CONTACT)] = OverlapCode.OVERLAPPING
+    values[(side == int(RegionCode.R_MINUS)) & np.asarray(sided_solid, dtype=bool)] = OverlapCode.OVERLAPPING
+    return values
+
+
+def _overlap_from_separation(
+    sep: np.ndarray, qsign: Any, ellipsoid: Any, side: np.ndarray, certified: bool
+) -> np.ndarray:
+    """Step 2 of the overlap question, from separation codes: a crossing, or ``E`` strictly in
+    the solid, overlapping; ``E`` strictly outside, separate -- except that an ellipsoid ``Q``
+    may lie inside ``E``: there the certified modes need the two positive roots of step 1
+    (``side`` 1)."""
+    sep_side = np.where((sep == SEP_MINUS) | (sep == SEP_PLUS), sep * qsign, sep)
+    values = np.full(sep.shape, _UNC, dtype=np.int8)
+    values[(sep_side == CROSSING) | (sep_side == SEP_MINUS)] = OverlapCode.OVERLAPPING
+    outside = sep_side == SEP_PLUS
+    two_positive = side == int(RegionCode.R_PLUS)
+    sure = two_positive if certified else np.ones(sep.shape, dtype=bool)
+    not_ellipsoid = np.logical_not(np.asarray(ellipsoid, dtype=bool))  # a mask, also for a scalar
+    values[outside & (not_ellipsoid | sure)] = OverlapCode.SEPARATE
+    return values
+
+
+def _overlap_lane(
+    mode: NumberMode, pairs: Pairs, counts: StageCounts
+) -> tuple[np.ndarray, np.ndarray] | None:
+    """Steps 1 and 2 of the overlap question for the pairs of two ellipsoids, from the decision
+    kernel's codes in one pass (as :func:`_lane`); None where the mode has no such kernel."""
+    first = getattr(mode, "stages", (mode,))[0]
+    kernel = getattr(first, "decide_ellipsoids", None)
+    facts = None if kernel is None else kernel(pairs, outside_too=True)
+    if facts is None:
+        return None
+    crit, sep, qsign = facts
+    name = str(getattr(first, "stage", first.name))
+    lane = qsign != 0
+    side = _side(crit, qsign)
+    out = _overlap_from_criterion(crit, side, True)
+    out[~lane] = _UNC
+    by_crit = lane & (out != _UNC)
+    counts.add(f"criterion ({name})", int(np.count_nonzero(by_crit)))
+    values = _overlap_from_separation(sep, qsign, True, side, True)
+    hit = lane & ~by_crit & (values != _UNC)
+    counts.add(f"separation ({name})", int(np.count_nonzero(hit)))
+    _blend(out, hit, values)
+    return out, np.flatnonzero(out == _UNC)
 
 
 def _exact_overlaps(pairs: Pairs, rows: np.ndarray) -> np.ndarray:

@@ -1,0 +1,143 @@
+"""The decision kernel (quadric_contact.modes.kernels_decision) and the lane of the pipeline that
+runs it: its codes against the exact decision, the lane against the general steps on the same
+pairs, its compiled and Python forms, and the pairs it must leave to the general steps."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from quadric_contact.modes import kernels_decision as kd
+from quadric_contact.modes import separation as sep
+from quadric_contact.modes.base import RegionCode
+from quadric_contact.modes.batch import as_stack, make_pairs
+from quadric_contact.modes.certified import CertifiedMode
+from quadric_contact.modes.float_modes import FilterMode, FloatMode
+from quadric_contact.modes.predicates import contact_kind, overlap, relative_position, transversal_contact
+from quadric_contact.testing.hardcases import hard_cases
+from quadric_contact.testing.samples import random_ellipsoids, random_pairs
+from quadric_contact.theory import decision as dec
+
+
+def _pairs(E, Q):
+    return make_pairs(as_stack(E, "E"), as_stack(Q, "Q"))[0]
+
+
+def _populations():
+    rng = np.random.default_rng(53)
+    E1, Q1, _ = random_pairs(200, rng)
+    E2, _ = random_ellipsoids(200, rng, axes=(0.5, 2.0), box=3.0)
+    Q2, _ = random_ellipsoids(200, rng, axes=(2.0, 5.0), box=0.0)
+    E3, _ = random_ellipsoids(200, rng, axes=(0.05, 0.2), box=4.0)
+    env, _ = random_ellipsoids(1, rng, axes=(3.0, 5.0), box=0.0)
+    cases = [c for c in hard_cases() if not c.exact_input]
+    E4 = np.stack([c.matrices()[0] for c in cases])
+    Q4 = np.stack([c.matrices()[1] for c in cases])
+    return [(E1, Q1), (E2, Q2), (E3, np.repeat(env, 200, axis=0)), (E4, Q4)]
+
+
+def test_codes_are_the_exact_decision():
+    """Every code the kernel gives is the exact answer: the criterion's region reading where it
+    settles (a crossing, or E in the closed R+ of Q), the signature's separation code elsewhere."""
+    lane = settled = 0
+    for E, Q in _populations():
+        crit, code, qsign = kd.decide_ellipsoids(_pairs(E, Q), outside_too=True)
+        for i in range(E.shape[0]):
+            if qsign[i] == 0:
+                assert crit[i] == kd.OUT and code[i] == kd.NOT_RUN
+                continue
+            lane += 1
+            exact = dec.decide_exact(E[i], Q[i])
+            if crit[i] == int(RegionCode.CONTACT):
+                assert exact.contact == dec.CONTACT, i
+                settled += 1
+            elif abs(int(crit[i])) == 1 and crit[i] * qsign[i] == 1:
+                assert exact.contact == dec.NO_CONTACT, i  # touching or apart, never crossing
+            if code[i] not in (kd.NOT_RUN, sep.UNCERTAIN):
+                assert code[i] == exact.region, (i, code[i], exact.region)
+                settled += 1
+    assert lane > 400 and settled > 300
+
+
+def test_left_out_pairs_are_those_without_two_certain_ellipsoids():
+    """A quadric that is not an ellipsoid, a non-symmetric or non-finite matrix: out of the lane."""
+    rng = np.random.default_rng(59)
+    E, _ = random_ellipsoids(4, rng, axes=(0.5, 1.0), box=1.0)
+    Q = np.stack([np.diag([1.0, 1.0, 1.0, -9.0]), np.diag([1.0, 1.0, 0.0, -1.0]), np.diag([1.0, 1, 1, -9]), np.eye(4)])
+    Q[2, 0, 1] = 1e-3  # not symmetric
+    Q[3, 3, 3] = np.nan
+    crit, _, qsign = kd.decide_ellipsoids(_pairs(E, Q), outside_too=False)
+    assert qsign[0] != 0
+    assert (qsign[1:] == 0).all() and (crit[1:] == kd.OUT).all()
+
+
+def test_the_compiled_kernel_is_the_python_one():
+    rng = np.random.default_rng(61)
+    E, _ = random_ellipsoids(70, rng, axes=(0.5, 2.0), box=3.0)
+    Q, _ = random_ellipsoids(70, rng, axes=(2.0, 5.0), box=0.0)
+    pairs = _pairs(E, Q)
+    for outside_too in (False, True):
+        a = kd.decide_ellipsoids(pairs, outside_too=outside_too)
+        b = kd.decide_ellipsoids(pairs, outside_too=outside_too, backend="numpy")
+        for x, y in zip(a, b, strict=True):
+            assert (x == y).all()
+
+
+def _without_lane(mode):
+    """The same mode with the lane switched off: the general steps decide every pair."""
+    for m in (mode, *getattr(mode, "stages", ())):
+        if hasattr(m, "decide_ellipsoids"):
+            m.decide_ellipsoids = lambda pairs, outside_too: None
+    return mode
+
+
+QUESTIONS = {
+    "contact": transversal_contact,
+    "region": relative_position,
+    "overlap": overlap,
+    "kind": contact_kind,
+}
+
+
+@pytest.mark.parametrize("question", list(QUESTIONS))
+@pytest.mark.parametrize("mode", [CertifiedMode, FilterMode, FloatMode])
+def test_the_lane_answers_as_the_steps_do(question, mode):
+    """The lane is a faster road to the same answers: certified modes give the same codes with
+    and without it; the plain float mode gives the certified answer wherever the lane settled a
+    pair (it reads certified facts), which the general steps also give on these pairs."""
+    fn = QUESTIONS[question]
+    for E, Q in _populations():
+        with_lane = fn(E, Q, mode=mode())
+        steps = fn(E, Q, mode=_without_lane(mode()))
+        if mode is FloatMode:
+            truth = fn(E, Q, mode="certified")
+            assert (with_lane == truth).sum() >= (steps == truth).sum()
+        else:
+            assert (with_lane == steps).all()
+
+
+def test_the_lane_counts_its_stages():
+    rng = np.random.default_rng(67)
+    E, _ = random_ellipsoids(300, rng, axes=(0.5, 2.0), box=3.0)
+    Q, _ = random_ellipsoids(300, rng, axes=(2.0, 5.0), box=0.0)
+    mode = CertifiedMode()
+    transversal_contact(E, Q, mode=mode)
+    decided = mode.last.decided
+    assert decided.get("criterion (filter)", 0) > 0 and decided.get("separation (filter)", 0) > 0
+    assert mode.last.total == 300
+
+
+def test_invalid_input_still_raises_through_the_lane():
+    from quadric_contact.exact.errors import NonFiniteError, NotSymmetricError
+
+    rng = np.random.default_rng(71)
+    E, _ = random_ellipsoids(40, rng, axes=(0.5, 2.0), box=3.0)
+    Q, _ = random_ellipsoids(40, rng, axes=(2.0, 5.0), box=0.0)
+    bad = Q.copy()
+    bad[17, 0, 2] += 1e-9
+    with pytest.raises(NotSymmetricError):
+        transversal_contact(E, bad)
+    bad = E.copy()
+    bad[5, 1, 1] = np.inf
+    with pytest.raises(NonFiniteError):
+        overlap(bad, Q)
