@@ -51,6 +51,17 @@ Companions for the number modes (``_generated/kernels.py``)
     degree.  :mod:`quadric_contact.modes.errorbounds` turns them into the
     error-bound constants.
 
+Double-double programs (``_generated/dd_programs.py``)
+-------------------------------------------------------
+``quadric_invariants_dd``
+    ``quadric_invariants`` evaluated in double-double arithmetic (the operations of
+    :mod:`quadric_contact.modes.double_double`, passed as arguments): the same monomials,
+    products by Dekker's exact product and DWTimesFP1, sums by AccurateDWPlusDW in balanced
+    trees.  Checked by reading it exactly (it computes the invariants) and along its paths
+    (its magnitude is the binary64 magnitude companion's); ``DD_COUNTS`` gives the rounding
+    double-double operations on its paths, from which
+    :data:`quadric_contact.modes.errorbounds.INVARIANTS_DD_ERRBOUND` is derived.
+
 The reading of straight-line code (printer, magnitude companion, rounding counts)
 is :mod:`quadric_contact.exact.straight_line` and the emitter of programs for polynomials
 known at run time is :mod:`quadric_contact.families.family_emit`: run-time code uses them
@@ -58,7 +69,7 @@ without importing this module, which is development time only.
 
 Regenerate with ``python -m quadric_contact.codegen`` (or
 ``quadric-contact codegen``); the test suite checks that regenerating
-reproduces both committed files byte for byte.
+reproduces every committed file byte for byte.
 """
 
 from __future__ import annotations
@@ -1126,6 +1137,311 @@ def regenerate_blocks(path: Path = BLOCKS_PATH, check: bool = False) -> bool:
     return current == text
 
 
+# -- double-double programs (``_generated/dd_programs.py``) ------------------------------------
+
+DD_PATH = Path(__file__).parents[1] / "_generated" / "dd_programs.py"
+
+DD_OPERATIONS: tuple[str, ...] = ("two_sum", "two_prod", "dd_add", "dd_sub", "dd_mul_d", "dd_scale")
+"""The operations a double-double program takes as its first arguments, in order (those of
+:data:`quadric_contact.modes.double_double.OPERATIONS`)."""
+
+_DD_EXACT = ("two_sum", "two_prod", "dd_scale")
+"""The operations that round nothing: 2Sum and Dekker's product of two inputs, and scaling by a
+power of two."""
+
+
+_Leaf = tuple[str, bool, int]
+"""A term of a double-double sum: ``(name, is an argument, sign)``, standing for ``sign * name``."""
+
+
+def _dd_sum_tree(items: Sequence[_Leaf], out_name: str, lines: list[str], counter: list[int]) -> _Leaf:
+    """Add up ``items`` by a balanced tree, appending one assignment per sum to ``lines``
+    (temporaries ``{out_name}_{k}``, ``k`` from ``counter``); the sign of a sum is the sign of
+    its first term, a term of the other sign is subtracted."""
+    if len(items) == 1:
+        return items[0]
+    mid = (len(items) + 1) // 2
+    at, ap, asg = _dd_sum_tree(items[:mid], out_name, lines, counter)
+    bt, bp, bsg = _dd_sum_tree(items[mid:], out_name, lines, counter)
+    if ap and bp:
+        rhs = f"two_sum({at}, {bt if asg == bsg else '-' + bt})"
+    else:
+        left = f"({at}, 0.0)" if ap else at
+        right = f"({bt}, 0.0)" if bp else bt
+        rhs = f"{'dd_add' if asg == bsg else 'dd_sub'}({left}, {right})"
+    counter[0] += 1
+    target = f"{out_name}_{counter[0]}"
+    lines.append(f"    {target} = {rhs}")
+    return target, False, asg
+
+
+def _dd_program_lines(
+    name: str, args: Sequence[sp.Symbol], outputs: Sequence[tuple[str, sp.Expr]], doc: str
+) -> list[str]:
+    """A straight-line double-double program for integer polynomials of the binary64 arguments.
+
+    Every output is the sum of the terms of its expanded polynomial (``sp.Poly.terms()``, the
+    monomials of the binary64 program, so that the paths of the two programs are the same
+    products): a product of two arguments is Dekker's exact ``two_prod``, every further
+    factor one ``dd_mul_d`` (the prefixes of the factor lists, in argument order, computed
+    once and shared), an integer coefficient (a power of two) an exact ``dd_scale`` (shared
+    too), and the signed terms are added up by a balanced tree of ``dd_add`` / ``dd_sub``
+    (``two_sum``, exact, where both operands are arguments), so that a term passes through
+    ``ceil(log2 n)`` of them.  Every value is a pair ``(hi, lo)``; an argument enters a sum
+    as ``(x, 0.0)``."""
+    names = [str(a) for a in args]
+    lines = [f"def {name}({', '.join(DD_OPERATIONS)}, {', '.join(names)}):", f'    """{doc}"""']
+    products: dict[tuple[str, ...], str] = {}
+    multiples: set[str] = set()
+
+    def product(factors: tuple[str, ...]) -> str:
+        if factors not in products:
+            var = "p" + "_".join(f.lstrip("abcdefghijklmnopqrstuvwxyz") for f in factors)
+            if len(factors) == 2:
+                lines.append(f"    {var} = two_prod({factors[0]}, {factors[1]})")
+            else:
+                lines.append(f"    {var} = dd_mul_d({product(factors[:-1])}, {factors[-1]})")
+            products[factors] = var
+        return products[factors]
+
+    for out_name, expr in outputs:
+        leaves: list[_Leaf] = []
+        for powers, coef in sp.Poly(expr, *args).terms():
+            k = int(coef)
+            if k != coef or abs(k) & (abs(k) - 1):
+                raise AssertionError(f"coefficient {coef} of {out_name} is not a power of two")
+            factors = tuple(n for n, p in zip(names, powers, strict=True) for _ in range(p))
+            text, plain = (factors[0], True) if len(factors) == 1 else (product(factors), False)
+            if abs(k) != 1:
+                scaled = f"{text}_x{abs(k)}"
+                if scaled not in multiples:
+                    operand = f"({text}, 0.0)" if plain else text
+                    lines.append(f"    {scaled} = dd_scale({operand}, {float(abs(k))!r})")
+                    multiples.add(scaled)
+                text, plain = scaled, False
+            leaves.append((text, plain, 1 if k > 0 else -1))
+        if not leaves:
+            raise AssertionError(f"{out_name} is identically zero")
+        text, plain, sign = _dd_sum_tree(leaves, out_name, lines, [0])
+        if len(leaves) > 1 and sign > 0 and lines[-1].startswith(f"    {text} = "):
+            lines[-1] = lines[-1].replace(f"    {text} = ", f"    {out_name} = ", 1)  # the last sum
+        else:
+            text = f"({text}, 0.0)" if plain else text
+            lines.append(f"    {out_name} = {text if sign > 0 else f'dd_scale({text}, -1.0)'}")
+    lines.append(f"    return ({', '.join(n for n, _ in outputs)})")
+    return lines
+
+
+def dd_rounding_counts(fdef: Any) -> dict[str, tuple[int, ...]]:
+    """For every returned value of a generated double-double program (an :mod:`ast` function),
+    its degree and, over all paths from the inputs, the largest number of ``dd_add`` /
+    ``dd_sub`` and of ``dd_mul_d`` operations on one path (each counted apart: a path has
+    at most that many of each).  A sum takes the larger count of its operands, a product adds
+    them; ``two_sum`` and ``two_prod`` of two arguments and ``dd_scale`` by a constant round
+    nothing (anything else raises)."""
+    import ast
+
+    args = {a.arg for a in fdef.args.args} - set(DD_OPERATIONS)
+    env: dict[str, tuple[int, int, int]] = {a: (0, 0, 1) for a in args}
+
+    def argument(node: Any) -> bool:
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
+            node = node.operand
+        return isinstance(node, ast.Name) and node.id in args
+
+    def value(node: Any) -> tuple[int, int, int]:
+        if isinstance(node, ast.Name):
+            return env[node.id]
+        if isinstance(node, ast.Tuple) and len(node.elts) == 2:
+            low = node.elts[1]
+            if not (isinstance(low, ast.Constant) and low.value == 0.0) or not argument(node.elts[0]):
+                raise AssertionError(f"unexpected pair {ast.unparse(node)}")
+            return value(node.elts[0])
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
+            return value(node.operand)
+        if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and len(node.args) == 2):
+            raise AssertionError(f"unexpected expression {ast.unparse(node)}")
+        op, (x, y) = node.func.id, node.args
+        if op in ("two_sum", "two_prod"):
+            if not (argument(x) and argument(y)):
+                raise AssertionError(f"{op} of a value that is not an argument: {ast.unparse(node)}")
+            return (0, 0, 2 if op == "two_prod" else 1)
+        if op == "dd_scale":
+            s = y.operand.value if isinstance(y, ast.UnaryOp) else getattr(y, "value", None)
+            if not isinstance(s, float) or math.frexp(s)[0] != 0.5:
+                raise AssertionError(f"dd_scale by {ast.unparse(y)}, not a power of two")
+            return value(x)
+        a, b = value(x), value(y)
+        if op in ("dd_add", "dd_sub"):
+            if a[2] != b[2]:
+                raise AssertionError("a sum of terms of different degrees")
+            return (max(a[0], b[0]) + 1, max(a[1], b[1]), a[2])
+        if op == "dd_mul_d" and argument(y):
+            return (a[0] + b[0], a[1] + b[1] + 1, a[2] + b[2])
+        raise AssertionError(f"unexpected operation {ast.unparse(node)}")
+
+    returned: list[str] = []
+    for stmt in fdef.body:
+        if isinstance(stmt, ast.Expr) and isinstance(stmt.value, ast.Constant):
+            continue
+        if isinstance(stmt, ast.Assign) and len(stmt.targets) == 1 and isinstance(stmt.targets[0], ast.Name):
+            env[stmt.targets[0].id] = value(stmt.value)
+        elif isinstance(stmt, ast.Return) and isinstance(stmt.value, ast.Tuple):
+            returned = [e.id for e in stmt.value.elts]  # type: ignore[attr-defined]
+        else:
+            raise AssertionError(f"unexpected statement {ast.unparse(stmt)}")
+    return {
+        "degree": tuple(env[n][2] for n in returned),
+        "dd_add": tuple(env[n][0] for n in returned),
+        "dd_mul_d": tuple(env[n][1] for n in returned),
+    }
+
+
+class _Paths:
+    """A value of a program read symbolically, and its magnitude: the sum over the paths that
+    make it of the absolute values of their products (in the absolute values of the inputs)."""
+
+    def __init__(self, value: Any, magnitude: Any) -> None:
+        self.value, self.magnitude = value, magnitude
+
+    def __neg__(self) -> _Paths:
+        return _Paths(-self.value, self.magnitude)
+
+
+def _paths(x: Any) -> _Paths:
+    """A double-double pair (or one word) as one :class:`_Paths`: its words added."""
+    if isinstance(x, tuple):
+        hi, lo = _paths(x[0]), _paths(x[1])
+        return _Paths(hi.value + lo.value, hi.magnitude + lo.magnitude)
+    if isinstance(x, _Paths):
+        return x
+    r = sp.Rational(x)
+    return _Paths(r, abs(r))
+
+
+def _symbolic_dd_operations() -> tuple[Any, ...]:
+    """The operations of :data:`DD_OPERATIONS` read exactly on :class:`_Paths` (a result's low
+    word is zero): what the program computes if no operation rounds, and its magnitude."""
+    zero = _Paths(sp.Integer(0), sp.Integer(0))
+
+    def add(x: Any, y: Any, sign: int) -> tuple[_Paths, _Paths]:
+        a, b = _paths(x), _paths(y)
+        return _Paths(a.value + sign * b.value, a.magnitude + b.magnitude), zero
+
+    def mul(x: Any, y: Any) -> tuple[_Paths, _Paths]:
+        a, b = _paths(x), _paths(y)
+        return _Paths(a.value * b.value, a.magnitude * b.magnitude), zero
+
+    def scale(x: Any, s: float) -> tuple[_Paths, _Paths]:
+        a, r = _paths(x), sp.Rational(s)
+        return _Paths(r * a.value, abs(r) * a.magnitude), zero
+
+    return (
+        lambda a, b: add(a, b, 1),  # two_sum
+        mul,  # two_prod
+        lambda x, y: add(x, y, 1),  # dd_add
+        lambda x, y: add(x, y, -1),  # dd_sub
+        mul,  # dd_mul_d
+        scale,  # dd_scale
+    )
+
+
+def verify_dd_program(text: str, name: str, outputs: Sequence[tuple[str, sp.Expr]], magnitude: Any) -> None:
+    """Raise AssertionError unless the double-double program ``name`` of ``text``, read exactly,
+    computes the polynomials ``outputs``, and unless its magnitude (the sum over its paths of
+    the absolute values of their products) is, polynomial for polynomial, the value of the
+    binary64 magnitude companion ``magnitude`` (a function of the absolute inputs): then the
+    companion's computed value bounds the double-double program's error as it bounds the
+    binary64 program's."""
+    namespace: dict[str, Any] = {}
+    exec(compile(text, "<double-double program>", "exec"), namespace)
+    fn = namespace[name]
+    symbols = sorted({s for _, e in outputs for s in e.free_symbols}, key=str)
+    params = [p for p in fn.__code__.co_varnames[: fn.__code__.co_argcount] if p not in DD_OPERATIONS]
+    args = [sp.Symbol(p) for p in params]
+    if not set(symbols) <= set(args):
+        raise AssertionError("the program's arguments do not cover the polynomials' symbols")
+    got = fn(*_symbolic_dd_operations(), *(_Paths(a, a) for a in args))
+    companion = magnitude(*args)
+    for (out_name, expr), value, mag in zip(outputs, got, companion, strict=True):
+        read = _paths(value)
+        if sp.expand(read.value - expr) != 0:
+            raise AssertionError(f"the double-double {out_name} differs from its polynomial")
+        if sp.expand(read.magnitude - mag) != 0:
+            raise AssertionError(f"the magnitude of the double-double {out_name} is not the companion's")
+
+
+def _dd_invariants_lines() -> list[str]:
+    args, outputs = derive_quadric_invariants()
+    return _dd_program_lines(
+        "quadric_invariants_dd",
+        args,
+        outputs,
+        "``quadric_invariants`` in double-double: (trA, JA, detA, E1, E2, E3, E4), each a pair\n"
+        "    (hi, lo) with hi = RN(hi + lo), from the binary64 upper entries qij of Q.  The operations\n"
+        "    (``modes.double_double.OPERATIONS``) come first; the monomials are those of\n"
+        "    ``quadric_invariants``, so its magnitude companion bounds this program's error too.",
+    )
+
+
+def emit_dd_programs() -> str:
+    """The full text of ``_generated/dd_programs.py``."""
+    import ast
+
+    lines = _dd_invariants_lines()
+    fdef = next(n for n in ast.parse("\n".join(lines)).body if isinstance(n, ast.FunctionDef))
+    counts = dd_rounding_counts(fdef)
+    _, outputs = derive_quadric_invariants()
+    entry: dict[str, tuple[Any, ...]] = {"outputs": tuple(n for n, _ in outputs), **counts}
+    out: list[str] = [
+        '"""Double-double programs, generated by ``quadric_contact.codegen``.',
+        "",
+        "Do not edit: regenerate with ``python -m quadric_contact.codegen``.  The invariants that",
+        "fix the affine type of a quadric (``kernels.quadric_invariants``) evaluated in",
+        "double-double arithmetic: products of two entries by Dekker's exact product, further",
+        "factors by DWTimesFP1, sums by AccurateDWPlusDW in balanced trees.  The operations are",
+        "arguments (:mod:`quadric_contact.modes.double_double` defines them; the programs run on",
+        "floats, on numpy arrays and compiled by numba alike), and DD_COUNTS gives, for every",
+        "output, its degree and the largest numbers of rounding double-double additions and",
+        "multiplications on a path from the inputs, from which",
+        ":mod:`quadric_contact.modes.errorbounds` derives the error bound.",
+        '"""',
+        "",
+        "# ruff: noqa",
+        "",
+        *lines,
+        "",
+        "",
+        "DD_COUNTS = {",
+        "    'quadric_invariants_dd': {",
+        *(f"        {key!r}: {value!r}," for key, value in entry.items()),
+        "    },",
+        "}",
+        "",
+    ]
+    return "\n".join(out)
+
+
+def regenerate_dd(path: Path = DD_PATH, check: bool = False) -> bool:
+    """Write (or with ``check=True`` only compare) ``_generated/dd_programs.py``, after checking
+    that the program computes the invariants and that its magnitude is the companion's."""
+    verify_invariants()
+    text = emit_dd_programs()
+    _, outputs = derive_quadric_invariants()
+    invariants = _functions(emit_kernels())["quadric_invariants"]
+    companion = _functions("\n".join(emit_magnitude_function(invariants)))
+
+    def magnitude(*args: Any) -> list[Any]:
+        return _interpret(companion["quadric_invariants_magnitude"], args)[1]
+
+    verify_dd_program(text, "quadric_invariants_dd", outputs, magnitude)
+    current = path.read_text() if path.exists() else None
+    if check:
+        return current == text
+    path.write_text(text)
+    return current == text
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="quadric-contact codegen", description=__doc__.split("\n")[0])
     parser.add_argument("--check", action="store_true", help="only check that the file is current")
@@ -1135,6 +1451,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         (GENERATED_PATH, regenerate),
         (KERNELS_PATH, regenerate_kernels),
         (BLOCKS_PATH, regenerate_blocks),
+        (DD_PATH, regenerate_dd),
     ):
         same = fn(check=args.check)
         if args.check:
