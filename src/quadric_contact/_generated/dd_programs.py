@@ -2,53 +2,76 @@
 
 Do not edit: regenerate with ``python -m quadric_contact.codegen``.  The invariants that
 fix the affine type of a quadric (``kernels.quadric_invariants``) evaluated in
-double-double arithmetic: products of two entries by Dekker's exact product, further
-factors by DWTimesFP1, sums by AccurateDWPlusDW in balanced trees.  The operations are
-arguments (:mod:`quadric_contact.modes.double_double` defines them; the programs run on
-floats, on numpy arrays and compiled by numba alike), and DD_COUNTS gives, for every
-output, its degree and the largest numbers of rounding double-double additions and
-multiplications on a path from the inputs, from which
-:mod:`quadric_contact.modes.errorbounds` derives the error bound.
+double-double arithmetic: the cofactors of the quadratic part (``adjugate_3_dd``), then
+the invariants (``quadric_invariants_dd``), with products of two entries by Dekker's
+exact product, further factors by DWTimesFP1 and sums by AccurateDWPlusDW in balanced
+trees, and the magnitudes of the three invariants formed from the cofactors
+(``quadric_invariants_cofactor_magnitude``, binary64).  The operations are arguments
+(:mod:`quadric_contact.modes.double_double` defines them; the programs run on floats, on
+numpy arrays and compiled by numba alike), and DD_COUNTS gives, for every output, its
+degree and the largest numbers of rounding double-double additions and multiplications
+on a path from the inputs (and for the magnitude program its binary64 rounding count),
+from which :mod:`quadric_contact.modes.errorbounds` derives the error bounds.
 """
 
 # ruff: noqa
 
-def quadric_invariants_dd(two_sum, two_prod, dd_add, dd_sub, dd_mul_d, dd_scale, q00, q01, q02, q03, q11, q12, q13, q22, q23, q33):
-    """``quadric_invariants`` in double-double: (trA, JA, detA, E1, E2, E3, E4), each a pair
-    (hi, lo) with hi = RN(hi + lo), from the binary64 upper entries qij of Q.  The operations
-    (``modes.double_double.OPERATIONS``) come first; the monomials are those of
-    ``quadric_invariants``, so its magnitude companion bounds this program's error too."""
-    trA_1 = two_sum(q00, q11)
-    trA = dd_add(trA_1, (q22, 0.0))
-    p00_11 = two_prod(q00, q11)
-    p00_22 = two_prod(q00, q22)
-    p01_01 = two_prod(q01, q01)
-    p02_02 = two_prod(q02, q02)
+def adjugate_3_dd(two_sum, two_prod, dd_add, dd_sub, dd_mul_d, dd_scale, q00, q01, q02, q11, q12, q22):
+    """The cofactors (C00, C01, C02, C11, C12, C22) of the quadratic part of Q, in double-double:
+    each a difference of two exact products, rounded once (dd_sub, relative error at most
+    3u^2 + 13u^3 of the cofactor itself)."""
     p11_22 = two_prod(q11, q22)
     p12_12 = two_prod(q12, q12)
-    JA_1 = dd_add(p00_11, p00_22)
-    JA_2 = dd_sub(JA_1, p01_01)
-    JA_3 = dd_sub(p02_02, p11_22)
-    JA_4 = dd_add(JA_3, p12_12)
-    JA = dd_sub(JA_2, JA_4)
-    p00_11_22 = dd_mul_d(p00_11, q22)
+    C00 = dd_sub(p11_22, p12_12)
+    p01_22 = two_prod(q01, q22)
+    p02_12 = two_prod(q02, q12)
+    C01_1 = dd_sub(p01_22, p02_12)
+    C01 = dd_scale(C01_1, -1.0)
+    p01_12 = two_prod(q01, q12)
+    p02_11 = two_prod(q02, q11)
+    C02 = dd_sub(p01_12, p02_11)
+    p00_22 = two_prod(q00, q22)
+    p02_02 = two_prod(q02, q02)
+    C11 = dd_sub(p00_22, p02_02)
     p00_12 = two_prod(q00, q12)
-    p00_12_12 = dd_mul_d(p00_12, q12)
-    p01_01_22 = dd_mul_d(p01_01, q22)
     p01_02 = two_prod(q01, q02)
-    p01_02_12 = dd_mul_d(p01_02, q12)
-    p01_02_12_x2 = dd_scale(p01_02_12, 2.0)
-    p02_02_11 = dd_mul_d(p02_02, q11)
-    detA_1 = dd_sub(p00_11_22, p00_12_12)
-    detA_2 = dd_sub(detA_1, p01_01_22)
-    detA_3 = dd_sub(p01_02_12_x2, p02_02_11)
-    detA = dd_add(detA_2, detA_3)
+    C12_1 = dd_sub(p00_12, p01_02)
+    C12 = dd_scale(C12_1, -1.0)
+    p00_11 = two_prod(q00, q11)
+    p01_01 = two_prod(q01, q01)
+    C22 = dd_sub(p00_11, p01_01)
+    return (C00, C01, C02, C11, C12, C22)
+
+
+def quadric_invariants_dd(two_sum, two_prod, dd_add, dd_sub, dd_mul_d, dd_scale, q00, q01, q02, q03, q11, q12, q13, q22, q23, q33, C00, C01, C02, C11, C12, C22):
+    """``quadric_invariants`` in double-double: (trA, JA, detA, E1, E2, E3, E4), each a pair
+    (hi, lo) with hi = RN(hi + lo), from the binary64 upper entries qij of Q and the cofactors
+    of its quadratic part (``adjugate_3_dd``): JA, detA and E4 are formed from the cofactors
+    (``codegen.derive_cofactor_forms``), the others from the monomials of
+    ``quadric_invariants``.  Expanded, every output has the paths of that program, so its
+    magnitude companion bounds the error; JA, detA and E4 have the tighter bound of
+    ``quadric_invariants_cofactor_magnitude`` too."""
+    trA_1 = two_sum(q00, q11)
+    trA = dd_add(trA_1, (q22, 0.0))
+    JA_1 = dd_add(C00, C11)
+    JA = dd_add(JA_1, C22)
+    pC00_00 = dd_mul_d(C00, q00)
+    pC01_01 = dd_mul_d(C01, q01)
+    pC02_02 = dd_mul_d(C02, q02)
+    detA_1 = dd_add(pC00_00, pC01_01)
+    detA = dd_add(detA_1, pC02_02)
     E1_1 = two_sum(q00, q11)
     E1_2 = two_sum(q22, q33)
     E1 = dd_add(E1_1, E1_2)
+    p00_11 = two_prod(q00, q11)
+    p00_22 = two_prod(q00, q22)
     p00_33 = two_prod(q00, q33)
+    p01_01 = two_prod(q01, q01)
+    p02_02 = two_prod(q02, q02)
     p03_03 = two_prod(q03, q03)
+    p11_22 = two_prod(q11, q22)
     p11_33 = two_prod(q11, q33)
+    p12_12 = two_prod(q12, q12)
     p13_13 = two_prod(q13, q13)
     p22_33 = two_prod(q22, q33)
     p23_23 = two_prod(q23, q23)
@@ -63,16 +86,24 @@ def quadric_invariants_dd(two_sum, two_prod, dd_add, dd_sub, dd_mul_d, dd_scale,
     E2_9 = dd_add(E2_8, p23_23)
     E2_10 = dd_sub(E2_7, E2_9)
     E2 = dd_add(E2_5, E2_10)
+    p00_11_22 = dd_mul_d(p00_11, q22)
     p00_11_33 = dd_mul_d(p00_11, q33)
+    p00_12 = two_prod(q00, q12)
+    p00_12_12 = dd_mul_d(p00_12, q12)
     p00_13 = two_prod(q00, q13)
     p00_13_13 = dd_mul_d(p00_13, q13)
     p00_22_33 = dd_mul_d(p00_22, q33)
     p00_23 = two_prod(q00, q23)
     p00_23_23 = dd_mul_d(p00_23, q23)
+    p01_01_22 = dd_mul_d(p01_01, q22)
     p01_01_33 = dd_mul_d(p01_01, q33)
+    p01_02 = two_prod(q01, q02)
+    p01_02_12 = dd_mul_d(p01_02, q12)
+    p01_02_12_x2 = dd_scale(p01_02_12, 2.0)
     p01_03 = two_prod(q01, q03)
     p01_03_13 = dd_mul_d(p01_03, q13)
     p01_03_13_x2 = dd_scale(p01_03_13, 2.0)
+    p02_02_11 = dd_mul_d(p02_02, q11)
     p02_02_33 = dd_mul_d(p02_02, q33)
     p02_03 = two_prod(q02, q03)
     p02_03_23 = dd_mul_d(p02_03, q23)
@@ -106,63 +137,61 @@ def quadric_invariants_dd(two_sum, two_prod, dd_add, dd_sub, dd_mul_d, dd_scale,
     E3_17 = dd_add(E3_15, E3_16)
     E3_18 = dd_sub(E3_13, E3_17)
     E3 = dd_sub(E3_9, E3_18)
-    p00_11_22_33 = dd_mul_d(p00_11_22, q33)
-    p00_11_23 = dd_mul_d(p00_11, q23)
-    p00_11_23_23 = dd_mul_d(p00_11_23, q23)
-    p00_12_12_33 = dd_mul_d(p00_12_12, q33)
-    p00_12_13 = dd_mul_d(p00_12, q13)
-    p00_12_13_23 = dd_mul_d(p00_12_13, q23)
-    p00_12_13_23_x2 = dd_scale(p00_12_13_23, 2.0)
-    p00_13_13_22 = dd_mul_d(p00_13_13, q22)
-    p01_01_22_33 = dd_mul_d(p01_01_22, q33)
-    p01_01_23 = dd_mul_d(p01_01, q23)
-    p01_01_23_23 = dd_mul_d(p01_01_23, q23)
-    p01_02_12_33 = dd_mul_d(p01_02_12, q33)
-    p01_02_12_33_x2 = dd_scale(p01_02_12_33, 2.0)
-    p01_02_13 = dd_mul_d(p01_02, q13)
-    p01_02_13_23 = dd_mul_d(p01_02_13, q23)
-    p01_02_13_23_x2 = dd_scale(p01_02_13_23, 2.0)
-    p01_03_12 = dd_mul_d(p01_03, q12)
-    p01_03_12_23 = dd_mul_d(p01_03_12, q23)
-    p01_03_12_23_x2 = dd_scale(p01_03_12_23, 2.0)
-    p01_03_13_22 = dd_mul_d(p01_03_13, q22)
-    p01_03_13_22_x2 = dd_scale(p01_03_13_22, 2.0)
-    p02_02_11_33 = dd_mul_d(p02_02_11, q33)
-    p02_02_13 = dd_mul_d(p02_02, q13)
-    p02_02_13_13 = dd_mul_d(p02_02_13, q13)
-    p02_03_11 = dd_mul_d(p02_03, q11)
-    p02_03_11_23 = dd_mul_d(p02_03_11, q23)
-    p02_03_11_23_x2 = dd_scale(p02_03_11_23, 2.0)
-    p02_03_12 = dd_mul_d(p02_03, q12)
-    p02_03_12_13 = dd_mul_d(p02_03_12, q13)
-    p02_03_12_13_x2 = dd_scale(p02_03_12_13, 2.0)
-    p03_03_11_22 = dd_mul_d(p03_03_11, q22)
-    p03_03_12 = dd_mul_d(p03_03, q12)
-    p03_03_12_12 = dd_mul_d(p03_03_12, q12)
-    E4_1 = dd_sub(p00_11_22_33, p00_11_23_23)
-    E4_2 = dd_sub(E4_1, p00_12_12_33)
-    E4_3 = dd_sub(p00_12_13_23_x2, p00_13_13_22)
-    E4_4 = dd_add(E4_2, E4_3)
-    E4_5 = dd_sub(p01_01_22_33, p01_01_23_23)
-    E4_6 = dd_sub(p01_02_12_33_x2, p01_02_13_23_x2)
-    E4_7 = dd_sub(E4_5, E4_6)
-    E4_8 = dd_sub(E4_4, E4_7)
-    E4_9 = dd_sub(p01_03_12_23_x2, p01_03_13_22_x2)
-    E4_10 = dd_sub(p02_02_11_33, p02_02_13_13)
-    E4_11 = dd_add(E4_9, E4_10)
-    E4_12 = dd_sub(p02_03_11_23_x2, p02_03_12_13_x2)
-    E4_13 = dd_sub(p03_03_11_22, p03_03_12_12)
-    E4_14 = dd_sub(E4_12, E4_13)
-    E4_15 = dd_sub(E4_11, E4_14)
-    E4 = dd_sub(E4_8, E4_15)
+    pC00_00_33 = dd_mul_d(pC00_00, q33)
+    pC01_01_33 = dd_mul_d(pC01_01, q33)
+    pC02_02_33 = dd_mul_d(pC02_02, q33)
+    pC00_03 = dd_mul_d(C00, q03)
+    pC00_03_03 = dd_mul_d(pC00_03, q03)
+    pC01_03 = dd_mul_d(C01, q03)
+    pC01_03_13 = dd_mul_d(pC01_03, q13)
+    pC01_03_13_x2 = dd_scale(pC01_03_13, 2.0)
+    pC02_03 = dd_mul_d(C02, q03)
+    pC02_03_23 = dd_mul_d(pC02_03, q23)
+    pC02_03_23_x2 = dd_scale(pC02_03_23, 2.0)
+    pC11_13 = dd_mul_d(C11, q13)
+    pC11_13_13 = dd_mul_d(pC11_13, q13)
+    pC12_13 = dd_mul_d(C12, q13)
+    pC12_13_23 = dd_mul_d(pC12_13, q23)
+    pC12_13_23_x2 = dd_scale(pC12_13_23, 2.0)
+    pC22_23 = dd_mul_d(C22, q23)
+    pC22_23_23 = dd_mul_d(pC22_23, q23)
+    E4_1 = dd_add(pC00_00_33, pC01_01_33)
+    E4_2 = dd_add(E4_1, pC02_02_33)
+    E4_3 = dd_add(pC00_03_03, pC01_03_13_x2)
+    E4_4 = dd_sub(E4_2, E4_3)
+    E4_5 = dd_add(pC02_03_23_x2, pC11_13_13)
+    E4_6 = dd_add(pC12_13_23_x2, pC22_23_23)
+    E4_7 = dd_add(E4_5, E4_6)
+    E4 = dd_sub(E4_4, E4_7)
     return (trA, JA, detA, E1, E2, E3, E4)
 
 
+def quadric_invariants_cofactor_magnitude(q00, q01, q02, q03, q11, q12, q13, q22, q23, q33, C00, C01, C02, C11, C12, C22):
+    """(JA, detA, E4): the magnitudes of their cofactor forms (``codegen.derive_cofactor_forms``),
+    every coefficient and argument taken absolutely: call it with the absolute upper entries
+    of Q and the absolute high words of the double-double cofactors."""
+    JA = C00 + C11 + C22
+    detA = C00*q00 + C01*q01 + C02*q02
+    E4 = C00*q00*q33 + C00*q03*q03 + C01*q01*q33 + 2*C01*q03*q13 + C02*q02*q33 + 2*C02*q03*q23 + C11*q13*q13 + 2*C12*q13*q23 + C22*q23*q23
+    return (JA, detA, E4)
+
+
 DD_COUNTS = {
+    'adjugate_3_dd': {
+        'outputs': ('C00', 'C01', 'C02', 'C11', 'C12', 'C22'),
+        'degree': (2, 2, 2, 2, 2, 2),
+        'dd_add': (1, 1, 1, 1, 1, 1),
+        'dd_mul_d': (0, 0, 0, 0, 0, 0),
+    },
     'quadric_invariants_dd': {
         'outputs': ('trA', 'JA', 'detA', 'E1', 'E2', 'E3', 'E4'),
         'degree': (1, 2, 3, 1, 2, 3, 4),
         'dd_add': (1, 3, 3, 1, 4, 5, 5),
         'dd_mul_d': (0, 0, 1, 0, 0, 1, 2),
+    },
+    'quadric_invariants_cofactor_magnitude': {
+        'outputs': ('JA', 'detA', 'E4'),
+        'degree': (1, 2, 3),
+        'magnitude': (2, 3, 10),
     },
 }

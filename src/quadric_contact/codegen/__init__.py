@@ -1145,10 +1145,11 @@ DD_OPERATIONS: tuple[str, ...] = ("two_sum", "two_prod", "dd_add", "dd_sub", "dd
 """The operations a double-double program takes as its first arguments, in order (those of
 :data:`quadric_contact.modes.double_double.OPERATIONS`)."""
 
-_DD_EXACT = ("two_sum", "two_prod", "dd_scale")
-"""The operations that round nothing: 2Sum and Dekker's product of two inputs, and scaling by a
-power of two."""
+COFACTOR_INDICES: tuple[tuple[int, int], ...] = ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))
+"""The six independent cofactors ``C_ij`` (``i <= j``) of the symmetric quadratic part, in order."""
 
+COFACTOR_OUTPUTS: tuple[str, ...] = ("JA", "detA", "E4")
+"""The invariants the double-double program forms from the cofactors of the quadratic part."""
 
 _Leaf = tuple[str, bool, int]
 """A term of a double-double sum: ``(name, is an argument, sign)``, standing for ``sign * name``."""
@@ -1176,28 +1177,40 @@ def _dd_sum_tree(items: Sequence[_Leaf], out_name: str, lines: list[str], counte
 
 
 def _dd_program_lines(
-    name: str, args: Sequence[sp.Symbol], outputs: Sequence[tuple[str, sp.Expr]], doc: str
+    name: str,
+    args: Sequence[sp.Symbol],
+    outputs: Sequence[tuple[str, sp.Expr]],
+    doc: str,
+    pairs: Sequence[sp.Symbol] = (),
 ) -> list[str]:
-    """A straight-line double-double program for integer polynomials of the binary64 arguments.
+    """A straight-line double-double program for integer polynomials of the binary64 arguments
+    ``args`` and, linearly, of the double-double arguments ``pairs``.
 
-    Every output is the sum of the terms of its expanded polynomial (``sp.Poly.terms()``, the
-    monomials of the binary64 program, so that the paths of the two programs are the same
-    products): a product of two arguments is Dekker's exact ``two_prod``, every further
-    factor one ``dd_mul_d`` (the prefixes of the factor lists, in argument order, computed
-    once and shared), an integer coefficient (a power of two) an exact ``dd_scale`` (shared
-    too), and the signed terms are added up by a balanced tree of ``dd_add`` / ``dd_sub``
-    (``two_sum``, exact, where both operands are arguments), so that a term passes through
-    ``ceil(log2 n)`` of them.  Every value is a pair ``(hi, lo)``; an argument enters a sum
-    as ``(x, 0.0)``."""
+    Every output is the sum of the terms of its expanded polynomial (``sp.Poly.terms()``: for
+    the invariants, the monomials of the binary64 program, so that the paths of the two
+    programs are the same products): a product of two binary64 arguments is Dekker's exact
+    ``two_prod``, every further factor one ``dd_mul_d`` (a term's factors in order, the
+    double-double one first; the prefixes computed once and shared), an integer coefficient (a
+    power of two) an exact ``dd_scale`` (shared too), and the signed terms are added up by a
+    balanced tree of ``dd_add`` / ``dd_sub`` (``two_sum``, exact, where both operands are
+    arguments), so that a term passes through ``ceil(log2 n)`` of them.  Every value is a pair
+    ``(hi, lo)``; an argument enters a sum as ``(x, 0.0)``."""
     names = [str(a) for a in args]
-    lines = [f"def {name}({', '.join(DD_OPERATIONS)}, {', '.join(names)}):", f'    """{doc}"""']
+    pair_names = [str(t) for t in pairs]
+    signature = ", ".join([*DD_OPERATIONS, *names, *pair_names])
+    lines = [f"def {name}({signature}):", f'    """{doc}"""']
     products: dict[tuple[str, ...], str] = {}
     multiples: set[str] = set()
 
+    def short(factor: str) -> str:
+        return factor if factor in pair_names else factor.lstrip("abcdefghijklmnopqrstuvwxyz")
+
     def product(factors: tuple[str, ...]) -> str:
+        if len(factors) == 1:
+            return factors[0]
         if factors not in products:
-            var = "p" + "_".join(f.lstrip("abcdefghijklmnopqrstuvwxyz") for f in factors)
-            if len(factors) == 2:
+            var = "p" + "_".join(short(f) for f in factors)
+            if len(factors) == 2 and factors[0] not in pair_names:
                 lines.append(f"    {var} = two_prod({factors[0]}, {factors[1]})")
             else:
                 lines.append(f"    {var} = dd_mul_d({product(factors[:-1])}, {factors[-1]})")
@@ -1206,12 +1219,16 @@ def _dd_program_lines(
 
     for out_name, expr in outputs:
         leaves: list[_Leaf] = []
-        for powers, coef in sp.Poly(expr, *args).terms():
+        for powers, coef in sp.Poly(expr, *args, *pairs).terms():
             k = int(coef)
             if k != coef or abs(k) & (abs(k) - 1):
                 raise AssertionError(f"coefficient {coef} of {out_name} is not a power of two")
-            factors = tuple(n for n, p in zip(names, powers, strict=True) for _ in range(p))
-            text, plain = (factors[0], True) if len(factors) == 1 else (product(factors), False)
+            if sum(powers[len(names) :]) > 1:
+                raise AssertionError(f"{out_name} is not linear in the double-double arguments")
+            factors = tuple(n for n, p in zip([*names, *pair_names], powers, strict=True) for _ in range(p))
+            factors = tuple(sorted(factors, key=lambda f: f not in pair_names))  # stable
+            plain = len(factors) == 1 and factors[0] in names
+            text = product(factors)
             if abs(k) != 1:
                 scaled = f"{text}_x{abs(k)}"
                 if scaled not in multiples:
@@ -1232,17 +1249,22 @@ def _dd_program_lines(
     return lines
 
 
-def dd_rounding_counts(fdef: Any) -> dict[str, tuple[int, ...]]:
+def dd_rounding_counts(
+    fdef: Any, pairs: dict[str, tuple[int, int, int]] | None = None
+) -> dict[str, tuple[int, ...]]:
     """For every returned value of a generated double-double program (an :mod:`ast` function),
     its degree and, over all paths from the inputs, the largest number of ``dd_add`` /
-    ``dd_sub`` and of ``dd_mul_d`` operations on one path (each counted apart: a path has
-    at most that many of each).  A sum takes the larger count of its operands, a product adds
-    them; ``two_sum`` and ``two_prod`` of two arguments and ``dd_scale`` by a constant round
-    nothing (anything else raises)."""
+    ``dd_sub`` and of ``dd_mul_d`` operations on one path (each counted apart: a path has at
+    most that many of each).  A sum takes the larger count of its operands, a product adds
+    them; ``two_sum`` and ``two_prod`` of two binary64 arguments and ``dd_scale`` by a power of
+    two round nothing (anything else raises).  ``pairs``: the double-double arguments, with
+    their own ``(additions, multiplications, degree)``."""
     import ast
 
-    args = {a.arg for a in fdef.args.args} - set(DD_OPERATIONS)
+    pairs = dict(pairs or {})
+    args = {a.arg for a in fdef.args.args} - set(DD_OPERATIONS) - set(pairs)
     env: dict[str, tuple[int, int, int]] = {a: (0, 0, 1) for a in args}
+    env.update(pairs)
 
     def argument(node: Any) -> bool:
         if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
@@ -1321,7 +1343,7 @@ def _paths(x: Any) -> _Paths:
 
 def _symbolic_dd_operations() -> tuple[Any, ...]:
     """The operations of :data:`DD_OPERATIONS` read exactly on :class:`_Paths` (a result's low
-    word is zero): what the program computes if no operation rounds, and its magnitude."""
+    word is zero): what a program computes if no operation rounds, and its magnitude."""
     zero = _Paths(sp.Integer(0), sp.Integer(0))
 
     def add(x: Any, y: Any, sign: int) -> tuple[_Paths, _Paths]:
@@ -1346,95 +1368,229 @@ def _symbolic_dd_operations() -> tuple[Any, ...]:
     )
 
 
-def verify_dd_program(text: str, name: str, outputs: Sequence[tuple[str, sp.Expr]], magnitude: Any) -> None:
-    """Raise AssertionError unless the double-double program ``name`` of ``text``, read exactly,
-    computes the polynomials ``outputs``, and unless its magnitude (the sum over its paths of
-    the absolute values of their products) is, polynomial for polynomial, the value of the
-    binary64 magnitude companion ``magnitude`` (a function of the absolute inputs): then the
-    companion's computed value bounds the double-double program's error as it bounds the
-    binary64 program's."""
+def _run_symbolically(text: str, name: str, inputs: Sequence[Any]) -> list[_Paths]:
+    """The program ``name`` of ``text`` run on :class:`_Paths` inputs with the exact operations."""
     namespace: dict[str, Any] = {}
     exec(compile(text, "<double-double program>", "exec"), namespace)
-    fn = namespace[name]
-    symbols = sorted({s for _, e in outputs for s in e.free_symbols}, key=str)
-    params = [p for p in fn.__code__.co_varnames[: fn.__code__.co_argcount] if p not in DD_OPERATIONS]
-    args = [sp.Symbol(p) for p in params]
-    if not set(symbols) <= set(args):
-        raise AssertionError("the program's arguments do not cover the polynomials' symbols")
-    got = fn(*_symbolic_dd_operations(), *(_Paths(a, a) for a in args))
-    companion = magnitude(*args)
-    for (out_name, expr), value, mag in zip(outputs, got, companion, strict=True):
-        read = _paths(value)
-        if sp.expand(read.value - expr) != 0:
-            raise AssertionError(f"the double-double {out_name} differs from its polynomial")
-        if sp.expand(read.magnitude - mag) != 0:
-            raise AssertionError(f"the magnitude of the double-double {out_name} is not the companion's")
+    return [_paths(v) for v in namespace[name](*_symbolic_dd_operations(), *inputs)]
 
 
-def _dd_invariants_lines() -> list[str]:
-    args, outputs = derive_quadric_invariants()
-    return _dd_program_lines(
+def derive_adjugate_3() -> tuple[list[sp.Symbol], list[tuple[str, sp.Expr]]]:
+    """The cofactors ``C_ij`` (``i <= j``, :data:`COFACTOR_INDICES`) of the quadratic part ``A``
+    of ``Q`` (upper entries ``q00 .. q22``): the entries of ``adj(A)``, which is symmetric; each
+    a 2x2 minor, a difference of two products."""
+    Q, _ = symmetric_matrix("q")
+    A = Q[:3, :3]
+    adj = A.adjugate()
+    args = [sp.Symbol(f"q{i}{j}") for i, j in QUADRATIC_PART_INDICES]
+    return args, [(f"C{i}{j}", sp.expand(adj[i, j])) for i, j in COFACTOR_INDICES]
+
+
+def derive_cofactor_forms() -> tuple[list[sp.Symbol], list[tuple[str, sp.Expr]]]:
+    """``JA``, ``detA`` and ``E4`` as polynomials in the entries of ``Q`` and, linearly, the
+    cofactors ``C_ij`` of its quadratic part: ``JA = C00 + C11 + C22`` (the principal 2x2
+    minors), ``detA = q00 C00 + q01 C01 + q02 C02`` (Laplace along the first row) and ``E4 = det Q
+    = q33 detA - b^T adj(A) b`` with ``b = (q03, q13, q23)`` (the determinant of a bordered
+    matrix).  Where the quadratic part is close to rank 1 (a rotated parabolic cylinder, a
+    pair of parallel planes), every cofactor is of the order of the rounding and ``detA``,
+    ``E4`` of its square: these forms add up terms of the order of the rounding, not of the
+    entries.  Checked by :func:`verify_cofactor_forms`."""
+    C = sp.Matrix(3, 3, lambda i, j: sp.Symbol(f"C{min(i, j)}{max(i, j)}"))
+    q = {ij: sp.Symbol(f"q{ij[0]}{ij[1]}") for ij in ENTRY_INDICES}
+    b = sp.Matrix([q[(0, 3)], q[(1, 3)], q[(2, 3)]])
+    det_a = q[(0, 0)] * C[0, 0] + q[(0, 1)] * C[0, 1] + q[(0, 2)] * C[0, 2]
+    forms = {
+        "JA": C[0, 0] + C[1, 1] + C[2, 2],
+        "detA": det_a,
+        "E4": sp.expand(q[(3, 3)] * det_a - (b.T * C * b)[0, 0]),
+    }
+    cofactors = [C[i, j] for i, j in COFACTOR_INDICES]
+    return cofactors, [(name, sp.expand(forms[name])) for name in COFACTOR_OUTPUTS]
+
+
+def verify_cofactor_forms() -> None:
+    """Raise AssertionError unless the cofactors are those of sympy's adjugate (``A adj(A) =
+    det(A) I``) and the cofactor forms, with the cofactors substituted, are the invariants."""
+    Q, _ = symmetric_matrix("q")
+    A = Q[:3, :3]
+    _, cofactors = derive_adjugate_3()
+    adj = sp.Matrix(3, 3, lambda i, j: dict(cofactors)[f"C{min(i, j)}{max(i, j)}"])
+    if sp.expand(A * adj - A.det(method="berkowitz") * sp.eye(3)) != sp.zeros(3, 3):
+        raise AssertionError("the cofactors are not the adjugate of the quadratic part")
+    substitute = {sp.Symbol(name): expr for name, expr in cofactors}
+    _, invariants = derive_quadric_invariants()
+    _, forms = derive_cofactor_forms()
+    for name, form in forms:
+        if sp.expand(form.xreplace(substitute) - dict(invariants)[name]) != 0:
+            raise AssertionError(f"the cofactor form of {name} is not the invariant")
+
+
+def _dd_programs() -> tuple[list[str], list[str], list[str]]:
+    """The lines of ``adjugate_3_dd``, ``quadric_invariants_dd`` and
+    ``quadric_invariants_cofactor_magnitude``."""
+    adj_args, cofactors = derive_adjugate_3()
+    adjugate = _dd_program_lines(
+        "adjugate_3_dd",
+        adj_args,
+        cofactors,
+        "The cofactors (C00, C01, C02, C11, C12, C22) of the quadratic part of Q, in double-double:\n"
+        "    each a difference of two exact products, rounded once (dd_sub, relative error at most\n"
+        "    3u^2 + 13u^3 of the cofactor itself).",
+    )
+    args, invariants = derive_quadric_invariants()
+    pairs, forms = derive_cofactor_forms()
+    by_cofactors = dict(forms)
+    outputs = [(name, by_cofactors.get(name, expr)) for name, expr in invariants]
+    program = _dd_program_lines(
         "quadric_invariants_dd",
         args,
         outputs,
         "``quadric_invariants`` in double-double: (trA, JA, detA, E1, E2, E3, E4), each a pair\n"
-        "    (hi, lo) with hi = RN(hi + lo), from the binary64 upper entries qij of Q.  The operations\n"
-        "    (``modes.double_double.OPERATIONS``) come first; the monomials are those of\n"
-        "    ``quadric_invariants``, so its magnitude companion bounds this program's error too.",
+        "    (hi, lo) with hi = RN(hi + lo), from the binary64 upper entries qij of Q and the cofactors\n"
+        "    of its quadratic part (``adjugate_3_dd``): JA, detA and E4 are formed from the cofactors\n"
+        "    (``codegen.derive_cofactor_forms``), the others from the monomials of\n"
+        "    ``quadric_invariants``.  Expanded, every output has the paths of that program, so its\n"
+        "    magnitude companion bounds the error; JA, detA and E4 have the tighter bound of\n"
+        "    ``quadric_invariants_cofactor_magnitude`` too.",
+        pairs=pairs,
     )
+    magnitude_forms = [
+        (name, sum((abs(c) * sp.prod([s**p for s, p in zip([*args, *pairs], m, strict=True)]) for m, c in
+                    sp.Poly(expr, *args, *pairs).terms()), sp.Integer(0)))
+        for name, expr in forms
+    ]  # fmt: skip
+    magnitude = _emit_function(
+        "quadric_invariants_cofactor_magnitude",
+        [*args, *pairs],
+        magnitude_forms,
+        "(JA, detA, E4): the magnitudes of their cofactor forms (``codegen.derive_cofactor_forms``),\n"
+        "    every coefficient and argument taken absolutely: call it with the absolute upper entries\n"
+        "    of Q and the absolute high words of the double-double cofactors.",
+    )
+    return adjugate, program, magnitude
+
+
+def verify_dd_programs(text: str, companion: Any) -> None:
+    """Raise AssertionError unless the double-double programs of ``text``, read exactly and
+    along their paths, are what the error bounds assume:
+
+    * ``adjugate_3_dd`` computes the cofactors, and ``quadric_invariants_dd`` on them the
+      invariants;
+    * expanded down to the entries (the cofactors' paths substituted), the magnitude of every
+      output of ``quadric_invariants_dd`` (the sum over its paths of the absolute values of
+      their products) is, polynomial for polynomial, the binary64 magnitude companion
+      ``companion`` of ``quadric_invariants`` (a function of the absolute entries);
+    * with the cofactors as inputs, the magnitudes of ``JA``, ``detA``, ``E4`` are the values of
+      ``quadric_invariants_cofactor_magnitude`` at the absolute entries and cofactors."""
+    adj_args, cofactors = derive_adjugate_3()
+    args, invariants = derive_quadric_invariants()
+    pairs, forms = derive_cofactor_forms()
+    got_c = _run_symbolically(text, "adjugate_3_dd", [_Paths(a, a) for a in adj_args])
+    for (name, expr), c in zip(cofactors, got_c, strict=True):
+        if sp.expand(c.value - expr) != 0:
+            raise AssertionError(f"the double-double {name} differs from its cofactor")
+    got = _run_symbolically(text, "quadric_invariants_dd", [*(_Paths(a, a) for a in args), *got_c])
+    reference = companion(*args)
+    for (name, expr), value, mag in zip(invariants, got, reference, strict=True):
+        if sp.expand(value.value - expr) != 0:
+            raise AssertionError(f"the double-double {name} differs from its polynomial")
+        if sp.expand(value.magnitude - mag) != 0:
+            raise AssertionError(f"the magnitude of the double-double {name} is not the companion's")
+    level = _run_symbolically(
+        text, "quadric_invariants_dd", [*(_Paths(a, a) for a in args), *(_Paths(t, t) for t in pairs)]
+    )
+    namespace: dict[str, Any] = {}
+    exec(compile(text, "<double-double program>", "exec"), namespace)
+    cofactor_magnitude = namespace["quadric_invariants_cofactor_magnitude"](*args, *pairs)
+    names = [n for n, _ in invariants]
+    for (name, expr), mag in zip(forms, cofactor_magnitude, strict=True):
+        read = level[names.index(name)]
+        if sp.expand(read.value - expr) != 0:
+            raise AssertionError(f"the double-double {name} is not its cofactor form")
+        if sp.expand(read.magnitude - mag) != 0:
+            raise AssertionError(f"the cofactor magnitude of {name} is not the program's")
 
 
 def emit_dd_programs() -> str:
     """The full text of ``_generated/dd_programs.py``."""
     import ast
 
-    lines = _dd_invariants_lines()
-    fdef = next(n for n in ast.parse("\n".join(lines)).body if isinstance(n, ast.FunctionDef))
-    counts = dd_rounding_counts(fdef)
-    _, outputs = derive_quadric_invariants()
-    entry: dict[str, tuple[Any, ...]] = {"outputs": tuple(n for n, _ in outputs), **counts}
+    adjugate, program, magnitude = _dd_programs()
+    functions = {
+        n.name: n for n in ast.parse("\n".join([*adjugate, "", *program, "", *magnitude])).body
+        if isinstance(n, ast.FunctionDef)
+    }  # fmt: skip
+    adj_counts = dd_rounding_counts(functions["adjugate_3_dd"])
+    pairs, _ = derive_cofactor_forms()
+    carried = {
+        str(t): (a, m, d)
+        for t, a, m, d in zip(
+            pairs, adj_counts["dd_add"], adj_counts["dd_mul_d"], adj_counts["degree"], strict=True
+        )
+    }
+    counts = dd_rounding_counts(functions["quadric_invariants_dd"], carried)
+    _, invariants = derive_quadric_invariants()
+    mag_counts = rounding_counts(functions["quadric_invariants_cofactor_magnitude"], 0)
+    entries: dict[str, dict[str, tuple[Any, ...]]] = {
+        "adjugate_3_dd": {"outputs": tuple(str(t) for t in pairs), **adj_counts},
+        "quadric_invariants_dd": {"outputs": tuple(n for n, _ in invariants), **counts},
+        "quadric_invariants_cofactor_magnitude": {
+            "outputs": COFACTOR_OUTPUTS,
+            "degree": tuple(d for _, d in mag_counts),
+            "magnitude": tuple(n for n, _ in mag_counts),
+        },
+    }
     out: list[str] = [
         '"""Double-double programs, generated by ``quadric_contact.codegen``.',
         "",
         "Do not edit: regenerate with ``python -m quadric_contact.codegen``.  The invariants that",
         "fix the affine type of a quadric (``kernels.quadric_invariants``) evaluated in",
-        "double-double arithmetic: products of two entries by Dekker's exact product, further",
-        "factors by DWTimesFP1, sums by AccurateDWPlusDW in balanced trees.  The operations are",
-        "arguments (:mod:`quadric_contact.modes.double_double` defines them; the programs run on",
-        "floats, on numpy arrays and compiled by numba alike), and DD_COUNTS gives, for every",
-        "output, its degree and the largest numbers of rounding double-double additions and",
-        "multiplications on a path from the inputs, from which",
-        ":mod:`quadric_contact.modes.errorbounds` derives the error bound.",
+        "double-double arithmetic: the cofactors of the quadratic part (``adjugate_3_dd``), then",
+        "the invariants (``quadric_invariants_dd``), with products of two entries by Dekker's",
+        "exact product, further factors by DWTimesFP1 and sums by AccurateDWPlusDW in balanced",
+        "trees, and the magnitudes of the three invariants formed from the cofactors",
+        "(``quadric_invariants_cofactor_magnitude``, binary64).  The operations are arguments",
+        "(:mod:`quadric_contact.modes.double_double` defines them; the programs run on floats, on",
+        "numpy arrays and compiled by numba alike), and DD_COUNTS gives, for every output, its",
+        "degree and the largest numbers of rounding double-double additions and multiplications",
+        "on a path from the inputs (and for the magnitude program its binary64 rounding count),",
+        "from which :mod:`quadric_contact.modes.errorbounds` derives the error bounds.",
         '"""',
         "",
         "# ruff: noqa",
         "",
-        *lines,
+        *adjugate,
+        "",
+        "",
+        *program,
+        "",
+        "",
+        *magnitude,
         "",
         "",
         "DD_COUNTS = {",
-        "    'quadric_invariants_dd': {",
-        *(f"        {key!r}: {value!r}," for key, value in entry.items()),
-        "    },",
-        "}",
-        "",
     ]
+    for fname, entry in entries.items():
+        out.append(f"    {fname!r}: {{")
+        out += [f"        {key!r}: {value!r}," for key, value in entry.items()]
+        out.append("    },")
+    out += ["}", ""]
     return "\n".join(out)
 
 
 def regenerate_dd(path: Path = DD_PATH, check: bool = False) -> bool:
     """Write (or with ``check=True`` only compare) ``_generated/dd_programs.py``, after checking
-    that the program computes the invariants and that its magnitude is the companion's."""
+    the programs (:func:`verify_cofactor_forms`, :func:`verify_dd_programs`)."""
     verify_invariants()
+    verify_cofactor_forms()
     text = emit_dd_programs()
-    _, outputs = derive_quadric_invariants()
     invariants = _functions(emit_kernels())["quadric_invariants"]
     companion = _functions("\n".join(emit_magnitude_function(invariants)))
 
     def magnitude(*args: Any) -> list[Any]:
         return _interpret(companion["quadric_invariants_magnitude"], args)[1]
 
-    verify_dd_program(text, "quadric_invariants_dd", outputs, magnitude)
+    verify_dd_programs(text, magnitude)
     current = path.read_text() if path.exists() else None
     if check:
         return current == text

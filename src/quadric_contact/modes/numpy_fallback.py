@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from quadric_contact._generated import blocks, formulas, kernels
+from quadric_contact._generated import blocks, dd_programs, formulas, kernels
 from quadric_contact.exact.entries import ENTRY_INDICES
 from quadric_contact.modes import errorbounds as eb
 from quadric_contact.modes.base import INVALID
@@ -23,6 +23,7 @@ from quadric_contact.modes.decisions import (
     ELLIPSOID_YES,
     ellipsoid_from_signs,
 )
+from quadric_contact.modes.double_double import OPERATIONS
 from quadric_contact.modes.support import region_codes_from_signs
 
 __all__ = [
@@ -35,6 +36,8 @@ __all__ = [
 ]
 
 _UNC = 2
+_QUADRATIC_PART = (0, 1, 2, 4, 5, 7)
+"""Positions of ``q00, q01, q02, q11, q12, q22`` among the ten upper entries."""
 _NO_EXPONENT = -100000
 _FLOAT_MAX = float(np.finfo(np.float64).max)
 
@@ -361,7 +364,20 @@ def numpy_pairs(
     return out
 
 
-def numpy_invariant_signs(Q: np.ndarray, filtered: bool, K: np.ndarray) -> np.ndarray:
+def _numpy_dd_sign(v: tuple[np.ndarray, np.ndarray], err: np.ndarray) -> np.ndarray:
+    """As the kernels' ``_dd_sgn``: the sign of the double-double ``v`` where ``|v| > err``."""
+    hi, lo = v
+    pos = (hi > err) | ((hi == err) & (lo > 0))
+    neg = (hi < -err) | ((hi == -err) & (lo < 0))
+    return np.where(pos, 1, np.where(neg, -1, np.where(err == 0, 0, _UNC))).astype(np.int8)
+
+
+def numpy_invariant_signs(
+    Q: np.ndarray, filtered: bool, K: np.ndarray, KD: tuple[np.ndarray, np.ndarray] | None = None
+) -> np.ndarray:
+    """As the kernel ``invariant_signs_kernel``, on columns; ``KD`` (binary64 input only): read
+    the quadrics with a sign binary64 cannot tell again in double-double, with these bounds
+    (static, and for the cofactor forms)."""
     q = [Q[:, i, j] for i, j in ENTRY_INDICES]
     out = np.empty((Q.shape[0], 8), dtype=np.int8)
     with np.errstate(all="ignore"):
@@ -377,5 +393,22 @@ def numpy_invariant_signs(Q: np.ndarray, filtered: bool, K: np.ndarray) -> np.nd
                 out[:, k] = np.where(outside, _UNC, _numpy_sign(v[k], K[k] * mags[k]))
             else:
                 out[:, k] = _numpy_sign(v[k], None)
+        if filtered and KD is not None:
+            todo = np.flatnonzero(~outside & (out[:, :7] == _UNC).any(axis=1))
+            if todo.size:
+                static, cofactor = KD
+                qt = [x[todo] for x in q]
+                C = dd_programs.adjugate_3_dd(*OPERATIONS, *(qt[k] for k in _QUADRATIC_PART))
+                w = dd_programs.quadric_invariants_dd(*OPERATIONS, *qt, *C)
+                mc = dd_programs.quadric_invariants_cofactor_magnitude(
+                    *(np.abs(x) for x in qt), *(np.abs(c[0]) for c in C)
+                )
+                for k in range(7):
+                    b = static[k] * mags[k][todo]
+                    for j, at in enumerate(eb.COFACTOR_AT):
+                        if at == k:
+                            b = np.minimum(b, cofactor[j] * mc[j])
+                    s = _numpy_dd_sign(w[k], b)
+                    out[todo, k] = np.where(out[todo, k] == _UNC, s, out[todo, k])
     out[:, 7] = np.sign(q[9]).astype(np.int8)
     return out
