@@ -27,6 +27,7 @@ from quadric_contact.modes.double_double import OPERATIONS
 from quadric_contact.modes.support import region_codes_from_signs
 
 __all__ = [
+    "dd_invariant_quantities",
     "filter_quantities",
     "numpy_ellipsoid_signs",
     "numpy_invariant_signs",
@@ -372,6 +373,50 @@ def _numpy_dd_sign(v: tuple[np.ndarray, np.ndarray], err: np.ndarray) -> np.ndar
     return np.where(pos, 1, np.where(neg, -1, np.where(err == 0, 0, _UNC))).astype(np.int8)
 
 
+def _dd_read(
+    q: list[np.ndarray], mags: list[np.ndarray], static: np.ndarray, cofactor: np.ndarray
+) -> tuple[Any, list[np.ndarray]]:
+    """The double-double invariants of the columns ``q`` (the ten upper entries) and their
+    bounds: the smaller of ``static`` times the binary64 magnitudes ``mags`` and, for ``JA``,
+    ``detA``, ``E4``, ``cofactor`` times the magnitudes of their cofactor forms (as the kernel)."""
+    C = dd_programs.adjugate_3_dd(*OPERATIONS, *(q[k] for k in _QUADRATIC_PART))
+    w = dd_programs.quadric_invariants_dd(*OPERATIONS, *q, *C)
+    mc = dd_programs.quadric_invariants_cofactor_magnitude(
+        *(np.abs(x) for x in q), *(np.abs(c[0]) for c in C)
+    )
+    bounds = [static[k] * mags[k] for k in range(7)]
+    for j, at in enumerate(eb.COFACTOR_AT):
+        bounds[at] = np.minimum(bounds[at], cofactor[j] * mc[j])
+    return w, bounds
+
+
+def dd_invariant_quantities(Qm: np.ndarray) -> dict[str, Any]:
+    """The double-double reading of the invariants of the ``(m, 4, 4)`` binary64 quadrics ``Qm``,
+    on columns, for every quadric (for tests and measurements; the modes run it only where
+    binary64 cannot tell): ``hi``, ``lo`` (seven arrays each: the words of ``trA, JA, detA, E1 ..
+    E4``), ``bound`` (seven arrays: ``|hi + lo - exact| <= bound``), ``signs`` (``(m, 7)``, as
+    :func:`numpy_invariant_signs` reads them) and ``outside`` (the input guard: where it is set,
+    nothing holds)."""
+    q = [np.asarray(Qm[:, i, j], dtype=np.float64) for i, j in ENTRY_INDICES]
+    with np.errstate(all="ignore"):
+        mags = kernels.quadric_invariants_magnitude(*(np.abs(x) for x in q))
+        absx = np.abs(np.stack(q))
+        outside = ((absx > eb.INPUT_MAX) | ~np.isfinite(absx) | ((absx < eb.INPUT_MIN) & (absx != 0))).any(
+            axis=0
+        )
+        w, bounds = _dd_read(
+            q, list(mags), np.array(eb.INVARIANTS_DD_ERRBOUND), np.array(eb.INVARIANTS_DD_COFACTOR_ERRBOUND)
+        )
+        signs = np.stack([_numpy_dd_sign(w[k], bounds[k]) for k in range(7)], axis=1)
+    return {
+        "hi": [v[0] for v in w],
+        "lo": [v[1] for v in w],
+        "bound": bounds,
+        "signs": np.where(outside[:, None], _UNC, signs).astype(np.int8),
+        "outside": outside,
+    }
+
+
 def numpy_invariant_signs(
     Q: np.ndarray, filtered: bool, K: np.ndarray, KD: tuple[np.ndarray, np.ndarray] | None = None
 ) -> np.ndarray:
@@ -396,19 +441,9 @@ def numpy_invariant_signs(
         if filtered and KD is not None:
             todo = np.flatnonzero(~outside & (out[:, :7] == _UNC).any(axis=1))
             if todo.size:
-                static, cofactor = KD
-                qt = [x[todo] for x in q]
-                C = dd_programs.adjugate_3_dd(*OPERATIONS, *(qt[k] for k in _QUADRATIC_PART))
-                w = dd_programs.quadric_invariants_dd(*OPERATIONS, *qt, *C)
-                mc = dd_programs.quadric_invariants_cofactor_magnitude(
-                    *(np.abs(x) for x in qt), *(np.abs(c[0]) for c in C)
-                )
+                w, bounds = _dd_read([x[todo] for x in q], [m[todo] for m in mags], *KD)
                 for k in range(7):
-                    b = static[k] * mags[k][todo]
-                    for j, at in enumerate(eb.COFACTOR_AT):
-                        if at == k:
-                            b = np.minimum(b, cofactor[j] * mc[j])
-                    s = _numpy_dd_sign(w[k], b)
+                    s = _numpy_dd_sign(w[k], bounds[k])
                     out[todo, k] = np.where(out[todo, k] == _UNC, s, out[todo, k])
     out[:, 7] = np.sign(q[9]).astype(np.int8)
     return out
