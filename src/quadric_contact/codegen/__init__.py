@@ -1289,7 +1289,7 @@ def dd_rounding_counts(
                 raise AssertionError(f"{op} of a value that is not an argument: {ast.unparse(node)}")
             return (0, 0, 2 if op == "two_prod" else 1)
         if op == "dd_scale":
-            s = y.operand.value if isinstance(y, ast.UnaryOp) else getattr(y, "value", None)
+            s = getattr(y.operand if isinstance(y, ast.UnaryOp) else y, "value", None)
             if not isinstance(s, float) or math.frexp(s)[0] != 0.5:
                 raise AssertionError(f"dd_scale by {ast.unparse(y)}, not a power of two")
             return value(x)

@@ -39,7 +39,7 @@ from __future__ import annotations
 
 import math
 from fractions import Fraction
-from typing import Any
+from typing import Any, cast
 
 from quadric_contact._generated.dd_programs import DD_COUNTS
 from quadric_contact._generated.kernels import ROUNDING_COUNTS
@@ -250,7 +250,8 @@ def dd_program_errbound(n_add: int, n_mul: int, n_magnitude: int) -> float:
 
 
 def _dd_counts(name: str) -> dict[str, Any]:
-    return dict(DD_COUNTS[name])
+    """The double-double counts of one generated program (see :mod:`quadric_contact.codegen`)."""
+    return dict(cast("dict[str, Any]", DD_COUNTS[name]))
 
 
 def _dd_bounds() -> tuple[float, ...]:
