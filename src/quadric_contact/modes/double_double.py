@@ -4,10 +4,11 @@ double-double invariant program, as plain functions of binary64 numbers.
 A double-double is a pair ``x = (xh, xl)`` of binary64 numbers standing for the real number
 ``xh + xl``, with ``xh = RN(xh + xl)`` (a *double-word number* in the sense of Joldes, Muller,
 Popescu, "Tight and rigorous error bounds for basic building blocks of double-word
-arithmetic", ACM TOMS 44(2), 2017, JMP 2017 below): about 106 bits.  The generated program
-:func:`~quadric_contact._generated.dd_programs.quadric_invariants_dd` is written with these
-operations, passed to it as arguments; its error bound is
-:data:`~quadric_contact.modes.errorbounds.INVARIANTS_DD_ERRBOUND`.
+arithmetic", ACM TOMS 44(2), 2017, JMP 2017 below): about 106 bits.  The generated programs
+of :mod:`quadric_contact._generated.dd_programs` (the cofactors of a quadratic part, the
+invariants of a quadric) are written with these operations, passed to them as arguments;
+their error bounds are :data:`~quadric_contact.modes.errorbounds.INVARIANTS_DD_ERRBOUND` and
+:data:`~quadric_contact.modes.errorbounds.INVARIANTS_DD_COFACTOR_ERRBOUND`.
 
 Error-free transformations (exact in binary64 with rounding to nearest, when no operation
 overflows and no result is subnormal; the callers' input guard makes sure of both):

@@ -31,6 +31,10 @@ non-negative, ``N'`` its own count), so ``p~ <= M / (1 - u)^N'``.  A fused
 multiply-add only removes roundings from paths, so the bounds hold whether or
 not the compiler contracts.
 
+The double-double reading of the invariants of a quadric (where binary64 cannot tell their
+signs) has its own model, the published bounds of the double-word operations, stated with its
+constants in the section below :func:`_check_input_guard`.
+
 Everything here is used by the binary64 kernels (:mod:`quadric_contact.modes.float_modes`); the tests
 check every bound against exact arithmetic on adversarial inputs.
 """
