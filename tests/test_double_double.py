@@ -433,6 +433,12 @@ def test_compiled_programs_give_the_numpy_words_bit_for_bit():
     assert np.array_equal(python[:40], columns[:40])
 
 
+def test_the_programs_take_the_operations_of_the_module_in_order():
+    assert tuple(f.__name__ for f in dd.OPERATIONS) == codegen.DD_OPERATIONS
+    names = dd_programs.quadric_invariants_dd.__code__.co_varnames[: len(codegen.DD_OPERATIONS)]
+    assert names == codegen.DD_OPERATIONS
+
+
 def test_the_generated_programs_are_current_and_verified():
     assert codegen.DD_PATH.read_text() == codegen.emit_dd_programs()
     assert codegen.regenerate_dd(check=True)  # verifies the programs before comparing
