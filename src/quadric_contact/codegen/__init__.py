@@ -1369,10 +1369,42 @@ def _symbolic_dd_operations() -> tuple[Any, ...]:
 
 
 def _run_symbolically(text: str, name: str, inputs: Sequence[Any]) -> list[_Paths]:
-    """The program ``name`` of ``text`` run on :class:`_Paths` inputs with the exact operations."""
-    namespace: dict[str, Any] = {}
-    exec(compile(text, "<double-double program>", "exec"), namespace)
-    return [_paths(v) for v in namespace[name](*_symbolic_dd_operations(), *inputs)]
+    """The program ``name`` of ``text`` run on :class:`_Paths` inputs with the exact operations,
+    read from its :mod:`ast` (the grammar of the emitted programs: assignments of calls of the
+    operations on names, negated names, ``(name, 0.0)`` pairs and float constants, and a tuple
+    return), without compiling it."""
+    import ast
+
+    fdef = _functions(text)[name]
+    operations = dict(zip(DD_OPERATIONS, _symbolic_dd_operations(), strict=True))
+    params = [a.arg for a in fdef.args.args]
+    if params[: len(DD_OPERATIONS)] != list(DD_OPERATIONS):
+        raise AssertionError(f"{name} does not take the operations first")
+    env: dict[str, Any] = dict(zip(params[len(DD_OPERATIONS) :], inputs, strict=True))
+
+    def walk(node: Any) -> Any:
+        if isinstance(node, ast.Name):
+            return env[node.id]
+        if isinstance(node, ast.Constant) and isinstance(node.value, float):
+            return node.value
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
+            return -walk(node.operand)
+        if isinstance(node, ast.Tuple):
+            return tuple(walk(e) for e in node.elts)
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in operations:
+            return operations[node.func.id](*(walk(a) for a in node.args))
+        raise AssertionError(f"unexpected syntax in {name}: {ast.unparse(node)}")
+
+    for stmt in fdef.body:
+        if isinstance(stmt, ast.Expr) and isinstance(stmt.value, ast.Constant):
+            continue
+        if isinstance(stmt, ast.Assign) and len(stmt.targets) == 1 and isinstance(stmt.targets[0], ast.Name):
+            env[stmt.targets[0].id] = walk(stmt.value)
+        elif isinstance(stmt, ast.Return) and isinstance(stmt.value, ast.Tuple):
+            return [_paths(walk(e)) for e in stmt.value.elts]
+        else:
+            raise AssertionError(f"unexpected statement in {name}: {ast.unparse(stmt)}")
+    raise AssertionError(f"{name} returns nothing")
 
 
 def derive_adjugate_3() -> tuple[list[sp.Symbol], list[tuple[str, sp.Expr]]]:
@@ -1499,9 +1531,8 @@ def verify_dd_programs(text: str, companion: Any) -> None:
     level = _run_symbolically(
         text, "quadric_invariants_dd", [*(_Paths(a, a) for a in args), *(_Paths(t, t) for t in pairs)]
     )
-    namespace: dict[str, Any] = {}
-    exec(compile(text, "<double-double program>", "exec"), namespace)
-    cofactor_magnitude = namespace["quadric_invariants_cofactor_magnitude"](*args, *pairs)
+    magnitude_program = _functions(text)["quadric_invariants_cofactor_magnitude"]
+    cofactor_magnitude = _interpret(magnitude_program, [*args, *pairs])[1]
     names = [n for n, _ in invariants]
     for (name, expr), mag in zip(forms, cofactor_magnitude, strict=True):
         read = level[names.index(name)]
