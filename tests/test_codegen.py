@@ -73,7 +73,7 @@ def test_check_command_covers_every_generated_file(capsys):
     assert codegen.main(["--check"]) == 0
     out = capsys.readouterr().out
     generated = sorted(p.name for p in codegen.GENERATED_PATH.parent.glob("*.py") if p.name != "__init__.py")
-    assert generated == ["blocks.py", "formulas.py", "kernels.py"]
+    assert generated == ["blocks.py", "dd_programs.py", "formulas.py", "kernels.py"]
     for name in generated:
         assert f"{name}: current" in out
 

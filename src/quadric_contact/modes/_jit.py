@@ -14,7 +14,7 @@ except ImportError:  # pragma: no cover
     numba = None  # type: ignore[assignment,unused-ignore]
     HAVE_NUMBA = False
 
-__all__ = ["HAVE_NUMBA", "compile_on_a_fresh_stack", "njit", "stamp_with_sources"]
+__all__ = ["HAVE_NUMBA", "compile_on_a_fresh_stack", "jitable", "njit", "stamp_with_sources"]
 
 
 def _sources_digest(root: Any = None) -> str:
@@ -124,6 +124,23 @@ def njit(fn: Callable[..., Any] | None = None, *, inline: bool = False, cache: b
         return dispatcher
 
     return wrap(fn) if fn is not None else wrap
+
+
+def jitable(fn: Callable[..., Any]) -> Callable[..., Any]:
+    """Make a plain function callable from compiled kernels and return it unchanged.
+
+    For small building blocks that call one another (the double-double primitives of
+    :mod:`~quadric_contact.modes.double_double`): unlike :func:`njit`, which returns a numba
+    dispatcher, the name stays bound to the Python function, so the same function runs on
+    Python floats and on numpy arrays (the ``numpy`` backend) and the calls inside it resolve
+    to Python functions there; numba compiles it (``numba.extending.register_jitable``, with
+    the kernels' ``error_model="numpy"``) where a compiled function calls it, once per
+    signature, and LLVM inlines it into the caller.  Without numba, nothing is registered."""
+    if HAVE_NUMBA:
+        from numba.extending import register_jitable
+
+        register_jitable(error_model="numpy")(fn)
+    return fn
 
 
 # -- first use: one line when the kernels are compiled rather than loaded ---------------------

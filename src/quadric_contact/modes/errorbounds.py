@@ -31,6 +31,10 @@ non-negative, ``N'`` its own count), so ``p~ <= M / (1 - u)^N'``.  A fused
 multiply-add only removes roundings from paths, so the bounds hold whether or
 not the compiler contracts.
 
+The double-double reading of the invariants of a quadric (where binary64 cannot tell their
+signs) has its own model, the published bounds of the double-word operations, stated with its
+constants in the section below :func:`_check_input_guard`.
+
 Everything here is used by the binary64 kernels (:mod:`quadric_contact.modes.float_modes`); the tests
 check every bound against exact arithmetic on adversarial inputs.
 """
@@ -39,16 +43,23 @@ from __future__ import annotations
 
 import math
 from fractions import Fraction
-from typing import Any
+from typing import Any, cast
 
+from quadric_contact._generated.dd_programs import DD_COUNTS
 from quadric_contact._generated.kernels import ROUNDING_COUNTS
 
 __all__ = [
     "COEFFICIENT_MIN",
+    "COFACTOR_AT",
+    "COFACTOR_OUTPUTS",
+    "DD_ADD_ERROR",
+    "DD_MUL_ERROR",
     "DELTA_ABSOLUTE",
     "DELTA_RELATIVE",
     "INPUT_MAX",
     "INPUT_MIN",
+    "INVARIANTS_DD_COFACTOR_ERRBOUND",
+    "INVARIANTS_DD_ERRBOUND",
     "MEMBER_MINORS_ERRBOUND",
     "MEMBER_MINORS_SEMI",
     "MINORS_ERRBOUND",
@@ -60,6 +71,7 @@ __all__ = [
     "SEMI_MINORS",
     "SEMI_PENCIL",
     "UNIT_ROUNDOFF",
+    "dd_program_errbound",
     "gamma",
     "program_errbound",
     "round_up",
@@ -152,6 +164,160 @@ def _check_input_guard() -> None:
 
 
 _check_input_guard()
+
+
+# -- the invariants of a quadric in double-double ---------------------------------------------
+#
+# Where binary64 cannot tell the sign of an invariant of a binary64 quadric (rounding moved it off
+# a structural zero: det Q of a rotated cylinder is ~1e-16 times its magnitude), the generated
+# programs of ``dd_programs`` evaluate the invariants in double-double arithmetic
+# (:mod:`quadric_contact.modes.double_double`): ``adjugate_3_dd`` the cofactors ``C_ij`` of the
+# quadratic part, ``quadric_invariants_dd`` the seven invariants, ``JA``, ``detA`` and ``E4`` from
+# the cofactors (``codegen.derive_cofactor_forms``), the others from the monomials of the
+# binary64 program.
+#
+# Operations (Joldes, Muller, Popescu, "Tight and rigorous error bounds for basic building
+# blocks of double-word arithmetic", ACM TOMS 44(2), 2017): on double-word operands (``xh =
+# RN(xh + xl)``, which every operation returns) and without underflow or overflow,
+# AccurateDWPlusDW (their Algorithm 6; ``dd_add``, and ``dd_sub`` on the exactly negated
+# operand) returns ``(x + y)(1 + d)`` with ``|d| <= DD_ADD_ERROR = 3u^2 + 13u^3``, and DWTimesFP1
+# (their Algorithm 7; ``dd_mul_d``) returns ``x y (1 + d)`` with ``|d| <= DD_MUL_ERROR = 3/2 u^2 +
+# 4u^3``.  2Sum and Dekker's product of two binary64 numbers and the scaling by a power of two
+# are exact (error-free transformations).
+#
+# Paths (as for binary64 above).  The computed value is the sum over the paths of the programs
+# (the cofactors' paths substituted) of their products times ``prod (1 + d_i)`` over the
+# rounding operations on the path; with A and M the largest numbers of double-double additions
+# and multiplications on any path (``dd_programs.DD_COUNTS``, an AST walk of the emitted
+# programs: a sum takes the larger count of its operands, a product adds them),
+#     |dd(p) - p| <= ((1 + DD_ADD_ERROR)^A (1 + DD_MUL_ERROR)^M - 1) p~.
+# Static bound (every output): expanded, the programs add up the monomials of the binary64
+# ``quadric_invariants`` with their integer coefficients, so ``p~`` is the value of the binary64
+# magnitude companion at the absolute entries (``codegen.verify_dd_programs`` checks it,
+# polynomial for polynomial); its computed value is ``M^ >= (1 - u)^N' p~`` (N' its rounding
+# count, under the binary64 filter's guard), and the bound ``fl(K M^)`` loses one more factor
+# ``(1 - u)``: INVARIANTS_DD_ERRBOUND.
+#
+# Cofactor bound (``JA``, ``detA``, ``E4``).  Each computed cofactor is one AccurateDWPlusDW of
+# two exact products, so ``C^ = C (1 + t)`` with ``|t| <= DD_ADD_ERROR`` *relative to the
+# cofactor itself*; read the paths from the cofactors instead of the entries: a path is a term
+# ``c m(q) C`` of the cofactor form, and the same count (the cofactor's own addition is on every
+# such path) gives ``|dd(p) - p| <= ((1 + DD_ADD_ERROR)^A (1 + DD_MUL_ERROR)^M - 1) p~_C(|q|,
+# |C|)``, ``p~_C`` the magnitude of the cofactor form (``quadric_invariants_cofactor_magnitude``,
+# checked against the program's paths the same way).  It is linear in the cofactors, ``|C| <=
+# |C^| / (1 - DD_ADD_ERROR)`` and ``|C^| = |Ch + Cl| <= (1 + u) |Ch|``, and the binary64
+# computation at the high words loses ``(1 - u)^N_C`` and the final product ``(1 - u)``:
+# INVARIANTS_DD_COFACTOR_ERRBOUND.  Where the quadratic part is close to rank 1 (a rotated
+# parabolic cylinder, parallel planes), the cofactors are of the order of the rounding and
+# ``detA``, ``E4`` of its square, ~1e-33 of the static magnitude and below the static bound;
+# ``p~_C`` is of the order of the cofactors, and the cofactor bound certifies them.
+#
+# The sign of ``v = vh + vl`` is certain when ``v > b`` (or ``v < -b``), read exactly from the
+# two words: ``vh > b``, or ``vh = b`` and ``vl > 0`` (``vh = RN(v)``, and rounding is
+# monotonic).  A zero is certified only where a magnitude is exactly zero: then every term of
+# the (static or cofactor) form is zero, and so is the value, exactly (a zero high word of a
+# cofactor means a zero cofactor).
+#
+# Guard: the binary64 filter's, every non-zero entry in [INPUT_MIN, INPUT_MAX] = [2^-180,
+# 2^180] (:func:`_check_dd_guard`).  Underflow: a non-zero entry is a multiple of 2^(-180-52);
+# every quantity the programs form for an output of degree d <= 4, inside the operations too
+# (the halves of Veltkamp's splitting, the partial products of Dekker's product, the error
+# terms of 2Sum and Fast2Sum), is a rounded sum of products of d such multiples (times the
+# integers 2^27 + 1, 2, -1), so a multiple of 2^(4 (-232)) = 2^-928: a non-zero one is normal,
+# every error-free transformation is exact and the computation is the one in an unbounded
+# exponent range, where the published bounds hold.  The same holds for the magnitudes, whose
+# non-zero terms are at least 2^(4 (-180)) (static) and 2^(2 (-180) + 2 (-232)) (cofactor), so
+# that the bounds are normal numbers too.  Overflow: a product of four entries is at most
+# 2^720, every value of the programs at most (1 + 2^-100) times a sum of at most ``paths`` (the
+# magnitude program at all ones) of them, times 2 (the coefficients), and inside an operation
+# nothing exceeds 2^28 (the splitting) or 4 times its operands.
+
+
+DD_ADD_ERROR = 3 * _U**2 + 13 * _U**3
+"""Relative error bound of AccurateDWPlusDW (JMP 2017, Algorithm 6): ``dd_add``, ``dd_sub``."""
+
+DD_MUL_ERROR = Fraction(3, 2) * _U**2 + 4 * _U**3
+"""Relative error bound of DWTimesFP1 (JMP 2017, Algorithm 7): ``dd_mul_d``."""
+
+
+def _dd_growth(n_add: int, n_mul: int) -> Fraction:
+    """``(1 + DD_ADD_ERROR)^n_add (1 + DD_MUL_ERROR)^n_mul - 1``: the relative error of a path."""
+    return (1 + DD_ADD_ERROR) ** n_add * (1 + DD_MUL_ERROR) ** n_mul - 1
+
+
+def dd_program_errbound(n_add: int, n_mul: int, n_magnitude: int) -> float:
+    """``K`` with ``|dd(p) - p| <= fl(K * M)`` for an output of a double-double program with at
+    most ``n_add`` double-double additions and ``n_mul`` multiplications on a path, ``M`` the
+    computed binary64 magnitude (rounding count ``n_magnitude``) of the same paths:
+    ``K = ((1 + DD_ADD_ERROR)^n_add (1 + DD_MUL_ERROR)^n_mul - 1) / (1 - u)^(n_magnitude + 1)``."""
+    return round_up(_dd_growth(n_add, n_mul) / (1 - _U) ** n_magnitude / (1 - _U))
+
+
+def _dd_counts(name: str) -> dict[str, Any]:
+    """The double-double counts of one generated program (see :mod:`quadric_contact.codegen`)."""
+    return dict(cast("dict[str, Any]", DD_COUNTS[name]))
+
+
+def _dd_bounds() -> tuple[float, ...]:
+    dd = _dd_counts("quadric_invariants_dd")
+    rc = _counts("quadric_invariants")
+    if tuple(dd["outputs"]) != tuple(rc["outputs"]) or tuple(dd["degree"]) != tuple(rc["degree"]):
+        raise AssertionError("the double-double program is not the binary64 program's companion")
+    return tuple(
+        dd_program_errbound(a, m, nm)
+        for a, m, nm in zip(dd["dd_add"], dd["dd_mul_d"], rc["magnitude"], strict=True)
+    )
+
+
+def _dd_cofactor_bounds() -> tuple[float, ...]:
+    adj = _dd_counts("adjugate_3_dd")
+    if set(adj["dd_add"]) != {1} or set(adj["dd_mul_d"]) != {0}:
+        raise AssertionError("a cofactor is not one rounded difference of two exact products")
+    dd = _dd_counts("quadric_invariants_dd")
+    mag = _dd_counts("quadric_invariants_cofactor_magnitude")
+    out = []
+    for name, n_mag in zip(mag["outputs"], mag["magnitude"], strict=True):
+        j = dd["outputs"].index(name)
+        k = _dd_growth(dd["dd_add"][j], dd["dd_mul_d"][j]) * (1 + _U) / (1 - DD_ADD_ERROR)
+        out.append(round_up(k / (1 - _U) ** n_mag / (1 - _U)))
+    return tuple(out)
+
+
+INVARIANTS_DD_ERRBOUND = _dd_bounds()
+"""``K`` for ``trA, J, detA, E1 .. E4`` in double-double (binary64 input, not rounded from exact
+input): ``|dd - exact| <= fl(K * M)`` with ``M`` the binary64 magnitude companion of
+``quadric_invariants``, for input within the guard."""
+
+COFACTOR_OUTPUTS: tuple[str, ...] = tuple(_dd_counts("quadric_invariants_cofactor_magnitude")["outputs"])
+"""The invariants with a cofactor bound too: ``JA``, ``detA``, ``E4``."""
+
+COFACTOR_AT: tuple[int, ...] = tuple(
+    _counts("quadric_invariants")["outputs"].index(n) for n in COFACTOR_OUTPUTS
+)
+"""Where :data:`COFACTOR_OUTPUTS` sit among the seven invariants of ``quadric_invariants``."""
+
+INVARIANTS_DD_COFACTOR_ERRBOUND = _dd_cofactor_bounds()
+"""``K`` for :data:`COFACTOR_OUTPUTS` in double-double: ``|dd - exact| <= fl(K * M_C)`` with ``M_C``
+the value of ``dd_programs.quadric_invariants_cofactor_magnitude`` at the absolute entries and
+the absolute high words of the double-double cofactors (the same input)."""
+
+
+def _check_dd_guard() -> None:
+    from quadric_contact._generated import kernels
+
+    # every quantity a multiple of 2^(4 (INPUT_MIN_EXPONENT - 52)): normal when non-zero
+    assert 4 * (INPUT_MIN_EXPONENT - 52) >= -1022
+    # the bound of a non-zero magnitude (static: a product of four entries; cofactor: two
+    # entries and a cofactor, a multiple of 2^(2 (INPUT_MIN_EXPONENT - 52))) is normal
+    assert 4 * INPUT_MIN_EXPONENT + math.log2(min(INVARIANTS_DD_ERRBOUND)) - 1 >= -1022
+    low = 2 * INPUT_MIN_EXPONENT + 2 * (INPUT_MIN_EXPONENT - 52)
+    assert low + math.log2(min(INVARIANTS_DD_COFACTOR_ERRBOUND)) - 1 >= -1022
+    # no overflow: sums of at most `paths` products of four entries, times 2, split (2^28), summed (4)
+    paths = max(kernels.quadric_invariants_magnitude(*([1] * 10)))
+    assert math.log2(paths) + 4 * INPUT_MAX_EXPONENT + 1 + 28 + 2 < 1023
+
+
+_check_dd_guard()
 
 COEFFICIENT_MIN = 2.0**-118
 """After scaling the coefficients to ``[0, 2)``, non-zero ``|c_k|`` and their upper

@@ -242,17 +242,30 @@ def _ellipsoid_masks(ell: np.ndarray) -> np.ndarray:
 def float_invariant_signs(
     Q: np.ndarray, *, filtered: bool, rounded: bool = False, backend: str = "numba"
 ) -> np.ndarray:
-    """``(m, 8)`` int8 signs of ``(trA, J, detA, E1, E2, E3, E4, q33)`` for every quadric."""
+    """``(m, 8)`` int8 signs of ``(trA, J, detA, E1, E2, E3, E4, q33)`` for every quadric.
+
+    ``filtered``: certain signs, ``UNCERTAIN`` elsewhere: binary64 with the bounds
+    :data:`~quadric_contact.modes.errorbounds.INVARIANTS_ERRBOUND` and, for binary64 input (not
+    ``rounded`` from exact input), the quadrics with a sign binary64 cannot tell read again in
+    double-double (:data:`~quadric_contact.modes.errorbounds.INVARIANTS_DD_ERRBOUND` and, for
+    ``JA``, ``detA``, ``E4``, :data:`~quadric_contact.modes.errorbounds.INVARIANTS_DD_COFACTOR_ERRBOUND`):
+    what it leaves is a value within about 1e-30 of its magnitude (in practice, an exact zero),
+    or input outside the guard."""
     out = np.empty((Q.shape[0], 8), dtype=np.int8)
     K = np.array(eb.INVARIANTS_ERRBOUND[rounded])
+    KD = np.array(eb.INVARIANTS_DD_ERRBOUND)
+    KC = np.array(eb.INVARIANTS_DD_COFACTOR_ERRBOUND)
+    dd = filtered and not rounded
     if backend == "numpy" or not HAVE_NUMBA:
         from quadric_contact.modes.numpy_fallback import numpy_invariant_signs
 
-        return numpy_invariant_signs(Q, filtered, K)
+        return numpy_invariant_signs(Q, filtered, K, (KD, KC) if dd else None)
     from quadric_contact.modes.kernels_support import invariant_signs_kernel
 
     flat = np.ascontiguousarray(Q).reshape(-1, 16)
-    run_parallel(lambda lo, hi: invariant_signs_kernel(flat, lo, hi, K, filtered, out), Q.shape[0])
+    run_parallel(
+        lambda lo, hi: invariant_signs_kernel(flat, lo, hi, K, KD, KC, filtered, dd, out), Q.shape[0]
+    )
     return out
 
 
@@ -551,11 +564,17 @@ def _used_rows(index: np.ndarray | None, m: int, n: int) -> np.ndarray:
 
 
 def exact_facts(Q: MatrixStack, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Exact facts about the quadrics ``rows``, from their exact invariant signs (integer
-    arithmetic, once per quadric; a quadric certified an ellipsoid in binary64 needs none):
-    ``(flags, masks)`` with bit 0 of ``flags`` set when ``det Q = 0`` (then ``c0 = 0`` for every
-    ``E``) and bit 1 when ``rank Q <= 2`` (then ``c1 = 0`` too; for a symmetric matrix the rank
-    is 4 minus the number of trailing zeros of ``E1 .. E4``), and ``masks`` their Table 4 rows."""
+    """Exact facts about the quadrics ``rows``, from their exact invariant signs, once per
+    quadric: ``(flags, masks)`` with bit 0 of ``flags`` set when ``det Q = 0`` (then ``c0 = 0``
+    for every ``E``) and bit 1 when ``rank Q <= 2`` (then ``c1 = 0`` too; for a symmetric matrix
+    the rank is 4 minus the number of trailing zeros of ``E1 .. E4``), and ``masks`` their
+    Table 4 rows.
+
+    For binary64 input the signs are certified before any integer is formed: a quadric the
+    short test finds an ellipsoid needs none (``det Q != 0``, rank 4, its type known), and the
+    others get the filtered signs of :func:`float_invariant_signs` (binary64, then
+    double-double); only a quadric with a sign neither can tell (in practice an exact zero of
+    an invariant that is not a product of zeros) goes to integer arithmetic."""
     from quadric_contact.modes.objects import ExactMode
 
     rows = np.asarray(rows, dtype=np.intp)
@@ -563,18 +582,27 @@ def exact_facts(Q: MatrixStack, rows: np.ndarray) -> tuple[np.ndarray, np.ndarra
     masks = np.zeros(rows.size, dtype=np.int64)
     todo = np.arange(rows.size)
     if not Q.rounded and rows.size:
-        # A quadric the short certified test finds an ellipsoid has det Q != 0 and rank 4 (no
-        # flag) and its type is known: the integers are needed only for the others (the
-        # environment of a simulation is asked about on every call).
+        # (the environment of a simulation is asked about on every call)
         ell = certified_ellipsoid_signs(Q.rows_floats(rows))
         masks = _ellipsoid_masks(ell)
         todo = np.flatnonzero(ell == 0)
+        if todo.size:
+            signs = float_invariant_signs(Q.rows_floats(rows[todo]), filtered=True)
+            sure = (signs[:, :7] != _UNC).all(axis=1)
+            flags[todo[sure]] = _structural_bits(signs[sure])
+            masks[todo[sure]] = masks_from_invariant_signs(signs[sure])
+            todo = todo[~sure]
     if todo.size:
         signs = ExactMode().invariant_signs(Q, rows[todo])
-        det_zero = signs[:, 6] == 0
-        flags[todo] = det_zero.astype(np.int8) | ((det_zero & (signs[:, 5] == 0)).astype(np.int8) << 1)
+        flags[todo] = _structural_bits(signs)
         masks[todo] = masks_from_invariant_signs(signs)
     return flags, masks
+
+
+def _structural_bits(signs: np.ndarray) -> np.ndarray:
+    """Bit 0: ``det Q = 0``; bit 1: ``rank Q <= 2`` (``E4 = E3 = 0``), from certain signs."""
+    det_zero = signs[:, 6] == 0
+    return (det_zero.astype(np.int8) | ((det_zero & (signs[:, 5] == 0)).astype(np.int8) << 1)).astype(np.int8)
 
 
 def _diagnose(pairs: Pairs, which: np.ndarray) -> np.ndarray:

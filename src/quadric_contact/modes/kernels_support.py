@@ -1,5 +1,6 @@
-"""Small compiled kernels around the criterion: invariant signs of quadrics, checking stacks,
-region codes from signs, and the memory-bandwidth floor (a streaming sum)."""
+"""Small compiled kernels around the criterion: invariant signs of quadrics (binary64, then
+double-double where binary64 cannot tell), checking stacks, region codes from signs, and the
+memory-bandwidth floor (a streaming sum)."""
 
 from __future__ import annotations
 
@@ -7,7 +8,8 @@ from typing import Any
 
 import numpy as np
 
-from quadric_contact._generated import blocks, kernels
+from quadric_contact._generated import blocks, dd_programs, kernels
+from quadric_contact.modes import double_double as dd
 from quadric_contact.modes import errorbounds as eb
 from quadric_contact.modes._jit import HAVE_NUMBA, numba
 from quadric_contact.modes._jit import njit as _njit
@@ -29,6 +31,10 @@ _FLOAT_MAX = float(np.finfo(np.float64).max)
 
 _invariants = _njit(kernels.quadric_invariants, inline=True)
 _invariants_mag = _njit(kernels.quadric_invariants_magnitude, inline=True)
+_adjugate_dd = _njit(dd_programs.adjugate_3_dd, inline=True)
+_invariants_dd = _njit(dd_programs.quadric_invariants_dd, inline=True)
+_cofactor_mag = _njit(dd_programs.quadric_invariants_cofactor_magnitude, inline=True)
+_two_sum, _two_prod, _dd_add, _dd_sub, _dd_mul_d, _dd_scale = dd.OPERATIONS
 _upper_full = _njit(blocks.upper_full, inline=True)
 _abs10 = _njit(blocks.abs_upper, inline=True)
 _outside = _njit(blocks.outside_count, inline=True)
@@ -61,9 +67,32 @@ def _psgn(v: float) -> int:
     return 0
 
 
-def _invariant_signs_impl(Q: Any, lo: int, hi: int, K: Any, filtered: bool, out: Any) -> None:
+@_njit(inline=True)
+def _dd_sgn(v: Any, err: float) -> int:
+    """The sign of the double-double ``v = (hi, lo)`` (``hi = RN(hi + lo)``) where ``|hi + lo| >
+    err``, read exactly: ``hi > err`` implies ``hi + lo > err`` (rounding is monotonic and
+    ``err`` is a binary64 number), and so does ``hi = err`` with ``lo > 0``."""
+    hi, lo = v
+    if (hi > err) | ((hi == err) & (lo > 0.0)):
+        return 1
+    if (hi < -err) | ((hi == -err) & (lo < 0.0)):
+        return -1
+    if err == 0.0:
+        return 0
+    return _UNC
+
+
+def _invariant_signs_impl(
+    Q: Any, lo: int, hi: int, K: Any, KD: Any, KC: Any, filtered: bool, dd: bool, out: Any
+) -> None:
     """Signs of ``(trA, J, detA, E1, E2, E3, E4, q33)`` for the flat ``(m, 16)`` quadrics
-    ``Q[lo:hi]``; with ``filtered`` the bounded ones, and all ``UNCERTAIN`` outside the guard."""
+    ``Q[lo:hi]``; with ``filtered`` the bounded ones, and all ``UNCERTAIN`` outside the guard.
+    With ``dd`` (binary64 input, not rounded from exact input), a quadric with a sign binary64
+    cannot tell is read again in double-double (``dd_programs``): the bound is the smaller of
+    ``KD`` (:data:`~quadric_contact.modes.errorbounds.INVARIANTS_DD_ERRBOUND`) times the binary64
+    magnitude and, for ``JA``, ``detA``, ``E4``, ``KC``
+    (:data:`~quadric_contact.modes.errorbounds.INVARIANTS_DD_COFACTOR_ERRBOUND`) times the
+    magnitude of their cofactor forms.  What stays ``UNCERTAIN`` is, in practice, an exact zero."""
     for p in range(lo, hi):
         q = _upper_full(Q, p)
         q00, q01, q02, q03, q11, q12, q13, q22, q23, q33 = q
@@ -76,8 +105,30 @@ def _invariant_signs_impl(Q: Any, lo: int, hi: int, K: Any, filtered: bool, out:
         a = _abs10(q)
         g = _outside(a, _INPUT_MIN, _INPUT_MAX)
         mags = _invariants_mag(a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8], a[9])
+        unsure = g != 0
         for k in range(7):
-            out[p, k] = _UNC if g != 0 else _sgn(v[k], K[k] * mags[k])
+            s = _UNC if g != 0 else _sgn(v[k], K[k] * mags[k])
+            out[p, k] = s
+            unsure |= s == _UNC
+        if dd and unsure and g == 0:
+            C = _adjugate_dd(
+                _two_sum, _two_prod, _dd_add, _dd_sub, _dd_mul_d, _dd_scale, q00, q01, q02, q11, q12, q22
+            )
+            w = _invariants_dd(
+                _two_sum, _two_prod, _dd_add, _dd_sub, _dd_mul_d, _dd_scale,
+                q00, q01, q02, q03, q11, q12, q13, q22, q23, q33, C[0], C[1], C[2], C[3], C[4], C[5],
+            )  # fmt: skip
+            mc = _cofactor_mag(
+                a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8], a[9],
+                abs(C[0][0]), abs(C[1][0]), abs(C[2][0]), abs(C[3][0]), abs(C[4][0]), abs(C[5][0]),
+            )  # fmt: skip
+            for k in range(7):
+                if out[p, k] == _UNC:
+                    b = KD[k] * mags[k]
+                    for j in range(3):
+                        if eb.COFACTOR_AT[j] == k:
+                            b = min(b, KC[j] * mc[j])
+                    out[p, k] = _dd_sgn(w[k], b)
 
 
 @_njit(inline=True)

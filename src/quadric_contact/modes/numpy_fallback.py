@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from quadric_contact._generated import blocks, formulas, kernels
+from quadric_contact._generated import blocks, dd_programs, formulas, kernels
 from quadric_contact.exact.entries import ENTRY_INDICES
 from quadric_contact.modes import errorbounds as eb
 from quadric_contact.modes.base import INVALID
@@ -23,9 +23,11 @@ from quadric_contact.modes.decisions import (
     ELLIPSOID_YES,
     ellipsoid_from_signs,
 )
+from quadric_contact.modes.double_double import OPERATIONS
 from quadric_contact.modes.support import region_codes_from_signs
 
 __all__ = [
+    "dd_invariant_quantities",
     "filter_quantities",
     "numpy_ellipsoid_signs",
     "numpy_invariant_signs",
@@ -35,6 +37,8 @@ __all__ = [
 ]
 
 _UNC = 2
+_QUADRATIC_PART = (0, 1, 2, 4, 5, 7)
+"""Positions of ``q00, q01, q02, q11, q12, q22`` among the ten upper entries."""
 _NO_EXPONENT = -100000
 _FLOAT_MAX = float(np.finfo(np.float64).max)
 
@@ -361,7 +365,64 @@ def numpy_pairs(
     return out
 
 
-def numpy_invariant_signs(Q: np.ndarray, filtered: bool, K: np.ndarray) -> np.ndarray:
+def _numpy_dd_sign(v: tuple[np.ndarray, np.ndarray], err: np.ndarray) -> np.ndarray:
+    """As the kernels' ``_dd_sgn``: the sign of the double-double ``v`` where ``|v| > err``."""
+    hi, lo = v
+    pos = (hi > err) | ((hi == err) & (lo > 0))
+    neg = (hi < -err) | ((hi == -err) & (lo < 0))
+    return np.where(pos, 1, np.where(neg, -1, np.where(err == 0, 0, _UNC))).astype(np.int8)
+
+
+def _dd_read(
+    q: list[np.ndarray], mags: list[np.ndarray], static: np.ndarray, cofactor: np.ndarray
+) -> tuple[Any, list[np.ndarray]]:
+    """The double-double invariants of the columns ``q`` (the ten upper entries) and their
+    bounds: the smaller of ``static`` times the binary64 magnitudes ``mags`` and, for ``JA``,
+    ``detA``, ``E4``, ``cofactor`` times the magnitudes of their cofactor forms (as the kernel)."""
+    C = dd_programs.adjugate_3_dd(*OPERATIONS, *(q[k] for k in _QUADRATIC_PART))
+    w = dd_programs.quadric_invariants_dd(*OPERATIONS, *q, *C)
+    mc = dd_programs.quadric_invariants_cofactor_magnitude(
+        *(np.abs(x) for x in q), *(np.abs(c[0]) for c in C)
+    )
+    bounds = [static[k] * mags[k] for k in range(7)]
+    for j, at in enumerate(eb.COFACTOR_AT):
+        bounds[at] = np.minimum(bounds[at], cofactor[j] * mc[j])
+    return w, bounds
+
+
+def dd_invariant_quantities(Qm: np.ndarray) -> dict[str, Any]:
+    """The double-double reading of the invariants of the ``(m, 4, 4)`` binary64 quadrics ``Qm``,
+    on columns, for every quadric (for tests and measurements; the modes run it only where
+    binary64 cannot tell): ``hi``, ``lo`` (seven arrays each: the words of ``trA, JA, detA, E1 ..
+    E4``), ``bound`` (seven arrays: ``|hi + lo - exact| <= bound``), ``signs`` (``(m, 7)``, as
+    :func:`numpy_invariant_signs` reads them) and ``outside`` (the input guard: where it is set,
+    nothing holds)."""
+    q = [np.asarray(Qm[:, i, j], dtype=np.float64) for i, j in ENTRY_INDICES]
+    with np.errstate(all="ignore"):
+        mags = kernels.quadric_invariants_magnitude(*(np.abs(x) for x in q))
+        absx = np.abs(np.stack(q))
+        outside = ((absx > eb.INPUT_MAX) | ~np.isfinite(absx) | ((absx < eb.INPUT_MIN) & (absx != 0))).any(
+            axis=0
+        )
+        w, bounds = _dd_read(
+            q, list(mags), np.array(eb.INVARIANTS_DD_ERRBOUND), np.array(eb.INVARIANTS_DD_COFACTOR_ERRBOUND)
+        )
+        signs = np.stack([_numpy_dd_sign(w[k], bounds[k]) for k in range(7)], axis=1)
+    return {
+        "hi": [v[0] for v in w],
+        "lo": [v[1] for v in w],
+        "bound": bounds,
+        "signs": np.where(outside[:, None], _UNC, signs).astype(np.int8),
+        "outside": outside,
+    }
+
+
+def numpy_invariant_signs(
+    Q: np.ndarray, filtered: bool, K: np.ndarray, KD: tuple[np.ndarray, np.ndarray] | None = None
+) -> np.ndarray:
+    """As the kernel ``invariant_signs_kernel``, on columns; ``KD`` (binary64 input only): read
+    the quadrics with a sign binary64 cannot tell again in double-double, with these bounds
+    (static, and for the cofactor forms)."""
     q = [Q[:, i, j] for i, j in ENTRY_INDICES]
     out = np.empty((Q.shape[0], 8), dtype=np.int8)
     with np.errstate(all="ignore"):
@@ -377,5 +438,12 @@ def numpy_invariant_signs(Q: np.ndarray, filtered: bool, K: np.ndarray) -> np.nd
                 out[:, k] = np.where(outside, _UNC, _numpy_sign(v[k], K[k] * mags[k]))
             else:
                 out[:, k] = _numpy_sign(v[k], None)
+        if filtered and KD is not None:
+            todo = np.flatnonzero(~outside & (out[:, :7] == _UNC).any(axis=1))
+            if todo.size:
+                w, bounds = _dd_read([x[todo] for x in q], [m[todo] for m in mags], *KD)
+                for k in range(7):
+                    s = _numpy_dd_sign(w[k], bounds[k])
+                    out[todo, k] = np.where(out[todo, k] == _UNC, s, out[todo, k])
     out[:, 7] = np.sign(q[9]).astype(np.int8)
     return out
