@@ -14,10 +14,12 @@ steps and the order in which they hand pairs on are written once, here:
    has one sign on all of space.  For two ellipsoids with all roots real, the root signs
    (Wang-Wang-Kim, for every pair) settle ``E`` outside ``Q`` or touching it from outside:
    two positive roots mean no crossing and ``E`` in the closed ``R+`` of ``Q``'s canonical
-   sign.  For the contact question the first stage of a cascade reads the region of every
-   pair in the same pass as the contact code (its kernels compute both together); the rest
-   of the cascade decides the contact code where that reading is unsure, and only the first
-   stage's reading settles pairs here.  This is most pairs of an environment and of
+   sign.  For the contact and the region questions the first stage of a cascade reads the
+   region of every pair in the same pass as the contact code (its kernels compute both
+   together); the rest of the cascade decides the contact code where that reading is unsure,
+   and only the first stage's reading settles a side here (a plane's, or an ellipsoid's
+   ``R+``): a later stage's reading of the coefficients' signs would be exact arithmetic on
+   pairs that the separation step settles in binary64.  This is most pairs of an environment and of
    ellipsoids of similar sizes.
    In the plain modes a crossing read from non-real roots that the certified filter cannot
    confirm goes on to step 2 (a symmetric placement's multiple root looks non-real after
@@ -314,10 +316,11 @@ def _decide_steps(mode: NumberMode, pairs: Pairs, question: str, counts: StageCo
     # 1. criterion: the root structure of P (validates the input on the way).
     klass, qsign, ellipsoid = _classes(mode, pairs)
     ell = _is(ellipsoid, True)
-    signs_first = None  # the first stage's root-sign reading of every pair (contact question)
-    if question == "region":
-        crit, names, which = _staged(mode, "criterion_region", pairs)
-    elif question == "contact" and ell is not False:
+    signs_first = None  # the first stage's root-sign reading of every pair
+    if question == "region" or (question == "contact" and ell is not False):
+        # contact codes from the whole cascade, the region reading from its first stage only:
+        # the later stages' region reading (exact arithmetic for the coefficients' signs of a
+        # structurally singular Q) would settle nothing that the separation stage does not
         crit, names, which, signs_first, deciding = _contact_with_signs(mode, pairs)
     else:
         crit, names, which = _staged(mode, "criterion_contact", pairs)
@@ -337,10 +340,7 @@ def _decide_steps(mode: NumberMode, pairs: Pairs, question: str, counts: StageCo
             continue
         here = which == k if len(deciding) > 1 else True  # one stage decided every decided pair
         if question == "region":
-            settle(here & (crit == int(RegionCode.CONTACT)), RegionCode.CONTACT, label)
-            if plane is not False:
-                on_side = (crit == int(RegionCode.R_MINUS)) | (crit == int(RegionCode.R_PLUS))
-                settle(here & on_side & plane, crit, label)
+            settle(here & (crit == int(ContactCode.CONTACT)), RegionCode.CONTACT, label)
         else:
             answer = ContactCode.CONTACT if question == "contact" else ContactKindCode.TRANSVERSAL
             settle(here & (crit == int(ContactCode.CONTACT)), answer, label)
@@ -350,22 +350,19 @@ def _decide_steps(mode: NumberMode, pairs: Pairs, question: str, counts: StageCo
                     ContactCode.NO_CONTACT,
                     label,
                 )
-    if question == "region":
-        all_real = np.isin(crit, (int(RegionCode.R_MINUS), int(RegionCode.R_PLUS), int(RegionCode.NO_ROW)))
-    else:
-        all_real = crit == int(ContactCode.NO_CONTACT)
+    all_real = crit == int(ContactCode.NO_CONTACT)
+    if question == "region" and plane is not False and signs_first is not None:
+        # a plane: the side read by the first stage (Theorem 14 with Corollary 15)
+        on_side = (signs_first == int(RegionCode.R_MINUS)) | (signs_first == int(RegionCode.R_PLUS))
+        settle(on_side & plane, signs_first, labels[0])
 
     # 1b. two ellipsoids, all roots real: two positive roots of P (Wang-Wang-Kim, for every
     # pair, read off the criterion's root signs) mean E outside Q or touching it from outside:
     # no crossing, and E in the closed R+ of Q's canonical sign.
-    if question == "region" and ell is not False:
-        outside = (crit * qsign == int(RegionCode.R_PLUS)) & ell
-        for k, label in enumerate(labels):
-            settle(False if k not in deciding else outside & (which == k), crit, label)
-    elif signs_first is not None:
+    if signs_first is not None and ell is not False:
         # the first stage's reading only (see _contact_with_signs)
         outside = todo & all_real & ell & (signs_first * qsign == int(RegionCode.R_PLUS))
-        settle(outside, ContactCode.NO_CONTACT, labels[0])
+        settle(outside, signs_first if question == "region" else ContactCode.NO_CONTACT, labels[0])
 
     # 1c. plain modes: a crossing read from non-real roots that a certified reading cannot
     # confirm waits for the separation stage.
@@ -419,7 +416,7 @@ def _confirm_crossings(
 def _contact_with_signs(
     mode: NumberMode, pairs: Pairs
 ) -> tuple[np.ndarray, list[str], np.ndarray, np.ndarray, set[int]]:
-    """The criterion for the contact question, and the root-sign reading of step 1b, in one
+    """The criterion for the contact and region questions, and the root-sign reading of step 1b, in one
     pass over the pairs: the first stage of the cascade reads the region (its kernels compute
     the contact code and the signs of the coefficients together); where that reading is
     uncertain, the whole cascade decides the contact code alone.
