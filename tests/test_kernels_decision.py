@@ -63,7 +63,9 @@ def test_left_out_pairs_are_those_without_two_certain_ellipsoids():
     """A quadric that is not an ellipsoid, a non-symmetric or non-finite matrix: out of the lane."""
     rng = np.random.default_rng(59)
     E, _ = random_ellipsoids(4, rng, axes=(0.5, 1.0), box=1.0)
-    Q = np.stack([np.diag([1.0, 1.0, 1.0, -9.0]), np.diag([1.0, 1.0, 0.0, -1.0]), np.diag([1.0, 1, 1, -9]), np.eye(4)])
+    Q = np.stack(
+        [np.diag([1.0, 1.0, 1.0, -9.0]), np.diag([1.0, 1.0, 0.0, -1.0]), np.diag([1.0, 1, 1, -9]), np.eye(4)]
+    )
     Q[2, 0, 1] = 1e-3  # not symmetric
     Q[3, 3, 3] = np.nan
     crit, _, qsign = kd.decide_ellipsoids(_pairs(E, Q), outside_too=False)
