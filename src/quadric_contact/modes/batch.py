@@ -25,19 +25,26 @@ from typing import Any
 
 import numpy as np
 
+from quadric_contact.exact.entries import ENTRY_INDICES
 from quadric_contact.exact.errors import (
     SYMMETRIZE_HINT,
     ChoiceError,
     NotANumberError,
+    NotAPlaneError,
     NotSymmetricError,
     ShapeError,
 )
+from quadric_contact.exact.rational import as_square_matrix
+from quadric_contact.model.classification import QuadricKind
+from quadric_contact.model.quadric import Quadric
 from quadric_contact.modes import (
     MatrixStack,
     NumberMode,
     Pairs,
     get_mode,
 )
+from quadric_contact.modes.packing import Packed, unpack
+from quadric_contact.theory.pencil import as_quadric
 
 __all__ = [
     "as_stack",
@@ -49,8 +56,6 @@ __all__ = [
 
 def _is_single(value: Any) -> bool:
     """One quadric given as an object (not a nested sequence or an array)."""
-    from quadric_contact.model.quadric import Quadric
-
     return isinstance(value, (Quadric, str)) or (type(value).__module__ or "").startswith("sympy")
 
 
@@ -79,7 +84,6 @@ def is_stack(value: Any) -> bool:
     """
     if _is_single(value):
         return False
-    from quadric_contact.modes.packing import Packed
 
     if isinstance(value, Packed):
         return True
@@ -125,8 +129,6 @@ def as_stack(value: Any, name: str = "M") -> MatrixStack:
     ------
     ShapeError, NotANumberError, NonFiniteError, NotRationalError, NotSymmetricError
     """
-    from quadric_contact.modes.packing import Packed
-    from quadric_contact.theory.pencil import as_quadric
 
     if isinstance(value, Packed):
         return _packed_stack(value, name)
@@ -169,7 +171,6 @@ def _packed_stack(value: Any, name: str) -> MatrixStack:
     """A packed stack (:class:`~quadric_contact.modes.packing.Packed`): binary64 entries are used as
     they are (the fast kernels read them without unpacking); other numbers go through the
     exact conversion of the unpacked matrices."""
-    from quadric_contact.modes.packing import unpack
 
     arr = value.array
     batch = tuple(arr.shape[:-1])
@@ -186,8 +187,6 @@ def _packed_stack(value: Any, name: str) -> MatrixStack:
 
 
 def _object_upper(arr: np.ndarray, name: str) -> list[tuple[Fraction, ...]]:
-    from quadric_contact.exact.entries import ENTRY_INDICES
-    from quadric_contact.exact.rational import as_square_matrix
 
     out = []
     for k, m in enumerate(arr):
@@ -213,7 +212,6 @@ def _object_upper(arr: np.ndarray, name: str) -> list[tuple[Fraction, ...]]:
 def _exact_stack(uppers: list[tuple[Fraction, ...]], batch: tuple[int, ...], name: str) -> MatrixStack:
     """Exact matrices: binary64 roundings for the float stages; if every entry is a
     binary64 number the stack *is* float input (no rounding at all)."""
-    from quadric_contact.exact.entries import ENTRY_INDICES
 
     n = len(uppers)
     exact = np.empty((n, 10), dtype=object)
@@ -298,8 +296,6 @@ def run_stack(
 
 
 def _require_planes(mode: NumberMode, pairs: Pairs) -> None:
-    from quadric_contact.exact.errors import NotAPlaneError
-    from quadric_contact.model.classification import QuadricKind
     from quadric_contact.modes.decisions import KINDS, UNCERTAIN_ROW, rows_from_masks
     from quadric_contact.modes.validation import exact_matrix
 

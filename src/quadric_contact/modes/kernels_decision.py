@@ -18,7 +18,9 @@ pass, block by block (:data:`NB` pairs, in the L1 cache):
    leaves: everything
    but non-real roots (a crossing, Remark 9) and, unless the caller needs more
    (``outside_too``), the two positive roots of two ellipsoids (Wang-Wang-Kim: ``E`` in the
-   closed ``R+`` of ``Q``);
+   closed ``R+`` of ``Q``); with ``Delta_4 > 0`` certain the roots are simple, the positive
+   ones distinct, and the ellipsoids strictly apart (Wang-Wang-Kim): the separation code is
+   that side, without the signature;
 4. for the listed pairs only, a second straight-line loop computes the pencil's signature at
    the sample points, and a scalar loop looks the facts up in
    :data:`quadric_contact.theory.decision.REGION_OF`, with the scalar certificate as a second
@@ -182,10 +184,15 @@ def _decide_block_kernel(
             r = _CONTACT if crossing else (r if code == _NO_CONTACT else FALLBACK)
             qs_ = (1 if o > 0.0 else 0) - (1 if o < 0.0 else 0)
             outside = ((r == 1) | (r == -1)) & (r * qs_ == _R_PLUS)
-            listed = (qs_ != 0) & (not crossing) & (outside_too | (not outside))
+            # Delta_4 certainly positive (its digit of the table index): with all roots real,
+            # four simple roots, so the two positive ones are distinct and the ellipsoids are
+            # strictly apart (Wang-Wang-Kim): a positive definite member exists, the separation
+            # code is the side itself, no signature needed
+            apart = outside & (((int(xb[i]) >> 4) & 3) == 2)
+            listed = (qs_ != 0) & (not crossing) & ((outside_too & (not apart)) | (not outside))
             crit[p] = r if qs_ != 0 else OUT
             qsign[p] = qs_
-            sep[p] = NOT_RUN
+            sep[p] = r if (apart & (qs_ != 0)) else NOT_RUN
             hb[k] = 1.0 if outside else 0.0  # try the last critical point first
             li[k] = i
             k += 1 if listed else 0
