@@ -5,7 +5,7 @@ A double-double is a pair ``x = (xh, xl)`` of binary64 numbers standing for the 
 ``xh + xl``, with ``xh = RN(xh + xl)`` (a *double-word number* in the sense of Joldes, Muller,
 Popescu, "Tight and rigorous error bounds for basic building blocks of double-word
 arithmetic", ACM TOMS 44(2), 2017, JMP 2017 below): about 106 bits.  The generated programs
-of :mod:`quadric_contact._generated.dd_programs` (the cofactors of a quadratic part, the
+of :mod:`!quadric_contact._generated.dd_programs` (the cofactors of a quadratic part, the
 invariants of a quadric) are written with these operations, passed to them as arguments;
 their error bounds are :data:`~quadric_contact.modes.errorbounds.INVARIANTS_DD_ERRBOUND` and
 :data:`~quadric_contact.modes.errorbounds.INVARIANTS_DD_COFACTOR_ERRBOUND`.
@@ -33,7 +33,7 @@ proves for them (``u = 2^-53``; their 2Prod may be any exact product, Dekker's h
 
 Every function uses ``+ - *`` only, without a branch: the same text runs on Python floats,
 element by element on numpy arrays (the ``numpy`` backend), and compiled by numba (the
-functions are registered with :func:`~quadric_contact.modes._jit.jitable`).  None may be
+functions are registered with :func:`!quadric_contact.modes._jit.jitable`).  None may be
 evaluated with a fused multiply-add or reassociated: numba compiles without ``fastmath``, so
 LLVM keeps every product and every sum rounded on its own, as Dekker's product needs
 (tested: the compiled program gives the numpy values bit for bit).

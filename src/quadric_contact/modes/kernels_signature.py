@@ -257,6 +257,12 @@ def _member(
     return _definite(g1, g2, g3, g4), g4
 
 
+_member_called = _njit(getattr(_member, "py_func", _member))
+""":func:`_member` as a function the scalar loops call rather than inline: those loops run for
+few pairs, and each inlined copy of the member's program is compile time (numba copies the
+inlined code for every call site)."""
+
+
 @_njit(inline=True)
 def decide_signature(
     ok: bool, def1: float, def2: float, def3: float, p1: float, p2: float, p3: float, certified: bool
@@ -344,11 +350,11 @@ def signature_rows(
             e = _load(eb_, i, S)
             q = _load(qb_, i, S)
             inputs_ok = cb[4 * S + i] == 1.0
-            db, gb = _member(fb[3 * S + i], e, q, SKt, inputs_ok, certified)
+            db, gb = _member_called(fb[3 * S + i], e, q, SKt, inputs_ok, certified)
             if (db == _NEGATIVE) if last else (db == _POSITIVE):
                 d2, g2 = _DEF_UNKNOWN, _UNC
             else:
-                d2, g2 = _member(fb[2 * S + i], e, q, SKt, inputs_ok, certified)
+                d2, g2 = _member_called(fb[2 * S + i], e, q, SKt, inputs_ok, certified)
         if last:
             code = decide_signature(fb[i] == 1.0, db, d2, da, gb, g2, ga, certified)
         else:
