@@ -588,18 +588,16 @@ def _overlap_steps(mode: NumberMode, pairs: Pairs, counts: StageCounts) -> np.nd
         counts.add(label, k)
 
     # 1. criterion: root structure and signs (validates the input on the way).
-    # The side comes from the first stage's reading only, as for the region question (see
-    # _contact_with_signs): what it cannot read, the separation step reads in binary64.
-    contact, names, which, signs_first, _ = _contact_with_signs(mode, pairs)
+    # The whole cascade reads the side here (unlike the region question): step 2 needs the two
+    # positive roots of two ellipsoids to call a pair apart, and only this reading gives them.
+    crit, names, which = _staged(mode, "criterion_region", pairs)
     plane, ellipsoid, qsign = _solids(mode, pairs)
-    side = _side(signs_first, qsign)
-    crossing = contact == int(ContactCode.CONTACT)
-    crit = np.where(crossing, np.int8(RegionCode.CONTACT), np.int8(_UNC))
+    side = _side(crit, qsign)
     said = _overlap_from_criterion(crit, side, plane | ellipsoid)
     for k, name in enumerate(names):
         here = which == k
         settle(here & (said != _UNC), said, f"criterion ({name})")
-    said = np.flatnonzero(~todo & crossing)
+    said = np.flatnonzero(~todo & (crit == int(RegionCode.CONTACT)))
     _confirm_crossings(mode, pairs, said, out, todo, counts, f"criterion ({names[0]})")
 
     # 2. separation: definite members, or four simple real roots without one.
