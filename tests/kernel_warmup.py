@@ -59,6 +59,15 @@ def _calls() -> list[tuple[str, Callable[[], Any]]]:
             for mode in ("float", "filter", "certified"):
                 call = functools.partial(fn, e, q, mode=mode)
                 calls.append((f"{name}({label}, mode={mode!r})", call))
+    # Ellipsoids of equal size ranges, many of them: some pairs leave the decision kernel's lane
+    # (an uncertain reading), so the general steps' separation kernel is reached on ellipsoid
+    # pairs as well (the lane takes every pair of the small stacks above).
+    rng = np.random.default_rng(4)
+    Em, _ = random_ellipsoids(3000, rng, axes=(0.5, 2.0), box=2.0)
+    Qm, _ = random_ellipsoids(3000, rng, axes=(0.5, 2.0), box=2.0)
+    for name in ("transversal_contact", "relative_position"):
+        call = functools.partial(questions[name], Em, Qm, mode="certified")
+        calls.append((f"{name}(ellipsoids of equal sizes, 3000, mode='certified')", call))
     from quadric_contact.modes.float64 import read_all
 
     calls.append(("read_all (the bench's read-bandwidth limit)", functools.partial(read_all, Es, Qs)))
