@@ -98,7 +98,6 @@ def test_blocks_compute_the_same_bits_as_the_formulas():
             assert np.array_equal(g, r)
 
 
-
 def _wide_floats(rng, n):
     """Signed binary64 numbers over a wide range of exponents, with zeros and signed zeros."""
     x = rng.uniform(1, 2, size=n) * np.exp2(rng.integers(-60, 60, size=n)) * rng.choice([-1.0, 1.0], size=n)
@@ -139,6 +138,8 @@ def test_fused_program_reuses_only_products_of_exact_magnitudes():
     fused = ast.parse("\n".join(emit_value_and_magnitude_function(fdef))).body[0]
     _, (value, mag) = _interpret(fused, [1.0, 3.0, -2.0])
     assert value == 4.0 and mag == 8.0  # |a - b| |c| = 4, the companion (|a| + |b|) |c| = 8
+
+
 def test_invariants_are_the_characteristic_polynomial_coefficients():
     codegen.verify_invariants()  # raises on any difference
     Q, qs = codegen.symmetric_matrix("q")

@@ -43,7 +43,7 @@ MEMORY_BYTES = 3 * 1024**3
 
 SLOWEST: list[tuple[float, str, str]] = []
 
-CHILD = r'''
+CHILD = r"""
 import io, json, resource, sys, time, contextlib
 resource.setrlimit(resource.RLIMIT_CPU, ({cpu}, {cpu}))
 resource.setrlimit(resource.RLIMIT_AS, ({mem}, {mem}))
@@ -119,7 +119,7 @@ for kind, a, b, c in cases:
     out.append((kind, verdict, time.process_time() - t0))
 armed[0] = False
 print(json.dumps({{"results": out, "events": events}}))
-'''
+"""
 
 WARM = (
     '("equation", "x^2+y^2+z^2-1", "", ""), ("number", "1/3", "", ""), ("path", "t^2", "", ""),'

@@ -41,11 +41,7 @@ def _calls(path: Path) -> list[tuple[str, int]]:
 
 
 def _all_calls() -> list[tuple[str, str, int]]:
-    return [
-        (path.name, name, line)
-        for path in sorted(SRC.rglob("*.py"))
-        for name, line in _calls(path)
-    ]
+    return [(path.name, name, line) for path in sorted(SRC.rglob("*.py")) for name, line in _calls(path)]
 
 
 def test_every_evaluator_call_is_known():

@@ -270,6 +270,7 @@ def test_a_pair_and_a_stack_broadcast_the_same_answers():
 
 def test_dask_arrays_give_the_same_answer():
     import dask.array as da  # the test extra installs dask
+
     Es = np.stack([E.to_numpy() for E, _, _ in PAIRS.values()])
     Qs = np.stack([Q.to_numpy() for _, Q, _ in PAIRS.values()])
     for question in ("contact", "region", "kind", "overlap"):

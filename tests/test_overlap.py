@@ -126,9 +126,7 @@ def test_two_ellipsoids_containment_both_ways_and_touching_from_inside():
     roots = {
         name: sorted(
             r.sign()
-            for r, m in real_roots(
-                list(qc.overlap(E, Q).polynomial.coefficients), multiplicities=True
-            )
+            for r, m in real_roots(list(qc.overlap(E, Q).polynomial.coefficients), multiplicities=True)
             for _ in range(m)
         )
         for name, (E, Q, _) in cases.items()

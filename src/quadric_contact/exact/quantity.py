@@ -60,9 +60,7 @@ class Quantity:
 
         return cls((), lambda v, c: c(q), show)
 
-    def _combine(
-        self, other: Any, op: Callable[[Any, Any], Any], sym: Callable[[Any, Any], Any]
-    ) -> Quantity:
+    def _combine(self, other: Any, op: Callable[[Any, Any], Any], sym: Callable[[Any, Any], Any]) -> Quantity:
         o = Quantity.of(other)
         args = list(self.args)
         keys = [(a.minpoly, a.index) for a in args]

@@ -1100,4 +1100,3 @@ def parse_number(text: str) -> Fraction:
     except EquationError as exc:
         raise NotANumberError(str(exc), text, **exc.details) from None
     return poly.get((), Fraction(0))
-

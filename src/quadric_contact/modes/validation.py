@@ -70,8 +70,7 @@ def validate_rows(stack: MatrixStack, rows: np.ndarray, name: str | None = None)
     i, j = (int(v) for v in np.argwhere(M != M.T)[0])
     i, j = min(i, j), max(i, j)
     raise NotSymmetricError(
-        f"{where} is not symmetric: M[{i},{j}] = {M[i, j]!r} but M[{j},{i}] = {M[j, i]!r};"
-        f" {SYMMETRIZE_HINT}",
+        f"{where} is not symmetric: M[{i},{j}] = {M[i, j]!r} but M[{j},{i}] = {M[j, i]!r}; {SYMMETRIZE_HINT}",
         M,
         entry=(i, j),
         index=row,

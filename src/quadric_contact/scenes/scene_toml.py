@@ -716,9 +716,11 @@ def parse_scene(
         _ellipsoid(r, t, f"ellipsoid[{i}]", span)
         for i, t in enumerate(r.array_of_tables(data, "ellipsoid", "ellipsoid"))
     )
-    _distinct_names(r, [(f"object[{i}]", o.name) for i, o in enumerate(objects)] + [
-        (f"ellipsoid[{i}]", e.name) for i, e in enumerate(ells)
-    ])
+    _distinct_names(
+        r,
+        [(f"object[{i}]", o.name) for i, o in enumerate(objects)]
+        + [(f"ellipsoid[{i}]", e.name) for i, e in enumerate(ells)],
+    )
     mutual_raw = meta.get("mutual", False)
     if mutual_raw is True:
         mutual = tuple(e.name for e in ells)

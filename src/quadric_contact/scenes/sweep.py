@@ -192,7 +192,9 @@ def where_text(where: str) -> str:
     return "serially" if where == "serial" else f"on {where}"
 
 
-_ADDRESS = re.compile(r"(?:(tcp|tls|ucx|ws|wss)://)?(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9][A-Za-z0-9.-]{0,252}):([0-9]{1,5})")
+_ADDRESS = re.compile(
+    r"(?:(tcp|tls|ucx|ws|wss)://)?(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9][A-Za-z0-9.-]{0,252}):([0-9]{1,5})"
+)
 
 
 def check_scheduler_address(address: Any) -> str:

@@ -39,6 +39,7 @@ from quadric_contact.theory.results import ContactResult, Region
 
 __all__ = ["decide_pencil_checked", "decide_transversal", "refuse", "transversal_contact_exact"]
 
+
 def refuse(Q: Quadric, what: str = "Q") -> None:
     """Raise :class:`ExcludedQuadricError` for the types no predicate answers for
     (:data:`~quadric_contact.model.classification.REFUSED_KINDS`)."""

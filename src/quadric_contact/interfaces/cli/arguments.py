@@ -36,9 +36,7 @@ def integer(option: str, low: int, high: int) -> Callable[[str], int]:
     def read(text: str) -> int:
         value = _read(option, text)
         if value.denominator != 1 or not low <= value <= high:
-            raise argparse.ArgumentTypeError(
-                f"expected an integer in [{low}, {high}], got {text!r}"
-            )
+            raise argparse.ArgumentTypeError(f"expected an integer in [{low}, {high}], got {text!r}")
         return int(value)
 
     read.__name__ = "integer"
