@@ -5,8 +5,10 @@ hypothesis profiles (``default`` for CI, ``slow`` for the exhaustive runs select
 from __future__ import annotations
 
 import os
+import queue
 import subprocess
 import sys
+import threading
 from collections.abc import Callable, Iterator
 from pathlib import Path
 
@@ -37,8 +39,8 @@ def pytest_sessionstart(session: pytest.Session) -> None:
     the tests: under pytest-xdist in the controller, before its workers start (they then load
     the kernels from the cache instead of each compiling them at once, behind the capture that
     would hide the package's compile notice).  Cold, this takes minutes, and says so; warm, a
-    few seconds.  The work runs in a process of its own (:mod:`tests.kernel_warmup`) that
-    imports the package from ``src/`` as the tests do, so it fills the cache they read.
+    few seconds.  The work runs in processes of their own (:mod:`tests.kernel_warmup`) that
+    import the package from ``src/`` as the tests do, so it fills the cache they read.
     ``QUADRIC_CONTACT_WARMUP=0`` skips it."""
     config = session.config
     if hasattr(config, "workerinput") or config.option.collectonly:
@@ -50,25 +52,49 @@ def pytest_sessionstart(session: pytest.Session) -> None:
     def say(line: str) -> None:
         if reporter is not None:
             reporter.write_line(line)
+            reporter.flush()  # now, not when the output buffer fills (a pipe in CI)
         else:  # pragma: no cover - the terminal reporter is disabled
             print(line, file=sys.stderr, flush=True)
 
     say("quadric-contact: compiling the array kernels once (cached afterwards), or loading them ...")
     root = Path(__file__).resolve().parents[1]
     paths = [str(root / "src"), str(root), os.environ.get("PYTHONPATH", "")]
-    done = subprocess.run(
-        [sys.executable, "-m", "tests.kernel_warmup"],
-        cwd=root,
-        env=dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, paths))),
-        stdout=subprocess.PIPE,
-        stderr=subprocess.STDOUT,
-        text=True,
-        check=False,
-    )
-    for line in done.stdout.splitlines():
-        say(line)
-    if done.returncode:
-        say(f"quadric-contact: the warm-up failed (exit status {done.returncode}); the tests compile them")
+    # numba compiles on one core: with two or more, a second process runs the list from its
+    # other end, so that the two compile different kernels (cold: about half the time)
+    orders = [[], ["--reverse"]] if (os.cpu_count() or 1) >= 2 else [[]]
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, paths)))
+    runs = [
+        subprocess.Popen(
+            [sys.executable, "-m", "tests.kernel_warmup", *extra],
+            cwd=root,
+            env=env,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+        )
+        for extra in orders
+    ]
+    # their lines as they come (a cold compile takes minutes: the run shows what it is doing)
+    lines: queue.Queue[str | None] = queue.Queue()
+
+    def relay(run: subprocess.Popen[str]) -> None:
+        assert run.stdout is not None
+        for line in run.stdout:
+            lines.put(line.rstrip("\n"))
+        lines.put(None)
+
+    for run in runs:
+        threading.Thread(target=relay, args=(run,), daemon=True).start()
+    ended = 0
+    while ended < len(runs):
+        line = lines.get()
+        if line is None:
+            ended += 1
+        else:
+            say(line)
+    for run in runs:
+        if run.wait():
+            say(f"quadric-contact: the warm-up failed (exit status {run.returncode}); the tests compile them")
 
 
 @pytest.fixture(autouse=True)

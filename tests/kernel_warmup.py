@@ -51,6 +51,18 @@ def _calls() -> list[tuple[str, Callable[[], Any]]]:
         "smallness": qc.smallness,
         "overlap": qc.overlap,
     }
+    first: list[tuple[str, Callable[[], Any]]] = []
+    # Ellipsoids of equal size ranges, many of them: some pairs leave the decision kernel's lane
+    # (an uncertain reading), so the general steps' separation kernel is reached on ellipsoid
+    # pairs as well (the lane takes every pair of the small stacks below).  First in the list:
+    # the decision kernel is the longest compile, and the second process, which starts from the
+    # tail, compiles other kernels meanwhile.
+    rng = np.random.default_rng(4)
+    Em, _ = random_ellipsoids(3000, rng, axes=(0.5, 2.0), box=2.0)
+    Qm, _ = random_ellipsoids(3000, rng, axes=(0.5, 2.0), box=2.0)
+    for name in ("transversal_contact", "relative_position"):
+        call = functools.partial(questions[name], Em, Qm, mode="certified")
+        first.append((f"{name}(ellipsoids of equal sizes, 3000, mode='certified')", call))
     calls = []
     for label, (e, q) in inputs.items():
         for name, fn in questions.items():
@@ -59,19 +71,10 @@ def _calls() -> list[tuple[str, Callable[[], Any]]]:
             for mode in ("float", "filter", "certified"):
                 call = functools.partial(fn, e, q, mode=mode)
                 calls.append((f"{name}({label}, mode={mode!r})", call))
-    # Ellipsoids of equal size ranges, many of them: some pairs leave the decision kernel's lane
-    # (an uncertain reading), so the general steps' separation kernel is reached on ellipsoid
-    # pairs as well (the lane takes every pair of the small stacks above).
-    rng = np.random.default_rng(4)
-    Em, _ = random_ellipsoids(3000, rng, axes=(0.5, 2.0), box=2.0)
-    Qm, _ = random_ellipsoids(3000, rng, axes=(0.5, 2.0), box=2.0)
-    for name in ("transversal_contact", "relative_position"):
-        call = functools.partial(questions[name], Em, Qm, mode="certified")
-        calls.append((f"{name}(ellipsoids of equal sizes, 3000, mode='certified')", call))
     from quadric_contact.modes.float64 import read_all
 
     calls.append(("read_all (the bench's read-bandwidth limit)", functools.partial(read_all, Es, Qs)))
-    return calls
+    return first + calls
 
 
 def _near_touching() -> tuple[Any, Any]:
@@ -101,10 +104,12 @@ def _ellipsoid(axes: tuple[float, float, float], center: tuple[float, float, flo
     return M
 
 
-def warm_kernels(log: Callable[[str], None] = print) -> tuple[float, int]:
+def warm_kernels(log: Callable[[str], None] = print, *, reverse: bool = False) -> tuple[float, int]:
     """Call every kernel the array API compiles, once; return the seconds it took and how many
     kernels missed numba's on-disk cache (were compiled).  A call that raises is reported on
-    ``log`` and skipped (the tests will say what is wrong with it)."""
+    ``log`` and skipped (the tests will say what is wrong with it).  ``reverse``: the calls in
+    the opposite order (a second process, started alongside, compiles the kernels of the other
+    end of the list first; where the two meet, each loads what the other has cached)."""
     from numba.core import event
 
     missed = []
@@ -127,22 +132,31 @@ def warm_kernels(log: Callable[[str], None] = print) -> tuple[float, int]:
     event.register("numba:compile", listener)
     start = time.perf_counter()
     try:
-        for what, call in _calls():
+        calls = _calls()
+        for what, call in reversed(calls) if reverse else calls:
+            before, t0 = len(missed), time.perf_counter()
             try:
                 call()
             except Exception as exc:  # reported, not raised: the tests themselves fail on it
                 log(f"  {what}: {type(exc).__name__}: {exc}")
+            if len(missed) > before:  # progress, where a compile makes the wait long
+                log(f"  {what}: {len(missed) - before} compiled in {time.perf_counter() - t0:.0f} s")
     finally:
         event.unregister("numba:compile", listener)
     return time.perf_counter() - start, len(missed)
 
 
 def main() -> None:
-    """What the test run's first process calls (in a process of its own, whose memory, several
-    GB while numba compiles, is returned when it ends): one line with the time it took."""
-    seconds, compiled = warm_kernels(log=lambda line: print(line, flush=True))
+    """What the test run's first process calls (in processes of their own, whose memory, several
+    GB while numba compiles, is returned when they end): one line with the time it took.
+    ``--reverse``: the calls in the opposite order."""
+    import sys
+
+    reverse = "--reverse" in sys.argv[1:]
+    seconds, compiled = warm_kernels(log=lambda line: print(line, flush=True), reverse=reverse)
     how = f"{compiled} compiled" if compiled else "loaded from numba's on-disk cache"
-    print(f"quadric-contact: array kernels {how} in {seconds:.1f} s", flush=True)
+    order = " (from the end of the list)" if reverse else ""
+    print(f"quadric-contact: array kernels {how} in {seconds:.1f} s{order}", flush=True)
 
 
 if __name__ == "__main__":

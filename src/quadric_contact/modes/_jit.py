@@ -14,7 +14,7 @@ except ImportError:  # pragma: no cover
     numba = None  # type: ignore[assignment,unused-ignore]
     HAVE_NUMBA = False
 
-__all__ = ["HAVE_NUMBA", "compile_on_a_fresh_stack", "jitable", "njit", "stamp_with_sources"]
+__all__ = ["HAVE_NUMBA", "compile_on_a_fresh_stack", "jitable", "njit", "python_twin", "stamp_with_sources"]
 
 
 def _sources_digest(root: Any = None) -> str:
@@ -141,6 +141,23 @@ def jitable(fn: Callable[..., Any]) -> Callable[..., Any]:
 
         register_jitable(error_model="numpy")(fn)
     return fn
+
+
+def python_twin(fn: Callable[..., Any], *helpers: str) -> Callable[..., Any]:
+    """``fn`` (a kernel's Python source) with the named helpers of its module run by Python too.
+
+    A kernel's Python variant (the ``numpy`` backend, the oracle of equal bits) calls its
+    helpers by the names its module binds to numba dispatchers; a dispatcher called from Python
+    is compiled on its own, and a large inline helper (a whole straight-line loop) then costs a
+    minute of compile time in every process that runs the Python variant.  The twin reads
+    those names as the plain functions they were made from; the smaller helpers they call stay
+    compiled.  The compiled kernel is untouched."""
+    import types
+
+    scope = dict(fn.__globals__)
+    for name in helpers:
+        scope[name] = getattr(scope[name], "py_func", scope[name])
+    return types.FunctionType(fn.__code__, scope, fn.__name__, fn.__defaults__, fn.__closure__)
 
 
 # -- first use: one line when the kernels are compiled rather than loaded ---------------------

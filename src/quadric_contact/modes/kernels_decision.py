@@ -43,7 +43,7 @@ import numpy as np
 from quadric_contact._generated import blocks
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.modes import errorbounds as eb
-from quadric_contact.modes._jit import HAVE_NUMBA
+from quadric_contact.modes._jit import HAVE_NUMBA, python_twin
 from quadric_contact.modes._jit import njit as _njit
 from quadric_contact.modes.base import ContactCode, Pairs, RegionCode
 from quadric_contact.modes.decisions import ROWS, UNCERTAIN, region_code_masked, row_of
@@ -71,6 +71,7 @@ _pencil = _njit(blocks.pencil, inline=True)
 _q_part = _njit(blocks.pencil_q_part, inline=True)
 _with_q = _njit(blocks.pencil_with_q_part, inline=True)
 _upper_full = _njit(blocks.upper_full, inline=True)
+_gather_full = _njit(blocks.gather_full, inline=True)
 _abs10 = _njit(blocks.abs_upper, inline=True)
 _row_maxima = _njit(blocks.row_maxima, inline=True)
 _row_bound = _njit(blocks.row_bound, inline=True)
@@ -103,6 +104,25 @@ def ellipsoid_regions() -> np.ndarray:
 
 _REGIONS = ellipsoid_regions()
 _R_PLUS = int(RegionCode.R_PLUS)
+
+
+@_njit(inline=True)
+def _note(
+    i: int, S: int, ok: bool, idx: float, s0: float, s1: float, s2: float, s3: float, s4: float, ell: bool,
+    o: float, e00: float, c: Any, xb: Any, ob: Any, kb: Any, pc: Any,
+) -> None:  # fmt: skip
+    """Keep what the screen read of pair ``i`` for the code loop: the table index (or the
+    fallback's), the sign of ``Q`` where both are certainly ellipsoids (``ell``; else 0), the key
+    of the coefficients' signs, and the coefficients for ``E`` in the paper's sign (``e00 > 0``):
+    ``c_j (-1)^j`` where ``e00 < 0``."""
+    xb[i] = idx if ok else _FALL_INDEX
+    ob[i] = o if ell else 0.0
+    kb[i] = (s0 + 1.0) + 3.0 * (s1 + 1.0) + 9.0 * (s2 + 1.0) + 27.0 * (s3 + 1.0) + 81.0 * (s4 + 1.0)
+    f = -1.0 if e00 < 0.0 else 1.0
+    pc[i] = f * c[1]
+    pc[S + i] = c[2]
+    pc[2 * S + i] = f * c[3]
+    pc[3 * S + i] = c[4]
 
 
 def _decide_block_kernel(
@@ -144,34 +164,46 @@ def _decide_block_kernel(
     e1 = np.empty(10)
     q1 = np.empty(10)
     nl = 0
-    # one quadric against a stack of ellipsoids: its products in the pencil once (the same
-    # program, the same bits, as the criterion kernel's fixed-Q layout)
+    # one quadric against a stack of ellipsoids: what depends on it alone once (its products in
+    # the pencil, its row maxima, whether it is certainly an ellipsoid: the same programs, the
+    # same bits, as for a pair), and the stack of quadrics is not read
     fixed_q = qidx.shape[0] == 0 and qs == 0
-    qp = _q_part(_upper_full(Q, 0 if fixed_q else (qidx[lo] if qidx.shape[0] > 0 else lo * qs)))
+    q0 = _upper_full(Q, 0 if fixed_q else (qidx[lo] if qidx.shape[0] > 0 else lo * qs))
+    qp = _q_part(q0)
+    aq0 = _abs10(q0)
+    T0 = _row_maxima(aq0)
+    qell0, o0 = certified_ellipsoid(q0, T0, qp[12], _SP0 * ((T0[0] * T0[1]) * (T0[2] * T0[3])))
+    qbad = _gather_full(Q, 0, np.empty(10), 0, 1) if fixed_q else False  # its symmetry
+    if fixed_q:  # every column of the block buffer holds it (the signature's pairs copy it)
+        for i in range(S):
+            _gather_full(Q, 0, qb_, i, S)
     for blo in range(lo, hi, S):
         m = min(S, hi - blo)
         gather_block(E, eidx, es, False, blo, m, eb_, asym, True, S)
-        gather_block(Q, qidx, qs, False, blo, m, qb_, asym, False, S)
-        for i in range(m):
-            e = _load(eb_, i, S)
-            q = _load(qb_, i, S)
-            ae = _abs10(e)
-            R = _row_maxima(ae)
-            aq = _abs10(q)
-            T = _row_maxima(aq)
-            c = _with_q(e, q, qp) if fixed_q else _pencil(e, q)
-            W = _row_bound(R[0], R[1], R[2], R[3], T[0], T[1], T[2], T[3])
-            ok, idx, s0, s1, s2, s3, s4, eok = screen_pair(e, q, c, R, T, W, ae, aq, asym[i] == 0.0)
-            qell, o = certified_ellipsoid(q, T, c[0], _SP0 * W[0])
-            xb[i] = idx if ok else _FALL_INDEX
-            ob[i] = o if (qell & eok) else 0.0
-            kb[i] = (s0 + 1.0) + 3.0 * (s1 + 1.0) + 9.0 * (s2 + 1.0) + 27.0 * (s3 + 1.0) + 81.0 * (s4 + 1.0)
-            # the coefficients for E in the paper's sign (e00 > 0): c_j (-1)^j where e00 < 0
-            f = -1.0 if e[0] < 0.0 else 1.0
-            pc[i] = f * c[1]
-            pc[S + i] = c[2]
-            pc[2 * S + i] = f * c[3]
-            pc[3 * S + i] = c[4]
+        if fixed_q:
+            for i in range(m):
+                e = _load(eb_, i, S)
+                ae = _abs10(e)
+                R = _row_maxima(ae)
+                c = _with_q(e, q0, qp)
+                W = _row_bound(R[0], R[1], R[2], R[3], T0[0], T0[1], T0[2], T0[3])
+                sym = (asym[i] == 0.0) & (not qbad)
+                ok, idx, s0, s1, s2, s3, s4, eok = screen_pair(e, q0, c, R, T0, W, ae, aq0, sym)
+                _note(i, S, ok, idx, s0, s1, s2, s3, s4, eok & qell0, o0, e[0], c, xb, ob, kb, pc)
+        else:
+            gather_block(Q, qidx, qs, False, blo, m, qb_, asym, False, S)
+            for i in range(m):
+                e = _load(eb_, i, S)
+                q = _load(qb_, i, S)
+                ae = _abs10(e)
+                R = _row_maxima(ae)
+                aq = _abs10(q)
+                T = _row_maxima(aq)
+                c = _pencil(e, q)
+                W = _row_bound(R[0], R[1], R[2], R[3], T[0], T[1], T[2], T[3])
+                ok, idx, s0, s1, s2, s3, s4, eok = screen_pair(e, q, c, R, T, W, ae, aq, asym[i] == 0.0)
+                qell, o = certified_ellipsoid(q, T, c[0], _SP0 * W[0])
+                _note(i, S, ok, idx, s0, s1, s2, s3, s4, eok & qell, o, e[0], c, xb, ob, kb, pc)
         # the codes, and the list of pairs for the signature, without a branch on the data
         # (the outcomes are random: mispredicted branches cost more than the work)
         k = 0
@@ -215,11 +247,14 @@ def _decide_block_kernel(
             # pairs a block would run it in its scalar remainder, at the latency of its
             # divisions and square roots)
             if nl:
-                signature_rows(ec, qc, cb, nl, C, SK, K, KD, True, fb, e1, q1, at, sep)
+                signature_rows(ec, qc, cb, nl, C, SK, K, KD, 1.0, fb, e1, q1, at, sep)
             nl = 0
 
 
 _KERNEL: dict[bool, Any] = {}
+_LOOPS = ("gather_block", "screen_pair", "certified_ellipsoid", "signature_rows")
+"""The large inline helpers the Python variant runs by Python as well (see
+:func:`~quadric_contact.modes._jit.python_twin`)."""
 _LOCK = threading.Lock()
 
 
@@ -229,7 +264,9 @@ def _kernel(compiled: bool) -> Any:
         with _LOCK:
             k = _KERNEL.get(compiled)
             if k is None:
-                k = _KERNEL[compiled] = _njit(_decide_block_kernel) if compiled else _decide_block_kernel
+                k = _KERNEL[compiled] = (
+                    _njit(_decide_block_kernel) if compiled else python_twin(_decide_block_kernel, *_LOOPS)
+                )
     return k
 
 

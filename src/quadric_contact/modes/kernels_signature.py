@@ -45,7 +45,7 @@ import numpy as np
 
 from quadric_contact._generated import blocks, kernels
 from quadric_contact.modes import errorbounds as eb
-from quadric_contact.modes._jit import HAVE_NUMBA
+from quadric_contact.modes._jit import HAVE_NUMBA, python_twin
 from quadric_contact.modes._jit import njit as _njit
 from quadric_contact.modes.base import Pairs
 from quadric_contact.modes.separation import UNCERTAIN, _separation_one
@@ -311,8 +311,8 @@ def signature_prepare(eb_: Any, qb_: Any, m: int, S: int, cb: Any) -> None:
 
 @_njit(inline=True)
 def signature_rows(
-    eb_: Any, qb_: Any, cb: Any, m: int, S: int, SK: Any, K: Any, KD: Any, certified: bool, fb: Any, e1: Any,
-    q1: Any, at: Any, out: Any,
+    eb_: Any, qb_: Any, cb: Any, m: int, S: int, SK: Any, K: Any, KD: Any, certain_only: float, fb: Any,
+    e1: Any, q1: Any, at: Any, out: Any,
 ) -> None:  # fmt: skip
     """The separation codes of the ``m`` pairs in the column buffers ``eb_``, ``qb_`` (one row of
     ``S`` per upper entry, ``E`` in the paper's sign), written to ``out[at[i]]``.
@@ -324,10 +324,17 @@ def signature_rows(
     ``E`` is inside).  A straight-line loop computes the sample points and the member at the
     first point to try; a scalar loop adds the other members only where no witness was found
     (the last or first, then the middle), looks the facts up in the decision table, and reads
-    a pair again with the scalar certificate where the fast reading is uncertain.  ``fb``
-    (``6 S``), ``e1``, ``q1`` (10): scratch.  Shared by the signature kernel and the decision
-    kernel (:mod:`quadric_contact.modes.kernels_decision`)."""
+    a pair again with the scalar certificate where the fast reading is uncertain.
+    ``certain_only``: 1.0 for certain signs only (the certified reading), 0.0 for the plain one
+    (a run-time number: one signature kernel serves both readings).  ``fb`` (``6 S``), ``e1``,
+    ``q1`` (10): scratch.  Shared by the signature kernel and the decision kernel
+    (:mod:`quadric_contact.modes.kernels_decision`).  Inlined into both (numba compiles it
+    again for each, over a minute): called as a function of its own, it ran 30% slower
+    (measured on the decision kernel: 23.5 against 15.8 ns a pair on the environment
+    population, 28.9 against 22.4 on similar sizes), its buffers being arguments that the
+    compiler must assume may alias."""
     SKt = (SK[0], SK[1], SK[2], SK[3])  # scalars: no store in the loop may alias them
+    certified = certain_only == 1.0
     for i in range(m):
         e = _load(eb_, i, S)
         q = _load(qb_, i, S)
@@ -368,9 +375,9 @@ def signature_rows(
         out[at[i]] = code
 
 
-def _make_signature(certified: bool) -> Any:
-    """The block kernel for the certified reading or the plain one (a constant of the compiled
-    code, so that the straight-line loop has no branch on it)."""
+def _make_signature() -> Any:
+    """The block kernel (``certain_only``: 1.0 for the certified reading, 0.0 for the plain one,
+    see :func:`signature_rows`)."""
 
     def kernel(
         E: Any,
@@ -384,6 +391,7 @@ def _make_signature(certified: bool) -> Any:
         SK: Any,
         K: Any,
         KD: Any,
+        certain_only: float,
         out: Any,
     ) -> None:
         S = NB
@@ -407,25 +415,26 @@ def _make_signature(certified: bool) -> Any:
                         eb_[k * S + t] = -eb_[k * S + t]
                 at[t] = p
             signature_prepare(eb_, qb_, m, S, cb)
-            signature_rows(eb_, qb_, cb, m, S, SK, K, KD, certified, fb, e1, q1, at, out)
+            signature_rows(eb_, qb_, cb, m, S, SK, K, KD, certain_only, fb, e1, q1, at, out)
 
     return kernel
 
 
-_KERNELS: dict[tuple[bool, bool], Any] = {}
+_KERNELS: dict[bool, Any] = {}
+_LOOPS = ("signature_prepare", "signature_rows")
 _KERNELS_LOCK = threading.Lock()
 
 
-def _kernel(certified: bool, compiled: bool) -> Any:
-    """The block kernel for ``certified``, compiled or as Python (made once, on first use)."""
-    key = (certified, compiled)
-    k = _KERNELS.get(key)
+def _kernel(compiled: bool) -> Any:
+    """The block kernel, compiled or as Python (made once, on first use)."""
+    k = _KERNELS.get(compiled)
     if k is None:
         with _KERNELS_LOCK:
-            k = _KERNELS.get(key)
+            k = _KERNELS.get(compiled)
             if k is None:
-                f = _make_signature(certified)
-                k = _KERNELS[key] = _njit(f) if compiled else f
+                f = _make_signature()
+                # the Python variant runs the two straight-line loops by Python as well
+                k = _KERNELS[compiled] = _njit(f) if compiled else python_twin(f, *_LOOPS)
     return k
 
 
@@ -448,9 +457,10 @@ def signature_float(
     KD = np.array(eb.MEMBER_MINORS_ERRBOUND[rounded])
     eidx, qidx, es, qs = pairs.kernel_indices()
     E, Q = pairs.E.floats.reshape(-1, 16), pairs.Q.floats.reshape(-1, 16)  # flat rows, as gathered
+    flag = 1.0 if certified else 0.0
     if backend == "numpy" or not HAVE_NUMBA:
-        _kernel(certified, False)(E, Q, eidx, qidx, es, qs, 0, n, SK, K, KD, out)
+        _kernel(False)(E, Q, eidx, qidx, es, qs, 0, n, SK, K, KD, flag, out)
         return out
-    k = _kernel(certified, True)
-    run_parallel(lambda lo, hi: k(E, Q, eidx, qidx, es, qs, lo, hi, SK, K, KD, out), n, threads)
+    k = _kernel(True)
+    run_parallel(lambda lo, hi: k(E, Q, eidx, qidx, es, qs, lo, hi, SK, K, KD, flag, out), n, threads)
     return out

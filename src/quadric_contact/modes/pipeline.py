@@ -445,19 +445,32 @@ def _contact_with_signs(
     return crit, names, which, signs, deciding
 
 
+def _separation_table(question: str) -> np.ndarray:
+    """The answer to ``question`` for each separation code (``SEP_MINUS``, ``CROSSING``,
+    ``SEP_PLUS``, ``UNCERTAIN``, and the lane's ``NOT_RUN``), at the code plus one: apart means
+    no contact, a crossing transversal contact, the region is the code itself."""
+    table = np.full(5, _UNC, dtype=np.int8)
+    for code in (SEP_MINUS, CROSSING, SEP_PLUS):
+        crossing = code == CROSSING
+        answer: int
+        if question == "contact":
+            answer = ContactCode.CONTACT if crossing else ContactCode.NO_CONTACT
+        elif question == "region":
+            answer = code
+        else:
+            answer = ContactKindCode.TRANSVERSAL if crossing else ContactKindCode.NONE
+        table[code + 1] = answer
+    return table
+
+
+_SEPARATION_TABLES = {question: _separation_table(question) for question in ("contact", "region", "kind")}
+
+
 def _from_separation(sep: np.ndarray, question: str) -> np.ndarray:
-    out = np.full(sep.shape, _UNC, dtype=np.int8)
-    separated = (sep == SEP_MINUS) | (sep == SEP_PLUS)
-    crossing = sep == CROSSING
-    if question == "contact":
-        out[separated] = ContactCode.NO_CONTACT
-        out[crossing] = ContactCode.CONTACT
-    elif question == "region":
-        out[separated | crossing] = sep[separated | crossing]
-    else:
-        out[separated] = ContactKindCode.NONE
-        out[crossing] = ContactKindCode.TRANSVERSAL
-    return out
+    """The answers the separation codes ``sep`` give to ``question`` (:func:`_separation_table`;
+    ``_UNC`` where the code is uncertain or the separation was not run): one lookup a pair."""
+    table = _SEPARATION_TABLES["kind" if question not in ("contact", "region") else question]
+    return table[sep + np.int8(1)]
 
 
 def _exact_pairs(pairs: Pairs, rows: np.ndarray, question: str) -> np.ndarray:
