@@ -64,11 +64,14 @@ def _calls() -> list[tuple[str, Callable[[], Any]]]:
         call = functools.partial(questions[name], Em, Qm, mode="certified")
         first.append((f"{name}(ellipsoids of equal sizes, 3000, mode='certified')", call))
     calls = []
-    for label, (e, q) in inputs.items():
-        for name, fn in questions.items():
-            if name == "overlap" and not label.startswith(("ellipsoids", "packed")):
-                continue  # overlap asks about two ellipsoids
-            for mode in ("float", "filter", "certified"):
+    # mode by mode, certified first and float last: the second process, from the tail, starts
+    # with the float kernels (unfiltered criterion, plain signature), the first with the
+    # certified ones, so that the two seldom compile the same kernel at the same time
+    for mode in ("certified", "filter", "float"):
+        for label, (e, q) in inputs.items():
+            for name, fn in questions.items():
+                if name == "overlap" and not label.startswith(("ellipsoids", "packed")):
+                    continue  # overlap asks about two ellipsoids
                 call = functools.partial(fn, e, q, mode=mode)
                 calls.append((f"{name}({label}, mode={mode!r})", call))
     from quadric_contact.modes.float64 import read_all

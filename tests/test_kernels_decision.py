@@ -145,3 +145,25 @@ def test_invalid_input_still_raises_through_the_lane():
     bad[5, 1, 1] = np.inf
     with pytest.raises(NonFiniteError):
         overlap(bad, Q)
+
+
+def test_the_codes_are_read_through_the_rules_table():
+    """The lane reads the kernel's three codes through a table built by the steps' own rules:
+    the compiled reading gives, pair by pair, the rules' answer and step."""
+    from quadric_contact.modes import pipeline
+
+    rng = np.random.default_rng(67)
+    n = 5000
+    crit = rng.choice(np.array([-1, 0, 1, 6, 7], dtype=np.int8), n)
+    code = rng.integers(-1, 4, n).astype(np.int8)
+    qsign = rng.integers(-1, 2, n).astype(np.int8)
+    for question in ("contact", "region", "kind", "overlap"):
+        if question == "overlap":
+            want, step = pipeline._overlap_lane_rules(crit, code, qsign)
+        else:
+            want, step = pipeline._lane_rules(crit, code, qsign, question)
+        out, left, by_step = kd.read_codes(crit, code, qsign, *pipeline._lane_table(question))
+        assert (out == want).all(), question
+        assert (left == np.flatnonzero(step == 2)).all()
+        assert by_step.tolist() == np.bincount(step, minlength=3).tolist()
+        assert (step[qsign == 0] == 2).all()  # a pair left out of the lane goes on to the steps

@@ -136,7 +136,12 @@ def test_member_error_bounds_hold(entries, s):
         assert abs(F(got[3 + k]) - exact[3 + k]) <= F(bound)
 
 
-@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+# the geometric decision takes up to seconds a pair: a few examples by default, many in the slow
+# profile (HYPOTHESIS_PROFILE=slow)
+_GEOMETRIC_EXAMPLES = 300 if settings.default.max_examples > 100 else 15
+
+
+@settings(max_examples=_GEOMETRIC_EXAMPLES, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.tuples(ellipsoids(), quadrics()) | tangent_pairs())
 def test_certificates_agree_with_the_geometric_decision(pair):
     """The exact certificate (when it decides) and the certified float one (when it decides)

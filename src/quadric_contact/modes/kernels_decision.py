@@ -57,7 +57,7 @@ from quadric_contact.modes.kernels_criterion import (
 from quadric_contact.modes.kernels_signature import NB, signature_rows
 from quadric_contact.modes.kernels_support import certified_ellipsoid
 
-__all__ = ["NOT_RUN", "OUT", "decide_ellipsoids"]
+__all__ = ["NOT_RUN", "OUT", "decide_ellipsoids", "read_codes"]
 
 OUT = 7
 """Code of a pair this kernel leaves to the general steps (``Q`` or ``E`` not certainly an
@@ -304,3 +304,34 @@ def decide_ellipsoids(
 
     run_parallel(go, n, threads)
     return crit, sep, qsign
+
+
+@_njit
+def _read_codes_impl(
+    crit: Any, sep: Any, qsign: Any, answers: Any, steps: Any, out: Any, left: Any, by_step: Any
+) -> int:
+    k = 0
+    for p in range(crit.shape[0]):
+        key = ((crit[p] + 1) * 5 + sep[p] + 1) * 3 + qsign[p] + 1
+        out[p] = answers[key]
+        s = steps[key]
+        by_step[s] += 1
+        left[k] = p
+        k += 1 if s == 2 else 0
+    return k
+
+
+def read_codes(
+    crit: np.ndarray, sep: np.ndarray, qsign: np.ndarray, answers: np.ndarray, steps: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Read the kernel's codes through a table: for every pair the entry
+    ``((crit + 1) 5 + sep + 1) 3 + qsign + 1`` of ``answers`` (the answer) and of ``steps``
+    (0, 1: the step that gave it; 2: none).  Returns the answers, the pairs whose step is 2 (in
+    order) and how many pairs each step took; one pass (numpy's fancy indexing took 1.4 ms per
+    300 000 pairs, several times this)."""
+    n = crit.shape[0]
+    out = np.empty(n, dtype=np.int8)
+    left = np.empty(n, dtype=np.intp)
+    by_step = np.zeros(3, dtype=np.int64)
+    k = _read_codes_impl(crit, sep, qsign, answers, steps, out, left, by_step)
+    return out, left[:k].copy(), by_step

@@ -328,11 +328,12 @@ def signature_rows(
     ``certain_only``: 1.0 for certain signs only (the certified reading), 0.0 for the plain one
     (a run-time number: one signature kernel serves both readings).  ``fb`` (``6 S``), ``e1``,
     ``q1`` (10): scratch.  Shared by the signature kernel and the decision kernel
-    (:mod:`quadric_contact.modes.kernels_decision`).  Inlined into both (numba compiles it
-    again for each, over a minute): called as a function of its own, it ran 30% slower
-    (measured on the decision kernel: 23.5 against 15.8 ns a pair on the environment
-    population, 28.9 against 22.4 on similar sizes), its buffers being arguments that the
-    compiler must assume may alias."""
+    (:mod:`quadric_contact.modes.kernels_decision`).  Inlined into the decision kernel:
+    called as a function of its own, it ran 30% slower there (23.5 against 15.8 ns a pair on
+    the environment population, 28.9 against 22.4 on similar sizes), its buffers being
+    arguments the compiler must assume may alias.  The signature kernel calls it as a function
+    of its own (:data:`_signature_rows_called`): each inlined copy is over a minute of
+    compile time."""
     SKt = (SK[0], SK[1], SK[2], SK[3])  # scalars: no store in the loop may alias them
     certified = certain_only == 1.0
     for i in range(m):
@@ -415,13 +416,18 @@ def _make_signature() -> Any:
                         eb_[k * S + t] = -eb_[k * S + t]
                 at[t] = p
             signature_prepare(eb_, qb_, m, S, cb)
-            signature_rows(eb_, qb_, cb, m, S, SK, K, KD, certain_only, fb, e1, q1, at, out)
+            _signature_rows_called(eb_, qb_, cb, m, S, SK, K, KD, certain_only, fb, e1, q1, at, out)
 
     return kernel
 
 
+_signature_rows_called = _njit(getattr(signature_rows, "py_func", signature_rows))
+""":func:`signature_rows` as a function of its own, for the signature kernel: that kernel
+serves the general steps (the pairs the decision kernel leaves, and packed input), where its
+speed matters less than the minute of compile time a second inlined copy would cost."""
+
 _KERNELS: dict[bool, Any] = {}
-_LOOPS = ("signature_prepare", "signature_rows")
+_LOOPS = ("signature_prepare", "_signature_rows_called")
 _KERNELS_LOCK = threading.Lock()
 
 

@@ -70,6 +70,7 @@ from quadric_contact.modes.base import (
     StageCounts,
 )
 from quadric_contact.modes.decisions import KINDS, UNCERTAIN_ROW, rows_from_masks
+from quadric_contact.modes.kernels_decision import read_codes
 from quadric_contact.modes.rows import unique_rows
 from quadric_contact.modes.separation import CROSSING, SEP_MINUS, SEP_PLUS
 
@@ -243,21 +244,79 @@ def _lane(
     facts = kernel(pairs, outside_too=question != "contact" and question != "region")
     if facts is None:
         return None
-    crit, sep, qsign = facts
     name = str(getattr(first, "stage", first.name))
-    out = np.full(pairs.n, _UNC, dtype=np.int8)
+    return _read_lane(facts, _lane_table(question), name, counts)
+
+
+def _lane_rules(
+    crit: np.ndarray, sep: np.ndarray, qsign: np.ndarray, question: str
+) -> tuple[np.ndarray, np.ndarray]:
+    """The answers to ``question`` (contact, region, kind) that the decision kernel's codes give
+    by the rules of steps 1 and 2 (:func:`_criterion_answers`, :func:`_from_separation`), and
+    which step gave each (0: the criterion, 1: the separation, 2: neither, the pair goes on
+    to the general steps).  The lane reads them from :func:`_lane_table`."""
+    out = np.full(crit.shape, _UNC, dtype=np.int8)
     todo = qsign != 0
-    by_crit = _criterion_answers(crit, qsign, question, out, todo)
-    counts.add(f"criterion ({name})", by_crit)
+    _criterion_answers(crit, qsign, question, out, todo)
+    step = np.where(qsign != 0, np.where(todo, 2, 0), 2).astype(np.int8)
     values = _from_separation(sep, question)
     hit = todo & (values != _UNC)
-    k = int(np.count_nonzero(hit))
-    if k:
-        _blend(out, hit, values)
-        np.logical_and(todo, np.logical_not(hit), out=todo)
-    counts.add(f"separation ({name})", k)
-    rest = np.flatnonzero(todo | (qsign == 0))
-    return out, rest
+    out[hit] = values[hit]
+    step[hit] = 1
+    return out, step
+
+
+def _overlap_lane_rules(
+    crit: np.ndarray, sep: np.ndarray, qsign: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """As :func:`_lane_rules`, for the overlap question (:func:`_overlap_from_criterion`,
+    :func:`_overlap_from_separation`: ``Q`` an ellipsoid, the certified reading of the side)."""
+    lane = qsign != 0
+    side = _side(crit, qsign)
+    out = _overlap_from_criterion(crit, side, True)
+    out[~lane] = _UNC
+    by_crit = lane & (out != _UNC)
+    values = _overlap_from_separation(sep, qsign, True, side, True)
+    hit = lane & ~by_crit & (values != _UNC)
+    out[hit] = values[hit]
+    step = np.full(crit.shape, 2, dtype=np.int8)
+    step[by_crit] = 0
+    step[hit] = 1
+    return out, step
+
+
+# the codes of the decision kernel: crit in -1 .. 7 (OUT), sep in -1 .. 3 (NOT_RUN), qsign -1 .. 1
+_CRIT_CODES, _SEP_CODES, _QSIGN_CODES = 9, 5, 3
+_LANE_TABLES: dict[str, tuple[np.ndarray, np.ndarray]] = {}
+
+
+def _lane_table(question: str) -> tuple[np.ndarray, np.ndarray]:
+    """The answer and the step (:func:`_lane_rules`, :func:`_overlap_lane_rules`) for every
+    combination of the decision kernel's three codes, computed once by the rules themselves:
+    the lane then reads one entry a pair instead of running the rules' dozen array passes."""
+    table = _LANE_TABLES.get(question)
+    if table is None:
+        grid = np.indices((_CRIT_CODES, _SEP_CODES, _QSIGN_CODES)).reshape(3, -1).astype(np.int8)
+        crit, sep, qsign = grid[0] - 1, grid[1] - 1, grid[2] - 1
+        if question == "overlap":
+            table = _overlap_lane_rules(crit, sep, qsign)
+        else:
+            table = _lane_rules(crit, sep, qsign, question)
+        _LANE_TABLES[question] = table
+    return table
+
+
+def _read_lane(
+    facts: tuple[np.ndarray, np.ndarray, np.ndarray], table: tuple[np.ndarray, np.ndarray], name: str,
+    counts: StageCounts,
+) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+    """The answers and the pairs left to the general steps, from the decision kernel's codes
+    and a lane table (:func:`~quadric_contact.modes.kernels_decision.read_codes`); the counts of
+    the two steps go to ``counts``."""
+    out, left, by_step = read_codes(*facts, *table)
+    counts.add(f"criterion ({name})", int(by_step[0]))
+    counts.add(f"separation ({name})", int(by_step[1]))
+    return out, left
 
 
 def _criterion_answers(crit: np.ndarray, qsign: Any, question: str, out: np.ndarray, todo: np.ndarray) -> int:
@@ -682,19 +741,8 @@ def _overlap_lane(
     facts = None if kernel is None else kernel(pairs, outside_too=True)
     if facts is None:
         return None
-    crit, sep, qsign = facts
     name = str(getattr(first, "stage", first.name))
-    lane = qsign != 0
-    side = _side(crit, qsign)
-    out = _overlap_from_criterion(crit, side, True)
-    out[~lane] = _UNC
-    by_crit = lane & (out != _UNC)
-    counts.add(f"criterion ({name})", int(np.count_nonzero(by_crit)))
-    values = _overlap_from_separation(sep, qsign, True, side, True)
-    hit = lane & ~by_crit & (values != _UNC)
-    counts.add(f"separation ({name})", int(np.count_nonzero(hit)))
-    _blend(out, hit, values)
-    return out, np.flatnonzero(out == _UNC)
+    return _read_lane(facts, _lane_table("overlap"), name, counts)
 
 
 def _exact_overlaps(pairs: Pairs, rows: np.ndarray) -> np.ndarray:
