@@ -170,9 +170,9 @@ def python_twin(fn: Callable[..., Any], *helpers: str) -> Callable[..., Any]:
 # of this package misses the cache the process says so, once, on stderr.
 
 COMPILE_NOTICE = (
-    "quadric-contact: compiling the numba kernels once for this machine (two to four minutes of CPU "
-    "time in all, spread over the first calls that need them); later processes load them from the "
-    "on-disk cache{where}"
+    "quadric-contact: compiling the numba kernels once for this machine (about two minutes of CPU "
+    "time for the first complete decision, seven for every layout and mode, spread over the first "
+    "calls that need them); later processes load them from the on-disk cache{where}"
 )
 """The line printed (stderr) the first time a kernel of the package is compiled in a process."""
 

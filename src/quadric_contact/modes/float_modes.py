@@ -454,7 +454,13 @@ class FloatMode(NumberMode):
         used = _used_rows(pairs.q_index, len(pairs.Q), pairs.n)
         masks = np.zeros(len(pairs.Q), dtype=np.int64)
         masks[used] = self.classify(pairs.Q, used)
-        return rows_from_masks(masks), masks
+        if used.size == len(pairs.Q):
+            return rows_from_masks(masks), masks
+        # a few pairs of a large stack (those the decision kernel left): the rows of the
+        # quadrics they use only (the others are never read; a zero mask is UNCERTAIN_ROW)
+        rows = np.full(len(pairs.Q), UNCERTAIN_ROW, dtype=np.int16)
+        rows[used] = rows_from_masks(masks[used])
+        return rows, masks
 
     def with_candidates(self, method: str, pairs: Pairs) -> tuple[np.ndarray, np.ndarray | None]:
         if method == "criterion_contact":
