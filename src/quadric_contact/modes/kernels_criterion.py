@@ -49,6 +49,7 @@ __all__ = [
     "fast_codes",
     "gather_block",
     "kernel",
+    "read_pair",
     "region_out",
     "screen_pair",
 ]
@@ -175,6 +176,18 @@ def _screen_core(e: Any, R: Any, c: Any, W: Any, plane: bool, guard: bool) -> An
         + _sidx(d4, (_SR4 * rho + _SG4) * A4, 16.0)
     )
     return ok, idx, _sgnf(c0), _sgnf(x1), _sgnf(c2), _sgnf(x3), _sgnf(c4), ell & guard
+
+
+@njit(inline=True)
+def read_pair(eb_: Any, qb_: Any, i: int, S: int) -> Any:
+    """Pair ``i`` of the block buffers: ``(e, q, |e|, row maxima of |e|, |q|, row maxima of
+    |q|)``, what every kernel reads of a pair before its screen (the criterion kernel's
+    distinct pairs, the decision kernel's)."""
+    e = _load(eb_, i, S)
+    q = _load(qb_, i, S)
+    ae = _abs10(e)
+    aq = _abs10(q)
+    return e, q, ae, _row_maxima(ae), aq, _row_maxima(aq)
 
 
 @njit(inline=True)
@@ -372,12 +385,7 @@ def _make_pairs(filtered: bool, region: bool) -> Any:
                 gather_block(E, eidx, es, epacked, blo, m, eb_, asym, True, S)
                 gather_block(Q, qidx, qs, qpacked, blo, m, qb_, asym, False, S)
             for i in range(m):
-                e = _load(eb_, i, S)
-                q = _load(qb_, i, S)
-                ae = _abs10(e)
-                R = _row_maxima(ae)
-                aq = _abs10(q)
-                T = _row_maxima(aq)
+                e, q, ae, R, aq, T = read_pair(eb_, qb_, i, S)
                 qguard = _guard_ok(aq, T) & (asym[i] == 0.0)
                 x, s0, s1, s2, s3, s4 = _one_pair(
                     filtered, e, q, _pencil(e, q), R, T, _guard_ok(ae, R), qguard, _plane(aq)

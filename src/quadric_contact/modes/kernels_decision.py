@@ -52,6 +52,7 @@ from quadric_contact.modes.kernels_criterion import (
     FALL_INDEX,
     FALLBACK,
     gather_block,
+    read_pair,
     screen_pair,
 )
 from quadric_contact.modes.kernels_signature import NB, signature_rows
@@ -193,12 +194,7 @@ def _decide_block_kernel(
         else:
             gather_block(Q, qidx, qs, False, blo, m, qb_, asym, False, S)
             for i in range(m):
-                e = _load(eb_, i, S)
-                q = _load(qb_, i, S)
-                ae = _abs10(e)
-                R = _row_maxima(ae)
-                aq = _abs10(q)
-                T = _row_maxima(aq)
+                e, q, ae, R, aq, T = read_pair(eb_, qb_, i, S)
                 c = _pencil(e, q)
                 W = _row_bound(R[0], R[1], R[2], R[3], T[0], T[1], T[2], T[3])
                 ok, idx, s0, s1, s2, s3, s4, eok = screen_pair(e, q, c, R, T, W, ae, aq, asym[i] == 0.0)
@@ -252,7 +248,7 @@ def _decide_block_kernel(
 
 
 _KERNEL: dict[bool, Any] = {}
-_LOOPS = ("gather_block", "screen_pair", "certified_ellipsoid", "signature_rows")
+_LOOPS = ("gather_block", "read_pair", "screen_pair", "certified_ellipsoid", "signature_rows")
 """The large inline helpers the Python variant runs by Python as well (see
 :func:`~quadric_contact.modes._jit.python_twin`)."""
 _LOCK = threading.Lock()
