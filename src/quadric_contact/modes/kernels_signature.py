@@ -332,7 +332,7 @@ def signature_rows(
     called as a function of its own, it ran 30% slower there (23.5 against 15.8 ns a pair on
     the environment population, 28.9 against 22.4 on similar sizes), its buffers being
     arguments the compiler must assume may alias.  The signature kernel calls it as a function
-    of its own (:data:`_signature_rows_called`): each inlined copy is over a minute of
+    of its own (``_signature_rows_called``): each inlined copy is over a minute of
     compile time."""
     SKt = (SK[0], SK[1], SK[2], SK[3])  # scalars: no store in the loop may alias them
     certified = certain_only == 1.0
