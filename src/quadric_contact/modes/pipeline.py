@@ -234,9 +234,10 @@ def _lane(
     """Steps 1 and 2 for the pairs of two ellipsoids, in one pass over the input: the decision
     kernel (:mod:`quadric_contact.modes.kernels_decision`) reads the criterion and, where it
     does not settle the pair, the signature sequence; the answers follow from its codes by the
-    rules of the steps (:func:`_criterion_answers`, :func:`_from_separation`).  Returns the
-    codes and the pairs left to the steps (not two certain ellipsoids, a guard failed, or
-    uncertain), or None where the mode has no such kernel."""
+    rules of the steps, read through :func:`_lane_table` (the overlap question's own rules for
+    ``question="overlap"``).  Returns the codes and the pairs left to the steps (not two
+    certain ellipsoids, a guard failed, or uncertain), or None where the mode has no such
+    kernel."""
     first = getattr(mode, "stages", (mode,))[0]
     kernel = getattr(first, "decide_ellipsoids", None)
     if kernel is None:
@@ -258,7 +259,7 @@ def _lane_rules(
     out = np.full(crit.shape, _UNC, dtype=np.int8)
     todo = qsign != 0
     _criterion_answers(crit, qsign, question, out, todo)
-    step = np.where(qsign != 0, np.where(todo, 2, 0), 2).astype(np.int8)
+    step = np.where(todo | (qsign == 0), 2, 0).astype(np.int8)
     values = _from_separation(sep, question)
     hit = todo & (values != _UNC)
     out[hit] = values[hit]
@@ -628,13 +629,13 @@ def _decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
     everything at step 2 (never ``TOUCHING``: a touch is a tangency, which binary64 cannot
     see).  Records the stage counts in ``mode``.
 
-    The pairs of two ellipsoids take steps 1 and 2 in one pass (:func:`_overlap_lane`); the
+    The pairs of two ellipsoids take steps 1 and 2 in one pass (:func:`_lane`); the
     others, and what it leaves, take them here."""
     counts = StageCounts()
     if pairs.n == 0:
         mode._record(counts)
         return np.full(0, _UNC, dtype=np.int8)
-    lane = _overlap_lane(mode, pairs, counts)
+    lane = _lane(mode, pairs, "overlap", counts)
     if lane is None:
         out = _overlap_steps(mode, pairs, counts)
     else:
@@ -729,20 +730,6 @@ def _overlap_from_separation(
     not_ellipsoid = np.logical_not(np.asarray(ellipsoid, dtype=bool))  # a mask, also for a scalar
     values[outside & (not_ellipsoid | sure)] = OverlapCode.SEPARATE
     return values
-
-
-def _overlap_lane(
-    mode: NumberMode, pairs: Pairs, counts: StageCounts
-) -> tuple[np.ndarray, np.ndarray] | None:
-    """Steps 1 and 2 of the overlap question for the pairs of two ellipsoids, from the decision
-    kernel's codes in one pass (as :func:`_lane`); None where the mode has no such kernel."""
-    first = getattr(mode, "stages", (mode,))[0]
-    kernel = getattr(first, "decide_ellipsoids", None)
-    facts = None if kernel is None else kernel(pairs, outside_too=True)
-    if facts is None:
-        return None
-    name = str(getattr(first, "stage", first.name))
-    return _read_lane(facts, _lane_table("overlap"), name, counts)
 
 
 def _exact_overlaps(pairs: Pairs, rows: np.ndarray) -> np.ndarray:
