@@ -280,20 +280,58 @@ def test_cached_kernels_are_keyed_on_every_source_they_inline(tmp_path):
 
     k = kernel("fixed_q", True, False)
     holder = getattr(k._cache, "_cache_file", k._cache)
-    assert holder._source_stamp[1] == _jit._sources_digest()
+    module = k.py_func.__module__
+    assert holder._source_stamp[1] == _jit._sources_digest(module=module)
     package = Path(_jit.__file__).resolve().parents[1]
-    for folder in ("modes", "_generated"):
-        shutil.copytree(package / folder, tmp_path / folder, ignore=shutil.ignore_patterns("__pycache__"))
-    (tmp_path / "theory").mkdir()
-    shutil.copy(package / "theory" / "decision.py", tmp_path / "theory" / "decision.py")
-    before = _jit._sources_digest(tmp_path)
-    assert before == _jit._sources_digest()
+    shutil.copytree(package, tmp_path, dirs_exist_ok=True, ignore=shutil.ignore_patterns("__pycache__"))
+    decision_kernel = "quadric_contact.modes.kernels_decision"
+    before = _jit._sources_digest(tmp_path, module)
+    assert before == _jit._sources_digest(module=module)
     blocks = tmp_path / "_generated" / "blocks.py"
     blocks.write_text(blocks.read_text().replace("Delta2 = ", "Delta2 =  ", 1))
-    assert _jit._sources_digest(tmp_path) != before
-    # the decision table the kernels read as constants is part of their source
-    before = _jit._sources_digest(tmp_path)
+    assert _jit._sources_digest(tmp_path, module) != before
+    # the decision table the decision kernel reads as constants is part of its source
+    before = _jit._sources_digest(tmp_path, decision_kernel)
     table = tmp_path / "theory" / "decision.py"
     text = table.read_text()
     table.write_text(text.replace("UNCERTAIN = 0, 1, 2", "UNCERTAIN =  0, 1, 2", 1))
-    assert _jit._sources_digest(tmp_path) != before
+    assert _jit._sources_digest(tmp_path, decision_kernel) != before
+    # the Python around the kernels is not their source, nor is another kernel's module:
+    # editing them compiles nothing again
+    before = _jit._sources_digest(tmp_path, decision_kernel)
+    for other in ("pipeline.py", "scale_kernel.py"):
+        path = tmp_path / "modes" / other
+        path.write_text(path.read_text() + "\n")
+    assert _jit._sources_digest(tmp_path, decision_kernel) == before
+
+
+def test_kernel_sources_are_the_compiled_modules_and_what_they_import():
+    """Every module that compiles code is among the kernels' sources, with the tables it
+    imports; the cascade, the predicates and the modes' classes are not."""
+    from pathlib import Path
+
+    from quadric_contact.modes import _jit
+
+    sources = set(_jit.kernel_sources())
+    package = Path(_jit.__file__).resolve().parents[1]
+    for path in (package / "modes").glob("*.py"):
+        text = path.read_text()
+        if "@njit" in text or "@_njit" in text or "jitable(" in text:
+            assert f"modes/{path.name}" in sources, path.name
+    assert {
+        "theory/decision.py",
+        "theory/regions.py",
+        "modes/errorbounds.py",
+        "_generated/blocks.py",
+    } <= sources
+    assert sources.isdisjoint(
+        {"modes/pipeline.py", "modes/predicates.py", "modes/number_mode.py", "modes/objects.py"}
+    )
+    # a kernel's sources are its module and what it imports, followed through compiled modules
+    assert _jit.kernel_sources(module="quadric_contact.modes.scale_kernel") == [
+        "modes/_jit.py",
+        "modes/scale_kernel.py",
+    ]
+    decision = set(_jit.kernel_sources(module="quadric_contact.modes.kernels_decision"))
+    assert {"modes/kernels_criterion.py", "modes/kernels_signature.py", "_generated/blocks.py"} <= decision
+    assert "modes/scale_kernel.py" not in decision

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import threading
 from collections.abc import Callable
 from typing import Any
@@ -14,52 +15,111 @@ except ImportError:  # pragma: no cover
     numba = None  # type: ignore[assignment,unused-ignore]
     HAVE_NUMBA = False
 
-__all__ = ["HAVE_NUMBA", "compile_on_a_fresh_stack", "jitable", "njit", "python_twin", "stamp_with_sources"]
+__all__ = [
+    "HAVE_NUMBA",
+    "compile_on_a_fresh_stack",
+    "jitable",
+    "kernel_sources",
+    "njit",
+    "python_twin",
+    "stamp_with_sources",
+]
 
 
-def _sources_digest(root: Any = None) -> str:
-    """A digest of the sources the compiled kernels are made of: every module of
-    :mod:`quadric_contact.modes` and :mod:`quadric_contact._generated` (the kernels inline the
-    generated programs and each other's helpers), and the decision table of
-    :mod:`quadric_contact.theory.decision`."""
+def _package_imports(root: Any, rel: str) -> set[str]:
+    """The package modules ``rel`` imports (at module level or in a function), as paths
+    relative to the package root ``root``."""
+    import ast
+
+    found: set[str] = set()
+    for node in ast.walk(ast.parse((root / rel).read_text())):
+        names: list[str] = []
+        if isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            names = [node.module] + [f"{node.module}.{a.name}" for a in node.names]
+        elif isinstance(node, ast.Import):
+            names = [a.name for a in node.names]
+        for name in names:
+            if name.startswith("quadric_contact."):
+                path = name.removeprefix("quadric_contact.").replace(".", "/") + ".py"
+                if (root / path).is_file():
+                    found.add(path)
+    return found
+
+
+def kernel_sources(root: Any = None, module: str | None = None) -> list[str]:
+    """The sources compiled kernels are made of, as paths relative to the package.
+
+    The *compiled modules* are every module of :mod:`quadric_contact.modes` that compiles code
+    (it names ``njit`` or ``jitable``) and every module of :mod:`quadric_contact._generated`
+    (the programs the kernels inline).  The sources of the kernels of ``module`` (a dotted
+    name; all compiled modules if None) are that module, the compiled modules it imports, and
+    so on, with every package module any of them imports, at module level or in a function:
+    the tables, codes and error constants the kernels read as frozen globals come from there
+    (the decision table of :mod:`quadric_contact.theory.decision`, the root-sign table of
+    :mod:`quadric_contact.theory.regions`, ...).  A module that does not compile code is read,
+    not followed.
+
+    So the Python around the kernels (the cascade of :mod:`quadric_contact.modes.pipeline`, the
+    predicates, the modes' classes) is no kernel's source, and a kernel's own module and what
+    it inlines are: editing the scale kernel does not recompile the decision kernel."""
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1] if root is None else Path(root)
+    compiled = {f"_generated/{p.name}" for p in (root / "_generated").glob("*.py")}
+    compiled |= {
+        f"modes/{p.name}"
+        for p in (root / "modes").glob("*.py")
+        if re.search(r"\b(njit|jitable)\b", p.read_text())
+    }
+    start = set(compiled)
+    if module is not None:
+        rel = module.removeprefix("quadric_contact.").replace(".", "/") + ".py"
+        if (root / rel).is_file():
+            start = {rel}
+    seen: set[str] = set()
+    todo = sorted(start)
+    while todo:
+        rel = todo.pop()
+        if rel in seen:
+            continue
+        seen.add(rel)
+        if rel in compiled:
+            todo.extend(sorted(_package_imports(root, rel) - seen))
+    return sorted(seen)
+
+
+def _sources_digest(root: Any = None, module: str | None = None) -> str:
+    """A digest of :func:`kernel_sources` (of ``module``): their names and bytes."""
     import hashlib
     from pathlib import Path
 
     root = Path(__file__).resolve().parents[1] if root is None else Path(root)
     digest = hashlib.sha256()
-    for folder in ("modes", "_generated"):
-        for path in sorted((root / folder).glob("*.py")):
-            digest.update(path.name.encode())
-            digest.update(path.read_bytes())
-    # the decision table, which the kernels read as constants
-    for path in _KERNEL_SOURCES_ELSEWHERE:
-        digest.update(path.encode())
-        digest.update((root / path).read_bytes())
+    for rel in kernel_sources(root, module):
+        digest.update(rel.encode())
+        digest.update((root / rel).read_bytes())
     return digest.hexdigest()
 
 
-_KERNEL_SOURCES_ELSEWHERE = ("theory/decision.py",)
-
-
-_SOURCES: str | None = None
+_SOURCES: dict[str, str] = {}
 
 
 def stamp_with_sources(dispatcher: Any) -> None:
     """numba keys a cached kernel on its own source file only, so a kernel whose file did not
     change but whose inlined helpers or generated programs did (new formulas, new error-bound
     constants) would load stale machine code.  The cache's source stamp is widened to the
-    digest of every source the kernels are made of; an older cache entry then no longer
-    matches and is compiled again.  (If a numba version keeps its stamp elsewhere, nothing is
-    changed.)"""
-    global _SOURCES
+    digest of every source the kernel is made of (:func:`kernel_sources` of its module); an
+    older cache entry then no longer matches and is compiled again.  (If a numba version keeps
+    its stamp elsewhere, nothing is changed.)"""
     cache = getattr(dispatcher, "_cache", None)
     # numba 0.68 keeps the stamp on the index file of the cache; look on the cache itself too
     holder = getattr(cache, "_cache_file", cache)
     if holder is None or not hasattr(holder, "_source_stamp"):
         return
-    if _SOURCES is None:
-        _SOURCES = _sources_digest()
-    holder._source_stamp = (holder._source_stamp, _SOURCES)
+    module = str(getattr(getattr(dispatcher, "py_func", None), "__module__", "") or "")
+    if module not in _SOURCES:
+        _SOURCES[module] = _sources_digest(module=module or None)
+    holder._source_stamp = (holder._source_stamp, _SOURCES[module])
 
 
 def compile_on_a_fresh_stack(dispatcher: Any) -> None:
