@@ -349,18 +349,28 @@ def test_dask_arrays_give_the_same_answer():
 
 def test_an_ellipsoid_inside_e_is_never_called_separate_without_the_root_signs():
     """The separation certificate alone sees only that the surface of E is outside Q: Q may be
-    inside E.  A filter whose criterion says nothing must not answer SEPARATE there."""
+    inside E.  A filter whose criterion reads no side tells the two cases apart by the side of
+    E the centre of Q is on (exactly), never by answering SEPARATE for both."""
 
     class NoCriterion(FilterMode):
         def criterion_region(self, pairs):
             codes = super().criterion_region(pairs)
             return np.where(codes == RegionCode.CONTACT, codes, RegionCode.UNCERTAIN).astype(np.int8)
 
-    E, Q = Quadric.sphere(5), Quadric.ellipsoid(3, 2, 1)
-    assert int(qc.overlap([E], Q, mode=NoCriterion())[0]) == U
-    E, Q = Quadric.sphere(1), Quadric.ellipsoid(3, 2, 1, center=(6, 0, 0))
-    assert int(qc.overlap([E], Q, mode=NoCriterion())[0]) == U
-    assert int(qc.overlap([E], Q, mode=FilterMode())[0]) == S
+    cases = [
+        (Quadric.sphere(5), Quadric.ellipsoid(3, 2, 1)),  # Q inside E
+        (Quadric.sphere(5, center=(1, 1, 0)), Quadric.ellipsoid(3, 2, 1, center=(F(1, 3), 0, F(1, 7)))),
+        (Quadric.sphere(1), Quadric.ellipsoid(3, 2, 1, center=(6, 0, 0))),  # apart
+        (Quadric.sphere(1), Quadric.ellipsoid(3, 2, 1, center=(0, 0, -3))),
+    ]
+    for E, Q in cases:
+        want = int(overlap_exact(E, Q).code)
+        assert want in (O, S)
+        for negate in (False, True):  # either sign of Q's matrix names the same solid
+            q = Quadric.from_matrix([[-x for x in row] for row in Q.matrix]) if negate else Q
+            mode = NoCriterion()
+            assert int(qc.overlap([E], q, mode=mode)[0]) == want
+            assert int(qc.overlap([E], q, mode=FilterMode())[0]) == want
 
 
 # -- results, conventions, errors -------------------------------------------------------------------

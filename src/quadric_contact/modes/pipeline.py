@@ -50,6 +50,7 @@ under ``"<step> (<numbers>)"``, e.g. ``"criterion (filter)"``, ``"separation (ex
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -621,7 +622,8 @@ def _decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
     2. *separation*: the surfaces cross, or ``E`` is strictly inside the solid:
        ``OVERLAPPING``; ``E`` strictly outside: ``SEPARATE``, except that an ellipsoid ``Q``
        outside whose surface ``E`` lies may be inside ``E``: there ``SEPARATE`` needs the two
-       positive roots of step 1 (a definite member at a positive sample point).
+       positive roots of step 1 (a definite member at a positive sample point), or, where
+       step 1 read no side, the side of ``E`` its centre is on, exactly (:func:`_centre_side`).
     3. *exact pair*: tangencies and multiple roots, by
        :func:`~quadric_contact.theory.overlap.overlap_exact` (``TOUCHING`` comes from here only).
 
@@ -660,10 +662,15 @@ def _overlap_steps(mode: NumberMode, pairs: Pairs, counts: StageCounts) -> np.nd
             np.logical_and(todo, np.logical_not(which), out=todo)
         counts.add(label, k)
 
-    # 1. criterion: root structure and signs (validates the input on the way).
-    # The whole cascade reads the side here (unlike the region question): step 2 needs the two
-    # positive roots of two ellipsoids to call a pair apart, and only this reading gives them.
-    crit, names, which = _staged(mode, "criterion_region", pairs)
+    # 1. criterion: root structure and signs (validates the input on the way).  Non-real roots
+    # come from the whole cascade, the side from its first stage only, as for the region
+    # question (_contact_with_signs): the later stages' side reading of a structurally singular
+    # Q (a cone, a cylinder) runs exact arithmetic on the coefficients' signs, for 3 % of the
+    # pairs of every type, and the separation step settles those pairs in binary64.
+    contact, names, which, signs_first, _ = _contact_with_signs(mode, pairs)
+    crit = np.where(contact == int(ContactCode.CONTACT), np.int8(RegionCode.CONTACT), signs_first).astype(
+        np.int8
+    )
     plane, ellipsoid, qsign = _solids(mode, pairs)
     side = _side(crit, qsign)
     said = _overlap_from_criterion(crit, side, plane | ellipsoid)
@@ -678,12 +685,34 @@ def _overlap_steps(mode: NumberMode, pairs: Pairs, counts: StageCounts) -> np.nd
     if rest.size:
         sep, names, which = _staged(mode, "separation", pairs.take(rest))
         values = _overlap_from_separation(sep, qsign[rest], ellipsoid[rest], side[rest], mode.certified)
+        # an ellipsoid Q whose side step 1 could not read (a rounded cylinder or paraboloid,
+        # nearly singular): the surface of E misses Q's solid, so either the solids are apart
+        # or Q is inside E, and the centre of Q (in its solid) tells which
+        open_ = np.flatnonzero((values == _UNC) & (sep * qsign[rest] == SEP_PLUS) & ellipsoid[rest])
+        if open_.size:
+            where_ = _centre_side(pairs, rest[open_])
+            values[open_[where_ > 0]] = OverlapCode.SEPARATE
+            values[open_[where_ < 0]] = OverlapCode.OVERLAPPING
         for k, name in enumerate(names):
             here = np.zeros(n, dtype=bool)
             here[rest[which == k]] = True
             full = np.full(n, _UNC, dtype=np.int8)
             full[rest] = values
             settle(here & (full != _UNC), full, f"separation ({name})")
+
+    # 2b. an ellipsoid or a plane whose side the first stage could not read (a tangency of exact
+    # input): the side read by the whole cascade, where step 1's rules use it (E in the solid
+    # of an ellipsoid or on the solid's side of a plane: overlapping).
+    rest = np.flatnonzero(todo & (side == _UNC) & (plane | ellipsoid))
+    if rest.size:
+        crit, names, which = _staged(mode, "criterion_region", pairs.take(rest))
+        values = _overlap_from_criterion(crit, _side(crit, qsign[rest]), True)
+        for k, name in enumerate(names):
+            here = np.zeros(n, dtype=bool)
+            here[rest[(which == k) & (values != _UNC)]] = True
+            full = np.full(n, _UNC, dtype=np.int8)
+            full[rest] = values
+            settle(here, full, f"criterion ({name})")
 
     # 3. the exact decision, pair by pair.
     rest = np.flatnonzero(todo)
@@ -730,6 +759,61 @@ def _overlap_from_separation(
     not_ellipsoid = np.logical_not(np.asarray(ellipsoid, dtype=bool))  # a mask, also for a scalar
     values[outside & (not_ellipsoid | sure)] = OverlapCode.SEPARATE
     return values
+
+
+def _upper_integers(stack: Any, rows: np.ndarray) -> list[list[int]]:
+    """The upper entries of the matrices ``rows`` of ``stack`` as integers, each matrix scaled by
+    a positive common denominator of its entries (the exact input where there is one)."""
+    from quadric_contact.exact.entries import ENTRY_INDICES
+
+    if stack.exact is not None:
+        ratios = [[(f.numerator, f.denominator) for f in stack.exact[int(r)]] for r in rows]
+    else:
+        floats = stack.rows_floats(rows)
+        ratios = [[float(m[i, j]).as_integer_ratio() for i, j in ENTRY_INDICES] for m in floats]
+    out = []
+    for entries in ratios:
+        den = math.lcm(*(d for _, d in entries))
+        out.append([n * (den // d) for n, d in entries])
+    return out
+
+
+def _centre_side(pairs: Pairs, rows: np.ndarray) -> np.ndarray:
+    """For pairs of two ellipsoids: 1 where the centre of ``Q`` lies strictly outside ``E``, -1
+    strictly inside, 0 on its surface; exactly.
+
+    With ``Q = [[A, b], [b^T, q]]``, ``D = det A`` and ``y = adj(A) b``, the centre is
+    ``-y / D``, and ``E = [[A_E, a], [a^T, e]]`` at it, times ``D^2 > 0``, is
+    ``y^T A_E y - 2 D a^T y + e D^2``: its sign, times that of ``A_E`` (positive definite in the
+    paper's sign), is the answer.  Integers throughout (the entries scaled by a common
+    denominator).
+
+    Used where the surface of ``E`` misses the solid of ``Q``: that solid, convex and holding
+    its centre, is then inside ``E`` or apart from it, as its centre is."""
+    es = _upper_integers(pairs.E, pairs.e_rows_at(rows))
+    qs = _upper_integers(pairs.Q, pairs.q_rows_at(rows))
+    out = np.zeros(rows.size, dtype=np.int8)
+    for t in range(rows.size):
+        e00, e01, e02, a0, e11, e12, a1, e22, a2, e = es[t]
+        q00, q01, q02, b0, q11, q12, b1, q22, b2, _ = qs[t]
+        m00, m01, m02 = q11 * q22 - q12 * q12, q02 * q12 - q01 * q22, q01 * q12 - q02 * q11
+        m11, m12, m22 = q00 * q22 - q02 * q02, q01 * q02 - q00 * q12, q00 * q11 - q01 * q01
+        d = q00 * m00 + q01 * m01 + q02 * m02
+        if d == 0:
+            continue
+        y0 = m00 * b0 + m01 * b1 + m02 * b2
+        y1 = m01 * b0 + m11 * b1 + m12 * b2
+        y2 = m02 * b0 + m12 * b1 + m22 * b2
+        quad = (
+            e00 * y0 * y0
+            + e11 * y1 * y1
+            + e22 * y2 * y2
+            + 2 * (e01 * y0 * y1 + e02 * y0 * y2 + e12 * y1 * y2)
+        )
+        value = quad - 2 * d * (a0 * y0 + a1 * y1 + a2 * y2) + e * d * d
+        value *= 1 if e00 > 0 else -1
+        out[t] = (value > 0) - (value < 0)
+    return out
 
 
 def _exact_overlaps(pairs: Pairs, rows: np.ndarray) -> np.ndarray:
