@@ -141,6 +141,34 @@ def multiplicity_transfer() -> Finding:
     )
 
 
+@proof.check(
+    "the centre rule of the arrays: D^2 e(c_Q) is the polynomial centre_value computes, and a surface of E "
+    "missing the solid of Q leaves Q inside E or apart from it, as its centre is",
+    method=Method.IDENTITY,
+)
+def centre_rule() -> Finding:
+    from quadric_contact.exact.entries import ENTRY_INDICES
+    from quadric_contact.modes.pipeline import centre_value
+
+    def symmetric4(name: str) -> sp.Matrix:
+        return sp.Matrix(4, 4, lambda i, j: sp.Symbol(f"{name}{min(i, j)}{max(i, j)}", real=True))
+
+    E, Q = symmetric4("e"), symmetric4("q")
+    A, b = Q[:3, :3], Q[:3, 3]
+    D = A.det(method="berkowitz")
+    centre = -A.adjugate() * b
+    X = sp.Matrix([*centre, D])  # D (c_Q, 1): the homogeneous centre times D
+    want = sp.expand((X.T * E * X)[0, 0])
+    got = sp.expand(centre_value([E[i, j] for i, j in ENTRY_INDICES], [Q[i, j] for i, j in ENTRY_INDICES]))
+    ensure(got == want, "centre_value = (D c_Q, D)^T E (D c_Q, D) = D^2 e(c_Q)")
+    return agrees(
+        "centre_value(E, Q) = D^2 e(c_Q) identically.  Where the surface of E lies in {q > 0}, the solid "
+        "{q <= 0} of an ellipsoid Q (convex, so connected, and holding c_Q) misses the surface {e = 0}: it "
+        "lies in {e < 0} or in {e > 0} whole, so Q is inside E (the solids overlap) iff e(c_Q) < 0, and "
+        "the solids are apart iff e(c_Q) > 0 (the reading of _geometry below, which the search checks)"
+    )
+
+
 def _two_spheres() -> tuple[sp.Expr, sp.Symbol, sp.Symbol]:
     dist, r = sp.symbols("d r", positive=True)
     E = sp.diag(1, 1, 1, -1)

@@ -477,3 +477,33 @@ def test_agreement_with_the_independent_decision_on_random_float_pairs():
             assert int(got[k]) == want, k
             seen.add(want)
     assert {S, O} <= seen
+
+
+def test_rounded_cylinders_are_decided_by_the_centre_of_q_and_agree_with_the_exact_answer(monkeypatch):
+    """Cylinders and paraboloids rotated in binary64 are ellipsoids (or hyperboloids) exactly,
+    nearly singular; where the first stage reads no side of such an ellipsoid, the side of E
+    its centre lies on decides (pipeline._centre_side), never the exact pair, and the answer is
+    the exact one."""
+    from quadric_contact.modes import pipeline
+    from quadric_contact.testing.samples import random_pairs
+
+    seen: list[np.ndarray] = []
+    centre_side = pipeline._centre_side
+
+    def spy(pairs, rows):
+        got = centre_side(pairs, rows)
+        seen.append(np.asarray(pairs.q_rows_at(rows)))
+        return got
+
+    monkeypatch.setattr(pipeline, "_centre_side", spy)
+    rng = np.random.default_rng(1)
+    E, Q, _ = random_pairs(1500, rng)
+    mode = qc.modes.CertifiedMode()
+    got = qc.overlap(E, Q, mode=mode)
+    assert mode.last.decided.get("exact pair", 0) == 0
+    used = np.concatenate(seen) if seen else np.zeros(0, dtype=int)
+    assert used.size > 10  # the population holds such pairs: the rule is exercised
+    for k in used[:25]:
+        e, q = Quadric.from_matrix(E[k]), Quadric.from_matrix(Q[k])
+        assert q.kind is K.ELLIPSOID
+        assert int(got[k]) == int(overlap_exact(e, q).code), k

@@ -794,26 +794,29 @@ def _centre_side(pairs: Pairs, rows: np.ndarray) -> np.ndarray:
     qs = _upper_integers(pairs.Q, pairs.q_rows_at(rows))
     out = np.zeros(rows.size, dtype=np.int8)
     for t in range(rows.size):
-        e00, e01, e02, a0, e11, e12, a1, e22, a2, e = es[t]
-        q00, q01, q02, b0, q11, q12, b1, q22, b2, _ = qs[t]
-        m00, m01, m02 = q11 * q22 - q12 * q12, q02 * q12 - q01 * q22, q01 * q12 - q02 * q11
-        m11, m12, m22 = q00 * q22 - q02 * q02, q01 * q02 - q00 * q12, q00 * q11 - q01 * q01
-        d = q00 * m00 + q01 * m01 + q02 * m02
-        if d == 0:
-            continue
-        y0 = m00 * b0 + m01 * b1 + m02 * b2
-        y1 = m01 * b0 + m11 * b1 + m12 * b2
-        y2 = m02 * b0 + m12 * b1 + m22 * b2
-        quad = (
-            e00 * y0 * y0
-            + e11 * y1 * y1
-            + e22 * y2 * y2
-            + 2 * (e01 * y0 * y1 + e02 * y0 * y2 + e12 * y1 * y2)
-        )
-        value = quad - 2 * d * (a0 * y0 + a1 * y1 + a2 * y2) + e * d * d
-        value *= 1 if e00 > 0 else -1
+        value = centre_value(es[t], qs[t]) * (1 if es[t][0] > 0 else -1)
         out[t] = (value > 0) - (value < 0)
     return out
+
+
+def centre_value(e: Any, q: Any) -> Any:
+    """``D^2`` times ``E`` at the centre of ``Q``: ``y^T A_E y - 2 D a^T y + e D^2`` with
+    ``D = det A`` and ``y = adj(A) b`` (``Q = [[A, b], [b^T, q]]``, ``E = [[A_E, a], [a^T, e]]``),
+    from the upper entries of both (row by row); a polynomial in them, so integers give it
+    exactly (and symbols give the identity ``proofs/wwk_2001_ellipsoid_separation.py``
+    checks).  Meaningful where ``D != 0`` (``Q`` has a centre: the callers' ``Q`` are
+    ellipsoids)."""
+    e00, e01, e02, a0, e11, e12, a1, e22, a2, e33 = e
+    q00, q01, q02, b0, q11, q12, b1, q22, b2, _ = q
+    m00, m01, m02 = q11 * q22 - q12 * q12, q02 * q12 - q01 * q22, q01 * q12 - q02 * q11
+    m11, m12, m22 = q00 * q22 - q02 * q02, q01 * q02 - q00 * q12, q00 * q11 - q01 * q01
+    d = q00 * m00 + q01 * m01 + q02 * m02
+    y0 = m00 * b0 + m01 * b1 + m02 * b2
+    y1 = m01 * b0 + m11 * b1 + m12 * b2
+    y2 = m02 * b0 + m12 * b1 + m22 * b2
+    quad = e00 * y0 * y0 + e11 * y1 * y1 + e22 * y2 * y2
+    quad += 2 * (e01 * y0 * y1 + e02 * y0 * y2 + e12 * y1 * y2)
+    return quad - 2 * d * (a0 * y0 + a1 * y1 + a2 * y2) + e33 * d * d
 
 
 def _exact_overlaps(pairs: Pairs, rows: np.ndarray) -> np.ndarray:
