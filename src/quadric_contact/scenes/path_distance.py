@@ -165,7 +165,7 @@ def path_distance(
             try:
                 lo, hi = distance([placed], q)[0]
             except UndecidedError as exc:
-                raise UndecidedError(f"at t = {t}: {exc}", placed, time=t) from exc
+                raise UndecidedError(f"at t = {t}: {exc}", placed, time=t, evaluations=len(cache)) from exc
             cache[t] = (Fraction(lo), Fraction(hi))
         return cache[t]
 
