@@ -186,7 +186,7 @@ def path_distance(
         budget = max_evaluations - len(cache)  # one evaluation per bisection (the midpoint)
         if best - low <= tol or budget <= 0:
             break
-        wide = sorted((x for x in live if best - x[0] > tol / 2), key=lambda x: x[0])
+        wide = sorted((x for x in live if best - x[0] > tol), key=lambda x: x[0])
         split = {(a, b) for _, a, b, _ in wide[:budget]}
         work = []
         for _, a, b, V in live:
