@@ -98,7 +98,7 @@ read."""
 
 MAX_DISTANCE_EVALUATIONS = 2_000
 """Most signed distances evaluated for one (moving ellipsoid, piece) pair of a scene's
-``distance`` effect (the scene's ``distance_evaluations``, default 200).  One costs from
+``distance`` effect (the scene's ``distance_evaluations``, default 400).  One costs from
 a millisecond (a sphere, or an ellipsoid against a plane: closed forms) to a few seconds
 (an ellipsoid against a curved quadric: a branch and bound)."""
 

@@ -51,7 +51,7 @@ EFFECTS: tuple[str, ...] = (
 DISTANCE_TOLERANCE = Fraction(1, 1000)
 """The default width of the enclosure of a least distance (``distance_tolerance``)."""
 
-DISTANCE_EVALUATIONS = 200
+DISTANCE_EVALUATIONS = 400
 """The default budget of distance evaluations per (ellipsoid, piece) (``distance_evaluations``)."""
 
 THEOREM_2_EFFECTS = frozenset({"contact", "contact_kind", "relative_position", "first_contact", "smallness"})

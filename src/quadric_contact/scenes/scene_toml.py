@@ -13,7 +13,7 @@ every number and every equation is read by the package's own parser,
     places = 12                        # decimal places printed for event times
     reading = "geometry"               # or "paper" (see below)
     distance_tolerance = "1/1000"      # for the distance effect (see below)
-    distance_evaluations = 200
+    distance_evaluations = 400
 
     [[object]]
     name = "tree"
@@ -84,7 +84,7 @@ The ``distance`` effect encloses the least distance in ``[lo, hi]`` with
 ``hi - lo <= distance_tolerance`` (in the scene's units, default ``1/1000``,
 at least :data:`~quadric_contact.exact.bounds.MIN_DISTANCE_TOLERANCE`),
 evaluating at most ``distance_evaluations`` distances per (ellipsoid, piece)
-(default 200, at most
+(default 400, at most
 :data:`~quadric_contact.exact.bounds.MAX_DISTANCE_EVALUATIONS`); where the
 budget runs out first the report gives the enclosure reached and says so.
 It is not available, and the report says why, for an ellipsoid whose
