@@ -21,9 +21,9 @@ The plan follows the effects: ``zone`` alone never forms a piece's pencil;
 alone stops at the first contact; smallness is checked only for effects that
 rely on Theorem 2; ``distance`` encloses, after the timelines, the least signed
 distance from each piece that asks for it
-(:mod:`quadric_contact.scenes.scene_distance`).  The :class:`~quadric_contact.scenes.ledger.Ledger` counts
-everything and compares it with a full evaluation of every effect for every
-piece.
+(:mod:`quadric_contact.scenes.scene_distance`).  The
+:class:`~quadric_contact.scenes.ledger.Ledger` counts everything and compares it
+with a full evaluation of every effect for every piece.
 
 References
 ----------
