@@ -14,10 +14,12 @@ The modules that enforce a bound read it from here:
 (numbers given as objects), :mod:`~quadric_contact.scenes.trajectory` (motions),
 :mod:`~quadric_contact.families` (families of quadrics),
 :mod:`~quadric_contact.scenes.scene_toml` (scene files), the exact engine
-(:func:`check_pair_size`) and the command line.
+(:func:`check_pair_size`), the distance along a scene's paths and the command line.
 """
 
 from __future__ import annotations
+
+from fractions import Fraction
 
 __all__ = [
     "MAX_AMPLITUDE",
@@ -28,6 +30,7 @@ __all__ = [
     "MAX_DEGREE",
     "MAX_DEPTH",
     "MAX_DIGITS",
+    "MAX_DISTANCE_EVALUATIONS",
     "MAX_EXPONENT",
     "MAX_FAMILY_TERMS",
     "MAX_FAMILY_WORK_PRODUCTS",
@@ -41,6 +44,7 @@ __all__ = [
     "MAX_SCENE_BYTES",
     "MAX_SCENE_DEPTH",
     "MAX_WORK",
+    "MIN_DISTANCE_TOLERANCE",
     "SCHEDULER_TIMEOUT",
     "WORK_BITS",
 ]
@@ -89,6 +93,21 @@ MAX_MOTION_DEGREE = MAX_DEGREE
 translation and its quaternion), given as text or as a coefficient list: a
 list has at most ``MAX_MOTION_DEGREE + 1`` entries, counted before any is
 read."""
+
+# -- the distance along a scene's paths (scenes/scene_distance.py) ---------------------
+
+MAX_DISTANCE_EVALUATIONS = 2_000
+"""Most signed distances evaluated for one (moving ellipsoid, piece) pair of a scene's
+``distance`` effect (the scene's ``distance_evaluations``, default 400).  One costs from
+a millisecond (a sphere, or an ellipsoid against a plane: closed forms) to a few seconds
+(an ellipsoid against a curved quadric: a branch and bound)."""
+
+MIN_DISTANCE_TOLERANCE = Fraction(1, 10**12)
+"""Narrowest enclosure of the least distance a scene may ask for (its
+``distance_tolerance``, in the scene's units).  Each distance along the path is enclosed
+in binary64, about ``2^-52`` of its size wide, so below this no number of evaluations
+narrows the enclosure of a least distance of a few thousand units to the tolerance: the
+run would spend its whole budget (:data:`MAX_DISTANCE_EVALUATIONS`) in vain."""
 
 # -- families of quadrics (families/) -------------------------------------------------
 

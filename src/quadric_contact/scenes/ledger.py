@@ -62,6 +62,9 @@ Counted items
 ``level_sweeps``
     Does the curve ``E ∩ Q`` lie on the kept side, decided by sweeping the
     levels of the cutting plane (at a sample time where it does not meet it).
+``distance_evaluations``
+    Signed distances of a moving ellipsoid from a piece's solid, evaluated at one
+    time each for the ``distance`` effect (:mod:`quadric_contact.scenes.scene_distance`).
 """
 
 from __future__ import annotations
@@ -90,6 +93,7 @@ ITEMS: tuple[str, ...] = (
     "level_sweeps",
     "mutual_pencils",
     "separated_windows",
+    "distance_evaluations",
 )
 """The counted items, in report order."""
 
@@ -104,9 +108,11 @@ OPTIONAL_ITEMS: frozenset[str] = frozenset(
         "level_sweeps",
         "mutual_pencils",
         "separated_windows",
+        "distance_evaluations",
     }
 )
-"""Items printed only when something was counted (the broad phase's)."""
+"""Items printed only when something was counted (the broad phase's, the geometric
+reading's, the mutual contacts', the distance's)."""
 
 FULL_ITEMS: tuple[str, ...] = (
     "characteristic_polynomials",

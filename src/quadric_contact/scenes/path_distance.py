@@ -2,7 +2,8 @@
 certified.
 
 An ellipsoid ``E0`` moves by a trajectory without rotation (its centre follows polynomial
-pieces ``p(t)``); the solid of ``Q`` stays.  ``d(t)``, the signed distance of
+pieces ``p(t)``; on each piece its orientation is fixed, :func:`turns`); the solid of ``Q``
+stays.  ``d(t)``, the signed distance of
 :func:`quadric_contact.distance` between the moved ellipsoid and ``Q``, is 1-Lipschitz in the
 translation (both the distance of two sets and the translation distance move by at most
 ``|v|`` when one set moves by ``v``), so on a piece ``|d(t) - d(s)| <= V |t - s|`` with ``V``
@@ -15,7 +16,9 @@ with the certified enclosures of ``d(a)`` and ``d(b)``.  Subdividing the interva
 does not exceed the least enclosed value seen gives an enclosure of ``min d`` and a union of
 time intervals holding every time at which the minimum is reached.  The bound is first order:
 near a minimum passed at a steady speed the intervals must shrink like the tolerance, so a
-tolerance of about ``10^-3`` of the path's scale is within a few hundred evaluations.
+tolerance of about ``10^-3`` of the path's scale is within a few hundred evaluations.  The
+number of evaluations is bounded (``max_evaluations``): when the budget runs out first, the
+enclosure reached is returned, wider than the tolerance.
 """
 
 from __future__ import annotations
@@ -29,9 +32,9 @@ from quadric_contact.exact.errors import UndecidedError
 from quadric_contact.exact.rational import to_fraction
 from quadric_contact.model.quadric import as_quadric
 from quadric_contact.modes.distances import distance
-from quadric_contact.scenes.trajectory import Trajectory, _poly_coeffs
+from quadric_contact.scenes.trajectory import MotionSegment, Trajectory, _poly_coeffs
 
-__all__ = ["PathDistance", "path_distance"]
+__all__ = ["PathDistance", "path_distance", "turns"]
 
 
 @dataclass(frozen=True)
@@ -69,6 +72,33 @@ def _speed_bound(center: Any, a: Fraction, b: Fraction) -> Fraction:
     return Fraction(math.isqrt(total.numerator * 4**30 // total.denominator) + 1, 2**30)
 
 
+def turns(segment: MotionSegment) -> bool:
+    """The orientation changes along the segment: its quaternion ``q(t)`` is not a scalar
+    multiple of one fixed quaternion (the coefficient vectors of ``q`` have rank 2 or more).
+    A segment with a fixed orientation is a translation of one rotated copy of the ellipsoid,
+    to which the Lipschitz bound applies as it is.
+
+    Examples
+    --------
+    >>> from quadric_contact.scenes.trajectory import PolynomialMotion
+    >>> def first(m):
+    ...     return m.segments(Fraction(0), Fraction(1), (0, 0, 0))[0]
+    >>> turns(first(PolynomialMotion([[0, 1], [0], [0]], [[2], [0], [0], [1]])))
+    False
+    >>> turns(first(PolynomialMotion([[0], [0], [0]], [[1], [0, 1], [0], [0]])))
+    True
+    """
+    if segment.quaternion is None:
+        return False
+    coeffs = [_poly_coeffs(p) for p in segment.quaternion]
+    n = max(len(c) for c in coeffs)
+    vectors = [[c[k] if k < len(c) else Fraction(0) for c in coeffs] for k in range(n)]
+    ref = next((v for v in vectors if any(v)), None)
+    if ref is None:
+        return False
+    return any(v[i] * ref[j] != v[j] * ref[i] for v in vectors for i in range(4) for j in range(i + 1, 4))
+
+
 def path_distance(
     E0: Any,
     Q: Any,
@@ -86,12 +116,21 @@ def path_distance(
     E0 : the ellipsoid in its initial placement
     Q : a quadric with a solid (as :func:`quadric_contact.distance`)
     trajectory : Trajectory
-        Without rotation (a rotation is refused: its Lipschitz bound is not derived here).
+        Without rotation (a rotation is refused: its Lipschitz bound is not derived here); a
+        fixed orientation other than the initial one (a constant quaternion) is a translation.
     t0, t1 : numbers, ``t0 < t1``
     tolerance : number
         Stop when the enclosure of the minimum is this narrow (absolutely).
     max_evaluations : int
-        Distances evaluated at most; then the enclosure reached is returned.
+        Distances evaluated at most (the ends of the trajectory's segments are evaluated
+        first, whatever their number); then the enclosure reached is returned.  Where the
+        budget does not allow bisecting every interval still in question, those with the
+        lowest bounds are bisected first.
+
+    Raises
+    ------
+    UndecidedError
+        A rotating motion, or a distance the modes do not decide (its time is named).
 
     Examples
     --------
@@ -116,14 +155,17 @@ def path_distance(
     c = e.center()
     assert c is not None
     segments = trajectory.segments(t0, t1, c)
-    if any(s.quaternion is not None for s in segments):
+    if any(turns(s) for s in segments):
         raise UndecidedError("the distance along a path is given for motions without rotation")
     cache: dict[Fraction, tuple[Fraction, Fraction]] = {}
 
     def d(t: Fraction) -> tuple[Fraction, Fraction]:
         if t not in cache:
             placed = trajectory.placed(e, t, t0, t1)
-            lo, hi = distance([placed], q)[0]
+            try:
+                lo, hi = distance([placed], q)[0]
+            except UndecidedError as exc:
+                raise UndecidedError(f"at t = {t}: {exc}", placed, time=t, evaluations=len(cache)) from exc
             cache[t] = (Fraction(lo), Fraction(hi))
         return cache[t]
 
@@ -141,11 +183,14 @@ def path_distance(
         ]
         live = [x for x in bounds if x[0] <= best]
         low = min(x[0] for x in live)
-        if best - low <= tol or len(cache) >= max_evaluations:
+        budget = max_evaluations - len(cache)  # one evaluation per bisection (the midpoint)
+        if best - low <= tol or budget <= 0:
             break
+        wide = sorted((x for x in live if best - x[0] > tol), key=lambda x: x[0])
+        split = {(a, b) for _, a, b, _ in wide[:budget]}
         work = []
-        for lb, a, b, V in live:
-            if best - lb > tol / 2:
+        for _, a, b, V in live:
+            if (a, b) in split:
                 m = (a + b) / 2
                 work += [(a, m, V), (m, b, V)]
             else:

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
+from quadric_contact.exact.bounds import MAX_DISTANCE_EVALUATIONS, MIN_DISTANCE_TOLERANCE
 from quadric_contact.exact.errors import QuadricContactError, SceneError
 from quadric_contact.exact.rational import to_fraction
 from quadric_contact.model.classification import QuadricKind
@@ -22,6 +23,8 @@ from quadric_contact.scenes.ledger import Ledger
 from quadric_contact.scenes.trajectory import Trajectory
 
 __all__ = [
+    "DISTANCE_EVALUATIONS",
+    "DISTANCE_TOLERANCE",
     "EFFECTS",
     "EXCLUDED_KINDS",
     "THEOREM_2_EFFECTS",
@@ -41,8 +44,15 @@ EFFECTS: tuple[str, ...] = (
     "relative_position",
     "first_contact",
     "smallness",
+    "distance",
 )
 """The effects a scene can ask for."""
+
+DISTANCE_TOLERANCE = Fraction(1, 1000)
+"""The default width of the enclosure of a least distance (``distance_tolerance``)."""
+
+DISTANCE_EVALUATIONS = 400
+"""The default budget of distance evaluations per (ellipsoid, piece) (``distance_evaluations``)."""
 
 THEOREM_2_EFFECTS = frozenset({"contact", "contact_kind", "relative_position", "first_contact", "smallness"})
 """Effects that rely on the smallness hypothesis (through Theorem 2, Corollary 10, Theorem 13)."""
@@ -143,6 +153,12 @@ class Scene:
     """``"geometry"``: a piece is its quadric as cut by the planes on its path
     (:mod:`quadric_contact.scenes.cut_pieces`); ``"paper"``: Algorithm 1's reading,
     a piece reached by the descent counts as its whole quadric."""
+    distance_tolerance: Fraction = DISTANCE_TOLERANCE
+    """The ``distance`` effect stops once the enclosure of a least distance is this narrow
+    (in the scene's units; at least :data:`~quadric_contact.exact.bounds.MIN_DISTANCE_TOLERANCE`)."""
+    distance_evaluations: int = DISTANCE_EVALUATIONS
+    """The ``distance`` effect evaluates at most this many distances per (ellipsoid, piece)
+    (at most :data:`~quadric_contact.exact.bounds.MAX_DISTANCE_EVALUATIONS`)."""
 
     def __post_init__(self) -> None:
         t0, t1 = (to_fraction(v) for v in self.span)
@@ -164,6 +180,9 @@ class Scene:
                 raise SceneError(
                     f"{self.source}: effects of {who}: unknown effect(s) {bad}; expected some of {EFFECTS}"
                 )
+        self.distance_tolerance, self.distance_evaluations = distance_options(
+            self.distance_tolerance, self.distance_evaluations, self.source
+        )
 
     def needs_smallness(self, effects: Sequence[str] | None = None) -> bool:
         """Some effect (the scene's, or ``effects``) relies on Theorem 2, hence on smallness."""
@@ -265,6 +284,67 @@ class Scene:
         if len(shown) < len(self.ellipsoids):
             lines.append(f"  ... and {len(self.ellipsoids) - len(shown)} more ellipsoids")
         return "\n".join(lines)
+
+
+def distance_options(tolerance: Any, evaluations: Any, source: str = "<scene>") -> tuple[Fraction, int]:
+    """Check the ``distance`` effect's options: the tolerance a positive number of at least
+    :data:`~quadric_contact.exact.bounds.MIN_DISTANCE_TOLERANCE` (below it no budget
+    reaches it), the budget an integer in ``[2, MAX_DISTANCE_EVALUATIONS]`` (the two ends
+    of the span at least; more would not bound the work).
+
+    Raises
+    ------
+    SceneError
+        Naming ``scene.distance_tolerance`` or ``scene.distance_evaluations``.
+
+    Examples
+    --------
+    >>> distance_options("1/100", 50)
+    (Fraction(1, 100), 50)
+    >>> try:
+    ...     distance_options(0, 50)
+    ... except SceneError as exc:
+    ...     print(exc.details["key"], "|", exc.details["expected"])
+    scene.distance_tolerance | a positive number of at least 1/1000000000000 (MIN_DISTANCE_TOLERANCE)
+    """
+
+    def refuse(key: str, expected: str, got: Any, cause: str = "") -> SceneError:
+        shown = str(got) if isinstance(got, (Fraction, int)) and not isinstance(got, bool) else repr(got)
+        tail = f" ({cause})" if cause else ""
+        return SceneError(
+            f"{source}: {key}: expected {expected}, got {shown}{tail}",
+            got,
+            file=source,
+            key=key,
+            expected=expected,
+        )
+
+    key = "scene.distance_tolerance"
+    expected = f"a positive number of at least {MIN_DISTANCE_TOLERANCE} (MIN_DISTANCE_TOLERANCE)"
+    if isinstance(tolerance, bool):
+        raise refuse(key, expected, tolerance)
+    try:
+        tol = to_fraction(tolerance)
+    except QuadricContactError as exc:
+        raise refuse(key, expected, tolerance, str(exc)) from exc
+    if tol <= 0:
+        raise refuse(key, expected, tol)
+    if tol < MIN_DISTANCE_TOLERANCE:
+        raise refuse(
+            key,
+            expected,
+            tol,
+            "the distances are enclosed in binary64: no budget of evaluations would reach it",
+        )
+    key = "scene.distance_evaluations"
+    expected = f"an integer in [2, {MAX_DISTANCE_EVALUATIONS}] (MAX_DISTANCE_EVALUATIONS)"
+    if isinstance(evaluations, bool) or not isinstance(evaluations, int):
+        raise refuse(key, expected, evaluations)
+    if evaluations < 2:
+        raise refuse(key, expected, evaluations, "the two ends of the time span are evaluated at least")
+    if evaluations > MAX_DISTANCE_EVALUATIONS:
+        raise refuse(key, expected, evaluations, "the budget bounds the work of each (ellipsoid, piece)")
+    return tol, evaluations
 
 
 def _centred(ell: MovingEllipsoid) -> tuple[Fraction, ...]:

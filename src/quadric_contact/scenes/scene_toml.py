@@ -12,6 +12,8 @@ every number and every equation is read by the package's own parser,
     on_not_small = "refuse"            # or "warn" (see below)
     places = 12                        # decimal places printed for event times
     reading = "geometry"               # or "paper" (see below)
+    distance_tolerance = "1/1000"      # for the distance effect (see below)
+    distance_evaluations = 400
 
     [[object]]
     name = "tree"
@@ -73,7 +75,21 @@ Motions (``[ellipsoid.motion]``; the default is ``type = "still"``):
 Effects: ``zone`` (Algorithm 1), ``contact`` (Algorithm 2),
 ``contact_kind`` (Table 3), ``relative_position`` (Table 4),
 ``first_contact``, ``smallness`` (report the smallness of every moving
-ellipsoid with respect to every piece).  Only what they need is computed.
+ellipsoid with respect to every piece), ``distance`` (the least signed
+distance of each moving ellipsoid from each piece's solid over the time span,
+and when it is reached: :mod:`quadric_contact.scenes.scene_distance`).  Only
+what they need is computed.
+
+The ``distance`` effect encloses the least distance in ``[lo, hi]`` with
+``hi - lo <= distance_tolerance`` (in the scene's units, default ``1/1000``,
+at least :data:`~quadric_contact.exact.bounds.MIN_DISTANCE_TOLERANCE`),
+evaluating at most ``distance_evaluations`` distances per (ellipsoid, piece)
+(default 400, at most
+:data:`~quadric_contact.exact.bounds.MAX_DISTANCE_EVALUATIONS`); where the
+budget runs out first the report gives the enclosure reached and says so.
+It is not available, and the report says why, for an ellipsoid whose
+orientation changes, a piece cut by planes of its object's tree, and a
+piece whose inside is not the solid of its quadric.
 
 Only what the scene asks for, per object: an optional ``[effects]`` table
 narrows the effects for some ellipsoids and pieces::
@@ -134,11 +150,14 @@ from quadric_contact.model.parsing import (
 from quadric_contact.model.quadric import Quadric
 from quadric_contact.scenes.composite import Composite, Piece, Split
 from quadric_contact.scenes.scene_model import (
+    DISTANCE_EVALUATIONS,
+    DISTANCE_TOLERANCE,
     EFFECTS,
     EXCLUDED_KINDS,
     READINGS,
     MovingEllipsoid,
     Scene,
+    distance_options,
 )
 from quadric_contact.scenes.trajectory import (
     Keyframes,
@@ -670,7 +689,18 @@ def parse_scene(
     r.keys(
         meta,
         "scene",
-        ("name", "description", "time", "effects", "on_not_small", "places", "reading", "mutual"),
+        (
+            "name",
+            "description",
+            "time",
+            "effects",
+            "on_not_small",
+            "places",
+            "reading",
+            "mutual",
+            "distance_tolerance",
+            "distance_evaluations",
+        ),
     )
     name = r.string(meta, "name", "scene.name")
     description = meta.get("description", "")
@@ -709,6 +739,9 @@ def parse_scene(
     reading = r.string(meta, "reading", "scene.reading", default="geometry")
     if reading not in READINGS:
         raise r.error("scene.reading", " or ".join(repr(x) for x in READINGS), reading)
+    tolerance = r.number(meta.get("distance_tolerance", DISTANCE_TOLERANCE), "scene.distance_tolerance")
+    evaluations = meta.get("distance_evaluations", DISTANCE_EVALUATIONS)
+    distance_options(tolerance, evaluations, source)  # the range, naming the key
     objects = tuple(
         _object(r, t, f"object[{i}]") for i, t in enumerate(r.array_of_tables(data, "object", "object"))
     )
@@ -748,6 +781,8 @@ def parse_scene(
         piece_effects=per_piece,
         reading=reading,
         mutual=mutual,
+        distance_tolerance=tolerance,
+        distance_evaluations=evaluations,
     )
     if check_smallness and scene.needs_smallness():
         scene.check_smallness(on_not_small=on_not_small)

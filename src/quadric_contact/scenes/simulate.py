@@ -19,9 +19,11 @@ as Algorithms 1 and 2 prescribe, but in time (:mod:`quadric_contact.scenes.event
 The plan follows the effects: ``zone`` alone never forms a piece's pencil;
 ``relative_position`` adds the coefficient polynomials; ``first_contact``
 alone stops at the first contact; smallness is checked only for effects that
-rely on Theorem 2.  The :class:`~quadric_contact.scenes.ledger.Ledger` counts
-everything and compares it with a full evaluation of every effect for every
-piece.
+rely on Theorem 2; ``distance`` encloses, after the timelines, the least signed
+distance from each piece that asks for it
+(:mod:`quadric_contact.scenes.scene_distance`).  The
+:class:`~quadric_contact.scenes.ledger.Ledger` counts everything and compares it
+with a full evaluation of every effect for every piece.
 
 References
 ----------
@@ -35,9 +37,11 @@ from collections.abc import Sequence
 from dataclasses import replace
 
 from quadric_contact.exact.errors import SceneError
+from quadric_contact.scenes.composite import Composite, Piece
 from quadric_contact.scenes.ledger import Ledger
 from quadric_contact.scenes.manybody import run_pairs
-from quadric_contact.scenes.scene_model import READINGS, Scene
+from quadric_contact.scenes.scene_distance import PieceDistance, piece_distances
+from quadric_contact.scenes.scene_model import READINGS, MovingEllipsoid, Scene
 from quadric_contact.scenes.scene_pairs import _progress, _simulate_pair
 from quadric_contact.scenes.simulation_reports import (
     Episode,
@@ -47,6 +51,7 @@ from quadric_contact.scenes.simulation_reports import (
     Plan,
     SimulationResult,
 )
+from quadric_contact.scenes.trajectory import MotionSegment
 
 __all__ = [
     "Episode",
@@ -164,6 +169,10 @@ def simulate(
         finally:
             if bar is not None:
                 bar.close()
+    if plan.distance:
+        ells = {e.name: e for e in scene.ellipsoids}
+        for pair in pairs:
+            pair.distances = _distances(scene, plan, ells[pair.ellipsoid], pair.object, seg_lists, ledger)
     mutual = None
     if len(scene.mutual) >= 2:
         from quadric_contact.scenes.mutual import mutual_contacts
@@ -172,3 +181,21 @@ def simulate(
     return SimulationResult(
         scene, plan, pairs, ledger, time.perf_counter() - started, list(scene.warnings), mutual=mutual
     )
+
+
+def _distances(
+    scene: Scene,
+    plan: Plan,
+    ell: MovingEllipsoid,
+    obj: Composite,
+    seg_lists: dict[str, list[MotionSegment]],
+    ledger: Ledger,
+) -> list[PieceDistance]:
+    """The ``distance`` effect for one (ellipsoid, object): the pieces for which the scene,
+    the ellipsoid and the piece all ask for it."""
+    own = plan.restricted(scene.ellipsoid_effects.get(ell.name))
+
+    def wanted(piece: Piece) -> bool:
+        return own.restricted(scene.piece_effects.get((obj.name, piece.name))).distance
+
+    return piece_distances(scene, ell, obj, seg_lists[ell.name], ledger, wanted)

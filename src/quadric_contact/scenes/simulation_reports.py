@@ -18,6 +18,7 @@ from quadric_contact.scenes.events import (
     ZoneValue,
 )
 from quadric_contact.scenes.ledger import Ledger
+from quadric_contact.scenes.scene_distance import PieceDistance
 from quadric_contact.scenes.scene_model import EFFECTS, Scene
 from quadric_contact.theory.results import Region
 
@@ -45,7 +46,7 @@ class Plan:
     region, kind : bool
         Keep the coefficient polynomials / classify the contact kind.
     stop_at_first_contact : bool
-        Only ``first_contact`` (with ``smallness``) is asked for: stop each
+        Only ``first_contact`` (with ``smallness`` or ``distance``) is asked for: stop each
         (ellipsoid, object) at its first contact.
     full : bool
         Evaluate every effect for every piece on every segment (for comparison).
@@ -110,6 +111,11 @@ class Plan:
             return Plan((), False, False, False, False)
         return Plan.from_effects(kept)
 
+    @property
+    def distance(self) -> bool:
+        """The least signed distance along the path is asked for (the ``distance`` effect)."""
+        return "distance" in self.effects
+
     def describe(self) -> str:
         """The plan in one sentence (printed with the timeline)."""
         steps = ["Algorithm 1 (zones) on every separating plane the descent reaches"]
@@ -122,6 +128,8 @@ class Plan:
             steps.append(what)
         if self.stop_at_first_contact:
             steps.append("stop at the first contact")
+        if self.distance:
+            steps.append("the least signed distance along the path, certified by a Lipschitz bound")
         if self.full:
             steps = ["every effect for every plane and piece on every segment (full evaluation)"]
         return "; ".join(steps)
@@ -282,6 +290,8 @@ class PairResult:
     first_contact: tuple[RealAlgebraic, list[str]] | None
     complete: bool = True
     segments_done: int = 0
+    distances: list[PieceDistance] = field(default_factory=list)
+    """The ``distance`` effect: one entry per piece of the object that asks for it."""
 
     def beyond_cut(self) -> list[str]:
         """The pieces the ellipsoid crosses only beyond their cut at some time: where
@@ -350,6 +360,8 @@ class PairResult:
                 if self.first_contact is None
                 else {"time": self.first_contact[0].to_dict(places), "pieces": self.first_contact[1]}
             )
+        if "distance" in effects:
+            out["distance"] = [d.to_dict(places) for d in self.distances]
         return out
 
 
@@ -416,6 +428,14 @@ class SimulationResult:
             if p.ellipsoid == ellipsoid and p.object.name == obj:
                 return p
         raise KeyError((ellipsoid, obj))
+
+    def distance(self, ellipsoid: str, obj: str, piece: str) -> PieceDistance:
+        """The ``distance`` effect's answer for one ellipsoid and one piece (``KeyError`` if
+        it was not asked for)."""
+        for d in self.pair(ellipsoid, obj).distances:
+            if d.piece == piece:
+                return d
+        raise KeyError((ellipsoid, obj, piece))
 
     def to_dict(self, places: int | None = None) -> dict[str, Any]:
         """Everything as JSON-ready data (``quadric-contact simulate --json``); event
@@ -547,6 +567,7 @@ class SimulationResult:
                     extra = "" if p.complete else f" (stopped there, after {p.segments_done} segment(s))"
                     who = ", ".join(map(safe_text, names))
                     lines.append(f"  first contact: t = {_fmt_time(t, places)} with {who}{extra}")
+            lines += [f"  {d.describe(places)}" for d in p.distances]
             shown_lines += len(lines) - before
         if hidden:
             n_events = sum(self._listed(p) for p in hidden)

@@ -40,7 +40,7 @@ def register(sub: Any) -> None:
     p.add_argument(
         "--effects",
         help="comma-separated effects replacing the scene's "
-        "(zone, contact, contact_kind, relative_position, first_contact, smallness)",
+        "(zone, contact, contact_kind, relative_position, first_contact, smallness, distance)",
     )
     p.add_argument("--json", action="store_true", help="print one JSON object instead of the timeline")
     p.add_argument("--output", "-o", metavar="FILE", help="also write the JSON result to FILE")
