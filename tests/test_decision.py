@@ -187,7 +187,7 @@ def test_scalar_and_stack_read_the_same_facts_through_the_same_table():
 
     E, Q, _ = random_pairs(60, np.random.default_rng(11))
     pairs, _ = make_pairs(as_stack(E, "E"), as_stack(Q, "Q"))
-    codes = sep.separation_float(pairs, certified=True, backend="numpy")
+    codes = sep.separation_float(pairs, certified=True)
     for i in range(60):
         exact = dec.decide_exact(E[i], Q[i])
         if codes[i] != sep.UNCERTAIN:

@@ -64,7 +64,6 @@ import numpy as np
 
 from quadric_contact._generated import formulas, kernels
 from quadric_contact.modes import errorbounds as eb
-from quadric_contact.modes._jit import HAVE_NUMBA
 from quadric_contact.modes._jit import njit as _njit
 from quadric_contact.modes.base import Pairs
 from quadric_contact.theory import decision
@@ -459,17 +458,16 @@ def _separation_impl(
         out[p] = _separation_one(e, q, K, KD, certified)
 
 
-_separation_kernel = _njit(_separation_impl)
+def separation_float(pairs: Pairs, *, certified: bool) -> np.ndarray:
+    """Separation codes of every pair in binary64, pair by pair with :func:`_separation_one`:
+    certified (``UNCERTAIN`` where a sign or a guard fails) or plain (always an answer).
+    Inputs are assumed validated (finite, symmetric, ``E`` an ellipsoid).
 
-
-def separation_float(
-    pairs: Pairs, *, certified: bool, backend: str = "numba", threads: int | None = None
-) -> np.ndarray:
-    """Separation codes of every pair in binary64: certified (``UNCERTAIN`` where a sign or
-    a guard fails) or plain (always an answer).  Inputs are assumed validated (finite,
-    symmetric, ``E`` an ellipsoid)."""
-    from quadric_contact.modes.threads import run_parallel
-
+    The reference of the scalar certificate, for tests and proofs: the cascade runs the block
+    kernel :func:`~quadric_contact.modes.kernels_signature.signature_float`, which reads the
+    same facts through the same table and falls back to this certificate pair by pair where
+    its fast reading is not sure (a compiled copy of this loop would only be compiled for the
+    tests, a minute of CPU in every cold test run)."""
     n = pairs.n
     out = np.empty(n, dtype=np.int8)
     if n == 0:
@@ -478,13 +476,7 @@ def separation_float(
     K = np.array(eb.MEMBER_ERRBOUND[rounded])
     KD = np.array(eb.MEMBER_MINORS_ERRBOUND[rounded])
     eidx, qidx, es, qs = pairs.kernel_indices()
-    E, Q = pairs.E.floats, pairs.Q.floats
-    if backend == "numpy" or not HAVE_NUMBA:
-        _separation_impl(E, Q, eidx, qidx, es, qs, 0, n, K, KD, certified, out)
-        return out
-    run_parallel(
-        lambda lo, hi: _separation_kernel(E, Q, eidx, qidx, es, qs, lo, hi, K, KD, certified, out), n, threads
-    )
+    _separation_impl(pairs.E.floats, pairs.Q.floats, eidx, qidx, es, qs, 0, n, K, KD, certified, out)
     return out
 
 
