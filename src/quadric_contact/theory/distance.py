@@ -54,6 +54,7 @@ from quadric_contact.exact.errors import UndecidedError
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import Quadric, as_quadric
 from quadric_contact.theory.contact_scale import centred_form, contact_scale_exact
+from quadric_contact.theory.distance_sphere import sphere_distance, sphere_pair
 from quadric_contact.theory.overlap import solid_of
 
 __all__ = ["CONVEX_SOLIDS", "DistanceResult", "distance_exact", "is_sphere"]
@@ -74,7 +75,7 @@ defined by the translation distance and computed for them."""
 Point = tuple[RealAlgebraic, RealAlgebraic, RealAlgebraic]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class DistanceResult:
     """The signed distance of ``E`` from the solid of ``Q``, exactly, with witnesses.
 
@@ -82,23 +83,42 @@ class DistanceResult:
     ----------
     distance : RealAlgebraic
         Positive apart, ``0`` touching, ``-depth`` when the interiors meet.
-    point_Q : tuple of 3 RealAlgebraic, or None
-        The witness on the surface of ``Q``; None where the nearest points are not isolated
-        (a circle or a sphere of them: ``unique`` is False).
     unique : bool
         The witness pair is the only one.
     method : str
         ``"ellipsoid-plane"`` or ``"sphere-quadric"``.
-    normal, point_E : tuple of 3 RealAlgebraic, or None (properties, computed when first read)
-        The unit normal of ``Q``'s surface at ``point_Q``, out of its solid, and the witness
-        on the surface of ``E``: ``point_E = point_Q + distance * normal``.
+    point_Q, normal, point_E : tuple of 3 RealAlgebraic, or None (properties, computed when first read)
+        The witness on the surface of ``Q``, the unit normal of ``Q``'s surface there, out of
+        its solid, and the witness on the surface of ``E``:
+        ``point_E = point_Q + distance * normal``.  None where the nearest points are not
+        isolated (a circle or a sphere of them: ``unique`` is False).
+
+    Two results are equal when their distances, witnesses ``point_Q``, ``unique`` and
+    ``method`` are.
     """
 
     distance: RealAlgebraic
-    point_Q: Point | None
     unique: bool
     method: str
-    _witnesses: Callable[[], tuple[Point, Point] | None] = field(repr=False, compare=False)
+    _point_Q: Callable[[], Point | None] = field(repr=False)
+    _witnesses: Callable[[], tuple[Point, Point] | None] = field(repr=False)
+
+    @functools.cached_property
+    def point_Q(self) -> Point | None:
+        return self._point_Q()
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, DistanceResult):
+            return NotImplemented
+        return (self.distance, self.unique, self.method, self.point_Q) == (
+            other.distance,
+            other.unique,
+            other.method,
+            other.point_Q,
+        )
+
+    def __hash__(self) -> int:
+        return hash((self.distance, self.unique, self.method))
 
     def __float__(self) -> float:
         return float(self.distance)
@@ -175,9 +195,9 @@ def _ellipsoid_plane(E: Quadric, K: Quadric) -> DistanceResult:
     point_Q = tuple(point_E[i] - (root_rk * -1 + (nc - d)) * (n[i] / N) for i in range(3))
     return DistanceResult(
         dist,
-        point_Q,  # type: ignore[arg-type]
         True,
         "ellipsoid-plane",
+        lambda: point_Q,  # type: ignore[arg-type,return-value]
         lambda: (tuple(_ra(n[i]) / norm for i in range(3)), point_E),  # type: ignore[arg-type,return-value]
     )
 
@@ -265,10 +285,27 @@ def _sign_poly_at(p: Any, x: RealAlgebraic) -> int:
 
 
 def _sphere_quadric(E: Quadric, K: Quadric) -> DistanceResult:
-    A, c, r = centred_form(E)
-    rho2 = r / A[0][0]
-    rho = RealAlgebraic.sqrt(rho2)
-    inside = K.value_at(c) < 0
+    """A sphere against a curved quadric: the certified nearest point of the surface
+    (:mod:`quadric_contact.theory.distance_sphere`), or the general route where its
+    certificate does not apply."""
+    pair = sphere_pair(E, K)
+    _refuse_inside(E, K, pair.inside)
+    fast = sphere_distance(pair)
+    if fast is None:
+        return _sphere_quadric_general(E, K)
+    _refuse_crossing(E, K, pair.inside, fast.distance)
+
+    def foot() -> Point:
+        # the certified nearest point (its coordinates isolated when first read); the general
+        # route's, should the balls not isolate them
+        p = fast.foot()
+        return p if p is not None else _sphere_quadric_general(E, K).point_Q  # type: ignore[return-value]
+
+    witnesses = _sphere_witnesses(pair.centre, pair.r2, pair.inside, foot, fast.multiplier)
+    return DistanceResult(fast.distance, True, "sphere-quadric", functools.cache(foot), witnesses)
+
+
+def _refuse_inside(E: Quadric, K: Quadric, inside: bool) -> None:
     if inside and K.kind not in CONVEX_SOLIDS:
         raise UndecidedError(
             f"the centre of the sphere lies in the solid of {K.kind.value}, which is not convex: "
@@ -276,10 +313,9 @@ def _sphere_quadric(E: Quadric, K: Quadric) -> DistanceResult:
             E,
             other=K,
         )
-    scale = contact_scale_exact(E, K)
-    dc2 = algebraic_value(lambda t: t * rho2, [scale.squared])  # |c - p*|^2
-    dc = _ra(scale.scale) * rho
-    dist = (dc * -1 - rho) if inside else (dc - rho)
+
+
+def _refuse_crossing(E: Quadric, K: Quadric, inside: bool, dist: RealAlgebraic) -> None:
     if not inside and dist.sign() < 0 and K.kind not in CONVEX_SOLIDS:
         raise UndecidedError(
             f"the sphere crosses the solid of {K.kind.value}, which is not convex: its penetration "
@@ -287,13 +323,45 @@ def _sphere_quadric(E: Quadric, K: Quadric) -> DistanceResult:
             E,
             other=K,
         )
+
+
+def _sphere_quadric_general(E: Quadric, K: Quadric) -> DistanceResult:
+    """The general route: ``|c - p*| = rho s*`` from the first-contact scale (every
+    configuration, symmetric ones included), ``p*`` the root of the secular equation at that
+    distance."""
+    A, c, r = centred_form(E)
+    rho2 = r / A[0][0]
+    rho = RealAlgebraic.sqrt(rho2)
+    inside = K.value_at(c) < 0
+    _refuse_inside(E, K, inside)
+    scale = contact_scale_exact(E, K)
+    dc2 = algebraic_value(lambda t: t * rho2, [scale.squared])  # |c - p*|^2
+    dc = _ra(scale.scale) * rho
+    dist = (dc * -1 - rho) if inside else (dc - rho)
+    _refuse_crossing(E, K, inside, dist)
     found = _foot_point(K, c, dc2) if dc.sign() != 0 else None
     if found is None:
-        return DistanceResult(dist, None, False, "sphere-quadric", _none)
+        return DistanceResult(dist, False, "sphere-quadric", _none, _none)
     foot, mu, p_of = found
+    witnesses = _sphere_witnesses(c, rho2, inside, lambda: foot, lambda: (mu, p_of))
+    return DistanceResult(dist, True, "sphere-quadric", lambda: foot, witnesses)
+
+
+def _sphere_witnesses(
+    c: Sequence[Fraction],
+    rho2: Fraction,
+    inside: bool,
+    nearest: Callable[[], Point],
+    multiplier: Callable[[], tuple[RealAlgebraic, Callable[[Any, int], Any]]],
+) -> Callable[[], tuple[Point, Point]]:
+    """The normal and ``point_E``, computed when first read, from the nearest point, the
+    multiplier ``mu`` of it and ``p_of(m, i)``, the point of the secular equation at ``m``."""
     side = 1 if inside else -1
 
     def witnesses() -> tuple[Point, Point]:
+        mu, p_of = multiplier()
+        foot = nearest()
+
         # The normal, out of K: from c towards p* when c is inside K, away from it outside;
         # point_E = c - rho normal.  Each coordinate of the normal is the square root of a
         # number of Q(mu) (one generator, evaluated once) with a known sign, so no product of
@@ -306,6 +374,7 @@ def _sphere_quadric(E: Quadric, K: Quadric) -> DistanceResult:
             return u if side * (foot[i] - c[i]).sign() >= 0 else -u
 
         normal = tuple(unit(i) for i in range(3))
+        rho = RealAlgebraic.sqrt(rho2)
         if rho.is_rational:
             r = rho.as_fraction()
             point_E = tuple(algebraic_value(lambda u, i=i: c[i] - r * u, [normal[i]]) for i in range(3))
@@ -313,7 +382,7 @@ def _sphere_quadric(E: Quadric, K: Quadric) -> DistanceResult:
             point_E = tuple(rho * -normal[i] + c[i] for i in range(3))
         return normal, point_E  # type: ignore[return-value]
 
-    return DistanceResult(dist, foot, True, "sphere-quadric", witnesses)
+    return witnesses
 
 
 def distance_exact(E: Any, Q: Any) -> DistanceResult:

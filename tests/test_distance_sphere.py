@@ -1,0 +1,117 @@
+"""The sphere's exact distance from the certified secular root against the previous route on
+random pairs of every type.
+
+The previous route of a sphere against a curved quadric reads ``|c - p*|`` off the
+first-contact scale (the roots of the pencil's discriminant, chosen by the exact overlap
+decision) and then picks the root of the secular equation at that distance.  It must give the
+same numbers as the fast path: the distance, the witness ``point_Q`` and, on a few pairs, the
+normal and ``point_E``.  A few pairs a type by default; the ``slow`` profile draws more.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+import pytest
+
+from quadric_contact import Quadric, QuadricKind
+from quadric_contact.exact.errors import UndecidedError
+from quadric_contact.model.motions import RigidMotion
+from quadric_contact.model.quadric import as_quadric
+from quadric_contact.testing.samples import SAMPLE_KINDS, _moved, _standard_forms, random_pairs
+from quadric_contact.theory.distance import _sphere_quadric_general, distance_exact
+from quadric_contact.theory.distance_sphere import sphere_distance, sphere_pair
+from quadric_contact.theory.overlap import solid_of
+
+CURVED = [k for k in SAMPLE_KINDS if k is not QuadricKind.PLANE]
+ROTATED = (QuadricKind.ELLIPSOID, QuadricKind.HYPERBOLOID_ONE_SHEET, QuadricKind.HYPERBOLOID_TWO_SHEETS)
+
+
+def _sphere(rng, rational_radius=False):
+    c = rng.uniform(-3, 3, 3)
+    rho = rng.uniform(0.1, 1.0)
+    if rational_radius:  # rho rational: the distance has a polynomial of half the degree
+        return Quadric.sphere(Fraction(1, int(rng.integers(2, 9))), [Fraction(float(x)) for x in c])
+    E = np.eye(4)
+    E[:3, 3] = E[3, :3] = -c
+    E[3, 3] = c @ c - rho * rho  # rounded: rho^2 a dyadic rational, rho irrational
+    return as_quadric(E)
+
+
+def _quadric(kind, rng, placement):
+    """Binary64 entries (a rotation rounded to binary64 where the type survives it, the axes
+    permuted otherwise) or rational ones (a rotation from an integer quaternion)."""
+    p = np.sort(rng.uniform(1.0, 4.0, size=(1, 3)), axis=1)[:, ::-1]
+    S = _standard_forms(np.array([SAMPLE_KINDS.index(kind)]), p)
+    sign = -1 if rng.random() < 0.5 else 1
+    if placement == "rational":
+        w = (0, 0, 0, 0)
+        while not any(w):
+            w = tuple(int(x) for x in rng.integers(-4, 5, 4))
+        t = [Fraction(float(x)) for x in rng.uniform(-3, 3, 3)]
+        return Quadric.from_matrix(S[0]).moved(RigidMotion.from_quaternion(*w, translation=t)).scaled(sign)
+    while True:
+        if kind in ROTATED:
+            _, Q, _ = random_pairs(1, rng, kinds=(kind,))
+        else:
+            P = np.eye(3)[rng.permutation(3)]
+            P[0] *= np.linalg.det(P)
+            Q = _moved(S, P[None], rng.uniform(-3, 3, size=(1, 3))) * sign
+        q = as_quadric(Q[0])
+        if q.kind is kind:
+            return q
+
+
+def _answered(kind, rng, placement, rational_radius=False):
+    """A pair the fast path certifies (the sphere outside a non-convex solid)."""
+    for _ in range(500):
+        e, q = _sphere(rng, rational_radius), _quadric(kind, rng, placement)
+        K = solid_of(q)
+        try:
+            r = distance_exact(e, q)
+        except UndecidedError:
+            continue
+        assert sphere_distance(sphere_pair(e.as_ellipsoid(), K)) is not None
+        return e.as_ellipsoid(), K, r
+    raise AssertionError(f"no answered pair of {kind.value}")  # pragma: no cover
+
+
+def _check_against_previous(e, K, r, witnesses):
+    old = _sphere_quadric_general(e, K)
+    assert r.distance == old.distance
+    assert r.unique and old.unique and r.method == old.method
+    assert r.point_Q == old.point_Q
+    if witnesses:
+        assert r.normal == old.normal
+        assert r.point_E == old.point_E
+
+
+@pytest.mark.parametrize("placement", ["binary64", "rational"])
+@pytest.mark.parametrize("kind", CURVED, ids=lambda k: k.name.lower())
+def test_sphere_fast_path_equals_the_previous_route(kind, placement):
+    rng = np.random.default_rng([SAMPLE_KINDS.index(kind), placement == "rational"])
+    e, K, r = _answered(kind, rng, placement)
+    _check_against_previous(e, K, r, witnesses=placement == "binary64")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("placement", ["binary64", "rational"])
+@pytest.mark.parametrize("kind", CURVED, ids=lambda k: k.name.lower())
+def test_sphere_fast_path_equals_the_previous_route_many(kind, placement):
+    rng = np.random.default_rng([SAMPLE_KINDS.index(kind), placement == "rational", 1])
+    for k in range(6):
+        e, K, r = _answered(kind, rng, placement, rational_radius=k % 3 == 2)
+        _check_against_previous(e, K, r, witnesses=k == 0)
+
+
+@pytest.mark.parametrize(
+    "kind", [QuadricKind.ELLIPSOID, QuadricKind.PARALLEL_PLANES], ids=lambda k: k.name.lower()
+)
+def test_rational_radius_and_square_distances(kind):
+    """A rational radius (the distance polynomial of half the degree) and the slab of two
+    planes at irrational offsets (the squared distance a square in its field: the path
+    through the factors of ``m(x^2)``)."""
+    rng = np.random.default_rng([7, SAMPLE_KINDS.index(kind)])
+    e, K, r = _answered(kind, rng, "binary64", rational_radius=True)
+    _check_against_previous(e, K, r, witnesses=False)
