@@ -1,10 +1,11 @@
-"""The sphere's exact distance from the certified secular root against the previous route on
-random pairs of every type.
+"""The sphere's exact distance from the certified secular root, and the plane's closed form,
+against the previous routes on random pairs of every type.
 
 The previous route of a sphere against a curved quadric reads ``|c - p*|`` off the
 first-contact scale (the roots of the pencil's discriminant, chosen by the exact overlap
-decision) and then picks the root of the secular equation at that distance.  It must give the
-same numbers as the fast path: the distance, the witness ``point_Q`` and, on a few pairs, the
+decision) and then picks the root of the secular equation at that distance; the previous plane
+formula is real algebraic arithmetic on ``(n . c - d - sqrt(r k)) / |n|``.  Both must give the
+same numbers as the fast paths: the distance, the witness ``point_Q`` and, on a few pairs, the
 normal and ``point_E``.  A few pairs a type by default; the ``slow`` profile draws more.
 """
 
@@ -16,11 +17,13 @@ import numpy as np
 import pytest
 
 from quadric_contact import Quadric, QuadricKind
+from quadric_contact.exact.algebraic import RealAlgebraic
 from quadric_contact.exact.errors import UndecidedError
 from quadric_contact.model.motions import RigidMotion
 from quadric_contact.model.quadric import as_quadric
 from quadric_contact.testing.samples import SAMPLE_KINDS, _moved, _standard_forms, random_pairs
-from quadric_contact.theory.distance import _sphere_quadric_general, distance_exact
+from quadric_contact.theory.contact_scale import centred_form
+from quadric_contact.theory.distance import _solve3, _sphere_quadric_general, distance_exact
 from quadric_contact.theory.distance_sphere import sphere_distance, sphere_pair
 from quadric_contact.theory.overlap import solid_of
 
@@ -115,3 +118,49 @@ def test_rational_radius_and_square_distances(kind):
     rng = np.random.default_rng([7, SAMPLE_KINDS.index(kind)])
     e, K, r = _answered(kind, rng, "binary64", rational_radius=True)
     _check_against_previous(e, K, r, witnesses=False)
+
+
+def _previous_plane(E, K):
+    """The previous closed form, in real algebraic arithmetic."""
+    A, c, r = centred_form(E)
+    n = [2 * K[i, 3] for i in range(3)]
+    d = -K[3, 3]
+    Ainv_n = _solve3(A, n)
+    k = sum(n[i] * Ainv_n[i] for i in range(3))
+    N = sum(x * x for x in n)
+    nc = sum(n[i] * c[i] for i in range(3))
+    root_rk, norm = RealAlgebraic.sqrt(r * k), RealAlgebraic.sqrt(N)
+    dist = (root_rk * -1 + (nc - d)) / norm
+    point_E = tuple(root_rk * (-Ainv_n[i] / k) + c[i] for i in range(3))
+    point_Q = tuple(point_E[i] - (root_rk * -1 + (nc - d)) * (n[i] / N) for i in range(3))
+    normal = tuple(RealAlgebraic(n[i]) / norm for i in range(3))
+    return dist, point_Q, normal, point_E
+
+
+@pytest.mark.parametrize("seed", [0, 1, *(pytest.param(s, marks=pytest.mark.slow) for s in range(2, 12))])
+def test_plane_closed_form_equals_the_previous_formula(seed, monkeypatch):
+    rng = np.random.default_rng(seed)
+    E = _sphere(rng) if seed % 2 else as_quadric(random_pairs(1, rng)[0][0])
+    _, Q, _ = random_pairs(1, rng, kinds=(QuadricKind.PLANE,))
+    e, K = E.as_ellipsoid(), solid_of(Q[0])
+    want = _previous_plane(e, K)
+
+    def refuse(*args):  # the fast closed form takes no square root by real algebraic arithmetic
+        raise AssertionError("the general arithmetic was used")
+
+    monkeypatch.setattr(RealAlgebraic, "sqrt", refuse)
+    r = distance_exact(e, K)
+    got = (r.distance, r.point_Q, r.normal, r.point_E)
+    monkeypatch.undo()
+    assert got == want
+
+
+def test_plane_closed_form_special_values():
+    for E, Q, want in [
+        ("x**2 + y**2 + z**2 - 1", "x - 3", RealAlgebraic(-4)),
+        ("x**2 + y**2 + z**2 - 1", "3 - x", RealAlgebraic(2)),
+        ("x**2/4 + y**2 + z**2 - 1", "x - 3", RealAlgebraic(-5)),
+        ("(x - 1)**2 + y**2 + z**2 - 1", "x - 2", RealAlgebraic(-2)),
+        ("(z - 3)**2 + x**2 + y**2 - 1", "z - 2", RealAlgebraic(0)),
+    ]:
+        assert distance_exact(E, Q).distance == want

@@ -42,6 +42,7 @@ What is exact here
 from __future__ import annotations
 
 import functools
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -51,6 +52,8 @@ import flint
 
 from quadric_contact.exact.algebraic import RealAlgebraic, algebraic_sqrt, algebraic_value, real_roots
 from quadric_contact.exact.errors import UndecidedError
+from quadric_contact.exact.isolating import root_among
+from quadric_contact.exact.precision import working_precision
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import Quadric, as_quadric
 from quadric_contact.theory.contact_scale import centred_form, contact_scale_exact
@@ -183,23 +186,71 @@ def _ellipsoid_plane(E: Quadric, K: Quadric) -> DistanceResult:
     n = [2 * K[i, 3] for i in range(3)]  # K: n . x - d  (as 2 b . x + q33)
     d = -K[3, 3]
     Ainv_n = _solve3(A, n)
-    k = sum(n[i] * Ainv_n[i] for i in range(3))
-    N = sum(x * x for x in n)
-    nc = sum(n[i] * c[i] for i in range(3))
-    root_rk = RealAlgebraic.sqrt(r * k)
-    norm = RealAlgebraic.sqrt(N)
-    dist = (root_rk * -1 + (nc - d)) / norm
-    # sqrt(r / k) = sqrt(r k) / k
-    point_E = tuple(root_rk * (-Ainv_n[i] / k) + c[i] for i in range(3))
-    # point_Q = point_E - dist n / |n| = point_E - (nc - d - sqrt(rk)) n / N
-    point_Q = tuple(point_E[i] - (root_rk * -1 + (nc - d)) * (n[i] / N) for i in range(3))
-    return DistanceResult(
-        dist,
-        True,
-        "ellipsoid-plane",
-        lambda: point_Q,  # type: ignore[arg-type,return-value]
-        lambda: (tuple(_ra(n[i]) / norm for i in range(3)), point_E),  # type: ignore[arg-type,return-value]
-    )
+    k = sum((n[i] * Ainv_n[i] for i in range(3)), Fraction(0))
+    N = sum((x * x for x in n), Fraction(0))
+    a = sum((n[i] * c[i] for i in range(3)), Fraction(0)) - d  # n . c - d
+    rk = r * k
+    # distance = (a - sqrt(r k)) / |n|; sqrt(r / k) = sqrt(r k) / k;
+    # point_E = c - sqrt(r k) A^-1 n / k, point_Q = point_E - distance n / |n|
+    dist = _quotient_of_roots(a, rk, N)
+
+    def point_Q() -> Point:
+        return tuple(  # type: ignore[return-value]
+            _quadratic(c[i] - a * n[i] / N, n[i] / N - Ainv_n[i] / k, rk) for i in range(3)
+        )
+
+    def witnesses() -> tuple[Point, Point]:
+        normal = tuple(_quadratic(Fraction(0), n[i] / N, N) for i in range(3))
+        point_E = tuple(_quadratic(c[i], -Ainv_n[i] / k, rk) for i in range(3))
+        return normal, point_E  # type: ignore[return-value]
+
+    return DistanceResult(dist, True, "ellipsoid-plane", point_Q, witnesses)
+
+
+def _quadratic(a: Fraction, b: Fraction, D: Fraction) -> RealAlgebraic:
+    """``a + b sqrt(D)`` (rationals, ``D >= 0``), exactly: a root of
+    ``x^2 - 2 a x + a^2 - b^2 D``, the larger one when ``b > 0``; its roots lie on either side
+    of ``a``.
+
+    >>> _quadratic(Fraction(1), Fraction(-1, 2), Fraction(8)).decimal(6)    # 1 - sqrt(2)
+    '-0.414214'
+    """
+    if b == 0 or D == 0:
+        return RealAlgebraic(a)
+    p, q = D.numerator, D.denominator
+    s = math.isqrt(p * q)
+    if s * s == p * q:
+        return RealAlgebraic(a + b * Fraction(s, q))
+    up = b * Fraction(s + 1, q)  # |up| > |b| sqrt(D): sqrt(p / q) = sqrt(p q) / q
+    lo, hi = (a, a + up) if b > 0 else (a + up, a)
+    return RealAlgebraic._from_interval((a * a - b * b * D, -2 * a, Fraction(1)), lo, hi)
+
+
+def _quotient_of_roots(a: Fraction, rk: Fraction, N: Fraction) -> RealAlgebraic:
+    """``(a - sqrt(rk)) / sqrt(N)`` (``rk >= 0``, ``N > 0``), exactly: a root of
+    ``(N x^2 - a^2 - rk)^2 - 4 a^2 rk``, singled out among the roots of its irreducible
+    factors by certified balls.
+
+    >>> _quotient_of_roots(Fraction(3), Fraction(1), Fraction(4))
+    RealAlgebraic(1)
+    """
+    N2 = flint.fmpq_poly([_fmpq(-(a * a + rk)), 0, _fmpq(N)])
+    P = N2 * N2 - _fmpq(4 * a * a * rk)
+    _, factors = P.numer().factor()
+    factors = [g for g, _ in factors]
+    for bits in (64, 256, 1024, 4096):
+        with working_precision(bits):
+            ball = (flint.arb(_fmpq(a)) - flint.arb(_fmpq(rk)).sqrt()) / flint.arb(_fmpq(N)).sqrt()
+            x = root_among(factors, ball)
+        if x is not None:
+            return x
+    # distinct irreducible factors are told apart at some precision; should these not do
+    root_rk, norm = RealAlgebraic.sqrt(rk), RealAlgebraic.sqrt(N)  # pragma: no cover
+    return (root_rk * -1 + a) / norm  # pragma: no cover
+
+
+def _fmpq(x: Fraction) -> Any:
+    return flint.fmpq(x.numerator, x.denominator)
 
 
 def _foot_point(
