@@ -32,11 +32,17 @@ What is exact here
 * an ellipsoid ``(x - c)^T A (x - c) = r`` and a plane ``n . x = d``, in closed form: with
   ``k = n^T A^-1 n``, ``distance = (n . c - d - sqrt(r k)) / |n|``, ``point_E = c - sqrt(r / k)
   A^-1 n``, ``normal = n / |n|`` (the support function of ``E``);
+  the numbers ``a + b sqrt(D)`` built from their quadratic polynomials, the distance from the
+  quartic ``(N x^2 - a^2 - r k)^2 - 4 a^2 r k`` (``a = n . c - d``, ``N = |n|^2``);
 * a sphere ``|x - c| = rho`` and any quadric with a solid: ``distance = +-|c - p*| - rho`` with
-  ``p*`` the point of the surface of ``Q`` nearest to ``c`` (sign ``-`` for ``c`` in ``K``).
-  ``|c - p*| = rho s*`` with ``s*`` the first-contact scale of the sphere
-  (:mod:`quadric_contact.theory.contact_scale`), and ``p*`` is read off the point-quadric
-  secular equation: ``(I + mu Q00) p = c - mu b``, ``q(p(mu)) det(I + mu Q00)^2 = 0``.
+  ``p*`` the point of the surface of ``Q`` nearest to ``c`` (sign ``-`` for ``c`` in ``K``),
+  read off the point-quadric secular equation ``(I + mu Q00) p = c - mu b``,
+  ``q(p(mu)) det(I + mu Q00)^2 = 0``.  The root ``mu*`` with ``I + mu* Q00`` positive definite
+  proves ``p(mu*)`` the one nearest point (:mod:`quadric_contact.theory.distance_sphere`);
+  where there is none (a circle or a symmetric pair of nearest points), ``|c - p*| = rho s*``
+  with ``s*`` the first-contact scale of the sphere
+  (:mod:`quadric_contact.theory.contact_scale`), and ``p*`` the root of the secular equation
+  at that distance.
 """
 
 from __future__ import annotations
@@ -352,7 +358,12 @@ def _sphere_quadric(E: Quadric, K: Quadric) -> DistanceResult:
         p = fast.foot()
         return p if p is not None else _sphere_quadric_general(E, K).point_Q  # type: ignore[return-value]
 
-    witnesses = _sphere_witnesses(pair.centre, pair.r2, pair.inside, foot, fast.multiplier)
+    general = _sphere_witnesses(pair.centre, pair.r2, pair.inside, foot, fast.multiplier)
+
+    def witnesses() -> tuple[Point, Point]:
+        w = fast.witnesses()  # the general arithmetic, should the balls not isolate them
+        return w if w is not None else general()
+
     return DistanceResult(fast.distance, True, "sphere-quadric", functools.cache(foot), witnesses)
 
 

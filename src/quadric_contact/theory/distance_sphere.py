@@ -26,9 +26,11 @@ irreducible factor ``f`` of ``S`` that changes sign there.
 
 The numbers
 -----------
-Every number of the answer is a rational function ``w(mu*) / u(mu*)`` of ``mu*``: the squared
-distance of the centre ``h = |c - p*|^2 = N / det`` (``= N' / det'`` at a root of ``S``) and
-the coordinates of the nearest point ``p* = c - mu adj(M) b / det``.  Its characteristic
+Every number of the answer is a rational function ``w(mu*) / u(mu*)`` of ``mu*``, or a square
+root of one: the squared distance of the centre ``h = |c - p*|^2 = N / det``
+(``= N' / det'`` at a root of ``S``), the coordinates of the nearest point
+``p* = c - mu adj(M) b / det``, the squares ``y_i^2 / h`` of the unit normal's coordinates
+(``y = p* - c``) and ``rho^2 y_i^2 / h``, the squares of ``point_E - c``.  Its characteristic
 polynomial over ``Q(mu*)`` is ``Res_mu(f, x u - w)`` up to a constant (interpolated from
 ``deg f + 1`` resultants at integer ``x``), a power of its minimal polynomial, which is
 therefore its squarefree part: no factorisation.
@@ -46,7 +48,9 @@ squarefree with a root ``a`` gives a prime ``(p, h - a)`` of ``k`` of degree one
 ``F`` squarefree modulo a prime is squarefree.  Where ``h`` is a square of ``k`` (the slab of
 two parallel planes: the distance of the centre from a plane is in ``k``), ``m_h(x^2)``
 factors and ``s sqrt(h)`` is a root of one factor ``g``: the same construction with
-``g(x + rho)``, factored.  Otherwise ``F`` is factored.
+``g(x + rho)``, factored.  Otherwise ``F`` is factored.  The witnesses' square roots of numbers
+``v`` of ``Q(mu*)`` are roots of ``m_v(x^2)``, irreducible when the norm of ``v`` is no
+rational square (else factored).
 
 Each number is isolated among the roots of its minimal polynomial by an interval from
 certified ball arithmetic (``arb``, the root ``mu*`` contracted by the interval Newton
@@ -78,6 +82,8 @@ from quadric_contact.model.quadric import Quadric
 
 __all__ = ["SphereDistance", "SpherePair", "sphere_distance", "sphere_pair"]
 
+Point = tuple[RealAlgebraic, RealAlgebraic, RealAlgebraic]
+
 _BITS = (128, 512, 2048)
 """The precisions (bits) of the ball arithmetic, tried in turn."""
 
@@ -102,11 +108,16 @@ class SphereDistance:
         given) and ``point_of(m, i)``, coordinate ``i`` of ``c - m adj(I + m A) b / det`` at a
         number ``m`` of any type with ``+ - * /`` and Fraction constants (the witnesses
         evaluate it on the multiplication matrices of ``Q(mu)``); built when first asked for.
+    witnesses : callable
+        ``witnesses()``: ``(normal, point_E)``, the unit normal of ``K`` at the nearest point,
+        out of the solid, and ``point_E = c - rho normal``; None if the balls did not isolate
+        them.
     """
 
     distance: RealAlgebraic
     foot: Callable[[], tuple[RealAlgebraic, RealAlgebraic, RealAlgebraic] | None]
     multiplier: Callable[[], tuple[RealAlgebraic, Callable[[Any, int], Any]]]
+    witnesses: Callable[[], tuple[Point, Point] | None]
 
 
 # -- integer polynomials and their roots ---------------------------------------------------
@@ -537,10 +548,12 @@ def sphere_distance(pair: SpherePair) -> SphereDistance | None:
     if ab is None:
         return None
     a, b = ab
-    f = next(
-        (primitive(g) for g, _ in sec.S.factor()[1] if sign_at_rational(g, a) * sign_at_rational(g, b) < 0),
-        None,
-    )
+    factors = sec.S.factor()[1]
+    if len(factors) == 1 and factors[0][1] == 1:  # S irreducible: S(a) S(b) < 0 was checked
+        f = primitive(factors[0][0])
+    else:
+        changes = (g for g, _ in factors if sign_at_rational(g, a) * sign_at_rational(g, b) < 0)
+        f = next((primitive(g) for g in changes), None)
     if f is None:  # pragma: no cover - S changes sign on [a, b]
         return None
     m_h = _minimal_polynomial(f, sec.det.derivative() * (sec.dc * sec.dc), sec.N.derivative())
@@ -558,7 +571,9 @@ def sphere_distance(pair: SpherePair) -> SphereDistance | None:
     dist = _distance_number(m_h, r2, balls)
     if dist is None:
         return None
-    return SphereDistance(dist, _foot(sec, f, a, b), _multiplier(sec, f, a, b, pair.K))
+    return SphereDistance(
+        dist, _foot(sec, f, a, b), _multiplier(sec, f, a, b, pair.K), _witnesses(pair, f, a, b)
+    )
 
 
 def _foot(
@@ -581,6 +596,66 @@ def _foot(
         return None
 
     return foot
+
+
+def _square_root(m: Any, ball: Any) -> RealAlgebraic | None:
+    """``beta`` with ``beta^2 = v``, ``v`` a root of the irreducible ``m``, ``beta`` in ``ball``:
+    a root of ``m(x^2)``, irreducible when the norm of ``v`` is no rational square (else
+    factored)."""
+    n = m.degree()
+    P = primitive(m(flint.fmpz_poly([0, 0, 1])))
+    if not _square((-1) ** n * int(m[0]) * int(m[n])):
+        return root_in_ball(P, ball)
+    return root_among([g for g, _ in P.factor()[1]], ball)
+
+
+def _witnesses(
+    pair: SpherePair, f: Any, a: Fraction, b: Fraction
+) -> Callable[[], tuple[Point, Point] | None]:
+    """The normal ``side y / |y|`` (``y = p* - c``; ``side`` ``+1`` for the centre in the solid,
+    ``-1`` outside) and ``point_E = c - rho normal``.  ``normal_i^2 = y_i^2 / h`` is a number
+    of ``Q(mu*)``, ``Y_i^2 / (det N)`` with ``Y_i = P_i - C_i det``; ``point_E_i - c_i`` is a
+    square root of ``rho^2 normal_i^2``."""
+    sec, r2 = pair.sec, pair.r2
+    side = 1 if pair.inside else -1
+    rn, rd = r2.numerator, r2.denominator
+
+    def witnesses() -> tuple[Point, Point] | None:
+        C = [int(x * sec.dc) for x in pair.centre]
+        Y = [P - sec.det * C[i] for i, P in enumerate(sec.P)]  # dc det y_i
+        m_u = [_minimal_polynomial(f, sec.det * sec.N, y * y) for y in Y]
+        if any(m is None for m in m_u):
+            return None
+        m_t = []  # rho^2 normal_i^2: m(y / r2), scaled to integers
+        for m in m_u:
+            n = m.degree()
+            m_t.append(
+                primitive(flint.fmpz_poly([int(c) * rn ** (n - k) * rd**k for k, c in enumerate(m.coeffs())]))
+            )
+        for bits in _BITS:
+            with working_precision(bits + 16):
+                X = _contract(f, a, b, bits)
+                den = sec.det(X) * sec.dc
+                y = [y(X) / den for y in Y]
+                norm = (y[0] * y[0] + y[1] * y[1] + y[2] * y[2]).sqrt()
+                rho = flint.arb(_fmpq(r2)).sqrt()
+                normal = [_square_root(m, side * yi / norm) for m, yi in zip(m_u, y, strict=True)]
+                shift = [_square_root(m, -rho * side * yi / norm) for m, yi in zip(m_t, y, strict=True)]
+            if all(x is not None for x in normal) and all(x is not None for x in shift):
+                point_E = tuple(_shifted(t, c) for t, c in zip(shift, pair.centre, strict=True))
+                return tuple(normal), point_E  # type: ignore[return-value]
+        return None
+
+    return witnesses
+
+
+def _shifted(t: Any, c: Fraction) -> RealAlgebraic:
+    """``c + t`` for a rational ``c``: the minimal polynomial of ``t`` at ``x - c``, the
+    isolating interval moved by ``c``."""
+    if t.is_rational:
+        return RealAlgebraic(c + t.as_fraction())
+    g = primitive((flint.fmpq_poly(t.integer_poly)(flint.fmpq_poly([_fmpq(-c), 1]))).numer())
+    return RealAlgebraic._from_integer_polynomial(g, t.lo + c, t.hi + c)
 
 
 def _multiplier(
