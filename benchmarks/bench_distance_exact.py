@@ -28,12 +28,12 @@ non-convex solid; decided exactly, in about 0.1 ms); how many answered pairs the
 secular root settled (the rest take the general route: a circle of nearest points, or the
 hard case of the secular equation); the median, 90th percentile and maximum time of the
 public call over the answered pairs (parsing included; the result holds the exact distance);
-the median time of then reading the witness ``point_Q`` (its coordinates are isolated when
-first read); and the median time of the previous route (the first-contact scale from the
-pencil's discriminant, then the root of the secular equation at that distance, ``point_Q``
-with the result; the plane by real algebraic arithmetic) on the first ``--before`` answered
-pairs, whose distance and ``point_Q`` are checked equal to the new ones.  ``--profile``
-prints where the time of the first table goes (cProfile).
+the median times of then reading the witness ``point_Q`` and then the normal and ``point_E``
+(the witnesses are computed when first read); and the median time of the previous route (the
+first-contact scale from the pencil's discriminant, then the root of the secular equation at
+that distance, ``point_Q`` with the result; the plane by real algebraic arithmetic) on the
+first ``--before`` answered pairs, whose distance and ``point_Q`` are checked equal to the new
+ones.  ``--profile`` prints where the time of the first table goes (cProfile).
 
 Times are wall-clock on a shared machine: indicative only.
 """
@@ -182,7 +182,7 @@ def run_kind(draw: Callable[[], tuple[np.ndarray, Any]], n: int, before: int) ->
     """Time the public call on pairs from ``draw()`` until ``n`` are answered (at most ``20 n``
     drawn), then the first read of ``point_Q``; then the previous route on the first
     ``before`` answered pairs."""
-    times, reads, refused, certified = [], [], 0, 0
+    times, reads, normals, refused, certified = [], [], [], 0, 0
     answered: list[tuple[np.ndarray, Any, DistanceResult]] = []
     warm = 3  # the first calls load modules and fill caches: not timed
     for _ in range(20 * n):
@@ -199,6 +199,7 @@ def run_kind(draw: Callable[[], tuple[np.ndarray, Any]], n: int, before: int) ->
             continue
         times.append(dt)
         reads.append(_timed(lambda r=r: r.point_Q)[1])
+        normals.append(_timed(lambda r=r: r.normal)[1])
         answered.append((E, Q, r))
         K = solid_of(Q)
         if K.kind is QuadricKind.PLANE or sphere_distance(sphere_pair(as_quadric(E).as_ellipsoid(), K)):
@@ -218,6 +219,7 @@ def run_kind(draw: Callable[[], tuple[np.ndarray, Any]], n: int, before: int) ->
         "p90": float(np.percentile(times, 90)) if times else math.nan,
         "max": max(times, default=math.nan),
         "point_Q": statistics.median(reads) if reads else math.nan,
+        "normal": statistics.median(normals) if normals else math.nan,
         "before": statistics.median(old) if old else math.nan,
         "before_n": len(old),
     }
@@ -225,8 +227,8 @@ def run_kind(draw: Callable[[], tuple[np.ndarray, Any]], n: int, before: int) ->
 
 HEADER = (
     "| Q | entries | answered | refused (non-convex) | certified root | median | p90 | max "
-    "| then point_Q | previous route (median) |\n"
-    "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+    "| then point_Q | then normal, point_E | previous route (median) |\n"
+    "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
 )
 
 
@@ -235,7 +237,7 @@ def _row(kind: QuadricKind, entries: str, row: dict[str, Any]) -> str:
     return (
         f"| {kind.value} | {entries} | {row['answered']} | {row['refused']} | {row['certified']} "
         f"| {_ms(row['median'])} | {_ms(row['p90'])} | {_ms(row['max'])} | {_ms(row['point_Q'])} "
-        f"| {before} |"
+        f"| {_ms(row['normal'])} | {before} |"
     )
 
 
