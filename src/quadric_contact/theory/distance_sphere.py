@@ -336,7 +336,7 @@ class _Secular:
 
     A: list[list[int]]
     det: Any  # fmpz_poly: det(I + mu A)
-    S: Any  # fmpz_poly
+    secular: Any  # fmpz_poly: S, the secular polynomial
     N: Any  # fmpz_poly: dc^2 N (L = N / (dc^2 det))
     P: list[Any]  # fmpz_poly: C_i det - mu (adj M b)_i dc  (p_i = P_i / (dc det))
     dc: int
@@ -367,9 +367,9 @@ def _secular(K: Quadric, C: Sequence[int], dc: int) -> _Secular:
     w2 = b[0] * v2[0] + b[1] * v2[1] + b[2] * v2[2]
     det = flint.fmpz_poly([1, s1, s2, s3])
     N = flint.fmpz_poly([0, q, q * s1 - w0, q * s2 - w1, q * s3 - w2])
-    S = N.derivative() * det - N * det.derivative()
+    secular = N.derivative() * det - N * det.derivative()
     P = [det * C[i] - flint.fmpz_poly([0, b[i], v1[i], v2[i]]) for i in range(3)]
-    return _Secular(A, det, S, N, P, dc, q, b)
+    return _Secular(A, det, secular, N, P, dc, q, b)
 
 
 def _floats(xs: Sequence[int], shift: int) -> list[float] | None:
@@ -460,7 +460,8 @@ def _bracket(sec: _Secular, mf: float) -> tuple[Fraction, Fraction] | None:
         w = abs(m) / (1 << bits)
         a, b = m - w, m + w
         qa, qb = _fmpq(a), _fmpq(b)
-        if sec.S(qa) > 0 > sec.S(qb) and _definite(sec.A, sec.det, qa) and _definite(sec.A, sec.det, qb):
+        secular = sec.secular
+        if secular(qa) > 0 > secular(qb) and _definite(sec.A, sec.det, qa) and _definite(sec.A, sec.det, qb):
             return a, b
     return None
 
@@ -548,7 +549,7 @@ def sphere_distance(pair: SpherePair) -> SphereDistance | None:
     if ab is None:
         return None
     a, b = ab
-    factors = sec.S.factor()[1]
+    factors = sec.secular.factor()[1]
     if len(factors) == 1 and factors[0][1] == 1:  # S irreducible: S(a) S(b) < 0 was checked
         f = primitive(factors[0][0])
     else:
