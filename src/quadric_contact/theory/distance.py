@@ -358,13 +358,14 @@ def _sphere_quadric(E: Quadric, K: Quadric) -> DistanceResult:
         p = fast.foot()
         return p if p is not None else _sphere_quadric_general(E, K).point_Q  # type: ignore[return-value]
 
-    general = _sphere_witnesses(pair.centre, pair.r2, pair.inside, foot, fast.multiplier)
+    nearest = functools.cache(foot)
+    general = _sphere_witnesses(pair.centre, pair.r2, pair.inside, nearest, fast.multiplier)
 
     def witnesses() -> tuple[Point, Point]:
         w = fast.witnesses()  # the general arithmetic, should the balls not isolate them
         return w if w is not None else general()
 
-    return DistanceResult(fast.distance, True, "sphere-quadric", functools.cache(foot), witnesses)
+    return DistanceResult(fast.distance, True, "sphere-quadric", nearest, witnesses)
 
 
 def _refuse_inside(E: Quadric, K: Quadric, inside: bool) -> None:
