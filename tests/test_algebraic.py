@@ -139,3 +139,16 @@ def test_algebraic_value_with_a_ball_holding_zero_in_a_power():
     s2 = RealAlgebraic.sqrt(2)
     assert algebraic_value(lambda x: (x - x) ** 2 + x, [s2]) == s2
     assert algebraic_value(lambda x: (x - 1) ** 3, [s2]).compare(0) > 0
+
+
+def test_integer_polynomial_numbers_equal_the_classic_ones():
+    import flint
+
+    # a number made from its primitive integer polynomial (the monic rational coefficients
+    # formed only when read) is the same number as one made from them
+    z = flint.fmpz_poly([-1, 0, 2])  # 2 x^2 - 1: the root 1/sqrt(2)
+    x = RealAlgebraic._from_integer_polynomial(z, Fraction(1, 2), Fraction(1))
+    y = RealAlgebraic.root_in([Fraction(-1, 2), 0, 1], Fraction(1, 2), Fraction(1))
+    assert x.degree == 2 and not x.is_rational and x.sign() > 0 and x.decimal(8) == "0.70710678"
+    assert x == y and hash(x) == hash(y) and x.minpoly == y.minpoly
+    assert x.integer_poly == z == y.integer_poly and x.poly == y.poly

@@ -306,20 +306,48 @@ class RealAlgebraic:
     ('1.41421356237309504880', 1, 0)
     """
 
-    __slots__ = ("_hi", "_index", "_lo", "minpoly")
-    minpoly: tuple[Fraction, ...]
+    __slots__ = ("_hi", "_index", "_lo", "_minpoly", "_z")
+    _minpoly: tuple[Fraction, ...] | None
+    _z: Any  # the primitive integer minimal polynomial, when the number was made from it
     _index: int | None
     _lo: Fraction
     _hi: Fraction
 
     def __init__(self, value: Any) -> None:
         if isinstance(value, RealAlgebraic):
-            self.minpoly, self._index, self._lo, self._hi = value.minpoly, value._index, value._lo, value._hi
+            self._minpoly, self._z = value._minpoly, value._z
+            self._index, self._lo, self._hi = value._index, value._lo, value._hi
             return
         v = Fraction(value)
         self.minpoly = (-v, Fraction(1))
         self._index = 0
         self._lo = self._hi = v
+
+    @property
+    def minpoly(self) -> tuple[Fraction, ...]:
+        """The coefficients of the monic minimal polynomial (read off the integer polynomial
+        when first asked for, for a number made by :meth:`_from_integer_polynomial`)."""
+        m = self._minpoly
+        if m is None:
+            m = self._minpoly = _key(self._z)
+        return m
+
+    @minpoly.setter
+    def minpoly(self, key: tuple[Fraction, ...]) -> None:
+        self._minpoly = key
+        self._z = None
+
+    @classmethod
+    def _from_integer_polynomial(cls, z: Any, lo: Fraction, hi: Fraction) -> RealAlgebraic:
+        """The only root in ``[lo, hi]`` (``lo < hi``) of ``z``, an irreducible primitive
+        ``fmpz_poly`` of degree at least 2 with a positive leading coefficient (not checked);
+        its monic rational coefficients are formed only if :attr:`minpoly` is read."""
+        obj = cls.__new__(cls)
+        obj._minpoly = None
+        obj._z = z
+        obj._index = None
+        obj._lo, obj._hi = lo, hi
+        return obj
 
     @classmethod
     def _make(cls, key: tuple[Fraction, ...], index: int) -> RealAlgebraic:
@@ -383,7 +411,7 @@ class RealAlgebraic:
 
     @property
     def degree(self) -> int:
-        return len(self.minpoly) - 1
+        return len(self._minpoly) - 1 if self._minpoly is not None else int(self._z.degree())
 
     @property
     def is_rational(self) -> bool:
@@ -402,13 +430,15 @@ class RealAlgebraic:
 
     @property
     def poly(self) -> Any:
-        """The minimal polynomial as an ``fmpq_poly``."""
-        return fmpq_poly_of(self.minpoly)
+        """The minimal polynomial as an ``fmpq_poly`` (monic)."""
+        if self._minpoly is None:
+            return flint.fmpq_poly(self._z) / self._z.leading_coefficient()
+        return fmpq_poly_of(self._minpoly)
 
     @property
     def integer_poly(self) -> Any:
         """The minimal polynomial made primitive over Z (``fmpz_poly``, positive leading coefficient)."""
-        return _primitive(self.poly)
+        return self._z if self._minpoly is None else _primitive(self.poly)
 
     @property
     def interval(self) -> tuple[Fraction, Fraction]:
