@@ -326,7 +326,7 @@ class RealAlgebraic:
     @property
     def minpoly(self) -> tuple[Fraction, ...]:
         """The coefficients of the monic minimal polynomial (read off the integer polynomial
-        when first asked for, for a number made by :meth:`_from_integer_polynomial`)."""
+        when first asked for, for a number made by ``_from_integer_polynomial``)."""
         m = self._minpoly
         if m is None:
             m = self._minpoly = _key(self._z)

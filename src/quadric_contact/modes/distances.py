@@ -1,5 +1,5 @@
-"""How far from contact, as public predicates: :func:`contact_scale` and :func:`distance`,
-for one pair and for stacks.
+"""How far from contact, as public predicates: :func:`~quadric_contact.contact_scale` and
+:func:`~quadric_contact.distance`, for one pair and for stacks.
 
 One meaning for every input form and mode: the exact number of
 :mod:`quadric_contact.theory.contact_scale` or :mod:`quadric_contact.theory.distance`.  For a
