@@ -224,3 +224,24 @@ def test_center_is_the_exact_critical_point(e):
     A = sympy.Matrix(e.quadratic_part)
     b = sympy.Matrix(e.linear_part)
     assert sympy.Matrix(c) == -A.LUsolve(b)
+
+
+def test_a_binary64_array_keeps_its_exact_entries_whatever_their_size():
+    """The fast path for float64 arrays (the integer form first, the Fractions when read) gives
+    the entries exactly, also when their sum overflows, and still refuses non-finite ones."""
+    import numpy as np
+
+    from quadric_contact.exact.errors import NonFiniteError
+
+    for big in (1.0, 1e308):
+        m = np.diag([big, big, 1.0, -0.1])
+        m[0, 1] = m[1, 0] = big / 3
+        q = Quadric.from_matrix(m)
+        want = Quadric.from_matrix([[Fraction(v) for v in row] for row in m.tolist()])
+        assert q == want and hash(q) == hash(want)
+        assert q.integer_form() == want.integer_form() and q[0, 1] == Fraction(big / 3)
+    for bad in (float("nan"), float("inf")):
+        m = np.diag([1.0, 1.0, 1.0, -1.0])
+        m[2, 3] = m[3, 2] = bad
+        with pytest.raises(NonFiniteError):
+            Quadric.from_matrix(m)

@@ -34,7 +34,7 @@ from quadric_contact.exact.errors import (
     QuadricContactError,
     ShapeError,
 )
-from quadric_contact.exact.rational import as_square_matrix, common_denominator, coprime_fraction, to_fraction
+from quadric_contact.exact.rational import as_square_matrix, common_denominator, to_fraction
 from quadric_contact.model.classification import QuadricKind, classify, principal_minor_sums_3
 from quadric_contact.model.motions import RigidMotion, rotation_from_quaternion
 
@@ -85,23 +85,33 @@ class Quadric:
     Fraction(2173, 20)
     """
 
-    __slots__ = ("_hash", "_ints", "_kind", "_u")
+    __slots__ = ("_hash", "_ints", "_kind", "_uf")
 
     def __init__(self, matrix: Any) -> None:
-        if isinstance(matrix, Quadric):
-            self._u: tuple[Fraction, ...] = matrix._u
-        else:
-            self._u = Quadric.from_matrix(matrix)._u
+        q = matrix if isinstance(matrix, Quadric) else Quadric.from_matrix(matrix)
+        self._uf: tuple[Fraction, ...] | None = q._uf
         self._kind: tuple[QuadricKind, int] | None = None
-        self._ints: tuple[tuple[int, ...], int] | None = None
+        self._ints: tuple[tuple[int, ...], int] | None = q._ints
         self._hash: int | None = None
+
+    @property
+    def _u(self) -> tuple[Fraction, ...]:
+        """The upper entries as Fractions (made from the integer form when first read: a quadric
+        from a binary64 array is decided on its integers, and twenty Fractions a pair were a
+        tenth of the exact decision's time)."""
+        u = self._uf
+        if u is None:
+            assert self._ints is not None
+            ints, den = self._ints
+            u = self._uf = tuple(Fraction(n, den) for n in ints)
+        return u
 
     # -- construction ---------------------------------------------------------------
 
     @classmethod
     def _from_upper(cls, upper: Sequence[Fraction]) -> Quadric:
         obj = cls.__new__(cls)
-        obj._u = tuple(upper)
+        obj._uf = tuple(upper)
         obj._kind = None
         obj._ints = None
         obj._hash = None
@@ -148,8 +158,12 @@ class Quadric:
             return matrix
         fast = _from_float_array(matrix, symmetrize)
         if fast is not None:
-            obj = cls._from_upper(fast[0])
-            obj._ints = fast[1]
+            upper, ints = fast
+            if ints is None:
+                assert upper is not None
+                return cls._from_upper(upper)
+            obj = cls.__new__(cls)
+            obj._uf, obj._ints, obj._kind, obj._hash = None, ints, None, None
             return obj
         m = as_square_matrix(matrix, 4)
         if symmetrize:
@@ -716,16 +730,18 @@ _LOWER_FLAT = tuple(4 * j + i for i, j in ENTRY_INDICES)
 
 def _from_float_array(
     matrix: Any, symmetrize: bool
-) -> tuple[tuple[Fraction, ...], tuple[tuple[int, ...], int] | None] | None:
-    """Fast exact path for a finite, symmetric float64 numpy (4, 4) array: the
-    upper entries and, when symmetric, the integer form (every denominator is a
-    power of two, so the least common one is the largest).  None otherwise."""
+) -> tuple[tuple[Fraction, ...] | None, tuple[tuple[int, ...], int] | None] | None:
+    """Fast exact path for a finite float64 numpy (4, 4) array: the integer form when it is
+    symmetric (every denominator is a power of two, so the least common one is the largest;
+    the Fractions are made when first read), the upper entries of ``(M + M^T) / 2`` when it is
+    not and ``symmetrize`` asks for it.  None otherwise."""
     if type(matrix).__module__ != "numpy" or getattr(matrix, "dtype", None) is None:
         return None
     if matrix.dtype.kind != "f" or matrix.dtype.itemsize != 8 or matrix.shape != (4, 4):
         return None
     flat = matrix.ravel().tolist()
-    if not all(math.isfinite(v) for v in flat):
+    # a NaN or an infinity makes the sum non-finite (so does an overflow: then look entry by entry)
+    if not math.isfinite(sum(flat)) and not all(math.isfinite(v) for v in flat):
         return None  # the general path names the offending entry
     upper = [flat[k] for k in _UPPER_FLAT]
     lower = [flat[k] for k in _LOWER_FLAT]
@@ -735,8 +751,7 @@ def _from_float_array(
         return tuple((Fraction(a) + Fraction(b)) / 2 for a, b in zip(upper, lower, strict=True)), None
     ratios = [v.as_integer_ratio() for v in upper]
     den = max(d for _, d in ratios)
-    ints = tuple(n * (den // d) for n, d in ratios)
-    return tuple(coprime_fraction(n, d) for n, d in ratios), (ints, den)
+    return None, (tuple(n * (den // d) for n, d in ratios), den)
 
 
 def _rotation(rotation: Any) -> Any:
