@@ -203,21 +203,54 @@ def jitable(fn: Callable[..., Any]) -> Callable[..., Any]:
     return fn
 
 
-def python_twin(fn: Callable[..., Any], *helpers: str) -> Callable[..., Any]:
-    """``fn`` (a kernel's Python source) with the named helpers of its module run by Python too.
+def python_twin(fn: Callable[..., Any]) -> Callable[..., Any]:
+    """``fn`` (a kernel's Python source) run by Python all the way down.
 
     A kernel's Python variant (the ``numpy`` backend, the oracle of equal bits) calls its
-    helpers by the names its module binds to numba dispatchers; a dispatcher called from Python
-    is compiled on its own, and a large inline helper (a whole straight-line loop) then costs a
-    minute of compile time in every process that runs the Python variant.  The twin reads
-    those names as the plain functions they were made from; the smaller helpers they call stay
-    compiled.  The compiled kernel is untouched."""
+    helpers by the names its module binds to numba dispatchers.  A dispatcher called from
+    Python is compiled on its own, and an inline helper is not cached: every process that ran
+    the Python variant compiled its helpers again (38 s for the signature kernel's).  The twin
+    reads every such name, in ``fn`` and in the helpers it reaches, as a twin of the plain
+    function the dispatcher was made from, so nothing is compiled; the compiled kernel is
+    untouched."""
     import types
 
-    scope = dict(fn.__globals__)
-    for name in helpers:
-        scope[name] = getattr(scope[name], "py_func", scope[name])
-    return types.FunctionType(fn.__code__, scope, fn.__name__, fn.__defaults__, fn.__closure__)
+    made: dict[int, Callable[..., Any]] = {}
+
+    def names(code: types.CodeType) -> set[str]:
+        found = set(code.co_names)
+        for const in code.co_consts:
+            if isinstance(const, types.CodeType):
+                found |= names(const)
+        return found
+
+    def twin(f: types.FunctionType) -> Callable[..., Any]:
+        done = made.get(id(f))
+        if done is not None:
+            return done
+        scope = dict(f.__globals__)
+        new = types.FunctionType(f.__code__, scope, f.__name__, f.__defaults__, f.__closure__)
+        new.__kwdefaults__ = f.__kwdefaults__
+        made[id(f)] = new
+        for name in names(f.__code__):
+            plain = getattr(scope.get(name), "py_func", None)
+            if isinstance(plain, types.FunctionType):
+                scope[name] = twin(plain)
+        return new
+
+    plain = getattr(fn, "py_func", fn)
+    assert isinstance(plain, types.FunctionType)
+    body = twin(plain)
+
+    def run(*args: Any) -> Any:
+        import numpy as np
+
+        # IEEE 754 as the compiled kernels have it (error_model="numpy"): an overflow or a
+        # division by zero gives inf or NaN, which the guards read, and says nothing
+        with np.errstate(all="ignore"):
+            return body(*args)
+
+    return run
 
 
 # -- first use: one line when the kernels are compiled rather than loaded ---------------------

@@ -248,9 +248,6 @@ def _decide_block_kernel(
 
 
 _KERNEL: dict[bool, Any] = {}
-_LOOPS = ("gather_block", "read_pair", "screen_pair", "certified_ellipsoid", "signature_rows")
-"""The large inline helpers the Python variant runs by Python as well (see
-:func:`~quadric_contact.modes._jit.python_twin`)."""
 _LOCK = threading.Lock()
 
 
@@ -261,7 +258,7 @@ def _kernel(compiled: bool) -> Any:
             k = _KERNEL.get(compiled)
             if k is None:
                 k = _KERNEL[compiled] = (
-                    _njit(_decide_block_kernel) if compiled else python_twin(_decide_block_kernel, *_LOOPS)
+                    _njit(_decide_block_kernel) if compiled else python_twin(_decide_block_kernel)
                 )
     return k
 

@@ -427,7 +427,6 @@ serves the general steps (the pairs the decision kernel leaves, and packed input
 speed matters less than the minute of compile time a second inlined copy would cost."""
 
 _KERNELS: dict[bool, Any] = {}
-_LOOPS = ("signature_prepare", "_signature_rows_called")
 _KERNELS_LOCK = threading.Lock()
 
 
@@ -440,7 +439,7 @@ def _kernel(compiled: bool) -> Any:
             if k is None:
                 f = _make_signature()
                 # the Python variant runs the two straight-line loops by Python as well
-                k = _KERNELS[compiled] = _njit(f) if compiled else python_twin(f, *_LOOPS)
+                k = _KERNELS[compiled] = _njit(f) if compiled else python_twin(f)
     return k
 
 
