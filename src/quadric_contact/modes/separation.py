@@ -476,8 +476,21 @@ def separation_float(pairs: Pairs, *, certified: bool) -> np.ndarray:
     K = np.array(eb.MEMBER_ERRBOUND[rounded])
     KD = np.array(eb.MEMBER_MINORS_ERRBOUND[rounded])
     eidx, qidx, es, qs = pairs.kernel_indices()
-    _separation_impl(pairs.E.floats, pairs.Q.floats, eidx, qidx, es, qs, 0, n, K, KD, certified, out)
+    _reference()(pairs.E.floats, pairs.Q.floats, eidx, qidx, es, qs, 0, n, K, KD, certified, out)
     return out
+
+
+_REFERENCE: list[Any] = []
+
+
+def _reference() -> Any:
+    """:func:`_separation_impl` run by Python all the way down (``python_twin``): called from
+    Python, the inline certificate would be compiled on its own, uncached, in every process."""
+    if not _REFERENCE:
+        from quadric_contact.modes._jit import python_twin
+
+        _REFERENCE.append(python_twin(_separation_impl))
+    return _REFERENCE[0]
 
 
 # -- object modes: the same certificate in other numbers ------------------------------------------
