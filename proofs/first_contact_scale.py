@@ -49,10 +49,37 @@ function computed by its own maximum formula (a cross-check).
 
 Not proven here: step 5's last case, a tangency at a multiple root of the structural factor
 ``G`` at which ``P~`` does not vanish; the bracketing search supports the claim there.
+
+The certificate of the compiled kernel for ``scale="both"``
+(:mod:`quadric_contact.modes.scale_both`).  With ``f = 1 + E(x) / r_E`` and
+``g = 1 + Q(x) / r_Q`` (``r_E = -det E / det A``, ``r_Q = -det Q / det B``; the scaled solids are
+``f <= s^2`` and ``g <= s^2``), ``s*^2 = min_x max(f(x), g(x))``: the solids scaled by ``s``
+meet iff some ``x`` has ``max(f, g) <= s^2``, and the minimum is attained (``max(f, g)`` is
+continuous and tends to infinity).  The two bounds:
+
+Upper: any point ``x`` gives ``s*^2 <= max(f(x), g(x))`` (it lies in both solids scaled by
+``sqrt(max(f, g))``); the kernel takes ``x(mu) = Y[:3] / Y_4``, ``Y = adj(E + mu Q) e_4``,
+where ``E(x) = Y^T E Y / Y_4^2`` (check ``both_bounds_identities``).
+Lower: for ``mu >= 0`` and every ``x``, with the weights ``r_E > 0`` and ``mu r_Q >= 0``,
+``max(f, g) >= (r_E f + mu r_Q g) / (r_E + mu r_Q) = 1 + (E(x) + mu Q(x)) / (r_E + mu r_Q)``
+(a weighted mean is at most the larger value).  So ``s*^2 = max(f, g)`` at its minimiser is at
+least the least value over ``x`` of the right side, which is
+``1 + det M / (det M_00 (r_E + mu r_Q))`` for ``M = E + mu Q`` (``M_00 = A + mu B`` is positive
+definite: ``X^T M X`` is convex in ``x``, stationary at ``x(mu)`` as the first three entries of
+``M Y`` vanish, and its value there is ``det M / Y_4``), that is
+``L(mu) = 1 - det M det A det B / (Y_4 (det E det B + mu det Q det A))``.
+
+Neither bound assumes anything of ``mu`` but ``mu >= 0``, so a multiplier found by a float
+search certifies ``L(mu) <= s*^2 <= max(f, g)(x(mu))`` whatever its accuracy; at the
+Perram-Wertheim multiplier (``f = g`` at ``x(mu)``) the two meet, and for two spheres that
+multiplier is ``r_1 / r_2`` (check ``both_bounds_meet_for_spheres``).  The checks: the
+identities symbolically, the closed form for two spheres, and the enclosure against the exact
+scale on random exact pairs at multipliers near and far from the optimum (evidence).
 """
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 from typing import Any
 
@@ -292,3 +319,143 @@ def perram_wertheim() -> Finding:
 
     search()
     return agrees(f"agree to a relative {mpmath.nstr(worst[0], 3)} or better (40 digits asked)")
+
+
+@proof.check(
+    "scale both: M adj(M) e_4 = det(M) e_4 and det E = -r det A, so x(mu) = Y[:3] / Y_4 is "
+    "stationary, X^T M X = det M / Y_4 there, and the kernel's formulas of f, g and L(mu) hold",
+    method=Method.IDENTITY,
+)
+def both_bounds_identities() -> Finding:
+    M = _sym("m", 4)
+    Y = M.adjugate(method="berkowitz")[:, 3]
+    e4 = sp.Matrix([0, 0, 0, 1])
+    ensure(sp.expand(M * Y - M.det(method="berkowitz") * e4) == sp.zeros(4, 1), "M Y = det M e_4")
+    # hence the first three entries of M X vanish at X = Y / Y_4 (the gradient of X^T M X in x
+    # is twice them) and X^T M X = X^T (det M / Y_4) e_4 = det M / Y_4
+    A = _sym("a", 3)
+    c = sp.Matrix(sp.symbols("c0:3", real=True))
+    r = sp.Symbol("r", positive=True)
+    E = ellipsoid_matrix(A, c)
+    E[3, 3] = (c.T * A * c)[0, 0] - r  # (x - c)^T A (x - c) - r
+    ensure(sp.expand(E.det(method="berkowitz") + r * A.det(method="berkowitz")) == 0, "det E = -r det A")
+    # f(x(mu)) = 1 + E(x) / r_E with E(x) = Y^T E Y / Y_4^2 and r_E = -det E / det A
+    TE, Y4, dE, dA, dB, dQ, dM, mu, EQ = sp.symbols("T_E Y_4 dE dA dB dQ dM mu EQ", real=True)
+    f = 1 + (TE / Y4**2) / (-dE / dA)
+    ensure(sp.simplify(f - (1 - TE * dA / (Y4**2 * dE))) == 0, "f(x(mu))")
+    # the weighted mean: (r_E f + mu r_Q g) / (r_E + mu r_Q) = 1 + (E(x) + mu Q(x)) / (r_E + mu r_Q)
+    rE, rQ, Ex, Qx = sp.symbols("r_E r_Q E_x Q_x", positive=True)
+    mean = (rE * (1 + Ex / rE) + mu * rQ * (1 + Qx / rQ)) / (rE + mu * rQ)
+    ensure(sp.simplify(mean - (1 + (Ex + mu * Qx) / (rE + mu * rQ))) == 0, "the weighted mean")
+    L = 1 + (dM / Y4) / (-dE / dA - mu * dQ / dB)
+    ensure(sp.simplify(L - (1 - dM * dA * dB / (Y4 * (dE * dB + mu * dQ * dA)))) == 0, "L(mu)")
+    return agrees(
+        "M adj(M) = det(M) I gives the stationary point and the Schur complement det M / Y_4; "
+        "det E = -r det A; f(x(mu)) = 1 - (Y^T E Y) det A / (Y_4^2 det E); the weighted mean is "
+        "1 + (E + mu Q) / (r_E + mu r_Q); "
+        "L(mu) = 1 - det M det A det B / (Y_4 (det E det B + mu det Q det A))"
+    )
+
+
+@proof.check(
+    "scale both, two spheres (radii r1, r2, centres d apart): at mu = r1 / r2 the lower and the "
+    "upper bound both equal (d / (r1 + r2))^2",
+    method=Method.IDENTITY,
+)
+def both_bounds_meet_for_spheres() -> Finding:
+    r1, r2, d = sp.symbols("r1 r2 d", positive=True)
+    x = sp.Matrix(sp.symbols("x0:3", real=True))
+    X = x.col_join(sp.Matrix([1]))
+    E = sp.diag(1, 1, 1, -(r1**2))
+    Q = sp.diag(1, 1, 1, d**2 - r2**2)
+    Q[0, 3] = Q[3, 0] = -d
+    mu = r1 / r2
+    M = E + mu * Q
+    Y = M.adjugate(method="berkowitz")[:, 3]
+    want = (d / (r1 + r2)) ** 2
+    detA = detB = sp.Integer(1)
+    detE, detQ = E.det(), Q.det()
+    L = 1 - M.det() * detA * detB / (Y[3] * (detE * detB + mu * detQ * detA))
+    f = 1 - (Y.T * E * Y)[0] * detA / (Y[3] ** 2 * detE)
+    g = 1 - (Y.T * Q * Y)[0] * detB / (Y[3] ** 2 * detQ)
+    for name, v in (("L", L), ("f", f), ("g", g)):
+        ensure(sp.simplify(v - want) == 0, f"{name} = (d / (r1 + r2))^2")
+    # and f, g are the scaled forms: the sphere E scaled by s is |x|^2 <= s^2 r1^2
+    ensure(sp.expand((X.T * E * X)[0] + r1**2 - r1**2 * (1 + (X.T * E * X)[0] / r1**2)) == 0, "f")
+    return agrees("L(r1 / r2) = f(x) = g(x) = d^2 / (r1 + r2)^2: the bounds meet, s* = d / (r1 + r2)")
+
+
+def _both_bounds(e: Any, q: Any, mu: Fraction) -> tuple[Fraction, Fraction]:
+    """``L(mu)`` and ``max(f, g)`` at ``x(mu)``, exactly."""
+    E, Q = sp.Matrix(e.matrix), sp.Matrix(q.matrix)
+    if E[0, 0] < 0:
+        E = -E
+    if Q[0, 0] < 0:
+        Q = -Q
+    m = sp.Rational(mu.numerator, mu.denominator)
+    M = E + m * Q
+    Y = M.adjugate()[:, 3]
+    dA, dB, dE, dQ = E[:3, :3].det(), Q[:3, :3].det(), E.det(), Q.det()
+    L = 1 - M.det() * dA * dB / (Y[3] * (dE * dB + m * dQ * dA))
+    f = 1 - (Y.T * E * Y)[0] * dA / (Y[3] ** 2 * dE)
+    g = 1 - (Y.T * Q * Y)[0] * dB / (Y[3] ** 2 * dQ)
+    return Fraction(str(L)), Fraction(str(max(f, g)))
+
+
+def _float_multiplier(e: Any, q: Any) -> Fraction:
+    """The multiplier with ``f = g`` at ``x(mu)``, by bisection in ``log mu`` in binary64 (a
+    search: nothing relies on its accuracy)."""
+    import numpy as np
+
+    E, Q = (np.array(m.matrix, dtype=float) for m in (e, q))
+    E, Q = (E if E[0, 0] > 0 else -E), (Q if Q[0, 0] > 0 else -Q)
+    rE = -np.linalg.det(E) / np.linalg.det(E[:3, :3])
+    rQ = -np.linalg.det(Q) / np.linalg.det(Q[:3, :3])
+
+    def f_minus_g(mu: float) -> float:
+        M = E + mu * Q
+        X = np.append(np.linalg.solve(M[:3, :3], -M[:3, 3]), 1.0)
+        return float((X @ E @ X) / rE - (X @ Q @ X) / rQ)
+
+    lo, hi = -60.0, 60.0
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if f_minus_g(math.exp(mid)) < 0 else (lo, mid)
+    return Fraction(math.exp(0.5 * (lo + hi)))
+
+
+@proof.search(
+    "scale both: the exact s*^2 of random exact pairs lies between L(mu) and max(f, g) at x(mu), "
+    "at multipliers near and far from the optimum",
+    examples=6,
+    large=40,
+    detail="ellipsoids moved by rational motions; mu the optimum in binary64, and 1/3 and 3 times it",
+)
+def both_bounds_enclose(examples: int) -> Finding:
+    from hypothesis import given
+
+    from quadric_contact.testing.strategies import ellipsoids
+    from quadric_contact.theory.contact_scale import contact_scale_exact
+
+    gaps: list[float] = []
+
+    @search_settings(examples)
+    @given(e=ellipsoids(max_axis=2), q=ellipsoids(max_axis=2))
+    def search(e: Any, q: Any) -> None:
+        got = contact_scale_exact(e, q, scale="both")
+        if got.squared.sign() == 0:
+            return
+        mu = _float_multiplier(e, q)
+        lo, hi = _both_bounds(e, q, mu)
+        best = hi - lo
+        for m in (mu, mu / 3, mu * 3):
+            lo, hi = _both_bounds(e, q, m)
+            ensure(got.squared.compare(lo) >= 0, f"{e} / {q}: L({m}) = {lo} above s*^2")
+            ensure(got.squared.compare(hi) <= 0, f"{e} / {q}: max(f, g) at x({m}) = {hi} below s*^2")
+        gaps.append(float(best / hi))
+
+    search()
+    return agrees(
+        f"{len(gaps)} pairs enclosed at three multipliers each; the bounds at the binary64 optimum "
+        f"apart by at most {max(gaps, default=0.0):.1e} relative"
+    )

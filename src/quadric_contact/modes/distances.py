@@ -12,7 +12,11 @@ array of shape ``(..., 2)``: a stack of one holds the enclosure of the pair's va
 
 The first-contact scale (``scale="E"``) of float64 stacks runs a compiled kernel that certifies
 each pair's enclosure (:mod:`quadric_contact.modes.scale_kernel`) and leaves the pairs it cannot
-certify (a centre on the surface, a degenerate ``Q`` other than a plane) to the exact path.
+certify (a centre on the surface, a degenerate ``Q`` other than a plane) to the exact path;
+with ``scale="both"`` (two ellipsoids) a kernel of its own certifies the Perram-Wertheim scale
+by a lower and an upper bound that meet at the optimal multiplier
+(:mod:`quadric_contact.modes.scale_both`), and leaves nearly concentric pairs and pairs that are
+not two ellipsoids to the exact path.
 The distance of float64 stacks runs a compiled kernel for separated ellipsoid pairs (a
 duality certificate, :mod:`quadric_contact.modes.distance_kernel`: enclosures at most
 ``max(10^-digits, 1e-12)`` relative wide); the other pairs, and every other stack, run the
@@ -183,8 +187,8 @@ def contact_scale(E: Any, Q: Any, *, scale: str = "E", mode: str = "certified") 
     _check(mode, ("certified", "exact"))
     if not (is_stack(E) or is_stack(Q)):
         return contact_scale_exact(E, Q, scale=scale)
-    if scale == "E" and _float_stack(E) and _float_stack(Q):
-        return _scale_kernel(E, Q)
+    if scale in ("E", "both") and _float_stack(E) and _float_stack(Q):
+        return _scale_kernel(E, Q, scale)
     es, qs, shape = _pairs(E, Q)
     out = np.empty((len(es), 2))
     for k, (e, q) in enumerate(zip(es, qs, strict=True)):
@@ -234,17 +238,20 @@ def _distance_kernel(E: np.ndarray, Q: np.ndarray, mode: str, digits: int) -> np
     return out.reshape(*shape, 2)
 
 
-def _scale_kernel(E: np.ndarray, Q: np.ndarray) -> np.ndarray:
-    """The compiled kernel (:mod:`quadric_contact.modes.scale_kernel`) on float64 stacks; the
-    pairs it leaves go to the exact scalar path."""
+def _scale_kernel(E: np.ndarray, Q: np.ndarray, scale: str = "E") -> np.ndarray:
+    """The compiled kernels on float64 stacks (:mod:`quadric_contact.modes.scale_kernel` for
+    ``scale="E"``, :mod:`quadric_contact.modes.scale_both` for ``scale="both"``); the pairs they
+    leave go to the exact scalar path (which raises for a pair that is not one of two real
+    ellipsoids with ``scale="both"``)."""
     from quadric_contact.modes.scale_blocks import scale_stack
+    from quadric_contact.modes.scale_both import scale_both_stack
 
     shape = np.broadcast_shapes(E.shape[:-2], Q.shape[:-2])
     Es = _validated(np.broadcast_to(E, (*shape, 4, 4)), "E")
     Qs = _validated(np.broadcast_to(Q, (*shape, 4, 4)), "Q")
-    out, rest = scale_stack(Es, Qs)
+    out, rest = (scale_both_stack if scale == "both" else scale_stack)(Es, Qs)
     for k in np.flatnonzero(rest):
-        out[k] = enclosure(contact_scale_exact(Es[k], Qs[k]).scale)
+        out[k] = enclosure(contact_scale_exact(Es[k], Qs[k], scale=scale).scale)
     return out.reshape(*shape, 2)
 
 
