@@ -31,10 +31,15 @@ def scalar_codes(e, q):
 
 
 def mpmath_nonreal(P, digits=50):
-    """Non-real roots of ``P`` by mpmath polyroots at ``digits``, or None if too close to call."""
+    """Non-real roots of ``P`` by mpmath polyroots at ``digits``, or None if too close to call
+    (also where the iteration does not converge: a multiple root, such as the triple root of
+    two coaxial spheroids, can stall it)."""
     with working_precision(dps=digits):
         coeffs = [mpmath.mpf(c.numerator) / c.denominator for c in reversed(P.coefficients)]
-        roots = mpmath.polyroots(coeffs, maxsteps=400, extraprec=4 * digits)
+        try:
+            roots = mpmath.polyroots(coeffs, maxsteps=400, extraprec=4 * digits)
+        except mpmath.libmp.NoConvergence:
+            return None
         scale = max(1, max(abs(r) for r in roots))
         imag = [abs(mpmath.im(r)) / scale for r in roots]
         if any(mpmath.mpf(10) ** (-digits // 2) < v < mpmath.mpf(10) ** (-digits // 4) for v in imag):
