@@ -214,3 +214,25 @@ def test_definiteness_is_sylvester_on_the_generated_program():
             assert got is Definite.NONE
         d = leading_minors_4(*upper)
         assert d[3] == round(np.linalg.det(m.astype(float)))
+
+
+def test_float_mode_reads_rounded_cylinders_by_the_members_not_by_rounded_root_signs():
+    """Rotated parabolic cylinders rounded to binary64 are ellipsoids with two nearly zero
+    eigenvalues; binary64's signs of P's coefficients then read two positive roots (E outside)
+    where E lies well inside.  The float mode keeps that reading only where its certified guard
+    reads the same, and answers the region of every such pair as the exact decision does."""
+    from quadric_contact.interfaces.benchmark import complete_populations
+    from quadric_contact.modes.predicates import relative_position
+
+    E, Q, _ = complete_populations(300_000, np.random.default_rng(0))["every type"]
+    # the pairs of that population (seed 0) where binary64's root signs misread the side
+    rows = [13407, 33143, 67233, 69693, 72721, 100277, 121319, 126889]
+    Es, Qs = E[rows], Q[rows]
+    want = relative_position(Es, Qs, mode="exact")
+    assert (relative_position(Es, Qs, mode="float") == want).all()
+    for k in range(len(rows)):
+        q = qc.Quadric.from_matrix(Qs[k])
+        assert q.kind.value == "ellipsoid" and abs(np.linalg.det(Qs[k][:3, :3])) < 1e-12
+        # the answer is not delicate: the centre of E is far from the surface
+        e = qc.Quadric.from_matrix(Es[k])
+        assert abs(float(q.value_at(e.center()))) > 0.1

@@ -423,6 +423,7 @@ def _decide_steps(mode: NumberMode, pairs: Pairs, question: str, counts: StageCo
     if signs_first is not None and ell is not False:
         # the first stage's reading only (see _contact_with_signs)
         outside = todo & all_real & ell & (signs_first * qsign == int(RegionCode.R_PLUS))
+        outside = _confirm_outside(mode, pairs, outside, signs_first)
         settle(outside, signs_first if question == "region" else ContactCode.NO_CONTACT, labels[0])
 
     # 1c. plain modes: a crossing read from non-real roots that a certified reading cannot
@@ -472,6 +473,25 @@ def _confirm_crossings(
         out[reopen] = _UNC
         todo[reopen] = True
         counts.decided[label] -= int(reopen.size)
+
+
+def _confirm_outside(mode: NumberMode, pairs: Pairs, outside: Any, signs: np.ndarray) -> Any:
+    """Plain modes: step 1b reads two positive roots off the signs of ``P``'s coefficients as
+    binary64 computes them.  Where ``Q`` is an ellipsoid whose quadratic part is nearly singular
+    (a rotated cylinder or paraboloid, rounded), those signs can be wrong while the answer is
+    not delicate at all (``E`` far from the surface, on the other side).  The pairs the mode's
+    certified guard does not read the same way are left to the separation stage, whose members
+    are computed from the matrices themselves.  Certified modes: ``outside`` unchanged."""
+    guard = getattr(mode, "guard", None)
+    if guard is None or isinstance(outside, bool):
+        return outside
+    at = np.flatnonzero(outside)
+    if at.size == 0:
+        return outside
+    sure = guard.criterion_region(pairs.take(at))
+    kept = np.asarray(outside, dtype=bool).copy()
+    kept[at[sure != signs[at]]] = False
+    return kept
 
 
 def _contact_with_signs(
