@@ -59,8 +59,8 @@ from quadric_contact.exact.algebraic import RealAlgebraic
 from quadric_contact.exact.errors import UndecidedError
 from quadric_contact.model.motions import RigidMotion
 from quadric_contact.model.quadric import as_quadric
+from quadric_contact.testing.references import plane_distance_reference
 from quadric_contact.testing.samples import SAMPLE_KINDS, _moved, _standard_forms, random_pairs
-from quadric_contact.theory.contact_scale import centred_form
 from quadric_contact.theory.distance import CONVEX_SOLIDS, DistanceResult, _sphere_quadric_general
 from quadric_contact.theory.distance_sphere import sphere_distance, sphere_pair
 from quadric_contact.theory.overlap import solid_of
@@ -142,20 +142,10 @@ def pairs_of(kind: QuadricKind, n: int, rng: np.random.Generator, placement: str
 
 
 def _previous_plane(E: Any, Q: Any) -> tuple[RealAlgebraic, tuple[RealAlgebraic, ...]]:
-    """The previous closed form of a sphere against a plane, in real algebraic arithmetic:
-    the distance and ``point_Q`` (computed with the result, as it was; the normal when read)."""
-    e, K = as_quadric(E).as_ellipsoid(), solid_of(Q)
-    A, c, r = centred_form(e)
-    n = [2 * K[i, 3] for i in range(3)]
-    d = -K[3, 3]
-    Ainv_n = [x / A[0][0] for x in n]  # A = a I
-    k = sum(n[i] * Ainv_n[i] for i in range(3))
-    N = sum(x * x for x in n)
-    nc = sum(n[i] * c[i] for i in range(3))
-    root_rk, norm = RealAlgebraic.sqrt(r * k), RealAlgebraic.sqrt(N)
-    dist = (root_rk * -1 + (nc - d)) / norm
-    point_E = tuple(root_rk * (-Ainv_n[i] / k) + c[i] for i in range(3))
-    point_Q = tuple(point_E[i] - (root_rk * -1 + (nc - d)) * (n[i] / N) for i in range(3))
+    """The previous closed form of a sphere against a plane, in real algebraic arithmetic
+    (:func:`~quadric_contact.testing.references.plane_distance_reference`): the distance and
+    ``point_Q``."""
+    dist, point_Q, _, _ = plane_distance_reference(as_quadric(E).as_ellipsoid(), solid_of(Q))
     return dist, point_Q
 
 

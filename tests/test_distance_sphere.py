@@ -21,9 +21,9 @@ from quadric_contact.exact.algebraic import RealAlgebraic
 from quadric_contact.exact.errors import UndecidedError
 from quadric_contact.model.motions import RigidMotion
 from quadric_contact.model.quadric import as_quadric
+from quadric_contact.testing.references import plane_distance_reference
 from quadric_contact.testing.samples import SAMPLE_KINDS, _moved, _standard_forms, random_pairs
-from quadric_contact.theory.contact_scale import centred_form
-from quadric_contact.theory.distance import _solve3, _sphere_quadric_general, distance_exact
+from quadric_contact.theory.distance import _sphere_quadric_general, distance_exact
 from quadric_contact.theory.distance_sphere import sphere_distance, sphere_pair
 from quadric_contact.theory.overlap import solid_of
 
@@ -120,30 +120,13 @@ def test_rational_radius_and_square_distances(kind):
     _check_against_previous(e, K, r, witnesses=False)
 
 
-def _previous_plane(E, K):
-    """The previous closed form, in real algebraic arithmetic."""
-    A, c, r = centred_form(E)
-    n = [2 * K[i, 3] for i in range(3)]
-    d = -K[3, 3]
-    Ainv_n = _solve3(A, n)
-    k = sum(n[i] * Ainv_n[i] for i in range(3))
-    N = sum(x * x for x in n)
-    nc = sum(n[i] * c[i] for i in range(3))
-    root_rk, norm = RealAlgebraic.sqrt(r * k), RealAlgebraic.sqrt(N)
-    dist = (root_rk * -1 + (nc - d)) / norm
-    point_E = tuple(root_rk * (-Ainv_n[i] / k) + c[i] for i in range(3))
-    point_Q = tuple(point_E[i] - (root_rk * -1 + (nc - d)) * (n[i] / N) for i in range(3))
-    normal = tuple(RealAlgebraic(n[i]) / norm for i in range(3))
-    return dist, point_Q, normal, point_E
-
-
 @pytest.mark.parametrize("seed", [0, 1, *(pytest.param(s, marks=pytest.mark.slow) for s in range(2, 12))])
 def test_plane_closed_form_equals_the_previous_formula(seed, monkeypatch):
     rng = np.random.default_rng(seed)
     E = _sphere(rng) if seed % 2 else as_quadric(random_pairs(1, rng)[0][0])
     _, Q, _ = random_pairs(1, rng, kinds=(QuadricKind.PLANE,))
     e, K = E.as_ellipsoid(), solid_of(Q[0])
-    want = _previous_plane(e, K)
+    want = plane_distance_reference(e, K)
 
     def refuse(*args):  # the fast closed form takes no square root by real algebraic arithmetic
         raise AssertionError("the general arithmetic was used")
