@@ -72,6 +72,22 @@ _load = njit(blocks.load_upper, inline=True)
 
 
 @njit(inline=True)
+def gather_signed(M: Any, k: int, b: Any, t: int, S: int, sign: float) -> None:  # pragma: no cover
+    """Column ``t`` of the block buffer ``b``: the ten upper entries of ``sign * M[k]`` (``M``
+    a stack ``(n, 4, 4)``)."""
+    b[t] = sign * M[k, 0, 0]
+    b[S + t] = sign * M[k, 0, 1]
+    b[2 * S + t] = sign * M[k, 0, 2]
+    b[3 * S + t] = sign * M[k, 0, 3]
+    b[4 * S + t] = sign * M[k, 1, 1]
+    b[5 * S + t] = sign * M[k, 1, 2]
+    b[6 * S + t] = sign * M[k, 1, 3]
+    b[7 * S + t] = sign * M[k, 2, 2]
+    b[8 * S + t] = sign * M[k, 2, 3]
+    b[9 * S + t] = sign * M[k, 3, 3]
+
+
+@njit(inline=True)
 def _det3(
     a00: float, a01: float, a02: float, a10: float, a11: float, a12: float, a20: float, a21: float, a22: float
 ) -> float:
@@ -296,26 +312,8 @@ def scale_blocks(Es: Any, Qs: Any, out: Any, flag: Any, start: int, stop: int) -
         for t in range(m):
             k = blo + t
             sg = -1.0 if Es[k, 0, 0] < 0.0 else 1.0
-            eb[t] = sg * Es[k, 0, 0]
-            eb[S + t] = sg * Es[k, 0, 1]
-            eb[2 * S + t] = sg * Es[k, 0, 2]
-            eb[3 * S + t] = sg * Es[k, 0, 3]
-            eb[4 * S + t] = sg * Es[k, 1, 1]
-            eb[5 * S + t] = sg * Es[k, 1, 2]
-            eb[6 * S + t] = sg * Es[k, 1, 3]
-            eb[7 * S + t] = sg * Es[k, 2, 2]
-            eb[8 * S + t] = sg * Es[k, 2, 3]
-            eb[9 * S + t] = sg * Es[k, 3, 3]
-            qb[t] = Qs[k, 0, 0]
-            qb[S + t] = Qs[k, 0, 1]
-            qb[2 * S + t] = Qs[k, 0, 2]
-            qb[3 * S + t] = Qs[k, 0, 3]
-            qb[4 * S + t] = Qs[k, 1, 1]
-            qb[5 * S + t] = Qs[k, 1, 2]
-            qb[6 * S + t] = Qs[k, 1, 3]
-            qb[7 * S + t] = Qs[k, 2, 2]
-            qb[8 * S + t] = Qs[k, 2, 3]
-            qb[9 * S + t] = Qs[k, 3, 3]
+            gather_signed(Es, k, eb, t, S, sg)
+            gather_signed(Qs, k, qb, t, S, 1.0)
         # the checks, the side of the root, f_inf
         for i in range(m):
             e = _load(eb, i, S)

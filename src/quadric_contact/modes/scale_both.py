@@ -88,6 +88,7 @@ from quadric_contact.modes.scale_blocks import (
     _pencil_magnitude,
     _times,
     _up,
+    gather_signed,
 )
 from quadric_contact.modes.scale_kernel import _U
 from quadric_contact.modes.threads import run_parallel
@@ -356,26 +357,8 @@ def _blocks(Es: Any, Qs: Any, out: Any, flag: Any, start: int, stop: int) -> Non
             k = blo + t
             sg = -1.0 if Es[k, 0, 0] < 0.0 else 1.0
             sq = -1.0 if Qs[k, 0, 0] < 0.0 else 1.0
-            eb[t] = sg * Es[k, 0, 0]
-            eb[S + t] = sg * Es[k, 0, 1]
-            eb[2 * S + t] = sg * Es[k, 0, 2]
-            eb[3 * S + t] = sg * Es[k, 0, 3]
-            eb[4 * S + t] = sg * Es[k, 1, 1]
-            eb[5 * S + t] = sg * Es[k, 1, 2]
-            eb[6 * S + t] = sg * Es[k, 1, 3]
-            eb[7 * S + t] = sg * Es[k, 2, 2]
-            eb[8 * S + t] = sg * Es[k, 2, 3]
-            eb[9 * S + t] = sg * Es[k, 3, 3]
-            qb[t] = sq * Qs[k, 0, 0]
-            qb[S + t] = sq * Qs[k, 0, 1]
-            qb[2 * S + t] = sq * Qs[k, 0, 2]
-            qb[3 * S + t] = sq * Qs[k, 0, 3]
-            qb[4 * S + t] = sq * Qs[k, 1, 1]
-            qb[5 * S + t] = sq * Qs[k, 1, 2]
-            qb[6 * S + t] = sq * Qs[k, 1, 3]
-            qb[7 * S + t] = sq * Qs[k, 2, 2]
-            qb[8 * S + t] = sq * Qs[k, 2, 3]
-            qb[9 * S + t] = sq * Qs[k, 3, 3]
+            gather_signed(Es, k, eb, t, S, sg)
+            gather_signed(Qs, k, qb, t, S, sq)
         for i in range(m):
             e = _load(eb, i, S)
             q = _load(qb, i, S)
