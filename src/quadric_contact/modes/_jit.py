@@ -26,13 +26,31 @@ __all__ = [
 ]
 
 
+_READ: dict[tuple[str, int, int], tuple[bytes, set[str] | None]] = {}
+"""A source file's bytes and, once parsed, the package modules it imports, by path and the
+stat that says it has not changed: every kernel module's digest reads the same files, and
+parsing them again for each (about 60 ms a module) would be paid at every import."""
+
+
+def _read(path: Any) -> tuple[tuple[str, int, int], bytes]:
+    st = path.stat()
+    key = (str(path), st.st_mtime_ns, st.st_size)
+    if key not in _READ:
+        _READ[key] = (path.read_bytes(), None)
+    return key, _READ[key][0]
+
+
 def _package_imports(root: Any, rel: str) -> set[str]:
     """The package modules ``rel`` imports (at module level or in a function), as paths
     relative to the package root ``root``."""
     import ast
 
+    key, text = _read(root / rel)
+    known = _READ[key][1]
+    if known is not None:
+        return known
     found: set[str] = set()
-    for node in ast.walk(ast.parse((root / rel).read_text())):
+    for node in ast.walk(ast.parse(text)):
         names: list[str] = []
         if isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
             names = [node.module] + [f"{node.module}.{a.name}" for a in node.names]
@@ -43,6 +61,7 @@ def _package_imports(root: Any, rel: str) -> set[str]:
                 path = name.removeprefix("quadric_contact.").replace(".", "/") + ".py"
                 if (root / path).is_file():
                     found.add(path)
+    _READ[key] = (text, found)
     return found
 
 
@@ -69,7 +88,7 @@ def kernel_sources(root: Any = None, module: str | None = None) -> list[str]:
     compiled |= {
         f"modes/{p.name}"
         for p in (root / "modes").glob("*.py")
-        if re.search(r"\b(njit|jitable)\b", p.read_text())
+        if re.search(rb"\b(njit|jitable)\b", _read(p)[1])
     }
     start = set(compiled)
     if module is not None:
@@ -97,7 +116,7 @@ def _sources_digest(root: Any = None, module: str | None = None) -> str:
     digest = hashlib.sha256()
     for rel in kernel_sources(root, module):
         digest.update(rel.encode())
-        digest.update((root / rel).read_bytes())
+        digest.update(_read(root / rel)[1])
     return digest.hexdigest()
 
 
