@@ -684,9 +684,9 @@ def _overlap_steps(mode: NumberMode, pairs: Pairs, counts: StageCounts) -> np.nd
 
     # 1. criterion: root structure and signs (validates the input on the way).  Non-real roots
     # come from the whole cascade, the side from its first stage only, as for the region
-    # question (_contact_with_signs): the later stages' side reading of a structurally singular
-    # Q (a cone, a cylinder) runs exact arithmetic on the coefficients' signs, for 3 % of the
-    # pairs of every type, and the separation step settles those pairs in binary64.
+    # question (_contact_with_signs): the later stages' side reading ran exact arithmetic on the
+    # coefficients' signs for 3 % of the pairs of every type (rotated cylinders and paraboloids
+    # that binary64 makes nearly singular ellipsoids), which step 2 and the centre of Q settle.
     contact, names, which, signs_first, _ = _contact_with_signs(mode, pairs)
     crit = np.where(contact == int(ContactCode.CONTACT), np.int8(RegionCode.CONTACT), signs_first).astype(
         np.int8
