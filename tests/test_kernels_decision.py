@@ -43,7 +43,7 @@ def test_codes_are_the_exact_decision():
     settles (a crossing, or E in the closed R+ of Q), the signature's separation code elsewhere."""
     lane = settled = 0
     for E, Q in _populations():
-        crit, code, qsign = kd.decide_ellipsoids(_pairs(E, Q), outside_too=True)
+        crit, code, qsign, *_ = kd.decide_ellipsoids(_pairs(E, Q), outside_too=True)
         for i in range(E.shape[0]):
             if qsign[i] == 0:
                 assert crit[i] == kd.OUT and code[i] == kd.NOT_RUN
@@ -70,28 +70,56 @@ def test_left_out_pairs_are_those_without_two_certain_ellipsoids():
     )
     Q[2, 0, 1] = 1e-3  # not symmetric
     Q[3, 3, 3] = np.nan
-    crit, _, qsign = kd.decide_ellipsoids(_pairs(E, Q), outside_too=False)
+    crit, _, qsign, *_ = kd.decide_ellipsoids(_pairs(E, Q), outside_too=False)
     assert qsign[0] != 0
     assert (qsign[1:] == 0).all() and (crit[1:] == kd.OUT).all()
 
 
 def test_the_compiled_kernel_is_the_python_one():
+    from quadric_contact.modes import pipeline
+
     rng = np.random.default_rng(61)
     E, _ = random_ellipsoids(70, rng, axes=(0.5, 2.0), box=3.0)
     Q, _ = random_ellipsoids(70, rng, axes=(2.0, 5.0), box=0.0)
     for pairs in (_pairs(E, Q), _pairs(E, Q[3])):  # a stack of pairs; one quadric against a stack
-        for outside_too in (False, True):
-            a = kd.decide_ellipsoids(pairs, outside_too=outside_too)
-            b = kd.decide_ellipsoids(pairs, outside_too=outside_too, backend="numpy")
+        for outside_too, table in ((False, None), (True, pipeline._lane_table("overlap"))):
+            a = kd.decide_ellipsoids(pairs, outside_too=outside_too, table=table)
+            b = kd.decide_ellipsoids(pairs, outside_too=outside_too, table=table, backend="numpy")
             for x, y in zip(a, b, strict=True):
                 assert (x == y).all()
+
+
+@pytest.mark.parametrize("question", ["contact", "region", "kind", "overlap"])
+def test_the_kernel_reads_its_codes_as_the_table_does(question):
+    """The kernel reads every pair's codes through the lane table as it goes, slice by slice
+    on two threads: the answers, the pairs left and the counts are what reading its codes
+    afterwards (:func:`~quadric_contact.modes.kernels_decision.read_codes`) gives."""
+    from quadric_contact.modes import pipeline
+
+    rng = np.random.default_rng(71)
+    n = 40_000  # several slices on each thread
+    E, _ = random_ellipsoids(n, rng, axes=(0.3, 2.0), box=3.0)
+    Q, _ = random_ellipsoids(n, rng, axes=(1.0, 4.0), box=1.0)
+    Q[::97] = np.diag([1.0, 1.0, 0.0, -1.0])  # cylinders: left to the general steps
+    table = pipeline._lane_table(question)
+    for pairs, stacked in ((_pairs(E, Q), True), (_pairs(E, Q[5]), False)):
+        crit, sep_, qsign, out, left, by_step = kd.decide_ellipsoids(
+            pairs, outside_too=question == "overlap", table=table, threads=2
+        )
+        want, want_left, want_steps = kd.read_codes(crit, sep_, qsign, *table)
+        assert (out == want).all()
+        assert left.tolist() == want_left.tolist()
+        assert by_step.tolist() == want_steps.tolist()
+        assert by_step[0] > 0 and by_step[1] > 0
+        if stacked:
+            assert set(range(0, n, 97)) <= set(left.tolist())
 
 
 def _without_lane(mode):
     """The same mode with the lane switched off: the general steps decide every pair."""
     for m in (mode, *getattr(mode, "stages", ())):
         if hasattr(m, "decide_ellipsoids"):
-            m.decide_ellipsoids = lambda pairs, outside_too: None
+            m.decide_ellipsoids = lambda pairs, outside_too, table: None
     return mode
 
 

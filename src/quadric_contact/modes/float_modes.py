@@ -470,16 +470,16 @@ class FloatMode(NumberMode):
         return super().with_candidates(method, pairs)
 
     def decide_ellipsoids(
-        self, pairs: Pairs, *, outside_too: bool
-    ) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
-        """The decision kernel's reading of every pair
+        self, pairs: Pairs, *, outside_too: bool, table: tuple[np.ndarray, np.ndarray] | None = None
+    ) -> tuple[np.ndarray, ...] | None:
+        """The decision kernel's reading of every pair, and its answers read through ``table``
         (:func:`~quadric_contact.modes.kernels_decision.decide_ellipsoids`: certified, in one pass),
         or None where it does not apply (input rounded from exact numbers, the numpy backend)."""
         if not self._fast(pairs):
             return None
         from quadric_contact.modes.kernels_decision import decide_ellipsoids
 
-        return decide_ellipsoids(pairs, outside_too=outside_too, threads=self.threads)
+        return decide_ellipsoids(pairs, outside_too=outside_too, table=table, threads=self.threads)
 
     def separation(self, pairs: Pairs) -> np.ndarray:
         from quadric_contact.modes.kernels_signature import signature_float

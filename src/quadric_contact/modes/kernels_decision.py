@@ -21,11 +21,18 @@ pass, block by block (:data:`NB` pairs, in the L1 cache):
    closed ``R+`` of ``Q``); with ``Delta_4 > 0`` certain the roots are simple, the positive
    ones distinct, and the ellipsoids strictly apart (Wang-Wang-Kim): the separation code is
    that side, without the signature;
-4. for the listed pairs only, a second straight-line loop computes the pencil's signature at
-   the sample points, and a scalar loop looks the facts up in
-   :data:`quadric_contact.theory.decision.REGION_OF`, with the scalar certificate as a second
-   reading (:func:`~quadric_contact.modes.kernels_signature.signature_rows`, the same code as
-   the signature kernel).
+4. where the block has listed pairs, a second straight-line loop computes the first stage of
+   the pencil's signature (the sample points and the member at the first one to try,
+   :func:`~quadric_contact.modes.kernels_signature.signature_first`, the signature kernel's
+   code) over the whole block, in place: a pair in five is listed, and copying them into
+   buffers of their own cost more than the stage for all; for each listed pair, a witness at
+   that member gives its code, and the others go on through the rest of the signature
+   (:func:`~quadric_contact.modes.kernels_signature.signature_finish`, a called function: the
+   decision table :data:`quadric_contact.theory.decision.REGION_OF`, the scalar certificate as
+   a second reading);
+5. a last loop reads the three codes of every pair through the caller's table
+   (:func:`read_one`): the answer, and the pairs no step settles, while the block is in the
+   cache.
 
 Pairs whose ``E`` or ``Q`` is not certainly an ellipsoid, or that fail a guard (non-finite,
 not symmetric, out of range), are marked :data:`OUT`: the general steps of
@@ -55,10 +62,17 @@ from quadric_contact.modes.kernels_criterion import (
     read_pair,
     screen_pair,
 )
-from quadric_contact.modes.kernels_signature import NB, signature_rows
+from quadric_contact.modes.kernels_signature import (
+    NB,
+    WITNESS_FIRST,
+    WITNESS_LAST,
+    signature_finish_called,
+    signature_first,
+    witness,
+)
 from quadric_contact.modes.kernels_support import certified_ellipsoid
 
-__all__ = ["NOT_RUN", "OUT", "decide_ellipsoids", "read_codes"]
+__all__ = ["CODE_RANGES", "NOT_RUN", "OUT", "decide_ellipsoids", "read_codes", "read_one"]
 
 OUT = 7
 """Code of a pair this kernel leaves to the general steps (``Q`` or ``E`` not certainly an
@@ -86,6 +100,15 @@ _FALL_INDEX = FALL_INDEX
 _NO_CONTACT = int(ContactCode.NO_CONTACT)
 
 
+@_njit(inline=True)
+def read_one(c: int, g: int, o: int, answers: Any, steps: Any) -> tuple[int, int]:
+    """Read the codes ``c`` (criterion), ``g`` (separation), ``o`` (sign of ``Q``) of one pair
+    through the table: ``(answers[key], steps[key])``, its answer and the step that gave it (0,
+    1; 2: none), for ``key = ((c + 1) 5 + g + 1) 3 + o + 1``."""
+    key = ((c + 1) * 5 + g + 1) * 3 + o + 1
+    return answers[key], steps[key]
+
+
 def ellipsoid_regions() -> np.ndarray:
     """The region code the criterion reads for two ellipsoids whose roots are all real, by the
     canonical sign of ``Q`` (row 0: +1, row 1: -1) and the signs of ``c0, o c1, c2, o c3, c4``
@@ -105,25 +128,37 @@ def ellipsoid_regions() -> np.ndarray:
 
 _REGIONS = ellipsoid_regions()
 _R_PLUS = int(RegionCode.R_PLUS)
+CODE_RANGES = (9, 5, 3)
+"""How many values each of the three codes takes: ``crit`` in -1 .. 7 (:data:`OUT`), ``sep`` in
+-1 .. 3 (:data:`NOT_RUN`), ``qsign`` in -1 .. 1; a reading table has their product of entries."""
+_WITNESS_LAST, _WITNESS_FIRST = WITNESS_LAST, WITNESS_FIRST
+
+
+# rows of the block buffer ``nb``: the first seven as the signature reads them
+# (:func:`~quadric_contact.modes.kernels_signature.signature_first`), then what the code loop reads
+_GUARD_ROW, _LAST_ROW, _SIGN_ROW, _INDEX_ROW, _Q_ROW, _KEY_ROW = 4, 5, 6, 7, 8, 9
 
 
 @_njit(inline=True)
 def _note(
     i: int, S: int, ok: bool, idx: float, s0: float, s1: float, s2: float, s3: float, s4: float, ell: bool,
-    o: float, e00: float, c: Any, xb: Any, ob: Any, kb: Any, pc: Any,
+    o: float, e00: float, c: Any, nb: Any,
 ) -> None:  # fmt: skip
-    """Keep what the screen read of pair ``i`` for the code loop: the table index (or the
-    fallback's), the sign of ``Q`` where both are certainly ellipsoids (``ell``; else 0), the key
-    of the coefficients' signs, and the coefficients for ``E`` in the paper's sign (``e00 > 0``):
-    ``c_j (-1)^j`` where ``e00 < 0``."""
-    xb[i] = idx if ok else _FALL_INDEX
-    ob[i] = o if ell else 0.0
-    kb[i] = (s0 + 1.0) + 3.0 * (s1 + 1.0) + 9.0 * (s2 + 1.0) + 27.0 * (s3 + 1.0) + 81.0 * (s4 + 1.0)
+    """Keep what the screen read of pair ``i`` in the rows of ``nb``: the coefficients ``c1 ..
+    c4`` for ``E`` in the paper's sign (``e00 > 0``: ``c_j (-1)^j`` where ``e00 < 0``) and that
+    sign, for the signature; the table index (or the fallback's), the sign of ``Q`` where both
+    are certainly ellipsoids (``ell``; else 0) and the key of the coefficients' signs, for the
+    code loop."""
     f = -1.0 if e00 < 0.0 else 1.0
-    pc[i] = f * c[1]
-    pc[S + i] = c[2]
-    pc[2 * S + i] = f * c[3]
-    pc[3 * S + i] = c[4]
+    nb[i] = f * c[1]
+    nb[S + i] = c[2]
+    nb[2 * S + i] = f * c[3]
+    nb[3 * S + i] = c[4]
+    nb[_SIGN_ROW * S + i] = f
+    nb[_INDEX_ROW * S + i] = idx if ok else _FALL_INDEX
+    nb[_Q_ROW * S + i] = o if ell else 0.0
+    key = (s0 + 1.0) + 3.0 * (s1 + 1.0) + 9.0 * (s2 + 1.0) + 27.0 * (s3 + 1.0) + 81.0 * (s4 + 1.0)
+    nb[_KEY_ROW * S + i] = key
 
 
 def _decide_block_kernel(
@@ -142,29 +177,30 @@ def _decide_block_kernel(
     crit: Any,
     sep: Any,
     qsign: Any,
-) -> None:
+    answers: Any,
+    steps: Any,
+    out: Any,
+    left: Any,
+    by_step: Any,
+) -> int:
     """Pairs ``lo .. hi``: ``crit`` (the criterion's region code, or :data:`OUT`), ``sep`` (the
     separation code, or :data:`NOT_RUN`) and ``qsign`` (the canonical sign of ``Q``, an
-    ellipsoid; 0 for the pairs left out)."""
+    ellipsoid; 0 for the pairs left out), and these codes read through the table ``answers``,
+    ``steps`` (:func:`read_one`): the answer into ``out``, the pairs no step settles into
+    ``left[lo:]`` (their number is returned), the count of each step added to ``by_step``."""
     S = NB
     eb_ = np.empty(10 * S)
     qb_ = np.empty(10 * S)
     asym = np.empty(S)
-    xb = np.empty(S)
-    kb = np.empty(S)
-    ob = np.empty(S)
-    pc = np.empty(4 * S)
-    hb = np.empty(S)
+    nb = np.empty(10 * S)  # what the screen read (_note)
+    for i in range(S):
+        nb[_GUARD_ROW * S + i] = 1.0  # the screen's guard held for the pairs the signature reads
     li = np.empty(S, np.intp)
-    C = 2 * S  # the listed pairs, gathered over blocks until there are at least S of them
-    ec = np.empty(10 * C)  # E in the paper's sign
-    qc = np.empty(10 * C)
-    cb = np.empty(6 * C)
-    at = np.empty(C, np.intp)
-    fb = np.empty(6 * C)
+    fb = np.empty(5 * S)
     e1 = np.empty(10)
     q1 = np.empty(10)
-    nl = 0
+    SKt = (SK[0], SK[1], SK[2], SK[3])
+    nleft = n0 = n1 = 0
     # one quadric against a stack of ellipsoids: what depends on it alone once (its products in
     # the pencil, its row maxima, whether it is certainly an ellipsoid: the same programs, the
     # same bits, as for a pair), and the stack of quadrics is not read
@@ -190,7 +226,7 @@ def _decide_block_kernel(
                 W = _row_bound(R[0], R[1], R[2], R[3], T0[0], T0[1], T0[2], T0[3])
                 sym = (asym[i] == 0.0) & (not qbad)
                 ok, idx, s0, s1, s2, s3, s4, eok = screen_pair(e, q0, c, R, T0, W, ae, aq0, sym)
-                _note(i, S, ok, idx, s0, s1, s2, s3, s4, eok & qell0, o0, e[0], c, xb, ob, kb, pc)
+                _note(i, S, ok, idx, s0, s1, s2, s3, s4, eok & qell0, o0, e[0], c, nb)
         else:
             gather_block(Q, qidx, qs, False, blo, m, qb_, asym, False, S)
             for i in range(m):
@@ -199,16 +235,17 @@ def _decide_block_kernel(
                 W = _row_bound(R[0], R[1], R[2], R[3], T[0], T[1], T[2], T[3])
                 ok, idx, s0, s1, s2, s3, s4, eok = screen_pair(e, q, c, R, T, W, ae, aq, asym[i] == 0.0)
                 qell, o = certified_ellipsoid(q, T, c[0], _SP0 * W[0])
-                _note(i, S, ok, idx, s0, s1, s2, s3, s4, eok & qell, o, e[0], c, xb, ob, kb, pc)
+                _note(i, S, ok, idx, s0, s1, s2, s3, s4, eok & qell, o, e[0], c, nb)
         # the codes, and the list of pairs for the signature, without a branch on the data
         # (the outcomes are random: mispredicted branches cost more than the work)
         k = 0
         for i in range(m):
             p = blo + i
-            o = ob[i]
-            code = _TABLE[int(xb[i])]
+            o = nb[_Q_ROW * S + i]
+            x = int(nb[_INDEX_ROW * S + i])
+            code = _TABLE[x]
             crossing = code == _CROSSING
-            r = _REGIONS[0 if o > 0.0 else 1, int(kb[i])]
+            r = _REGIONS[0 if o > 0.0 else 1, int(nb[_KEY_ROW * S + i])]
             r = _CONTACT if crossing else (r if code == _NO_CONTACT else FALLBACK)
             qs_ = (1 if o > 0.0 else 0) - (1 if o < 0.0 else 0)
             outside = ((r == 1) | (r == -1)) & (r * qs_ == _R_PLUS)
@@ -216,35 +253,40 @@ def _decide_block_kernel(
             # four simple roots, so the two positive ones are distinct and the ellipsoids are
             # strictly apart (Wang-Wang-Kim): a positive definite member exists, the separation
             # code is the side itself, no signature needed
-            apart = outside & (((int(xb[i]) >> 4) & 3) == 2)
+            apart = outside & (((x >> 4) & 3) == 2)
             listed = (qs_ != 0) & (not crossing) & ((outside_too & (not apart)) | (not outside))
             crit[p] = r if qs_ != 0 else OUT
             qsign[p] = qs_
             sep[p] = r if (apart & (qs_ != 0)) else NOT_RUN
-            hb[k] = 1.0 if outside else 0.0  # try the last critical point first
+            nb[_LAST_ROW * S + i] = 1.0 if outside else 0.0  # try the last critical point first
             li[k] = i
             k += 1 if listed else 0
-        for j in range(k):
-            # listed for the signature: E in the paper's sign (det E < 0, e00 > 0)
-            i = li[j]
-            u = nl + j
-            f = -1.0 if eb_[i] < 0.0 else 1.0
-            for t in range(10):
-                ec[t * C + u] = f * eb_[t * S + i]
-                qc[t * C + u] = qb_[t * S + i]
-            for t in range(4):
-                cb[t * C + u] = pc[t * S + i]
-            cb[4 * C + u] = 1.0  # the screen's guard held for both matrices
-            cb[5 * C + u] = hb[j]
-            at[u] = blo + i
-        nl += k
-        if nl >= S or blo + S >= hi:
-            # the signature's straight-line loop over at least a block of listed pairs (a few
-            # pairs a block would run it in its scalar remainder, at the latency of its
-            # divisions and square roots)
-            if nl:
-                signature_rows(ec, qc, cb, nl, C, SK, K, KD, 1.0, fb, e1, q1, at, sep)
-            nl = 0
+        if k:
+            # the signature's straight-line stage over the whole block, in place (a pair in five
+            # is listed: compacting them into buffers of their own cost more than computing the
+            # stage for all), then the listed pairs one by one
+            signature_first(eb_, qb_, nb, m, S, SKt, True, fb)
+            for j in range(k):
+                i = li[j]
+                last = nb[_LAST_ROW * S + i] == 1.0
+                if witness(last, fb[S + i]):
+                    sep[blo + i] = _WITNESS_LAST if last else _WITNESS_FIRST
+                else:
+                    sep[blo + i] = signature_finish_called(eb_, qb_, nb, fb, i, S, SKt, K, KD, True, e1, q1)
+        # the codes read through the table, while they are in the cache (the counts in registers:
+        # an increment in memory a pair waits for the one before)
+        for i in range(m):
+            p = blo + i
+            a, s_ = read_one(crit[p], sep[p], qsign[p], answers, steps)
+            out[p] = a
+            n0 += 1 if s_ == 0 else 0
+            n1 += 1 if s_ == 1 else 0
+            left[lo + nleft] = p
+            nleft += 1 if s_ == 2 else 0
+    by_step[0] += n0
+    by_step[1] += n1
+    by_step[2] += nleft
+    return nleft
 
 
 _KERNEL: dict[bool, Any] = {}
@@ -263,54 +305,87 @@ def _kernel(compiled: bool) -> Any:
     return k
 
 
+_NO_TABLE = (np.zeros(int(np.prod(CODE_RANGES)), dtype=np.int8),) * 2
+
+
 def decide_ellipsoids(
-    pairs: Pairs, *, outside_too: bool, backend: str = "numba", threads: int | None = None
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``(crit, sep, qsign)`` for every pair of binary64 stacks (not rounded from exact input):
-    the criterion's region code (:class:`~quadric_contact.modes.base.RegionCode`,
+    pairs: Pairs,
+    *,
+    outside_too: bool,
+    table: tuple[np.ndarray, np.ndarray] | None = None,
+    backend: str = "numba",
+    threads: int | None = None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """``(crit, sep, qsign, out, left, by_step)`` for every pair of binary64 stacks (not rounded
+    from exact input).
+
+    ``crit``: the criterion's region code (:class:`~quadric_contact.modes.base.RegionCode`,
     ``FALLBACK`` where the screen cannot read it, :data:`OUT` for a pair left to the general
-    steps), the separation code (:data:`~quadric_contact.modes.separation.SEP_MINUS`,
-    ``CROSSING``, ``SEP_PLUS``, ``UNCERTAIN``, or :data:`NOT_RUN`) and the canonical sign of
-    ``Q`` (0 where the pair is left out).  ``outside_too``: read the signature also where the
-    criterion says ``E`` is in the closed ``R+`` of ``Q`` (the overlap question needs to tell a
-    touch from a gap)."""
+    steps); ``sep``: the separation code (:data:`~quadric_contact.modes.separation.SEP_MINUS`,
+    ``CROSSING``, ``SEP_PLUS``, ``UNCERTAIN``, or :data:`NOT_RUN`); ``qsign``: the canonical
+    sign of ``Q`` (0 where the pair is left out).  ``outside_too``: read the signature also
+    where the criterion says ``E`` is in the closed ``R+`` of ``Q`` (the overlap question needs
+    to tell a touch from a gap).
+
+    ``table``: ``(answers, steps)``, indexed by the three codes as :func:`read_codes` reads
+    them; the kernel reads every pair through it as it goes (a pass of its own over the codes
+    cost a tenth of the decision): ``out`` the answers, ``left`` the pairs whose step is 2 (in
+    order), ``by_step`` how many pairs each step took.  Without a table they read an all-zero
+    one."""
     from quadric_contact.modes.threads import run_parallel
 
     n = pairs.n
     crit = np.empty(n, dtype=np.int8)
     sep = np.empty(n, dtype=np.int8)
     qsign = np.empty(n, dtype=np.int8)
+    out = np.empty(n, dtype=np.int8)
+    left = np.empty(n, dtype=np.intp)
+    by_step = np.zeros(3, dtype=np.int64)
     if n == 0:
-        return crit, sep, qsign
+        return crit, sep, qsign, out, left[:0].copy(), by_step
+    answers, steps = _NO_TABLE if table is None else table
     SK = np.array(eb.MEMBER_MINORS_SEMI[False])
     K = np.array(eb.MEMBER_ERRBOUND[False])
     KD = np.array(eb.MEMBER_MINORS_ERRBOUND[False])
     eidx, qidx, es, qs = pairs.kernel_indices()
     E, Q = pairs.E.floats.reshape(-1, 16), pairs.Q.floats.reshape(-1, 16)
+    parts: list[tuple[int, int, np.ndarray]] = []  # (lo, pairs left, counts) of every slice
+
+    def go(lo: int, hi: int, kernel: Any) -> None:
+        counts = np.zeros(3, dtype=np.int64)
+        k = kernel(
+            E, Q, eidx, qidx, es, qs, lo, hi, outside_too, SK, K, KD, crit, sep, qsign, answers, steps, out,
+            left, counts,
+        )  # fmt: skip
+        parts.append((lo, int(k), counts))
+
     if backend == "numpy" or not HAVE_NUMBA:
-        _kernel(False)(E, Q, eidx, qidx, es, qs, 0, n, outside_too, SK, K, KD, crit, sep, qsign)
-        return crit, sep, qsign
-    k = _kernel(True)
-
-    def go(lo: int, hi: int) -> None:
-        k(E, Q, eidx, qidx, es, qs, lo, hi, outside_too, SK, K, KD, crit, sep, qsign)
-
-    run_parallel(go, n, threads)
-    return crit, sep, qsign
+        go(0, n, _kernel(False))
+    else:
+        k = _kernel(True)
+        run_parallel(lambda lo, hi: go(lo, hi, k), n, threads)
+    parts.sort(key=lambda part: part[0])
+    rest = [left[lo : lo + k] for lo, k, _ in parts if k]
+    for _, _, counts in parts:
+        by_step += counts
+    return crit, sep, qsign, out, (np.concatenate(rest) if rest else left[:0].copy()), by_step
 
 
 @_njit
 def _read_codes_impl(
     crit: Any, sep: Any, qsign: Any, answers: Any, steps: Any, out: Any, left: Any, by_step: Any
 ) -> int:
-    k = 0
+    k = n0 = n1 = 0
     for p in range(crit.shape[0]):
-        key = ((crit[p] + 1) * 5 + sep[p] + 1) * 3 + qsign[p] + 1
-        out[p] = answers[key]
-        s = steps[key]
-        by_step[s] += 1
+        a, s = read_one(crit[p], sep[p], qsign[p], answers, steps)
+        out[p] = a
+        n0 += 1 if s == 0 else 0
+        n1 += 1 if s == 1 else 0
         left[k] = p
         k += 1 if s == 2 else 0
+    by_step[0] += n0
+    by_step[1] += n1
+    by_step[2] += k
     return k
 
 

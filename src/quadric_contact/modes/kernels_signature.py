@@ -54,12 +54,18 @@ from quadric_contact.theory import decision
 __all__ = [
     "CRITICAL_POLYNOMIAL",
     "NB",
+    "WITNESS_FIRST",
+    "WITNESS_LAST",
     "critical_points_fast",
     "decide_signature",
     "member_minors_bounded",
+    "signature_finish",
+    "signature_finish_called",
+    "signature_first",
     "signature_float",
     "signature_prepare",
     "signature_rows",
+    "witness",
 ]
 
 NB = 32
@@ -292,8 +298,9 @@ def decide_signature(
 @_njit(inline=True)
 def signature_prepare(eb_: Any, qb_: Any, m: int, S: int, cb: Any) -> None:
     """For the ``m`` pairs in the column buffers (``E`` in the paper's sign): the coefficients
-    ``c1 .. c4`` of ``P`` and the input guard, into ``cb`` as :func:`signature_rows` reads them
-    (first sample point: the first critical point).  A straight-line loop."""
+    ``c1 .. c4`` of ``P``, the input guard and the sign row (1: ``E`` is in the paper's sign
+    already), into ``cb`` as :func:`signature_first` reads them (first sample point: the first
+    critical point).  A straight-line loop."""
     for i in range(m):
         e = _load(eb_, i, S)
         q = _load(qb_, i, S)
@@ -307,6 +314,103 @@ def signature_prepare(eb_: Any, qb_: Any, m: int, S: int, cb: Any) -> None:
         cb[3 * S + i] = c4
         cb[4 * S + i] = 1.0 if inputs_ok else 0.0
         cb[5 * S + i] = 0.0
+        cb[6 * S + i] = 1.0
+
+
+@_njit(inline=True)
+def signature_first(eb_: Any, qb_: Any, cb: Any, m: int, S: int, SKt: Any, certified: bool, fb: Any) -> None:
+    """The straight-line stage of the signature for the ``m`` pairs of the column buffers: the
+    sample points and the member at the first point to try, into ``fb`` for
+    :func:`signature_finish`.
+
+    ``cb`` holds seven rows of ``S``: the coefficients ``c1 .. c4`` of ``P`` for ``E`` in the
+    paper's sign (they only place the sample points, which nothing trusts), whether both
+    matrices pass the input guard (1/0), which sample point to try first (1: the last critical
+    point, where a positive definite member lies when ``E`` is outside; 0: the first, where a
+    negative definite one lies when ``E`` is inside), and the sign ``f = +-1`` that puts the
+    ``E`` of the buffer in the paper's sign.  The member ``s (f E) + Q`` is computed as
+    ``(f s) E + Q``: the same bits (a change of sign is exact), without a copy of ``E``."""
+    for i in range(m):
+        e = _load(eb_, i, S)
+        q = _load(qb_, i, S)
+        s1, s2, s3, ok = critical_points_fast(cb[i], cb[S + i], cb[2 * S + i], cb[3 * S + i])
+        last = cb[5 * S + i] == 1.0
+        f = cb[6 * S + i]
+        da, ga = _member(f * (s3 if last else s1), e, q, SKt, cb[4 * S + i] == 1.0, certified)
+        fb[i] = 1.0 if ok else 0.0
+        fb[S + i] = da
+        fb[2 * S + i] = s2
+        fb[3 * S + i] = s1 if last else s3
+        fb[4 * S + i] = ga
+
+
+def _witness_code(last: bool) -> int:
+    """The separation code of a pair whose first member tried is a witness (positive definite
+    at the last critical point, ``last``; negative definite at the first): what
+    :func:`decide_signature` says whatever the other members and the signs of ``P`` (unknown
+    here)."""
+    f = getattr(decide_signature, "py_func", decide_signature)
+    if last:
+        return int(f(False, _DEF_UNKNOWN, _DEF_UNKNOWN, _POSITIVE, _UNC, _UNC, _UNC, True))
+    return int(f(False, _NEGATIVE, _DEF_UNKNOWN, _DEF_UNKNOWN, _UNC, _UNC, _UNC, True))
+
+
+WITNESS_LAST = _witness_code(True)
+"""The separation code of a pair with a positive definite member at the last critical point."""
+WITNESS_FIRST = _witness_code(False)
+"""The separation code of a pair with a negative definite member at the first critical point."""
+
+
+@_njit(inline=True)
+def witness(last: bool, da: float) -> bool:
+    """The member first tried (``da``, a :class:`~quadric_contact.theory.decision.Definite`
+    code) is a witness: positive definite at the last critical point (``last``), negative
+    definite at the first; the code is then :data:`WITNESS_LAST` or :data:`WITNESS_FIRST`."""
+    return (da == _POSITIVE) if last else (da == _NEGATIVE)
+
+
+@_njit(inline=True)
+def signature_finish(
+    eb_: Any, qb_: Any, cb: Any, fb: Any, i: int, S: int, SKt: Any, K: Any, KD: Any, certified: bool,
+    e1: Any, q1: Any,
+) -> int:  # fmt: skip
+    """The separation code of the pair in column ``i`` after :func:`signature_first`: the other
+    members only where no witness was found (the last or first, then the middle), the facts
+    looked up in the decision table, and a second reading by the scalar certificate
+    (:func:`~quadric_contact.modes.separation._separation_one`) where the fast one is uncertain.
+    ``e1``, ``q1`` (10): scratch."""
+    last = cb[5 * S + i] == 1.0
+    f = cb[6 * S + i]
+    da = fb[S + i]
+    ga = fb[4 * S + i]
+    if witness(last, da):
+        # a witness at the first point tried: the other members are not needed
+        return WITNESS_LAST if last else WITNESS_FIRST
+    e = _load(eb_, i, S)
+    q = _load(qb_, i, S)
+    inputs_ok = cb[4 * S + i] == 1.0
+    db, gb = _member_called(f * fb[3 * S + i], e, q, SKt, inputs_ok, certified)
+    if (db == _NEGATIVE) if last else (db == _POSITIVE):
+        d2, g2 = _DEF_UNKNOWN, _UNC
+    else:
+        d2, g2 = _member_called(f * fb[2 * S + i], e, q, SKt, inputs_ok, certified)
+    if last:
+        code = decide_signature(fb[i] == 1.0, db, d2, da, gb, g2, ga, certified)
+    else:
+        code = decide_signature(fb[i] == 1.0, da, d2, db, ga, g2, gb, certified)
+    if code == UNCERTAIN and certified:
+        # a second reading: trigonometric sample points and magnitude programs
+        for k in range(10):
+            e1[k] = f * eb_[k * S + i]
+            q1[k] = qb_[k * S + i]
+        code = _separation_one(e1, q1, K, KD, True)
+    return code
+
+
+signature_finish_called = _njit(getattr(signature_finish, "py_func", signature_finish))
+""":func:`signature_finish` as a function the decision kernel calls rather than inlines: it runs
+for the few pairs without a witness at the first member tried, and inlined into the loop over
+the listed pairs its size made that loop several times slower for all of them."""
 
 
 @_njit(inline=True)
@@ -315,65 +419,16 @@ def signature_rows(
     e1: Any, q1: Any, at: Any, out: Any,
 ) -> None:  # fmt: skip
     """The separation codes of the ``m`` pairs in the column buffers ``eb_``, ``qb_`` (one row of
-    ``S`` per upper entry, ``E`` in the paper's sign), written to ``out[at[i]]``.
-
-    ``cb`` holds six rows of ``S``: the coefficients ``c1 .. c4`` of ``P`` (they only place the
-    sample points, which nothing trusts), whether both matrices pass the input guard (1/0), and
-    which sample point to try first (1: the last critical point, where a positive definite
-    member lies when ``E`` is outside; 0: the first, where a negative definite one lies when
-    ``E`` is inside).  A straight-line loop computes the sample points and the member at the
-    first point to try; a scalar loop adds the other members only where no witness was found
-    (the last or first, then the middle), looks the facts up in the decision table, and reads
-    a pair again with the scalar certificate where the fast reading is uncertain.
-    ``certain_only``: 1.0 for certain signs only (the certified reading), 0.0 for the plain one
-    (a run-time number: one signature kernel serves both readings).  ``fb`` (``6 S``), ``e1``,
-    ``q1`` (10): scratch.  Shared by the signature kernel and the decision kernel
-    (:mod:`quadric_contact.modes.kernels_decision`).  Inlined into the decision kernel:
-    called as a function of its own, it ran 30% slower there (23.5 against 15.8 ns a pair on
-    the environment population, 28.9 against 22.4 on similar sizes), its buffers being
-    arguments the compiler must assume may alias.  The signature kernel calls it as a function
-    of its own (``_signature_rows_called``): each inlined copy is over a minute of
-    compile time."""
+    ``S`` per upper entry), written to ``out[at[i]]``: :func:`signature_first` over the block,
+    then :func:`signature_finish` pair by pair.  ``cb``: seven rows of ``S``, as
+    :func:`signature_first` reads them; ``certain_only``: 1.0 for certain signs only (the
+    certified reading), 0.0 for the plain one (a run-time number: one signature kernel serves
+    both readings).  ``fb`` (``5 S``), ``e1``, ``q1`` (10): scratch."""
     SKt = (SK[0], SK[1], SK[2], SK[3])  # scalars: no store in the loop may alias them
     certified = certain_only == 1.0
+    signature_first(eb_, qb_, cb, m, S, SKt, certified, fb)
     for i in range(m):
-        e = _load(eb_, i, S)
-        q = _load(qb_, i, S)
-        s1, s2, s3, ok = critical_points_fast(cb[i], cb[S + i], cb[2 * S + i], cb[3 * S + i])
-        last = cb[5 * S + i] == 1.0
-        da, ga = _member(s3 if last else s1, e, q, SKt, cb[4 * S + i] == 1.0, certified)
-        fb[i] = 1.0 if ok else 0.0
-        fb[S + i] = da
-        fb[2 * S + i] = s2
-        fb[3 * S + i] = s1 if last else s3
-        fb[4 * S + i] = ga
-    for i in range(m):
-        last = cb[5 * S + i] == 1.0
-        da = fb[S + i]
-        ga = fb[4 * S + i]
-        if (da == _POSITIVE) if last else (da == _NEGATIVE):
-            # a witness at the first point tried: the other members are not needed
-            db, gb, d2, g2 = _DEF_UNKNOWN, _UNC, _DEF_UNKNOWN, _UNC
-        else:
-            e = _load(eb_, i, S)
-            q = _load(qb_, i, S)
-            inputs_ok = cb[4 * S + i] == 1.0
-            db, gb = _member_called(fb[3 * S + i], e, q, SKt, inputs_ok, certified)
-            if (db == _NEGATIVE) if last else (db == _POSITIVE):
-                d2, g2 = _DEF_UNKNOWN, _UNC
-            else:
-                d2, g2 = _member_called(fb[2 * S + i], e, q, SKt, inputs_ok, certified)
-        if last:
-            code = decide_signature(fb[i] == 1.0, db, d2, da, gb, g2, ga, certified)
-        else:
-            code = decide_signature(fb[i] == 1.0, da, d2, db, ga, g2, gb, certified)
-        if code == UNCERTAIN and certified:
-            # a second reading: trigonometric sample points and magnitude programs
-            for k in range(10):
-                e1[k] = eb_[k * S + i]
-                q1[k] = qb_[k * S + i]
-            code = _separation_one(e1, q1, K, KD, True)
-        out[at[i]] = code
+        out[at[i]] = signature_finish(eb_, qb_, cb, fb, i, S, SKt, K, KD, certified, e1, q1)
 
 
 def _make_signature() -> Any:
@@ -398,8 +453,8 @@ def _make_signature() -> Any:
         S = NB
         eb_ = np.empty(10 * S)
         qb_ = np.empty(10 * S)
-        fb = np.empty(6 * S)
-        cb = np.empty(6 * S)
+        fb = np.empty(5 * S)
+        cb = np.empty(7 * S)
         e1 = np.empty(10)
         q1 = np.empty(10)
         at = np.empty(S, np.intp)

@@ -71,7 +71,7 @@ from quadric_contact.modes.base import (
     StageCounts,
 )
 from quadric_contact.modes.decisions import KINDS, UNCERTAIN_ROW, rows_from_masks
-from quadric_contact.modes.kernels_decision import read_codes
+from quadric_contact.modes.kernels_decision import CODE_RANGES
 from quadric_contact.modes.rows import unique_rows
 from quadric_contact.modes.separation import CROSSING, SEP_MINUS, SEP_PLUS
 
@@ -243,11 +243,15 @@ def _lane(
     kernel = getattr(first, "decide_ellipsoids", None)
     if kernel is None:
         return None
-    facts = kernel(pairs, outside_too=question != "contact" and question != "region")
+    outside_too = question != "contact" and question != "region"
+    facts = kernel(pairs, outside_too=outside_too, table=_lane_table(question))
     if facts is None:
         return None
+    _, _, _, out, left, by_step = facts
     name = str(getattr(first, "stage", first.name))
-    return _read_lane(facts, _lane_table(question), name, counts)
+    counts.add(f"criterion ({name})", int(by_step[0]))
+    counts.add(f"separation ({name})", int(by_step[1]))
+    return out, left
 
 
 def _lane_rules(
@@ -287,8 +291,6 @@ def _overlap_lane_rules(
     return out, step
 
 
-# the codes of the decision kernel: crit in -1 .. 7 (OUT), sep in -1 .. 3 (NOT_RUN), qsign -1 .. 1
-_CRIT_CODES, _SEP_CODES, _QSIGN_CODES = 9, 5, 3
 _LANE_TABLES: dict[str, tuple[np.ndarray, np.ndarray]] = {}
 
 
@@ -298,7 +300,7 @@ def _lane_table(question: str) -> tuple[np.ndarray, np.ndarray]:
     the lane then reads one entry a pair instead of running the rules' dozen array passes."""
     table = _LANE_TABLES.get(question)
     if table is None:
-        grid = np.indices((_CRIT_CODES, _SEP_CODES, _QSIGN_CODES)).reshape(3, -1).astype(np.int8)
+        grid = np.indices(CODE_RANGES).reshape(3, -1).astype(np.int8)
         crit, sep, qsign = grid[0] - 1, grid[1] - 1, grid[2] - 1
         if question == "overlap":
             table = _overlap_lane_rules(crit, sep, qsign)
@@ -306,19 +308,6 @@ def _lane_table(question: str) -> tuple[np.ndarray, np.ndarray]:
             table = _lane_rules(crit, sep, qsign, question)
         _LANE_TABLES[question] = table
     return table
-
-
-def _read_lane(
-    facts: tuple[np.ndarray, np.ndarray, np.ndarray], table: tuple[np.ndarray, np.ndarray], name: str,
-    counts: StageCounts,
-) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
-    """The answers and the pairs left to the general steps, from the decision kernel's codes
-    and a lane table (:func:`~quadric_contact.modes.kernels_decision.read_codes`); the counts of
-    the two steps go to ``counts``."""
-    out, left, by_step = read_codes(*facts, *table)
-    counts.add(f"criterion ({name})", int(by_step[0]))
-    counts.add(f"separation ({name})", int(by_step[1]))
-    return out, left
 
 
 def _criterion_answers(crit: np.ndarray, qsign: Any, question: str, out: np.ndarray, todo: np.ndarray) -> int:
