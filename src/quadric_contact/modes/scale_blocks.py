@@ -88,6 +88,23 @@ def gather_signed(M: Any, k: int, b: Any, t: int, S: int, sign: float) -> None: 
 
 
 @njit(inline=True)
+def signed_upper(M: Any, k: int, sign: float) -> Any:  # pragma: no cover
+    """The ten upper entries of ``sign * M[k]`` (``M`` a stack ``(n, 4, 4)``), as a tuple."""
+    return (
+        sign * M[k, 0, 0],
+        sign * M[k, 0, 1],
+        sign * M[k, 0, 2],
+        sign * M[k, 0, 3],
+        sign * M[k, 1, 1],
+        sign * M[k, 1, 2],
+        sign * M[k, 1, 3],
+        sign * M[k, 2, 2],
+        sign * M[k, 2, 3],
+        sign * M[k, 3, 3],
+    )
+
+
+@njit(inline=True)
 def _det3(
     a00: float, a01: float, a02: float, a10: float, a11: float, a12: float, a20: float, a21: float, a22: float
 ) -> float:
@@ -487,11 +504,20 @@ def _scale_flags(
     """The enclosures and, for each pair, who answered it: 0 the block kernel, 2 the scalar
     kernel after the block kernel, 1 nobody (left to the exact path); the scalar kernel alone
     (``blocks=False``) gives 0 or 1."""
+    return run_flags(scale_blocks if blocks else _scalar, Es, Qs, threads)
+
+
+def run_flags(
+    kernel: Any, Es: np.ndarray, Qs: np.ndarray, threads: int | None
+) -> tuple[np.ndarray, np.ndarray]:
+    """Run a scale kernel ``kernel(Es, Qs, out, flag, start, stop)`` over float64 stacks
+    ``(n, 4, 4)`` on threads: the enclosures ``(n, 2)`` and the flag of each pair (0, 2:
+    certified by the block or the scalar kernel, 1: left to the exact path).  Shared by the
+    one-sided and the two-sided scale."""
     Es = np.ascontiguousarray(Es, dtype=np.float64).reshape(-1, 4, 4)
     Qs = np.ascontiguousarray(Qs, dtype=np.float64).reshape(-1, 4, 4)
     n = Es.shape[0]
     out = np.empty((n, 2))
     flag = np.empty(n, dtype=np.uint8)
-    kernel = scale_blocks if blocks else _scalar
     run_parallel(lambda a, b: kernel(Es, Qs, out, flag, a, b), n, threads)
     return out, flag

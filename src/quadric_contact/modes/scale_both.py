@@ -89,9 +89,10 @@ from quadric_contact.modes.scale_blocks import (
     _times,
     _up,
     gather_signed,
+    run_flags,
+    signed_upper,
 )
 from quadric_contact.modes.scale_kernel import _U
-from quadric_contact.modes.threads import run_parallel
 
 __all__ = ["NB", "NEWTON", "STEPS", "WIDTH", "scale_both_stack"]
 
@@ -285,30 +286,8 @@ def _scalar(Es: Any, Qs: Any, out: Any, flag: Any, start: int, stop: int) -> Non
         flag[k] = 1
         sg = -1.0 if Es[k, 0, 0] < 0.0 else 1.0
         sq = -1.0 if Qs[k, 0, 0] < 0.0 else 1.0
-        e = (
-            sg * Es[k, 0, 0],
-            sg * Es[k, 0, 1],
-            sg * Es[k, 0, 2],
-            sg * Es[k, 0, 3],
-            sg * Es[k, 1, 1],
-            sg * Es[k, 1, 2],
-            sg * Es[k, 1, 3],
-            sg * Es[k, 2, 2],
-            sg * Es[k, 2, 3],
-            sg * Es[k, 3, 3],
-        )
-        q = (
-            sq * Qs[k, 0, 0],
-            sq * Qs[k, 0, 1],
-            sq * Qs[k, 0, 2],
-            sq * Qs[k, 0, 3],
-            sq * Qs[k, 1, 1],
-            sq * Qs[k, 1, 2],
-            sq * Qs[k, 1, 3],
-            sq * Qs[k, 2, 2],
-            sq * Qs[k, 2, 3],
-            sq * Qs[k, 3, 3],
-        )
+        e = signed_upper(Es, k, sg)
+        q = signed_upper(Qs, k, sq)
         ok, detA, eA, detB, eB, detE, eE, detQ, eQ, mu = _setup(e, q)
         if not ok:
             continue
@@ -447,11 +426,4 @@ def _flags(
 ) -> tuple[np.ndarray, np.ndarray]:
     """The enclosures and, for each pair, who answered it: 0 the block kernel (or the scalar
     kernel alone, ``blocks=False``), 2 the scalar kernel after the block kernel, 1 nobody."""
-    Es = np.ascontiguousarray(Es, dtype=np.float64).reshape(-1, 4, 4)
-    Qs = np.ascontiguousarray(Qs, dtype=np.float64).reshape(-1, 4, 4)
-    n = Es.shape[0]
-    out = np.empty((n, 2))
-    flag = np.empty(n, dtype=np.uint8)
-    kernel = _blocks if blocks else _scalar
-    run_parallel(lambda a, b: kernel(Es, Qs, out, flag, a, b), n, threads)
-    return out, flag
+    return run_flags(_blocks if blocks else _scalar, Es, Qs, threads)
