@@ -276,6 +276,21 @@ def _step(
     return mu2, lo2, hi2
 
 
+@njit(inline=True)
+def _certify_at(
+    e: Any, q: Any, mu: float, detA: float, eA: float, detB: float, eB: float, detE: float, eE: float,
+    detQ: float, eQ: float, out: Any, k: int,
+) -> bool:  # fmt: skip  # pragma: no cover
+    """The certificate at ``mu`` (:func:`_bounds`, :func:`_enclose`): where it holds, the
+    enclosure of pair ``k`` goes to ``out[k]`` and the result is True."""
+    l2, h2 = _bounds(e, q, mu, detA, eA, detB, eB, detE, eE, detQ, eQ)
+    a, b, good = _enclose(l2, h2)
+    if good:
+        out[k, 0] = a
+        out[k, 1] = b
+    return good
+
+
 @njit
 def _scalar(Es: Any, Qs: Any, out: Any, flag: Any, start: int, stop: int) -> None:  # pragma: no cover
     """Pairs ``start .. stop``, one at a time: up to :data:`STEPS` steps of the search, the
@@ -300,24 +315,16 @@ def _scalar(Es: Any, Qs: Any, out: Any, flag: Any, start: int, stop: int) -> Non
         for _ in range(STEPS):
             rho, drho, usable = _plain(e, q, mu, rE, rQ)
             mu2, lo, hi = _step(mu, lo, hi, rho, drho, usable)
-            if usable and abs(mu2 - mu) <= 1e-9 * mu:
-                l2, h2 = _bounds(e, q, mu, detA, eA, detB, eB, detE, eE, detQ, eQ)
-                a, b, good = _enclose(l2, h2)
-                if good:
-                    out[k, 0] = a
-                    out[k, 1] = b
-                    flag[k] = 0
-                    break
+            settled = usable and abs(mu2 - mu) <= 1e-9 * mu
+            if settled and _certify_at(e, q, mu, detA, eA, detB, eB, detE, eE, detQ, eQ, out, k):
+                flag[k] = 0
+                break
             if not (hi - lo > 1e-17) or mu2 == mu:
                 break
             mu = mu2
-        if flag[k] == 1:  # the search stopped: the certificate where it stopped
-            l2, h2 = _bounds(e, q, mu, detA, eA, detB, eB, detE, eE, detQ, eQ)
-            a, b, good = _enclose(l2, h2)
-            if good:
-                out[k, 0] = a
-                out[k, 1] = b
-                flag[k] = 0
+        # the search stopped: the certificate where it stopped
+        if flag[k] == 1 and _certify_at(e, q, mu, detA, eA, detB, eB, detE, eE, detQ, eQ, out, k):
+            flag[k] = 0
 
 
 @njit
