@@ -264,7 +264,8 @@ def _decide_block_kernel(
         if k:
             # the signature's straight-line stage over the whole block, in place (a pair in five
             # is listed: compacting them into buffers of their own cost more than computing the
-            # stage for all), then the listed pairs one by one
+            # stage for all), then the listed pairs one by one: the witness (the predicate and the
+            # codes signature_finish itself starts with) read here, the call only without one
             signature_first(eb_, qb_, nb, m, S, SKt, True, fb)
             for j in range(k):
                 i = li[j]
