@@ -6,8 +6,9 @@ pytest-xdist every worker that reaches a kernel first would compile it at the sa
 behind pytest's capture, so the notice the package prints (:data:`quadric_contact.modes._jit.
 COMPILE_NOTICE`) would not be seen.  :func:`warm_kernels` calls every question of the array
 API in the float, filter and certified modes, on distinct pairs, on one matrix against a stack
-(either side), float64 and packed, and on nearly touching pairs (the later stages), and the
-bench's read of its inputs, so that the workers load the kernels from the cache.
+(either side), float64 and packed, and on nearly touching pairs (the later stages), the
+first-contact scale and the distance of separated ellipsoids on stacks, and the bench's read of
+its inputs, so that the workers load the kernels from the cache.
 ``python -m tests.kernel_warmup`` (from the root of the checkout, ``src`` on ``PYTHONPATH``)
 is what ``tests/conftest.py`` runs.
 """
@@ -74,6 +75,19 @@ def _calls() -> list[tuple[str, Callable[[], Any]]]:
                     continue  # overlap asks about two ellipsoids
                 call = functools.partial(fn, e, q, mode=mode)
                 calls.append((f"{name}({label}, mode={mode!r})", call))
+    # the first-contact scale (one-sided: distinct pairs and one quadric against the stack;
+    # two-sided) and the distance of separated ellipsoids (the duality kernel), which the tests
+    # of those functions otherwise compile in a worker, each worker that reaches them first
+    far = np.stack([_ellipsoid((0.5, 0.7, 0.9), (6.0 + k, 0.0, 0.0)) for k in range(4)])
+    near = np.stack([_ellipsoid((1.0, 2.0, 1.5), (0.0, 0.0, 0.0))] * 4)
+    calls.append(("contact_scale(ellipsoids)", functools.partial(qc.contact_scale, Es, Qs)))
+    calls.append(
+        ("contact_scale(ellipsoids, one against a stack)", functools.partial(qc.contact_scale, Es, Qs[0]))
+    )
+    calls.append(
+        ("contact_scale(ellipsoids, scale='both')", functools.partial(qc.contact_scale, Es, Qs, scale="both"))
+    )
+    calls.append(("distance(ellipsoids apart)", functools.partial(qc.distance, far, near)))
     from quadric_contact.modes.float64 import read_all
 
     calls.append(("read_all (the bench's read-bandwidth limit)", functools.partial(read_all, Es, Qs)))
