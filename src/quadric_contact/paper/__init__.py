@@ -48,6 +48,7 @@ FURTHER_RESULTS: tuple[str, ...] = (
     "Pieces as cut",
     "First-contact scale",
     "Mutual contact events",
+    "Distance along a path",
 )
 """Results from outside the paper that the package relies on and proves in ``proofs/``
 alongside the paper's (after them, in this order): the separation condition of two
@@ -59,7 +60,9 @@ paper; the package's own reduction of contact with a piece as cut by a plane to 
 section's pencil (:mod:`quadric_contact.theory.sections`), on which the geometric reading of
 scenes rests; the choice of the root that :func:`quadric_contact.contact_scale` returns; and the
 reduction of the contacts of two moving ellipsoids with each other to the real roots of a
-discriminant in time (:mod:`quadric_contact.scenes.mutual`)."""
+discriminant in time (:mod:`quadric_contact.scenes.mutual`); and the bound on the displacement of
+a rigidly moving ellipsoid's points by which the least distance along a path is enclosed
+(:mod:`quadric_contact.scenes.path_distance`)."""
 
 PRINTED: dict[str, str] = {
     # Section 3.2, the two members of the discrimination system used by Corollary 10.

@@ -1,24 +1,31 @@
 """The signed distance along a path: its least value and the times of closest approach,
 certified.
 
-An ellipsoid ``E0`` moves by a trajectory without rotation (its centre follows polynomial
-pieces ``p(t)``; on each piece its orientation is fixed, :func:`turns`); the solid of ``Q``
-stays.  ``d(t)``, the signed distance of
-:func:`quadric_contact.distance` between the moved ellipsoid and ``Q``, is 1-Lipschitz in the
-translation (both the distance of two sets and the translation distance move by at most
-``|v|`` when one set moves by ``v``), so on a piece ``|d(t) - d(s)| <= V |t - s|`` with ``V``
-a bound of ``|p'|`` on the piece (the sum of the absolute values of the derivative's
-coefficients times powers of ``max |t|``: a rational upper bound).  Then on ``[a, b]``::
+An ellipsoid ``E0`` moves rigidly: its centre follows polynomial pieces ``p(t)`` and, on a
+piece that turns it, its orientation is the rotation of a polynomial quaternion ``q(t)``
+(:mod:`quadric_contact.scenes.trajectory`); the solid of ``Q`` stays.  ``d(t)``, the signed
+distance of :func:`quadric_contact.distance` between the moved ellipsoid and ``Q``, moves by at
+most the largest displacement of a point of the ellipsoid: if every point moves by at most
+``delta``, the new solid lies in the old one widened by a ball of radius ``delta``, and the
+distance of two sets, like the translation distance of convex solids (minus the least value of
+the sum of their support functions, which widening by a ball raises by ``delta``), moves by at
+most ``delta`` (``proofs/path_distance_lipschitz.py``).  A point at ``y`` from the centre,
+``|y| <= rho`` (a rational bound of the largest semi-axis), moves from time ``a`` to ``t`` by at
+most ``f(t - a) = V (t - a) + rho min(W (t - a), 2)``, with ``V`` a bound of ``|p'|`` and ``W`` of
+the angular speed ``|omega| <= 2 |q'| / |q|`` on the piece (rational upper bounds: the
+derivatives enclosed on the interval, ``|q|^2`` enclosed from below; without a positive lower
+bound, ``W`` is dropped and the chord bound ``2 rho`` is used).  ``f`` is concave, so on
+``[a, b]``::
 
-    min d >= (d(a) + d(b)) / 2 - V (b - a) / 2,
+    min d >= (d(a) + d(b)) / 2 - f((b - a) / 2),
 
-with the certified enclosures of ``d(a)`` and ``d(b)``.  Subdividing the intervals whose bound
-does not exceed the least enclosed value seen gives an enclosure of ``min d`` and a union of
-time intervals holding every time at which the minimum is reached.  The bound is first order:
-near a minimum passed at a steady speed the intervals must shrink like the tolerance, so a
-tolerance of about ``10^-3`` of the path's scale is within a few hundred evaluations.  The
-number of evaluations is bounded (``max_evaluations``): when the budget runs out first, the
-enclosure reached is returned, wider than the tolerance.
+with the certified enclosures of ``d(a)`` and ``d(b)`` (for a translation, ``V (b - a) / 2``).
+Subdividing the intervals whose bound does not exceed the least enclosed value seen gives an
+enclosure of ``min d`` and a union of time intervals holding every time at which the minimum
+is reached.  The bound is first order: near a minimum passed at a steady speed the intervals
+must shrink like the tolerance, so a tolerance of about ``10^-3`` of the path's scale is within
+a few hundred evaluations.  The number of evaluations is bounded (``max_evaluations``): when the
+budget runs out first, the enclosure reached is returned, wider than the tolerance.
 """
 
 from __future__ import annotations
@@ -32,6 +39,7 @@ from quadric_contact.exact.errors import UndecidedError
 from quadric_contact.exact.rational import to_fraction
 from quadric_contact.model.quadric import as_quadric
 from quadric_contact.modes.distances import distance
+from quadric_contact.scenes.broadphase import _sqrt_up, ellipsoid_extents, poly_range
 from quadric_contact.scenes.trajectory import MotionSegment, Trajectory, _poly_coeffs
 
 __all__ = ["PathDistance", "path_distance", "turns"]
@@ -70,6 +78,34 @@ def _speed_bound(center: Any, a: Fraction, b: Fraction) -> Fraction:
         total += max(abs(lo), abs(hi)) ** 2
     # (isqrt(floor(total 4^30)) + 1) / 2^30 > sqrt(total)
     return Fraction(math.isqrt(total.numerator * 4**30 // total.denominator) + 1, 2**30)
+
+
+def _turn_speed(segment: MotionSegment, a: Fraction, b: Fraction) -> Fraction | None:
+    """A rational upper bound ``W`` of the angular speed on ``[a, b]`` (0 without rotation), or
+    None where ``|q|^2`` is not bounded away from zero by its enclosure there.
+
+    With ``u = q / |q|``, ``|omega| = 2 |u'|`` and ``|u'|^2 = (|q'|^2 |q|^2 - (q . q')^2) / |q|^4
+    <= |q'|^2 / |q|^2``; so ``W^2 = 4 S / N`` with ``S`` the sum of the squared bounds of the
+    ``|q_i'|`` and ``N`` a positive lower bound of ``|q|^2`` on the interval."""
+    if segment.quaternion is None:
+        return Fraction(0)
+    norm_low = poly_range(segment.norm_poly(), a, b)[0]
+    if norm_low <= 0:
+        return None
+    total = Fraction(0)
+    for comp in segment.quaternion:
+        lo, hi = poly_range(comp.derivative(), a, b)
+        total += max(abs(lo), abs(hi)) ** 2
+    return _sqrt_up(4 * total / norm_low, 30)
+
+
+def _reach_bound(segment: MotionSegment, a: Fraction, b: Fraction, rho: Fraction) -> Fraction:
+    """``f((b - a) / 2)``: a rational upper bound of how far a point of the ellipsoid (within
+    ``rho`` of its centre) moves in half the interval: ``V h + rho min(W h, 2)``."""
+    h = (b - a) / 2
+    w = _turn_speed(segment, a, b)
+    turn = 2 * rho if w is None else rho * min(w * h, Fraction(2))
+    return _speed_bound(segment.center, a, b) * h + turn
 
 
 def turns(segment: MotionSegment) -> bool:
@@ -116,8 +152,7 @@ def path_distance(
     E0 : the ellipsoid in its initial placement
     Q : a quadric with a solid (as :func:`quadric_contact.distance`)
     trajectory : Trajectory
-        Without rotation (a rotation is refused: its Lipschitz bound is not derived here); a
-        fixed orientation other than the initial one (a constant quaternion) is a translation.
+        Translations and rotations (a polynomial quaternion per segment).
     t0, t1 : numbers, ``t0 < t1``
     tolerance : number
         Stop when the enclosure of the minimum is this narrow (absolutely).
@@ -130,7 +165,7 @@ def path_distance(
     Raises
     ------
     UndecidedError
-        A rotating motion, or a distance the modes do not decide (its time is named).
+        A distance the modes do not decide (its time is named).
 
     Examples
     --------
@@ -155,8 +190,7 @@ def path_distance(
     c = e.center()
     assert c is not None
     segments = trajectory.segments(t0, t1, c)
-    if any(turns(s) for s in segments):
-        raise UndecidedError("the distance along a path is given for motions without rotation")
+    rho = ellipsoid_extents(e)[1]
     cache: dict[Fraction, tuple[Fraction, Fraction]] = {}
 
     def d(t: Fraction) -> tuple[Fraction, Fraction]:
@@ -169,18 +203,16 @@ def path_distance(
             cache[t] = (Fraction(lo), Fraction(hi))
         return cache[t]
 
-    # work items: (a, b, V) inside one segment
+    # work items: (a, b, segment), the interval inside one segment
     work = []
     for s in segments:
         a, b = max(s.t0, t0), min(s.t1, t1)
         if a < b:
-            work.append((a, b, s.center))
+            work.append((a, b, s))
     while True:
         best = min(hi for lo, hi in (d(a) for a, _, _ in work))
         best = min(best, min(d(b)[1] for _, b, _ in work))
-        bounds = [
-            ((d(a)[0] + d(b)[0]) / 2 - _speed_bound(V, a, b) * (b - a) / 2, a, b, V) for a, b, V in work
-        ]
+        bounds = [((d(a)[0] + d(b)[0]) / 2 - _reach_bound(seg, a, b, rho), a, b, seg) for a, b, seg in work]
         live = [x for x in bounds if x[0] <= best]
         low = min(x[0] for x in live)
         budget = max_evaluations - len(cache)  # one evaluation per bisection (the midpoint)
@@ -189,12 +221,12 @@ def path_distance(
         wide = sorted((x for x in live if best - x[0] > tol), key=lambda x: x[0])
         split = {(a, b) for _, a, b, _ in wide[:budget]}
         work = []
-        for _, a, b, V in live:
+        for _, a, b, seg in live:
             if (a, b) in split:
                 m = (a + b) / 2
-                work += [(a, m, V), (m, b, V)]
+                work += [(a, m, seg), (m, b, seg)]
             else:
-                work.append((a, b, V))
+                work.append((a, b, seg))
     minimum = (min(low, best), best)
     times = tuple((a, b) for _, a, b, _ in live)
     samples = tuple(sorted((t, lo, hi) for t, (lo, hi) in cache.items()))

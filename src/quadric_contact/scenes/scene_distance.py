@@ -14,9 +14,6 @@ The solid is the piece's inside (``inside = "R-"`` or ``"R+"`` of its quadric as
 Where the method does not answer, the pair is reported as *not available*, with the reason,
 and nothing else is put in its place:
 
-* the ellipsoid's orientation changes along its path (the Lipschitz bound of
-  :mod:`~quadric_contact.scenes.path_distance` is derived for translations; a fixed
-  orientation is a translation);
 * the piece is cut by planes of its object's tree: the distance to the quadric as cut is a
   constrained problem (boundary curves and corners), and the whole quadric's distance is
   only a lower bound of it (the cut solid is a part of the whole one), in either reading of
@@ -41,7 +38,7 @@ from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import Quadric
 from quadric_contact.scenes.composite import Composite, Piece, Split
 from quadric_contact.scenes.ledger import Ledger
-from quadric_contact.scenes.path_distance import path_distance, turns
+from quadric_contact.scenes.path_distance import path_distance
 from quadric_contact.scenes.scene_model import (
     DISTANCE_EVALUATIONS,
     DISTANCE_TOLERANCE,
@@ -251,9 +248,8 @@ def piece_distances(
     target ``object/piece``).
     """
     cut = _cutting_planes(obj)
-    rotating = any(turns(s) for s in segments)
     return [
-        _piece_distance(scene, ell, obj, piece, rotating, cut.get(piece.name, []), ledger)
+        _piece_distance(scene, ell, obj, piece, cut.get(piece.name, []), ledger)
         for piece in obj.pieces
         if wanted(piece)
     ]
@@ -264,7 +260,6 @@ def _piece_distance(
     ell: MovingEllipsoid,
     obj: Composite,
     piece: Piece,
-    rotating: bool,
     planes: Sequence[str],
     ledger: Ledger,
 ) -> PieceDistance:
@@ -280,8 +275,6 @@ def _piece_distance(
 
     solid, why = _solid(piece)
     reasons = []
-    if rotating:
-        reasons.append(f"{ell.name} turns along its path (the certified bound is derived for translations)")
     if planes:
         reasons.append(
             f"the piece is cut by the plane(s) {', '.join(planes)} of its object: the distance to the "
