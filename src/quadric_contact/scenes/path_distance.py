@@ -42,7 +42,7 @@ from quadric_contact.modes.distances import distance
 from quadric_contact.scenes.broadphase import _sqrt_up, ellipsoid_extents, poly_range
 from quadric_contact.scenes.trajectory import MotionSegment, Trajectory, _poly_coeffs
 
-__all__ = ["PathDistance", "path_distance", "turns"]
+__all__ = ["PathDistance", "path_distance"]
 
 
 @dataclass(frozen=True)
@@ -106,33 +106,6 @@ def _reach_bound(segment: MotionSegment, a: Fraction, b: Fraction, rho: Fraction
     w = _turn_speed(segment, a, b)
     turn = 2 * rho if w is None else rho * min(w * h, Fraction(2))
     return _speed_bound(segment.center, a, b) * h + turn
-
-
-def turns(segment: MotionSegment) -> bool:
-    """The orientation changes along the segment: its quaternion ``q(t)`` is not a scalar
-    multiple of one fixed quaternion (the coefficient vectors of ``q`` have rank 2 or more).
-    A segment with a fixed orientation is a translation of one rotated copy of the ellipsoid,
-    to which the Lipschitz bound applies as it is.
-
-    Examples
-    --------
-    >>> from quadric_contact.scenes.trajectory import PolynomialMotion
-    >>> def first(m):
-    ...     return m.segments(Fraction(0), Fraction(1), (0, 0, 0))[0]
-    >>> turns(first(PolynomialMotion([[0, 1], [0], [0]], [[2], [0], [0], [1]])))
-    False
-    >>> turns(first(PolynomialMotion([[0], [0], [0]], [[1], [0, 1], [0], [0]])))
-    True
-    """
-    if segment.quaternion is None:
-        return False
-    coeffs = [_poly_coeffs(p) for p in segment.quaternion]
-    n = max(len(c) for c in coeffs)
-    vectors = [[c[k] if k < len(c) else Fraction(0) for c in coeffs] for k in range(n)]
-    ref = next((v for v in vectors if any(v)), None)
-    if ref is None:
-        return False
-    return any(v[i] * ref[j] != v[j] * ref[i] for v in vectors for i in range(4) for j in range(i + 1, 4))
 
 
 def path_distance(
