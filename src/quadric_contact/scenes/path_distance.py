@@ -9,7 +9,7 @@ most the largest displacement of a point of the ellipsoid: if every point moves 
 ``delta``, the new solid lies in the old one widened by a ball of radius ``delta``, and the
 distance of two sets, like the translation distance of convex solids (minus the least value of
 the sum of their support functions, which widening by a ball raises by ``delta``), moves by at
-most ``delta`` (``proofs/path_distance_lipschitz.py``).  A point at ``y`` from the centre,
+most ``delta`` (``proofs/distance_along_a_path.py``).  A point at ``y`` from the centre,
 ``|y| <= rho`` (a rational bound of the largest semi-axis), moves from time ``a`` to ``t`` by at
 most ``f(t - a) = V (t - a) + rho min(W (t - a), 2)``, with ``V`` a bound of ``|p'|`` and ``W`` of
 the angular speed ``|omega| <= 2 |q'| / |q|`` on the piece (rational upper bounds: the
@@ -30,7 +30,6 @@ budget runs out first, the enclosure reached is returned, wider than the toleran
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
@@ -40,9 +39,12 @@ from quadric_contact.exact.rational import to_fraction
 from quadric_contact.model.quadric import as_quadric
 from quadric_contact.modes.distances import distance
 from quadric_contact.scenes.broadphase import _sqrt_up, ellipsoid_extents, poly_range
-from quadric_contact.scenes.trajectory import MotionSegment, Trajectory, _poly_coeffs
+from quadric_contact.scenes.trajectory import MotionSegment, Trajectory
 
 __all__ = ["PathDistance", "path_distance"]
+
+_Item = tuple[Fraction, Fraction, MotionSegment, Fraction]
+"""A work item of :func:`path_distance`: ``(a, b, segment, f((b - a) / 2))``."""
 
 
 @dataclass(frozen=True)
@@ -64,20 +66,14 @@ class PathDistance:
     samples: tuple[tuple[Fraction, Fraction, Fraction], ...]
 
 
-def _speed_bound(center: Any, a: Fraction, b: Fraction) -> Fraction:
-    """A rational upper bound of ``|p'(t)|`` on ``[a, b]``: each derivative enclosed by Horner's
-    scheme in rational interval arithmetic, then the root of the sum of squares rounded up."""
+def _derivative_bound(polys: Any, a: Fraction, b: Fraction) -> Fraction:
+    """``sum_i max |p_i'|^2`` over ``[a, b]``, rounded up: each derivative enclosed by
+    :func:`~quadric_contact.scenes.broadphase.poly_range`."""
     total = Fraction(0)
-    for p in center:
-        cs = _poly_coeffs(p)
-        ds = [k * c for k, c in enumerate(cs) if k > 0] or [Fraction(0)]
-        lo = hi = ds[-1]
-        for c in reversed(ds[:-1]):
-            prods = (lo * a, lo * b, hi * a, hi * b)
-            lo, hi = min(prods) + c, max(prods) + c
+    for p in polys:
+        lo, hi = poly_range(p.derivative(), a, b)
         total += max(abs(lo), abs(hi)) ** 2
-    # (isqrt(floor(total 4^30)) + 1) / 2^30 > sqrt(total)
-    return Fraction(math.isqrt(total.numerator * 4**30 // total.denominator) + 1, 2**30)
+    return total
 
 
 def _turn_speed(segment: MotionSegment, a: Fraction, b: Fraction) -> Fraction | None:
@@ -92,11 +88,7 @@ def _turn_speed(segment: MotionSegment, a: Fraction, b: Fraction) -> Fraction | 
     norm_low = poly_range(segment.norm_poly(), a, b)[0]
     if norm_low <= 0:
         return None
-    total = Fraction(0)
-    for comp in segment.quaternion:
-        lo, hi = poly_range(comp.derivative(), a, b)
-        total += max(abs(lo), abs(hi)) ** 2
-    return _sqrt_up(4 * total / norm_low, 30)
+    return _sqrt_up(4 * _derivative_bound(segment.quaternion, a, b) / norm_low, 30)
 
 
 def _reach_bound(segment: MotionSegment, a: Fraction, b: Fraction, rho: Fraction) -> Fraction:
@@ -105,7 +97,7 @@ def _reach_bound(segment: MotionSegment, a: Fraction, b: Fraction, rho: Fraction
     h = (b - a) / 2
     w = _turn_speed(segment, a, b)
     turn = 2 * rho if w is None else rho * min(w * h, Fraction(2))
-    return _speed_bound(segment.center, a, b) * h + turn
+    return _sqrt_up(_derivative_bound(segment.center, a, b), 30) * h + turn
 
 
 def path_distance(
@@ -176,31 +168,37 @@ def path_distance(
             cache[t] = (Fraction(lo), Fraction(hi))
         return cache[t]
 
-    # work items: (a, b, segment), the interval inside one segment
+    def item(
+        a: Fraction, b: Fraction, seg: MotionSegment
+    ) -> tuple[Fraction, Fraction, MotionSegment, Fraction]:
+        """An interval inside one segment, with its displacement bound (computed once)."""
+        return a, b, seg, _reach_bound(seg, a, b, rho)
+
     work = []
     for s in segments:
         a, b = max(s.t0, t0), min(s.t1, t1)
         if a < b:
-            work.append((a, b, s))
+            work.append(item(a, b, s))
     while True:
-        best = min(hi for lo, hi in (d(a) for a, _, _ in work))
-        best = min(best, min(d(b)[1] for _, b, _ in work))
-        bounds = [((d(a)[0] + d(b)[0]) / 2 - _reach_bound(seg, a, b, rho), a, b, seg) for a, b, seg in work]
+        best = min(hi for lo, hi in (d(a) for a, _, _, _ in work))
+        best = min(best, min(d(b)[1] for _, b, _, _ in work))
+        bounds = [((d(w[0])[0] + d(w[1])[0]) / 2 - w[3], w) for w in work]
         live = [x for x in bounds if x[0] <= best]
         low = min(x[0] for x in live)
         budget = max_evaluations - len(cache)  # one evaluation per bisection (the midpoint)
         if best - low <= tol or budget <= 0:
             break
         wide = sorted((x for x in live if best - x[0] > tol), key=lambda x: x[0])
-        split = {(a, b) for _, a, b, _ in wide[:budget]}
+        split = {w[:2] for _, w in wide[:budget]}
         work = []
-        for _, a, b, seg in live:
+        for _, w in live:
+            a, b, seg, _ = w
             if (a, b) in split:
                 m = (a + b) / 2
-                work += [(a, m, seg), (m, b, seg)]
+                work += [item(a, m, seg), item(m, b, seg)]
             else:
-                work.append((a, b, seg))
+                work.append(w)
     minimum = (min(low, best), best)
-    times = tuple((a, b) for _, a, b, _ in live)
+    times = tuple(w[:2] for _, w in live)
     samples = tuple(sorted((t, lo, hi) for t, (lo, hi) in cache.items()))
     return PathDistance(minimum, times, samples)
