@@ -45,7 +45,6 @@ from quadric_contact.scenes.scene_model import (
     MovingEllipsoid,
     Scene,
 )
-from quadric_contact.scenes.trajectory import MotionSegment
 from quadric_contact.theory.overlap import SOLID_KINDS
 from quadric_contact.theory.results import Region
 
@@ -236,13 +235,11 @@ def piece_distances(
     scene: Scene,
     ell: MovingEllipsoid,
     obj: Composite,
-    segments: Sequence[MotionSegment],
     ledger: Ledger,
     wanted: Callable[[Piece], bool],
 ) -> list[PieceDistance]:
     """The ``distance`` effect for one moving ellipsoid against the pieces of one object that
-    ask for it (``wanted``), on the scene's time span (``segments``: the ellipsoid's motion
-    segments on it).
+    ask for it (``wanted``), on the scene's time span.
 
     Each evaluated distance is counted in ``ledger`` (``distance_evaluations``, for the
     target ``object/piece``).

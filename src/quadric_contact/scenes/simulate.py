@@ -51,7 +51,6 @@ from quadric_contact.scenes.simulation_reports import (
     Plan,
     SimulationResult,
 )
-from quadric_contact.scenes.trajectory import MotionSegment
 
 __all__ = [
     "Episode",
@@ -172,7 +171,7 @@ def simulate(
     if plan.distance:
         ells = {e.name: e for e in scene.ellipsoids}
         for pair in pairs:
-            pair.distances = _distances(scene, plan, ells[pair.ellipsoid], pair.object, seg_lists, ledger)
+            pair.distances = _distances(scene, plan, ells[pair.ellipsoid], pair.object, ledger)
     mutual = None
     if len(scene.mutual) >= 2:
         from quadric_contact.scenes.mutual import mutual_contacts
@@ -188,7 +187,6 @@ def _distances(
     plan: Plan,
     ell: MovingEllipsoid,
     obj: Composite,
-    seg_lists: dict[str, list[MotionSegment]],
     ledger: Ledger,
 ) -> list[PieceDistance]:
     """The ``distance`` effect for one (ellipsoid, object): the pieces for which the scene,
@@ -198,4 +196,4 @@ def _distances(
     def wanted(piece: Piece) -> bool:
         return own.restricted(scene.piece_effects.get((obj.name, piece.name))).distance
 
-    return piece_distances(scene, ell, obj, seg_lists[ell.name], ledger, wanted)
+    return piece_distances(scene, ell, obj, ledger, wanted)
