@@ -132,7 +132,6 @@ _R_PLUS = int(RegionCode.R_PLUS)
 CODE_RANGES = (9, 5, 3)
 """How many values each of the three codes takes: ``crit`` in -1 .. 7 (:data:`OUT`), ``sep`` in
 -1 .. 3 (:data:`NOT_RUN`), ``qsign`` in -1 .. 1; a reading table has their product of entries."""
-_WITNESS_LAST, _WITNESS_FIRST = WITNESS_LAST, WITNESS_FIRST
 
 
 # rows of the block buffer ``nb``: the first seven as the signature reads them
@@ -313,7 +312,7 @@ def _decide_block_kernel(
             for j in range(k):
                 last = cl[_LAST_ROW * S + j] == 1.0
                 if witness(last, fb[S + j]):
-                    sep_b[li[j]] = _WITNESS_LAST if last else _WITNESS_FIRST
+                    sep_b[li[j]] = WITNESS_LAST if last else WITNESS_FIRST
                 else:
                     sep_b[li[j]] = signature_finish_called(el, ql, cl, fb, j, S, SKt, K, KD, True, e1, q1)
         # the codes read through the table, while they are in the cache (the counts in registers:
