@@ -81,8 +81,17 @@ def test_the_compiled_kernel_is_the_python_one():
     rng = np.random.default_rng(61)
     E, _ = random_ellipsoids(70, rng, axes=(0.5, 2.0), box=3.0)
     Q, _ = random_ellipsoids(70, rng, axes=(2.0, 5.0), box=0.0)
-    for pairs in (_pairs(E, Q), _pairs(E, Q[3])):  # a stack of pairs; one quadric against a stack
-        for outside_too, table in ((False, None), (True, pipeline._lane_table("overlap"))):
+    # quadrics of every type too: their pairs leave the lane (OUT = 7), and the table's key of
+    # such a pair exceeds 127 (the Python form once wrapped it in int8 arithmetic, and answered)
+    E1, Q1, _ = random_pairs(70, rng)
+    tables = [
+        (False, None),
+        (False, pipeline._lane_table("contact")),
+        (True, pipeline._lane_table("overlap")),
+    ]
+    # a stack of pairs; one quadric against a stack; every type
+    for pairs in (_pairs(E, Q), _pairs(E, Q[3]), _pairs(E1, Q1)):
+        for outside_too, table in tables:
             a = kd.decide_ellipsoids(pairs, outside_too=outside_too, table=table)
             b = kd.decide_ellipsoids(pairs, outside_too=outside_too, table=table, backend="numpy")
             for x, y in zip(a, b, strict=True):

@@ -105,8 +105,10 @@ _NO_CONTACT = int(ContactCode.NO_CONTACT)
 def read_one(c: int, g: int, o: int, answers: Any, steps: Any) -> tuple[int, int]:
     """Read the codes ``c`` (criterion), ``g`` (separation), ``o`` (sign of ``Q``) of one pair
     through the table: ``(answers[key], steps[key])``, its answer and the step that gave it (0,
-    1; 2: none), for ``key = ((c + 1) 5 + g + 1) 3 + o + 1``."""
-    key = ((c + 1) * 5 + g + 1) * 3 + o + 1
+    1; 2: none), for ``key = ((c + 1) 5 + g + 1) 3 + o + 1``.  The codes are int8: read as
+    ``int`` first, since the key exceeds 127 and numpy's int8 arithmetic (the Python twin's)
+    wraps where numba's widens."""
+    key = ((int(c) + 1) * 5 + int(g) + 1) * 3 + int(o) + 1
     return answers[key], steps[key]
 
 
