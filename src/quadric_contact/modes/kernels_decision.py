@@ -119,7 +119,7 @@ def ellipsoid_regions() -> np.ndarray:
     :func:`~quadric_contact.modes.decisions.region_code_masked`, the one rule, tabulated
     (``FALLBACK`` where it is uncertain, as the region kernel reads it), so that the kernel
     looks it up instead of branching through it for every pair."""
-    f = getattr(region_code_masked, "py_func", region_code_masked)
+    f = python_twin(region_code_masked)  # at import: nothing is compiled
     table = np.empty((2, 243), dtype=np.int8)
     for k, row in enumerate((_ROW_PLUS, _ROW_MINUS)):
         for key in range(243):

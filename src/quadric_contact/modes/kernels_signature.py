@@ -355,8 +355,8 @@ def _witness_code(last: bool) -> int:
     """The separation code of a pair whose first member tried is a witness (positive definite
     at the last critical point, ``last``; negative definite at the first): what
     :func:`decide_signature` says whatever the other members and the signs of ``P`` (unknown
-    here)."""
-    f = getattr(decide_signature, "py_func", decide_signature)
+    here).  Read by the function's Python twin: at import, nothing is compiled."""
+    f = python_twin(decide_signature)
     if last:
         return int(f(False, _DEF_UNKNOWN, _DEF_UNKNOWN, _POSITIVE, _UNC, _UNC, _UNC, True))
     return int(f(False, _NEGATIVE, _DEF_UNKNOWN, _DEF_UNKNOWN, _UNC, _UNC, _UNC, True))
