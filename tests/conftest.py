@@ -33,14 +33,26 @@ settings.register_profile(
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "default"))
 
 
+def pytest_configure(config: pytest.Config) -> None:
+    """Every call waits for its compiled kernel (the ``wait`` policy of
+    :data:`quadric_contact.modes._jit.KERNEL_POLICIES`), in this process, its workers and the
+    processes the tests start: a test of a compiled kernel must run the compiled kernel, not
+    its Python twin, and no test starts the background warm-up."""
+    from quadric_contact.modes import _jit
+
+    os.environ["QUADRIC_CONTACT_KERNELS"] = "wait"
+    _jit.set_kernel_policy("wait")
+
+
 @pytest.hookimpl(tryfirst=True)
 def pytest_sessionstart(session: pytest.Session) -> None:
     """Compile the array kernels into numba's on-disk cache, or load them from it, once, before
     the tests: under pytest-xdist in the controller, before its workers start (they then load
     the kernels from the cache instead of each compiling them at once, behind the capture that
     would hide the package's compile notice).  Cold, this takes minutes, and says so; warm, a
-    few seconds.  The work runs in processes of their own (:mod:`tests.kernel_warmup`) that
-    import the package from ``src/`` as the tests do, so it fills the cache they read.
+    few seconds.  The work runs in processes of their own
+    (:mod:`quadric_contact.interfaces.warmup`) that import the package from ``src/`` as the
+    tests do, so it fills the cache they read.
     ``QUADRIC_CONTACT_WARMUP=0`` skips it."""
     config = session.config
     if hasattr(config, "workerinput") or config.option.collectonly:
@@ -65,7 +77,7 @@ def pytest_sessionstart(session: pytest.Session) -> None:
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, paths)))
     runs = [
         subprocess.Popen(
-            [sys.executable, "-m", "tests.kernel_warmup", *extra],
+            [sys.executable, "-m", "quadric_contact.interfaces.warmup", *extra],
             cwd=root,
             env=env,
             stdout=subprocess.PIPE,

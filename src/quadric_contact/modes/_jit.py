@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import os
 import re
 import threading
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from pathlib import Path
 from typing import Any
 
 try:  # pragma: no cover - depends on the environment
@@ -141,8 +144,132 @@ def stamp_with_sources(dispatcher: Any) -> None:
     holder._source_stamp = (holder._source_stamp, _SOURCES[module])
 
 
+TWIN_ELEMENTS = 1 << 20
+"""A call whose array arguments hold at most this many elements in all, and whose kernel is not
+compiled yet, runs the kernel's Python twin (:func:`python_twin`) instead of waiting for the
+compile: for the complete decision that is about 27 000 pairs, which its twin answers in about
+a second, where the compile takes a minute or two.  A larger call compiles what it needs."""
+
+KERNEL_POLICIES = ("background", "wait", "twins")
+"""What a call does when its kernel is not compiled (``QUADRIC_CONTACT_KERNELS`` in the
+environment, or :func:`set_kernel_policy`):
+
+* ``background`` (the default): a small call runs the twin, and the first such call starts the
+  background warm-up (:mod:`quadric_contact.interfaces.warmup`), which fills the on-disk cache
+  once per machine; later calls load each kernel from the cache as soon as it is there;
+* ``wait``: every call waits for its kernel, compiled in this process (the test suite, whose
+  tests of a compiled kernel must run it, and the warm-up itself);
+* ``twins``: as ``background``, without starting the warm-up (small calls run the twins until
+  ``quadric-contact compile`` has filled the cache).
+
+The answers are the same bits whatever the policy: it chooses how long the first calls take."""
+
+
+def _policy_from_environment() -> str:
+    value = os.environ.get("QUADRIC_CONTACT_KERNELS", "background")
+    if value not in KERNEL_POLICIES:
+        raise ValueError(f"QUADRIC_CONTACT_KERNELS must be one of {KERNEL_POLICIES}, got {value!r}")
+    return value
+
+
+_POLICY = _policy_from_environment()
+
+
+def set_kernel_policy(policy: str) -> None:
+    """Choose what a call does when its kernel is not compiled (:data:`KERNEL_POLICIES`)."""
+    global _POLICY
+    if policy not in KERNEL_POLICIES:
+        raise ValueError(f"the kernel policy must be one of {KERNEL_POLICIES}, got {policy!r}")
+    _POLICY = policy
+
+
+def kernel_policy() -> str:
+    return _POLICY
+
+
+class _Compiles:
+    """One dispatcher's compiles under way in this process, by signature, and its twin."""
+
+    def __init__(self, dispatcher: Any) -> None:
+        self.dispatcher = dispatcher
+        self.lock = threading.Lock()
+        self.jobs: dict[Any, tuple[threading.Thread, dict[str, Any]]] = {}
+        self.twin: Callable[..., Any] | None = None
+
+    def start(
+        self, sig: Any, compile_for_args: Callable[..., Any], args: Any
+    ) -> tuple[threading.Thread, dict[str, Any]]:
+        """The compile for the arguments ``args`` (of the types ``sig``) in a thread of its own,
+        started now if it is not under way.  numba reads their types only; the thread keeps
+        them until it ends."""
+        with self.lock:
+            job = self.jobs.get(sig)
+            if job is None:
+                outcome: dict[str, Any] = {}
+
+                def run() -> None:
+                    try:
+                        outcome["value"] = compile_for_args(*args)
+                    except BaseException as exc:  # re-raised in a calling thread
+                        outcome["error"] = exc
+
+                worker = threading.Thread(target=run, name="quadric-contact compiler", daemon=True)
+                job = self.jobs[sig] = (worker, outcome)
+                worker.start()
+            return job
+
+    def wait(self, sig: Any, compile_for_args: Callable[..., Any], args: Any) -> Any:
+        worker, outcome = self.start(sig, compile_for_args, args)
+        worker.join()
+        if "error" in outcome:
+            with self.lock:
+                self.jobs.pop(sig, None)  # the next call tries again (and says why)
+            raise outcome["error"]
+        return outcome["value"]
+
+    def twin_of(self) -> Callable[..., Any]:
+        with self.lock:
+            if self.twin is None:
+                self.twin = python_twin(self.dispatcher)
+            return self.twin
+
+    def load(self, sig: Any) -> Any:
+        """The compiled kernel for ``sig`` if the on-disk cache has it (added to the dispatcher
+        as numba's own ``compile`` adds it), else None; nothing is compiled.  None too while
+        a compile holds numba's compiler lock in this process: waiting for it to load a
+        kernel would wait for the whole compile."""
+        from numba.core.compiler_lock import global_compiler_lock
+
+        lock = getattr(global_compiler_lock, "_lock", None)
+        if lock is None or not lock.acquire(blocking=False):
+            return None
+        try:
+            d = self.dispatcher
+            existing = d.overloads.get(tuple(sig))
+            if existing is not None:
+                return existing.entry_point
+            cres = d._cache.load_overload(sig, d.targetctx)
+            if cres is None:
+                return None
+            d._cache_hits[sig] += 1
+            if not cres.objectmode:
+                d.targetctx.insert_user_function(cres.entry_point, cres.fndesc, [cres.library])
+            d.add_overload(cres)
+            return cres.entry_point
+        finally:
+            lock.release()
+
+
+def _elements(args: Any) -> int:
+    import numpy as np
+
+    return sum(int(a.size) for a in args if isinstance(a, np.ndarray))
+
+
 def compile_on_a_fresh_stack(dispatcher: Any) -> None:
-    """Compile (or load from the cache) in a new thread, whose Python stack starts empty.
+    """Compile (or load from the cache) in a new thread, whose Python stack starts empty; and
+    where the kernel is not in the cache, answer small calls by its Python twin (the
+    ``background`` and ``twins`` policies, :data:`KERNEL_POLICIES`).
 
     CPython 3.11 keeps each thread's frames in 16 KiB chunks that it maps when a call
     crosses the end of a chunk and unmaps when that call returns.  numba's compiler makes
@@ -158,28 +285,158 @@ def compile_on_a_fresh_stack(dispatcher: Any) -> None:
     system time, 1.3 million page faults).
 
     numba calls ``_compile_for_args`` when a Python-level call finds no compiled version
-    for its argument types (compiling, or loading the cache entry); a kernel that calls
-    another compiles it through ``compile``, inside the same thread, so the compiler's
-    lock (held by the compiling thread) is never waited for by a thread it waits on."""
+    for its argument types, and calls what it returns with the caller's arguments.  Here:
+
+    * a call with more than :data:`TWIN_ELEMENTS` array elements, or under the ``wait``
+      policy, compiles (or loads) in the compiler's thread and waits for it;
+    * a smaller call loads the kernel if the on-disk cache has it; if not, it gets the
+      kernel's Python twin, which computes the same bits (the oracle the tests hold the
+      compiled kernels to) in Python.  The first such call starts the background warm-up
+      (:func:`start_background_warmup`); once that has finished, a kernel still missing
+      (a signature it does not call) is compiled in a thread of this process, the twin
+      answering meanwhile.
+
+    A kernel that calls another compiles it through ``compile``, inside the same thread, so
+    the compiler's lock (held by the compiling thread) is never waited for by a thread it
+    waits on."""
     compile_for_args = dispatcher._compile_for_args
+    compiles = _Compiles(dispatcher)
+    cached = bool(getattr(getattr(dispatcher, "_cache", None), "_cache_path", None))
 
     def compile_elsewhere(*args: Any, **kws: Any) -> Any:
-        outcome: dict[str, Any] = {}
-
-        def run() -> None:
+        sig = None
+        if not kws:
             try:
-                outcome["value"] = compile_for_args(*args, **kws)
-            except BaseException as exc:  # re-raised in the calling thread
-                outcome["error"] = exc
-
-        worker = threading.Thread(target=run, name="quadric-contact compiler", daemon=True)
-        worker.start()
-        worker.join()
-        if "error" in outcome:
-            raise outcome["error"]
-        return outcome["value"]
+                sig = tuple(dispatcher.typeof_pyval(a) for a in args)
+            except Exception:  # numba's own call says what is wrong with the arguments
+                sig = None
+        if sig is None or not cached or _POLICY == "wait" or _elements(args) > TWIN_ELEMENTS:
+            if sig is None:
+                return compile_for_args(*args, **kws)
+            return compiles.wait(sig, compile_for_args, args)
+        entry = compiles.load(sig)
+        if entry is not None:
+            return entry
+        if _POLICY == "background":
+            state = warmup_state()
+            if state == "none":
+                start_background_warmup()
+            elif state == "done":  # the warm-up does not call this signature: compile it here
+                compiles.start(sig, compile_for_args, args)
+        _say_twins()
+        return compiles.twin_of()
 
     dispatcher._compile_for_args = compile_elsewhere
+
+
+# -- the background warm-up: its lock, its marker, its start ----------------------------------
+
+
+def _cache_root() -> str:
+    """The directory numba keeps this package's kernels in (that of the decision kernel's
+    module, :mod:`quadric_contact.modes`): the warm-up's lock, log and marker live there."""
+    from numba.core.caching import CacheImpl
+
+    source = str(Path(__file__).with_name("kernels_decision.py"))
+    for locator in CacheImpl._locator_classes:  # numba's own order of choice
+        found = locator.from_function(_cache_root, source)
+        if found is not None:
+            return str(found.get_cache_path())
+    raise OSError("no writable cache directory for the compiled kernels")
+
+
+def warmup_path(what: str) -> str:
+    """The warm-up's ``lock``, ``log`` or ``done`` marker (next to the kernels' cache)."""
+    return os.path.join(_cache_root(), f"quadric-contact-warmup.{what}")
+
+
+@contextmanager
+def warmup_lock(*, wait: bool = False) -> Iterator[bool]:
+    """Hold the warm-up's lock while the block runs (yields False, holding nothing, where
+    another process holds it; ``wait``: wait for it instead)."""
+    try:
+        import fcntl
+    except ImportError as exc:  # pragma: no cover - not a POSIX system: no lock, no warm-up
+        raise OSError("no file locks here") from exc
+
+    fd = os.open(warmup_path("lock"), os.O_RDWR | os.O_CREAT, 0o644)
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | (0 if wait else fcntl.LOCK_NB))
+        except OSError:
+            yield False
+            return
+        try:
+            yield True
+        finally:
+            fcntl.flock(fd, fcntl.LOCK_UN)
+    finally:
+        os.close(fd)
+
+
+def _all_sources() -> str:
+    """:func:`_sources_digest` of every compiled module, computed once a process."""
+    if "" not in _SOURCES_ALL:
+        _SOURCES_ALL[""] = _sources_digest()
+    return _SOURCES_ALL[""]
+
+
+_SOURCES_ALL: dict[str, str] = {}
+
+
+def warmup_done() -> None:
+    """Leave the marker: the cache holds every kernel the warm-up calls, for these sources."""
+    with open(warmup_path("done"), "w", encoding="ascii") as f:
+        f.write(_all_sources() + "\n")
+
+
+def warmup_state() -> str:
+    """``done`` (the marker names these sources), ``running`` (another process holds the
+    lock), or ``none``."""
+    try:
+        with open(warmup_path("done"), encoding="ascii") as f:
+            if f.read().strip() == _all_sources():
+                return "done"
+        # a marker of other sources says nothing about these
+    except OSError:
+        pass
+    try:
+        with warmup_lock() as held:
+            return "none" if held else "running"
+    except OSError:
+        return "running"  # no lock to take: nothing to start either
+
+
+_started = False
+
+
+def start_background_warmup() -> bool:
+    """Start the background warm-up (:mod:`quadric_contact.interfaces.warmup`), once per
+    process: a process of its own, in a new session (it outlives this one, and an interrupt
+    of this one does not stop it), at the lowest priority, importing this same copy of the
+    package and writing to the same cache.  Returns whether it was started."""
+    global _started
+    if _started:
+        return False
+    _started = True
+    import subprocess
+    import sys
+
+    here = str(Path(__file__).resolve().parents[2])  # the directory the package is in
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, [here, os.environ.get("PYTHONPATH")])))
+    env["QUADRIC_CONTACT_KERNELS"] = "wait"
+    try:
+        subprocess.Popen(
+            [sys.executable, "-m", "quadric_contact.interfaces.warmup", "--background"],
+            env=env,
+            stdin=subprocess.DEVNULL,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+            start_new_session=True,
+        )
+    except OSError:
+        return False
+    return True
 
 
 def njit(fn: Callable[..., Any] | None = None, *, inline: bool = False, cache: bool = True) -> Any:
@@ -272,14 +529,28 @@ def python_twin(fn: Callable[..., Any]) -> Callable[..., Any]:
     return run
 
 
-# -- first use: one line when the kernels are compiled rather than loaded ---------------------
+# -- first use: one line when a kernel is not in the cache ------------------------------------
 #
 # numba compiles a kernel the first time it is called with a new signature and keeps the
 # machine code in its on-disk cache (``cache=True``: next to the package when that directory
 # is writable, otherwise the user cache directory, ``~/.cache/numba`` on Linux;
 # ``NUMBA_CACHE_DIR`` overrides both).  Later processes load it in milliseconds.  The first
 # compilation of the complete decision takes minutes of CPU time, so the first time a kernel
-# of this package misses the cache the process says so, once, on stderr.
+# of this package misses the cache the process says so, once, on stderr: that it runs the
+# twins meanwhile, or that it compiles (a large call, or the ``wait`` policy).
+
+TWINS_NOTICE = (
+    "quadric-contact: the compiled kernels are not in the on-disk cache{where} yet; {who}; "
+    "meanwhile calls of up to about 27 000 pairs run the same code in Python (the same answers, "
+    "slower) and larger ones compile what they need first"
+)
+"""The line printed (stderr) the first time a call of a process runs a kernel's twin."""
+
+_WHO = {
+    "background": "a background process fills it, once for this machine (about seven minutes of CPU "
+    "time at the lowest priority)",
+    "twins": "`quadric-contact compile` fills it (QUADRIC_CONTACT_KERNELS=twins: no background process)",
+}
 
 COMPILE_NOTICE = (
     "quadric-contact: compiling the numba kernels once for this machine (about two minutes of CPU "
@@ -295,6 +566,20 @@ def _cache_dir(dispatcher: Any) -> str:
     cache = getattr(dispatcher, "_cache", None)
     path = getattr(cache, "_cache_path", None)
     return f" ({path})" if path else ""
+
+
+def _say_twins() -> None:
+    global _notice_printed
+    if _notice_printed:
+        return
+    _notice_printed = True
+    import sys
+
+    try:
+        where = f" ({_cache_root()})"
+    except Exception:
+        where = ""
+    print(TWINS_NOTICE.format(where=where, who=_WHO.get(_POLICY, "")), file=sys.stderr, flush=True)
 
 
 if HAVE_NUMBA:  # pragma: no branch

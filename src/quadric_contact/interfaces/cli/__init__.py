@@ -21,7 +21,7 @@ from quadric_contact.interfaces.cli.exits import (
     EXIT_UNDECIDED,
 )
 
-SUBCOMMANDS: tuple[str, ...] = ("check", "codegen", "simulate", "sweep", "prove", "bench")
+SUBCOMMANDS: tuple[str, ...] = ("check", "codegen", "simulate", "sweep", "prove", "bench", "compile")
 """Modules of this package that provide subcommands, in help order."""
 
 __all__ = [

@@ -1,16 +1,23 @@
-"""The array kernels, compiled (or loaded from numba's on-disk cache) once before the tests run.
+"""The array kernels compiled into numba's on-disk cache (or loaded from it), all at once.
 
 numba compiles a kernel the first time it is called with a new signature and keeps the machine
-code in its cache; the first compilation of the complete decision takes minutes.  Under
-pytest-xdist every worker that reaches a kernel first would compile it at the same time, each
-behind pytest's capture, so the notice the package prints (:data:`quadric_contact.modes._jit.
-COMPILE_NOTICE`) would not be seen.  :func:`warm_kernels` calls every question of the array
-API in the float, filter and certified modes, on distinct pairs, on one matrix against a stack
-(either side), float64 and packed, and on nearly touching pairs (the later stages), the
-first-contact scale and the distance of separated ellipsoids on stacks, and the bench's read of
-its inputs, so that the workers load the kernels from the cache.
-``python -m tests.kernel_warmup`` (from the root of the checkout, ``src`` on ``PYTHONPATH``)
-is what ``tests/conftest.py`` runs.
+code in its on-disk cache; the first compilation of the complete decision takes a minute or
+two, of every kernel about seven minutes of CPU time.  :func:`warm_kernels` calls every
+question of the array API in the float, filter and certified modes, on distinct pairs, on one
+matrix against a stack (either side), float64 and packed, and on nearly touching pairs (the
+later stages), the first-contact scale and the distance of separated ellipsoids on stacks, and
+the bench's read of its inputs, so that every kernel is in the cache afterwards.
+
+Who runs it:
+
+* ``quadric-contact compile``, in the foreground, with a line for each call that compiled;
+* the test suite, before its workers start (``python -m quadric_contact.interfaces.warmup``,
+  twice at once on two cores: ``--reverse`` runs the list from its other end);
+* the package itself, once per machine and per version of the kernels' sources, in a
+  background process (``--background``: lowest priority, no output but a log next to the
+  cache, one at a time): the first call of a process that finds a kernel missing from the
+  cache starts it, and meanwhile answers small calls with the kernels' Python twins
+  (:func:`quadric_contact.modes._jit.compile_on_a_fresh_stack`).
 """
 
 from __future__ import annotations
@@ -61,7 +68,7 @@ def _calls() -> list[tuple[str, Callable[[], Any]]]:
     rng = np.random.default_rng(4)
     Em, _ = random_ellipsoids(3000, rng, axes=(0.5, 2.0), box=2.0)
     Qm, _ = random_ellipsoids(3000, rng, axes=(0.5, 2.0), box=2.0)
-    for name in ("transversal_contact", "relative_position"):
+    for name in ("transversal_contact", "relative_position", "overlap"):
         call = functools.partial(questions[name], Em, Qm, mode="certified")
         first.append((f"{name}(ellipsoids of equal sizes, 3000, mode='certified')", call))
     calls = []
@@ -75,6 +82,15 @@ def _calls() -> list[tuple[str, Callable[[], Any]]]:
                     continue  # overlap asks about two ellipsoids
                 call = functools.partial(fn, e, q, mode=mode)
                 calls.append((f"{name}({label}, mode={mode!r})", call))
+    # the populations of the bench (small ellipsoids against one quadric, similar sizes, every
+    # type), large enough that some of their pairs reach every stage they have
+    from quadric_contact.interfaces.benchmark import complete_populations
+
+    for population, (e, q, _) in complete_populations(2000, np.random.default_rng(1)).items():
+        for mode in ("certified", "filter", "float"):
+            for name in ("transversal_contact", "relative_position", "overlap"):
+                call = functools.partial(questions[name], e, q, mode=mode)
+                calls.append((f"{name}({population}, 2000, mode={mode!r})", call))
     # the first-contact scale (one-sided: distinct pairs and one quadric against the stack;
     # two-sided) and the distance of separated ellipsoids (the duality kernel), which the tests
     # of those functions otherwise compile in a worker, each worker that reaches them first
@@ -163,17 +179,53 @@ def warm_kernels(log: Callable[[str], None] = print, *, reverse: bool = False) -
     return time.perf_counter() - start, len(missed)
 
 
-def main() -> None:
-    """What the test run's first process calls (in processes of their own, whose memory, several
-    GB while numba compiles, is returned when they end): one line with the time it took.
-    ``--reverse``: the calls in the opposite order."""
-    import sys
+def run(*, reverse: bool = False, log: Callable[[str], None] = print) -> int:
+    """Warm the kernels in this process, every call waiting for its kernel (no twins); say on
+    ``log`` how long it took; return how many kernels were compiled."""
+    from quadric_contact.modes import _jit
 
-    reverse = "--reverse" in sys.argv[1:]
-    seconds, compiled = warm_kernels(log=lambda line: print(line, flush=True), reverse=reverse)
+    _jit.set_kernel_policy("wait")
+    seconds, compiled = warm_kernels(log=log, reverse=reverse)
     how = f"{compiled} compiled" if compiled else "loaded from numba's on-disk cache"
     order = " (from the end of the list)" if reverse else ""
-    print(f"quadric-contact: array kernels {how} in {seconds:.1f} s{order}", flush=True)
+    log(f"quadric-contact: array kernels {how} in {seconds:.1f} s{order}")
+    return compiled
+
+
+def background() -> None:
+    """The background warm-up the package starts (see the module's docstring): at once if
+    another one holds the lock; else at the lowest priority, logging to a file next to the
+    cache, and leaving the marker that says the cache holds every kernel of these sources."""
+    import contextlib
+    import os
+
+    from quadric_contact.modes import _jit
+
+    with _jit.warmup_lock() as held:
+        if not held:
+            return
+        with contextlib.suppress(OSError):  # not allowed: run at the priority we have
+            os.nice(19)
+        with open(_jit.warmup_path("log"), "a", encoding="utf-8") as log:
+
+            def say(line: str) -> None:
+                print(line, file=log, flush=True)
+
+            run(log=say)
+        _jit.warmup_done()
+
+
+def main() -> None:
+    """``python -m quadric_contact.interfaces.warmup [--reverse | --background]``: what the
+    test run's first process calls (in processes of their own, whose memory, several GB while
+    numba compiles, is returned when they end), one line with the time it took; or the
+    package's background warm-up."""
+    import sys
+
+    if "--background" in sys.argv[1:]:
+        background()
+        return
+    run(reverse="--reverse" in sys.argv[1:], log=lambda line: print(line, flush=True))
 
 
 if __name__ == "__main__":

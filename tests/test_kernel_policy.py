@@ -1,0 +1,163 @@
+"""What a call does when its compiled kernel is not in numba's on-disk cache
+(:data:`quadric_contact.modes._jit.KERNEL_POLICIES`): the kernels' Python twins answer small
+calls with the compiled kernels' bits, a kernel that is in the cache is loaded rather than run
+as a twin, and the background warm-up is started once, guarded by its lock and its marker.
+
+The suite itself runs under the ``wait`` policy (``tests/conftest.py``); these tests choose the
+other policies in processes of their own, each with an empty cache directory."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pytest
+from tests.compile_events import RECORD_COMPILES
+
+import quadric_contact as qc
+from quadric_contact.interfaces.benchmark import complete_populations
+from quadric_contact.modes import _jit
+from quadric_contact.modes._jit import COMPILE_NOTICE, HAVE_NUMBA, TWINS_NOTICE
+
+pytestmark = pytest.mark.skipif(not HAVE_NUMBA, reason="numba not installed")
+
+ROOT = Path(__file__).resolve().parents[1]
+
+ANSWERS = (
+    RECORD_COMPILES
+    + """
+import json, sys
+import numpy as np
+import quadric_contact as qc
+from quadric_contact.interfaces.benchmark import complete_populations
+out = {}
+for pop, (E, Q, _) in complete_populations(int(sys.argv[1]), np.random.default_rng(3)).items():
+    for name in ("transversal_contact", "relative_position", "overlap"):
+        for mode in ("certified", "filter", "float"):
+            out[f"{pop} {name} {mode}"] = np.asarray(getattr(qc, name)(E, Q, mode=mode)).tolist()
+out["compiled"] = compiled
+print(json.dumps(out))
+"""
+)
+
+
+def _run(code: str, cache: Path, policy: str, *args: str) -> subprocess.CompletedProcess[str]:
+    env = dict(
+        os.environ,
+        NUMBA_CACHE_DIR=str(cache),
+        QUADRIC_CONTACT_KERNELS=policy,
+        PYTHONPATH=os.pathsep.join([str(ROOT / "src"), str(ROOT)]),
+    )
+    return subprocess.run(
+        [sys.executable, "-c", code, *args], capture_output=True, text=True, env=env, check=True, timeout=600
+    )
+
+
+def _kernel_files(cache: Path) -> list[Path]:
+    return [p for p in cache.rglob("*") if p.suffix in (".nbi", ".nbc")]
+
+
+def test_the_twins_answer_with_the_compiled_kernels_bits(tmp_path):
+    """A fresh process with an empty cache and the ``twins`` policy answers every question in
+    every mode on the three bench populations without invoking the compiler at all (numba's
+    compile event never fires, no cache file is written, the compiler's notice is not
+    printed) and gives the answers this process gets from the compiled kernels."""
+    n = 120
+    proc = _run(ANSWERS, tmp_path, "twins", str(n))
+    assert TWINS_NOTICE.split("{")[0] in proc.stderr
+    assert proc.stderr.count("quadric-contact:") == 1  # said once
+    assert COMPILE_NOTICE.split("{")[0] not in proc.stderr
+    assert _kernel_files(tmp_path) == []
+    got = json.loads(proc.stdout)
+    assert got["compiled"] == []
+    for pop, (E, Q, _) in complete_populations(n, np.random.default_rng(3)).items():
+        for name in ("transversal_contact", "relative_position", "overlap"):
+            for mode in ("certified", "filter", "float"):
+                want = np.asarray(getattr(qc, name)(E, Q, mode=mode)).tolist()
+                assert got[f"{pop} {name} {mode}"] == want, (pop, name, mode)
+
+
+KERNEL_MODULE = """
+from quadric_contact.modes._jit import njit
+
+@njit
+def twice(x):
+    return 2.0 * x
+"""
+
+CALL_IT = """
+import sys
+sys.path.insert(0, sys.argv[1])
+import numpy as np
+import kernel_here
+x = np.arange(3.0)
+print(kernel_here.twice(x).tolist(), len(kernel_here.twice.signatures), flush=True)
+"""
+
+
+def test_a_cached_kernel_is_loaded_and_a_missing_one_is_twinned(tmp_path):
+    """Under the ``twins`` policy, a small call whose kernel the cache lacks runs the twin (the
+    same value, nothing compiled: no signature added); once a ``wait`` process has compiled it
+    into the cache, the same call loads it (one signature, no compile)."""
+    (tmp_path / "mod").mkdir()
+    (tmp_path / "mod" / "kernel_here.py").write_text(textwrap.dedent(KERNEL_MODULE))
+    cache = tmp_path / "cache"
+    first = _run(CALL_IT, cache, "twins", str(tmp_path / "mod"))
+    assert first.stdout.split("]")[1].split() == ["0"]  # the twin answered
+    assert first.stdout.startswith("[0.0, 2.0, 4.0]")
+    assert _kernel_files(cache) == []
+    _run(CALL_IT, cache, "wait", str(tmp_path / "mod"))
+    assert _kernel_files(cache)
+    loaded = _run(CALL_IT, cache, "twins", str(tmp_path / "mod"))
+    assert loaded.stdout.startswith("[0.0, 2.0, 4.0]")
+    assert loaded.stdout.split("]")[1].split() == ["1"]  # loaded from the cache
+    assert "quadric-contact:" not in loaded.stderr
+
+
+def test_the_warmup_state_follows_its_lock_and_marker(tmp_path, monkeypatch):
+    monkeypatch.setattr(_jit, "_cache_root", lambda: str(tmp_path))
+    assert _jit.warmup_state() == "none"
+    with _jit.warmup_lock() as held:
+        assert held
+        assert _jit.warmup_state() == "running"  # another open file of the lock: refused
+        with _jit.warmup_lock() as again:
+            assert not again
+    assert _jit.warmup_state() == "none"
+    _jit.warmup_done()
+    assert _jit.warmup_state() == "done"
+    (tmp_path / "quadric-contact-warmup.done").write_text("the digest of other sources\n")
+    assert _jit.warmup_state() == "none"
+
+
+def test_the_background_warmup_starts_once_a_process(monkeypatch):
+    started = []
+
+    class Popen:
+        def __init__(self, args, **kws):
+            started.append((args, kws))
+
+    monkeypatch.setattr(subprocess, "Popen", Popen)
+    monkeypatch.setattr(_jit, "_started", False)
+    assert _jit.start_background_warmup()
+    assert not _jit.start_background_warmup()
+    (args, kws), *rest = started
+    assert rest == []
+    assert args[1:] == ["-m", "quadric_contact.interfaces.warmup", "--background"]
+    assert kws["start_new_session"] and kws["env"]["QUADRIC_CONTACT_KERNELS"] == "wait"
+    assert str(ROOT / "src") in kws["env"]["PYTHONPATH"].split(os.pathsep)
+
+
+def test_the_policy_is_checked():
+    with pytest.raises(ValueError, match="kernel policy must be one of"):
+        _jit.set_kernel_policy("sometimes")
+    env = dict(os.environ, QUADRIC_CONTACT_KERNELS="sometimes", PYTHONPATH=str(ROOT / "src"))
+    proc = subprocess.run(
+        [sys.executable, "-c", "import quadric_contact"], capture_output=True, text=True, env=env
+    )
+    assert proc.returncode != 0
+    assert "QUADRIC_CONTACT_KERNELS must be one of" in proc.stderr
