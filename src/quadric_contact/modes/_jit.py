@@ -266,7 +266,7 @@ def _elements(args: Any) -> int:
     return sum(int(a.size) for a in args if isinstance(a, np.ndarray))
 
 
-def compile_on_a_fresh_stack(dispatcher: Any) -> None:
+def compile_on_a_fresh_stack(dispatcher: Any, twin_elements: int = TWIN_ELEMENTS) -> None:
     """Compile (or load from the cache) in a new thread, whose Python stack starts empty; and
     where the kernel is not in the cache, answer small calls by its Python twin (the
     ``background`` and ``twins`` policies, :data:`KERNEL_POLICIES`).
@@ -287,7 +287,8 @@ def compile_on_a_fresh_stack(dispatcher: Any) -> None:
     numba calls ``_compile_for_args`` when a Python-level call finds no compiled version
     for its argument types, and calls what it returns with the caller's arguments.  Here:
 
-    * a call with more than :data:`TWIN_ELEMENTS` array elements, or under the ``wait``
+    * a call with more than ``twin_elements`` array elements (:data:`TWIN_ELEMENTS` unless the
+      kernel says otherwise: one whose twin is slow a pair says less), or under the ``wait``
       policy, compiles (or loads) in the compiler's thread and waits for it;
     * a smaller call loads the kernel if the on-disk cache has it; if not, it gets the
       kernel's Python twin, which computes the same bits (the oracle the tests hold the
@@ -310,7 +311,7 @@ def compile_on_a_fresh_stack(dispatcher: Any) -> None:
                 sig = tuple(dispatcher.typeof_pyval(a) for a in args)
             except Exception:  # numba's own call says what is wrong with the arguments
                 sig = None
-        if sig is None or not cached or _POLICY == "wait" or _elements(args) > TWIN_ELEMENTS:
+        if sig is None or not cached or _POLICY == "wait" or _elements(args) > twin_elements:
             if sig is None:
                 return compile_for_args(*args, **kws)
             return compiles.wait(sig, compile_for_args, args)
@@ -439,14 +440,22 @@ def start_background_warmup() -> bool:
     return True
 
 
-def njit(fn: Callable[..., Any] | None = None, *, inline: bool = False, cache: bool = True) -> Any:
+def njit(
+    fn: Callable[..., Any] | None = None,
+    *,
+    inline: bool = False,
+    cache: bool = True,
+    twin_elements: int = TWIN_ELEMENTS,
+) -> Any:
     """``numba.njit`` (``inline="always"`` for the small helpers the kernels inline;
     ``nogil`` and cached for the kernels themselves), or the function unchanged.
 
     ``error_model="numpy"``: division follows IEEE 754 (no zero check raising
     ``ZeroDivisionError``, whose branch would keep the loops from vectorising); the
     kernels guard every quotient they use.  A cached kernel is keyed on every source it is
-    made of (:func:`stamp_with_sources`), not only its own file."""
+    made of (:func:`stamp_with_sources`), not only its own file.  ``twin_elements``: the
+    largest call (array elements in all) that the kernel's Python twin answers while the
+    kernel is not compiled (:func:`compile_on_a_fresh_stack`)."""
 
     def wrap(f: Callable[..., Any]) -> Any:
         if not HAVE_NUMBA:
@@ -456,7 +465,7 @@ def njit(fn: Callable[..., Any] | None = None, *, inline: bool = False, cache: b
         dispatcher = numba.njit(nogil=True, cache=cache, error_model="numpy")(f)
         if cache:
             stamp_with_sources(dispatcher)
-        compile_on_a_fresh_stack(dispatcher)
+        compile_on_a_fresh_stack(dispatcher, twin_elements)
         return dispatcher
 
     return wrap(fn) if fn is not None else wrap
