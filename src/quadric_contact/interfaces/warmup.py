@@ -5,8 +5,9 @@ code in its on-disk cache; the first compilation of the complete decision takes 
 two, of every kernel about seven minutes of CPU time.  :func:`warm_kernels` calls every
 question of the array API in the float, filter and certified modes, on distinct pairs, on one
 matrix against a stack (either side), float64 and packed, and on nearly touching pairs (the
-later stages), the first-contact scale and the distance of separated ellipsoids on stacks, and
-the bench's read of its inputs, so that every kernel is in the cache afterwards.
+later stages), on the bench's populations, the first-contact scale and the distance of
+separated and of crossing ellipsoids on stacks, and the bench's read of its inputs, so that
+every kernel is in the cache afterwards.
 
 Who runs it:
 
@@ -92,8 +93,9 @@ def _calls() -> list[tuple[str, Callable[[], Any]]]:
                 call = functools.partial(questions[name], e, q, mode=mode)
                 calls.append((f"{name}({population}, 2000, mode={mode!r})", call))
     # the first-contact scale (one-sided: distinct pairs and one quadric against the stack;
-    # two-sided) and the distance of separated ellipsoids (the duality kernel), which the tests
-    # of those functions otherwise compile in a worker, each worker that reaches them first
+    # two-sided) and the distance of separated and crossing ellipsoids (the duality and the
+    # depth kernels), which the tests of those functions otherwise compile in a worker, each
+    # worker that reaches them first
     far = np.stack([_ellipsoid((0.5, 0.7, 0.9), (6.0 + k, 0.0, 0.0)) for k in range(4)])
     near = np.stack([_ellipsoid((1.0, 2.0, 1.5), (0.0, 0.0, 0.0))] * 4)
     calls.append(("contact_scale(ellipsoids)", functools.partial(qc.contact_scale, Es, Qs)))
@@ -104,6 +106,8 @@ def _calls() -> list[tuple[str, Callable[[], Any]]]:
         ("contact_scale(ellipsoids, scale='both')", functools.partial(qc.contact_scale, Es, Qs, scale="both"))
     )
     calls.append(("distance(ellipsoids apart)", functools.partial(qc.distance, far, near)))
+    crossing = np.stack([_ellipsoid((0.5, 0.7, 0.9), (0.5 + 0.2 * k, 0.0, 0.0)) for k in range(4)])
+    calls.append(("distance(ellipsoids crossing)", functools.partial(qc.distance, crossing, near)))
     from quadric_contact.modes.float64 import read_all
 
     calls.append(("read_all (the bench's read-bandwidth limit)", functools.partial(read_all, Es, Qs)))

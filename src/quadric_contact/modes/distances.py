@@ -18,9 +18,13 @@ by a lower and an upper bound that meet at the optimal multiplier
 (:mod:`quadric_contact.modes.scale_both`), and leaves nearly concentric pairs and pairs that are
 not two ellipsoids to the exact path.
 The distance of float64 stacks runs a compiled kernel for separated ellipsoid pairs (a
-duality certificate, :mod:`quadric_contact.modes.distance_kernel`: enclosures at most
-``max(10^-digits, 1e-12)`` relative wide); the other pairs, and every other stack, run the
-scalar path pair by pair.
+duality certificate, :mod:`quadric_contact.modes.distance_kernel`), then one for the crossing
+ellipsoid pairs it leaves (the depth between a support enclosure at a minimiser and a covering
+of the sphere by cells each certified by a point of the Minkowski difference,
+:mod:`quadric_contact.modes.depth_kernel`), both with enclosures at most
+``max(10^-digits, 1e-12)`` relative wide; the pairs neither certifies (touching or nearly so,
+too shallow for the tolerance, not two ellipsoids), and every other stack, run the scalar path
+pair by pair.
 """
 
 from __future__ import annotations
@@ -219,14 +223,23 @@ def _validated(v: np.ndarray, name: str) -> np.ndarray:
 
 def _distance_kernel(E: np.ndarray, Q: np.ndarray, mode: str, digits: int) -> np.ndarray:
     """Float64 stacks: separated ellipsoid pairs by the compiled duality certificate
-    (:mod:`quadric_contact.modes.distance_kernel`, enclosures at most ``max(10^-digits, 1e-12)``
-    relative wide); the other pairs by the scalar path."""
+    (:mod:`quadric_contact.modes.distance_kernel`), crossing ellipsoid pairs by the compiled
+    depth certificate (:mod:`quadric_contact.modes.depth_kernel`), enclosures at most
+    ``max(10^-digits, 1e-12)`` relative wide; the other pairs by the scalar path."""
+    from quadric_contact.modes.depth_kernel import crossing_ellipsoids
     from quadric_contact.modes.distance_kernel import separated_ellipsoids
 
     shape = np.broadcast_shapes(E.shape[:-2], Q.shape[:-2])
     Es = _validated(np.broadcast_to(E, (*shape, 4, 4)), "E")
     Qs = _validated(np.broadcast_to(Q, (*shape, 4, 4)), "Q")
-    out, rest = separated_ellipsoids(Es, Qs, max(10.0**-digits, 1e-12))
+    tol = max(10.0**-digits, 1e-12)
+    out, rest = separated_ellipsoids(Es, Qs, tol)
+    left = np.flatnonzero(rest)
+    if left.size:
+        enc, still = crossing_ellipsoids(Es[left], Qs[left], tol)
+        done = left[~still]
+        out[done] = enc[~still]
+        rest[done] = False
     for k in np.flatnonzero(rest):
         e, q = Es[k], Qs[k]
         if mode == "float":

@@ -49,6 +49,7 @@ FURTHER_RESULTS: tuple[str, ...] = (
     "First-contact scale",
     "Mutual contact events",
     "Distance along a path",
+    "Depth of crossing ellipsoids",
 )
 """Results from outside the paper that the package relies on and proves in ``proofs/``
 alongside the paper's (after them, in this order): the separation condition of two
@@ -58,11 +59,12 @@ region and overlap of an ellipsoid and any quadric from the signature sequence o
 (after Tu, Wang, Mourrain and Wang, CAGD 26, 2009), which needs no smallness: beyond the
 paper; the package's own reduction of contact with a piece as cut by a plane to the plane
 section's pencil (:mod:`quadric_contact.theory.sections`), on which the geometric reading of
-scenes rests; the choice of the root that :func:`quadric_contact.contact_scale` returns; and the
+scenes rests; the choice of the root that :func:`quadric_contact.contact_scale` returns; the
 reduction of the contacts of two moving ellipsoids with each other to the real roots of a
-discriminant in time (:mod:`quadric_contact.scenes.mutual`); and the bound on the displacement of
+discriminant in time (:mod:`quadric_contact.scenes.mutual`); the bound on the displacement of
 a rigidly moving ellipsoid's points by which the least distance along a path is enclosed
-(:mod:`quadric_contact.scenes.path_distance`)."""
+(:mod:`quadric_contact.scenes.path_distance`); and the certificate by which the depth of two
+crossing ellipsoids is enclosed on stacks (:mod:`quadric_contact.modes.depth_kernel`)."""
 
 PRINTED: dict[str, str] = {
     # Section 3.2, the two members of the discrimination system used by Corollary 10.
