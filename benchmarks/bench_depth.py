@@ -22,6 +22,7 @@ import numpy as np
 
 import quadric_contact as qc
 from quadric_contact.modes.depth_kernel import _kernel, crossing_ellipsoids_cells
+from quadric_contact.testing.samples import float_depth
 
 
 def _stack(rng: np.random.Generator, m: int) -> np.ndarray:
@@ -37,32 +38,6 @@ def _stack(rng: np.random.Generator, m: int) -> np.ndarray:
     return out
 
 
-def _float_depth(E: np.ndarray, K: np.ndarray) -> float:
-    """``min phi`` in binary64: a grid of directions, then Newton's method on the sphere."""
-    geo = []
-    for M in (E, K):
-        A = M[:3, :3]
-        c = -np.linalg.solve(A, M[:3, 3])
-        geo.append((c, (c @ A @ c - M[3, 3]) * np.linalg.inv(A)))
-    (c1, M1), (c2, M2) = geo
-    cd = c1 - c2
-    k = np.arange(2000) + 0.5
-    z = 1 - 2 * k / 2000
-    s = np.sqrt(1 - z * z)
-    V = np.stack([s * np.cos(np.pi * (1 + 5**0.5) * k), s * np.sin(np.pi * (1 + 5**0.5) * k), z], -1)
-    vals = V @ cd + np.sqrt(np.einsum("ij,jk,ik->i", V, M1, V)) + np.sqrt(np.einsum("ij,jk,ik->i", V, M2, V))
-    u = V[np.argmin(vals)]
-    for _ in range(20):
-        n1, n2 = np.sqrt(u @ M1 @ u), np.sqrt(u @ M2 @ u)
-        m1, m2 = M1 @ u, M2 @ u
-        g = cd + m1 / n1 + m2 / n2
-        H = M1 / n1 - np.outer(m1, m1) / n1**3 + M2 / n2 - np.outer(m2, m2) / n2**3
-        P = np.eye(3) - np.outer(u, u)
-        p = np.linalg.solve(P @ H @ P - (u @ g) * P + np.outer(u, u), -P @ g)
-        u = (u + p) / np.linalg.norm(u + p)
-    return float(u @ cd + np.sqrt(u @ M1 @ u) + np.sqrt(u @ M2 @ u))
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--pairs", type=int, default=2000)
@@ -73,7 +48,7 @@ def main() -> None:
     while len(Es) < args.pairs:
         E, K = _stack(rng, 256), _stack(rng, 256)
         for k in range(256):
-            d = _float_depth(E[k], K[k])
+            d, _ = float_depth(E[k], K[k], grid=2000, steps=20)
             if d > 0 and len(Es) < args.pairs:
                 Es.append(E[k])
                 Ks.append(K[k])

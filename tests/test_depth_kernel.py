@@ -23,6 +23,7 @@ from quadric_contact.modes.depth_kernel import (
 )
 from quadric_contact.modes.distance_kernel import separated_ellipsoids
 from quadric_contact.modes.threads import single_threaded
+from quadric_contact.testing.samples import float_depth as _float_depth
 from quadric_contact.testing.samples import random_rotations
 
 # -- pairs ----------------------------------------------------------------------------------
@@ -42,35 +43,6 @@ def _ellipsoid(axes, R, centre):
 
 def _rotation(rng):
     return random_rotations(1, rng)[0]
-
-
-def _geometry(M):
-    A = M[:3, :3]
-    c = -np.linalg.solve(A, M[:3, 3])
-    return c, (c @ A @ c - M[3, 3]) * np.linalg.inv(A)
-
-
-def _float_depth(E, K):
-    """``min phi`` on the sphere in binary64 (a grid, then Newton's method on the sphere) and
-    its minimiser: only to build pairs of a given depth."""
-    c1, M1 = _geometry(E)
-    c2, M2 = _geometry(K)
-    cd = c1 - c2
-    k = np.arange(4000) + 0.5
-    z = 1 - 2 * k / 4000
-    s = np.sqrt(1 - z * z)
-    V = np.stack([s * np.cos(np.pi * (1 + 5**0.5) * k), s * np.sin(np.pi * (1 + 5**0.5) * k), z], -1)
-    vals = V @ cd + np.sqrt(np.einsum("ij,jk,ik->i", V, M1, V)) + np.sqrt(np.einsum("ij,jk,ik->i", V, M2, V))
-    u = V[np.argmin(vals)]
-    for _ in range(30):
-        n1, n2 = np.sqrt(u @ M1 @ u), np.sqrt(u @ M2 @ u)
-        m1, m2 = M1 @ u, M2 @ u
-        g = cd + m1 / n1 + m2 / n2
-        H = M1 / n1 - np.outer(m1, m1) / n1**3 + M2 / n2 - np.outer(m2, m2) / n2**3
-        P = np.eye(3) - np.outer(u, u)
-        p = np.linalg.solve(P @ H @ P - (u @ g) * P + np.outer(u, u), -P @ g)
-        u = (u + p) / np.linalg.norm(u + p)
-    return u @ cd + np.sqrt(u @ M1 @ u) + np.sqrt(u @ M2 @ u), u
 
 
 def _random(rng, spread=0.5, lo=0.3, hi=1.5):

@@ -116,9 +116,8 @@ from quadric_contact.modes.distance_kernel import (
     _dot_accurate,
     _form_accurate,
     _inside_negative,
-    _two_product,
-    _two_sum,
     _up,
+    dot2_bilinear,
 )
 from quadric_contact.modes.threads import run_parallel
 
@@ -145,7 +144,6 @@ _C_S = 1.0 + 8 * _U
 _C_T = 1.0 + 16 * _U
 _E8 = 8 * _U
 _E6 = 6 * _U
-_G18 = 18 * _U / (1 - 18 * _U)
 _G2 = 2 * _U / (1 - 2 * _U) * (1 + 2.0**-40)
 _G3 = 3 * _U / (1 - 3 * _U) * (1 + 2.0**-40)
 _G4 = 4 * _U / (1 - 4 * _U) * (1 + 2.0**-40)
@@ -160,27 +158,9 @@ _SMALL = 1e-150  # the least target r
 def _bilinear(
     M: Any, p0: float, p1: float, p2: float, q0: float, q1: float, q2: float
 ) -> tuple[float, float]:
-    """``p^T A q`` (``A`` the leading 3x3 block of ``M``) in twice the working precision:
-    ``p_i q_j`` split exactly into ``h + l``, then Dot2 of the 18 exact products, with the
-    error bound of :func:`~quadric_contact.modes.distance_kernel._form_accurate`."""
-    P = (p0, p1, p2)
-    Q = (q0, q1, q2)
-    p = 0.0
-    s = 0.0
-    mag = 0.0
-    for i in range(3):
-        for j in range(3):
-            hi_, lo_ = _two_product(P[i], Q[j])
-            for f in (hi_, lo_):
-                t, r = _two_product(M[i, j], f)
-                p, q = _two_sum(p, t)
-                s = s + (q + r)
-                mag += abs(M[i, j] * f)
-    res = p + s
-    err = (2 * _U * abs(res) + 2 * _G18 * _G18 * mag) * (1 + 2.0**-40) + _TINY
-    if not math.isfinite(res) or not math.isfinite(mag) or mag > 1e290:
-        return res, np.inf
-    return res, err
+    """``p^T A q`` (``A`` the leading 3x3 block of ``M``) in twice the working precision, with
+    its error bound (:func:`~quadric_contact.modes.distance_kernel.dot2_bilinear`)."""
+    return dot2_bilinear(M, (p0, p1, p2), (q0, q1, q2))
 
 
 @njit(inline=True)

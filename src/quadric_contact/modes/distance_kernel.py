@@ -36,7 +36,7 @@ import numpy as np
 from quadric_contact.modes._jit import njit
 from quadric_contact.modes.threads import run_parallel
 
-__all__ = ["separated_ellipsoids"]
+__all__ = ["dot2_bilinear", "separated_ellipsoids"]
 
 _U = 2.0**-53
 _GAMMA = (32 * _U / (1 - 32 * _U)) * (1 + 2.0**-40)
@@ -185,28 +185,38 @@ def _two_sum(a: float, b: float) -> tuple[float, float]:
 
 
 @njit(inline=True)
-def _form_accurate(M: Any, x0: float, x1: float, x2: float) -> tuple[float, float]:
-    """``X^T M X`` (``X = (x, 1)``) as a dot product of length 32 with exact terms: ``X_i X_j``
-    split exactly into ``h + l``, then Ogita-Rump-Oishi's Dot2, whose result errs by at most
-    ``u |exact| + gamma_n^2 |M| . |X X^T|`` (a twice-working-precision accuracy)."""
-    X = (x0, x1, x2, 1.0)
+def dot2_bilinear(M: Any, P: Any, Q: Any) -> tuple[float, float]:
+    """``P^T M Q`` over the leading ``n x n`` block of ``M`` (``P``, ``Q`` tuples of ``n`` floats)
+    as a dot product of length ``2 n^2`` with exact terms: ``P_i Q_j`` split exactly into
+    ``h + l``, then Ogita-Rump-Oishi's Dot2, whose result errs by at most
+    ``u |exact| + gamma_(2 n^2)^2 |M| . |P Q^T|`` (a twice-working-precision accuracy); an
+    infinite bound where anything overflowed."""
+    n = len(P)
     p = 0.0
     s = 0.0
     mag = 0.0
-    for i in range(4):
-        for j in range(4):
-            hi_, lo_ = _two_product(X[i], X[j])
+    for i in range(n):
+        for j in range(n):
+            hi_, lo_ = _two_product(P[i], Q[j])
             for f in (hi_, lo_):
                 t, r = _two_product(M[i, j], f)
                 p, q = _two_sum(p, t)
                 s = s + (q + r)
                 mag += abs(M[i, j] * f)
     res = p + s
-    g32 = 32 * _U / (1 - 32 * _U)
-    err = (2 * _U * abs(res) + 2 * g32 * g32 * mag) * (1 + 2.0**-40) + _TINY
+    m = 2 * n * n
+    g = m * _U / (1 - m * _U)
+    err = (2 * _U * abs(res) + 2 * g * g * mag) * (1 + 2.0**-40) + _TINY
     if not math.isfinite(res) or not math.isfinite(mag) or mag > 1e290:
         return res, np.inf
     return res, err
+
+
+@njit(inline=True)
+def _form_accurate(M: Any, x0: float, x1: float, x2: float) -> tuple[float, float]:
+    """``X^T M X`` (``X = (x, 1)``) in twice the working precision (:func:`dot2_bilinear`)."""
+    X = (x0, x1, x2, 1.0)
+    return dot2_bilinear(M, X, X)
 
 
 @njit(inline=True)

@@ -18,7 +18,7 @@ import numpy as np
 
 from quadric_contact.model.classification import TABLE_1_KINDS, QuadricKind
 
-__all__ = ["SAMPLE_KINDS", "random_ellipsoids", "random_pairs", "random_rotations"]
+__all__ = ["SAMPLE_KINDS", "float_depth", "random_ellipsoids", "random_pairs", "random_rotations"]
 
 SAMPLE_KINDS: tuple[QuadricKind, ...] = (*TABLE_1_KINDS, QuadricKind.PLANE)
 """The types of ``Q`` that :func:`random_pairs` draws from (Table 1 and the plane)."""
@@ -126,3 +126,35 @@ def random_pairs(
         geo_q = {"axes": p, "rotation": R, "center": t, "sign": sign}
         return E, Q, kind, geo_e, geo_q
     return E, Q, kind
+
+
+def float_depth(
+    E: np.ndarray, K: np.ndarray, *, grid: int = 4000, steps: int = 30
+) -> tuple[float, np.ndarray]:
+    """``min phi(u)`` over unit ``u`` in binary64, ``phi(u) = h_E(u) + h_K(-u)`` (the support
+    functions of two ellipsoids given as ``4 x 4`` matrices, inside negative), and its
+    minimiser: a Fibonacci grid of ``grid`` directions, then ``steps`` of Newton's method on the
+    sphere.  Positive: the depth of two crossing ellipsoids; negative: minus their distance.  An
+    estimate, uncertified: for building pairs of a given depth, not for answers."""
+    geo = []
+    for M in (E, K):
+        A = M[:3, :3]
+        c = -np.linalg.solve(A, M[:3, 3])
+        geo.append((c, (c @ A @ c - M[3, 3]) * np.linalg.inv(A)))
+    (c1, M1), (c2, M2) = geo
+    cd = c1 - c2
+    k = np.arange(grid) + 0.5
+    z = 1 - 2 * k / grid
+    s = np.sqrt(1 - z * z)
+    V = np.stack([s * np.cos(np.pi * (1 + 5**0.5) * k), s * np.sin(np.pi * (1 + 5**0.5) * k), z], -1)
+    vals = V @ cd + np.sqrt(np.einsum("ij,jk,ik->i", V, M1, V)) + np.sqrt(np.einsum("ij,jk,ik->i", V, M2, V))
+    u = V[np.argmin(vals)]
+    for _ in range(steps):
+        n1, n2 = np.sqrt(u @ M1 @ u), np.sqrt(u @ M2 @ u)
+        m1, m2 = M1 @ u, M2 @ u
+        g = cd + m1 / n1 + m2 / n2
+        H = M1 / n1 - np.outer(m1, m1) / n1**3 + M2 / n2 - np.outer(m2, m2) / n2**3
+        P = np.eye(3) - np.outer(u, u)
+        p = np.linalg.solve(P @ H @ P - (u @ g) * P + np.outer(u, u), -P @ g)
+        u = (u + p) / np.linalg.norm(u + p)
+    return float(u @ cd + np.sqrt(u @ M1 @ u) + np.sqrt(u @ M2 @ u)), u
