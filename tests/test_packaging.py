@@ -21,6 +21,7 @@ from quadric_contact.interfaces.benchmark import kernel_population
 from quadric_contact.modes._jit import HAVE_NUMBA
 
 ROOT = Path(__file__).resolve().parents[1]
+PIP_OFFLINE = ("--no-deps", "--no-index", "--ignore-installed", "-q")
 
 SMOKE = (
     RECORD_COMPILES
@@ -54,23 +55,16 @@ def test_the_wheel_installs_and_answers_in_a_fresh_environment(tmp_path):
     assert {"pyproject.toml", "README.md", "src/quadric_contact/__init__.py", "proofs/REPORT.md"} <= names
 
     venv = tmp_path / "venv"
-    # the dependencies come from this environment; the package itself only from the wheel
+    # the dependencies come from this environment; the package itself only from the wheel,
+    # installed by this environment's pip into the new one (no pip of its own to set up)
     subprocess.run(
-        [sys.executable, "-m", "venv", "--system-site-packages", str(venv)], check=True, timeout=300
+        [sys.executable, "-m", "venv", "--without-pip", "--system-site-packages", str(venv)],
+        check=True,
+        timeout=300,
     )
     python = venv / "bin" / "python"
     subprocess.run(
-        [
-            str(python),
-            "-m",
-            "pip",
-            "install",
-            "--no-deps",
-            "--no-index",
-            "--ignore-installed",
-            "-q",
-            str(wheel),
-        ],
+        [sys.executable, "-m", "pip", "--python", str(python), "install", *PIP_OFFLINE, str(wheel)],
         check=True,
         capture_output=True,
         timeout=300,

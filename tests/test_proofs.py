@@ -276,7 +276,7 @@ def test_prove_list_run_below_a_planted_folder_imports_nothing_from_it(tmp_path)
 
     mark = _plant_proofs(tmp_path)
     (tmp_path / "quadric_contact_proofs").symlink_to(tmp_path / "proofs")  # for `python -m`'s sys.path
-    env = {"PYTHONPATH": str(ROOT / "src"), "PATH": "/usr/bin:/bin"}
+    env = {"PYTHONPATH": str(ROOT / "src"), "PATH": "/usr/bin:/bin", "QUADRIC_CONTACT_KERNELS": "wait"}
     done = subprocess.run(
         [sys.executable, "-m", "quadric_contact", "prove", "--list"],
         cwd=tmp_path,
@@ -303,6 +303,7 @@ def test_prove_leaves_the_current_directory_empty(tmp_path):
         "PATH": "/usr/bin:/bin",
         "HOME": str(tmp_path / "home"),
         "XDG_CACHE_HOME": str(cache),
+        "QUADRIC_CONTACT_KERNELS": "wait",  # as the suite: never the background warm-up
     }
     done = subprocess.run(
         [sys.executable, "-m", "quadric_contact", "prove", "wwk_2001_ellipsoid_separation", "-v"],

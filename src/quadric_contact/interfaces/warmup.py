@@ -5,9 +5,9 @@ code in its on-disk cache; the first compilation of the complete decision takes 
 two, of every kernel about seven minutes of CPU time.  :func:`warm_kernels` calls every
 question of the array API in the float, filter and certified modes, on distinct pairs, on one
 matrix against a stack (either side), float64 and packed, and on nearly touching pairs (the
-later stages), on the bench's populations, the first-contact scale and the distance of
-separated and of crossing ellipsoids on stacks, and the bench's read of its inputs, so that
-every kernel is in the cache afterwards.
+later stages), the first-contact scale and the distance of separated and of crossing
+ellipsoids on stacks, and the bench's read of its inputs, so that every kernel is in the cache
+afterwards.
 
 Who runs it:
 
@@ -83,15 +83,6 @@ def _calls() -> list[tuple[str, Callable[[], Any]]]:
                     continue  # overlap asks about two ellipsoids
                 call = functools.partial(fn, e, q, mode=mode)
                 calls.append((f"{name}({label}, mode={mode!r})", call))
-    # the populations of the bench (small ellipsoids against one quadric, similar sizes, every
-    # type), large enough that some of their pairs reach every stage they have
-    from quadric_contact.interfaces.benchmark import complete_populations
-
-    for population, (e, q, _) in complete_populations(2000, np.random.default_rng(1)).items():
-        for mode in ("certified", "filter", "float"):
-            for name in ("transversal_contact", "relative_position", "overlap"):
-                call = functools.partial(questions[name], e, q, mode=mode)
-                calls.append((f"{name}({population}, 2000, mode={mode!r})", call))
     # the first-contact scale (one-sided: distinct pairs and one quadric against the stack;
     # two-sided) and the distance of separated and crossing ellipsoids (the duality and the
     # depth kernels), which the tests of those functions otherwise compile in a worker, each
