@@ -161,3 +161,25 @@ def test_the_policy_is_checked():
     )
     assert proc.returncode != 0
     assert "QUADRIC_CONTACT_KERNELS must be one of" in proc.stderr
+
+
+def test_the_compile_command_warms_under_the_lock_and_leaves_the_marker(tmp_path, monkeypatch, capsys):
+    """``quadric-contact compile`` runs the warm-up (here a stand-in that records whether the
+    lock is held while it runs) and leaves the marker that says the cache holds every kernel."""
+    from quadric_contact.interfaces import warmup
+    from quadric_contact.interfaces.cli import main
+
+    monkeypatch.setattr(_jit, "_cache_root", lambda: str(tmp_path))
+    seen = []
+
+    def run(**kws):
+        seen.append(_jit.warmup_state())  # another holder of the lock: "running"
+        kws["log"]("quadric-contact: array kernels loaded from numba's on-disk cache in 0.0 s")
+        return 0
+
+    monkeypatch.setattr(warmup, "run", run)
+    assert main(["compile"]) == 0
+    assert seen == ["running"]
+    assert _jit.warmup_state() == "done"
+    out = capsys.readouterr().out
+    assert str(tmp_path) in out and "loaded from numba's on-disk cache" in out
