@@ -28,17 +28,9 @@ def _holds(enc, e, q):
 
 def _ellipsoid(axes, centre, seed):
     """An ellipsoid with the given semi-axes and centre, turned by a random rotation."""
-    from quadric_contact.testing.samples import random_rotations
+    from quadric_contact.testing.samples import ellipsoid_matrix, random_rotations
 
-    R = random_rotations(1, np.random.default_rng(seed))[0]
-    A = R @ np.diag(1 / np.asarray(axes, dtype=float) ** 2) @ R.T
-    A = (A + A.T) / 2
-    c = np.asarray(centre, dtype=float)
-    M = np.zeros((4, 4))
-    M[:3, :3] = A
-    M[:3, 3] = M[3, :3] = -A @ c
-    M[3, 3] = c @ A @ c - 1
-    return M
+    return ellipsoid_matrix(axes, random_rotations(1, np.random.default_rng(seed))[0], centre)
 
 
 def _sphere(r, c):

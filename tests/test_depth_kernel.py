@@ -23,22 +23,11 @@ from quadric_contact.modes.depth_kernel import (
 )
 from quadric_contact.modes.distance_kernel import separated_ellipsoids
 from quadric_contact.modes.threads import single_threaded
+from quadric_contact.testing.samples import ellipsoid_matrix as _ellipsoid
 from quadric_contact.testing.samples import float_depth as _float_depth
 from quadric_contact.testing.samples import random_rotations
 
 # -- pairs ----------------------------------------------------------------------------------
-
-
-def _ellipsoid(axes, R, centre):
-    """``(x - c)^T R diag(axes^-2) R^T (x - c) - 1`` as a 4x4 matrix."""
-    A = R @ np.diag(1 / np.asarray(axes, dtype=float) ** 2) @ R.T
-    A = (A + A.T) / 2
-    c = np.asarray(centre, dtype=float)
-    M = np.zeros((4, 4))
-    M[:3, :3] = A
-    M[:3, 3] = M[3, :3] = -A @ c
-    M[3, 3] = c @ A @ c - 1
-    return M
 
 
 def _rotation(rng):

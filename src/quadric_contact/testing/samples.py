@@ -18,7 +18,14 @@ import numpy as np
 
 from quadric_contact.model.classification import TABLE_1_KINDS, QuadricKind
 
-__all__ = ["SAMPLE_KINDS", "float_depth", "random_ellipsoids", "random_pairs", "random_rotations"]
+__all__ = [
+    "SAMPLE_KINDS",
+    "ellipsoid_matrix",
+    "float_depth",
+    "random_ellipsoids",
+    "random_pairs",
+    "random_rotations",
+]
 
 SAMPLE_KINDS: tuple[QuadricKind, ...] = (*TABLE_1_KINDS, QuadricKind.PLANE)
 """The types of ``Q`` that :func:`random_pairs` draws from (Table 1 and the plane)."""
@@ -126,6 +133,23 @@ def random_pairs(
         geo_q = {"axes": p, "rotation": R, "center": t, "sign": sign}
         return E, Q, kind, geo_e, geo_q
     return E, Q, kind
+
+
+def ellipsoid_matrix(axes: Any, R: np.ndarray, centre: Any) -> np.ndarray:
+    """``(x - c)^T R diag(axes^-2) R^T (x - c) - 1`` as a symmetric ``4 x 4`` matrix: the
+    ellipsoid of semi-axes ``axes`` along the columns of the rotation ``R``, centred at ``c``.
+
+    >>> ellipsoid_matrix((1.0, 2.0, 4.0), np.eye(3), (0.0, 0.0, 1.0)).diagonal().tolist()
+    [1.0, 0.25, 0.0625, -0.9375]
+    """
+    A = R @ np.diag(1 / np.asarray(axes, dtype=float) ** 2) @ R.T
+    A = (A + A.T) / 2
+    c = np.asarray(centre, dtype=float)
+    M = np.zeros((4, 4))
+    M[:3, :3] = A
+    M[:3, 3] = M[3, :3] = -A @ c
+    M[3, 3] = c @ A @ c - 1
+    return M
 
 
 def float_depth(
