@@ -183,3 +183,30 @@ def test_the_compile_command_warms_under_the_lock_and_leaves_the_marker(tmp_path
     assert _jit.warmup_state() == "done"
     out = capsys.readouterr().out
     assert str(tmp_path) in out and "loaded from numba's on-disk cache" in out
+
+
+def test_a_kernel_another_process_compiles_is_waited_for_or_put_off(tmp_path, monkeypatch):
+    """The machine-wide lock of one kernel's compile: held elsewhere (another open file of the
+    lock, as another process holds it), a deferring caller gets ``KernelBusy`` at once, any
+    other caller waits until it is released."""
+    import fcntl
+    import threading
+    import types
+
+    monkeypatch.setattr(_jit, "_cache_root", lambda: str(tmp_path))
+    stub = types.SimpleNamespace(py_func=test_the_policy_is_checked)
+    name = f"{__name__}.test_the_policy_is_checked"
+    fd = os.open(tmp_path / f"quadric-contact-compile.{name}.lock", os.O_RDWR | os.O_CREAT)
+    fcntl.flock(fd, fcntl.LOCK_EX)
+    with pytest.raises(_jit.KernelBusy), _jit.deferring(), _jit._compile_lock(stub):
+        pass
+    released = []
+
+    def release():
+        released.append(True)
+        fcntl.flock(fd, fcntl.LOCK_UN)
+
+    threading.Timer(0.2, release).start()
+    with _jit._compile_lock(stub):
+        assert released  # it got the lock only once the other holder let it go
+    os.close(fd)

@@ -314,7 +314,10 @@ def compile_on_a_fresh_stack(dispatcher: Any, twin_elements: int = TWIN_ELEMENTS
         if sig is None or not cached or _POLICY == "wait" or _elements(args) > twin_elements:
             if sig is None:
                 return compile_for_args(*args, **kws)
-            return compiles.wait(sig, compile_for_args, args)
+            if not cached:
+                return compiles.wait(sig, compile_for_args, args)
+            with _compile_lock(dispatcher):
+                return compiles.wait(sig, compile_for_args, args)
         entry = compiles.load(sig)
         if entry is not None:
             return entry
@@ -328,6 +331,62 @@ def compile_on_a_fresh_stack(dispatcher: Any, twin_elements: int = TWIN_ELEMENTS
         return compiles.twin_of()
 
     dispatcher._compile_for_args = compile_elsewhere
+
+
+# -- one compile of a kernel at a time on the machine ------------------------------------------
+
+
+class KernelBusy(Exception):
+    """Another process is compiling the kernel a call needs, and this process defers such calls
+    (:func:`deferring`): the warm-up runs another call meanwhile and this one later, when it
+    loads the kernel from the cache instead of compiling it a second time."""
+
+
+_DEFERRING = False
+
+
+@contextmanager
+def deferring() -> Iterator[None]:
+    """Within the block, a call whose kernel another process is compiling raises
+    :class:`KernelBusy` instead of waiting for it."""
+    global _DEFERRING
+    before, _DEFERRING = _DEFERRING, True
+    try:
+        yield
+    finally:
+        _DEFERRING = before
+
+
+@contextmanager
+def _compile_lock(dispatcher: Any) -> Iterator[None]:
+    """Hold the machine-wide lock of one kernel while it is compiled (or loaded) here: a second
+    process that needs it waits, then loads what the first wrote to the cache (numba looks in the
+    cache before it compiles), instead of compiling it again at the same time; or, deferring,
+    raises :class:`KernelBusy`.  Where no lock can be had, nothing is held."""
+    try:
+        import fcntl
+
+        f = getattr(dispatcher, "py_func", None)
+        name = f"{getattr(f, '__module__', '?')}.{getattr(f, '__qualname__', '?')}"
+        fd = os.open(
+            os.path.join(_cache_root(), f"quadric-contact-compile.{name}.lock"), os.O_RDWR | os.O_CREAT, 0o644
+        )
+    except (ImportError, OSError):
+        yield
+        return
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            if _DEFERRING:
+                raise KernelBusy(name) from None
+            fcntl.flock(fd, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(fd, fcntl.LOCK_UN)
+    finally:
+        os.close(fd)
 
 
 # -- the background warm-up: its lock, its marker, its start ----------------------------------
