@@ -18,7 +18,7 @@ Who runs it:
   background process (``--background``: lowest priority, no output but a log next to the
   cache, one at a time): the first call of a process that finds a kernel missing from the
   cache starts it, and meanwhile answers small calls with the kernels' Python twins
-  (:func:`quadric_contact.modes._jit.compile_on_a_fresh_stack`).
+  (``quadric_contact.modes._jit.compile_on_a_fresh_stack``).
 """
 
 from __future__ import annotations

@@ -138,7 +138,7 @@ a stack between threads, :func:`quadric_contact.modes.threads.run_parallel`)."""
 _TWIN_ELEMENTS = 36 * 250
 """The largest call the kernel's Python twin answers while the kernel is not compiled (a pair
 is 36 array elements; the twin takes about 5 ms a pair, so about a second): a larger stack
-compiles the kernel (about 15 s) or loads it (:func:`quadric_contact.modes._jit.njit`)."""
+compiles the kernel (about 15 s) or loads it (``quadric_contact.modes._jit.njit``)."""
 
 _C_S = 1.0 + 8 * _U
 _C_T = 1.0 + 16 * _U
