@@ -22,19 +22,15 @@ import numpy as np
 
 import quadric_contact as qc
 from quadric_contact.modes.depth_kernel import _kernel, crossing_ellipsoids_cells
-from quadric_contact.testing.samples import float_depth
+from quadric_contact.testing.samples import ellipsoid_matrix, float_depth
 
 
 def _stack(rng: np.random.Generator, m: int) -> np.ndarray:
     out = np.zeros((m, 4, 4))
     for k in range(m):
         R, _ = np.linalg.qr(rng.normal(size=(3, 3)))
-        A = R @ np.diag(1 / rng.uniform(0.3, 1.5, 3) ** 2) @ R.T
-        A = (A + A.T) / 2
-        c = rng.uniform(-0.5, 0.5, 3)
-        out[k, :3, :3] = A
-        out[k, :3, 3] = out[k, 3, :3] = -A @ c
-        out[k, 3, 3] = c @ A @ c - 1
+        axes = rng.uniform(0.3, 1.5, 3)
+        out[k] = ellipsoid_matrix(axes, R, rng.uniform(-0.5, 0.5, 3))
     return out
 
 

@@ -367,15 +367,13 @@ def _ellipsoid_tables(rng: np.random.Generator, methods: dict[str, Callable[...,
 
 def _ellipsoid_stack(rng: np.random.Generator, m: int, spread: float = 4.0) -> np.ndarray:
     """``m`` random rotated ellipsoids (semi-axes 0.3-1.5, centres in ``[-spread, spread]^3``)."""
+    from quadric_contact.testing.samples import ellipsoid_matrix
+
     out = np.zeros((m, 4, 4))
     for k in range(m):
         R, _ = np.linalg.qr(rng.normal(size=(3, 3)))
-        A = R @ np.diag(1 / rng.uniform(0.3, 1.5, 3) ** 2) @ R.T
-        A = (A + A.T) / 2
-        c = rng.uniform(-spread, spread, 3)
-        out[k, :3, :3] = A
-        out[k, :3, 3] = out[k, 3, :3] = -A @ c
-        out[k, 3, 3] = c @ A @ c - 1
+        axes = rng.uniform(0.3, 1.5, 3)
+        out[k] = ellipsoid_matrix(axes, R, rng.uniform(-spread, spread, 3))
     return out
 
 
@@ -465,20 +463,8 @@ def _scale_throughput(rng: np.random.Generator, n: int) -> None:
     from quadric_contact.modes.distances import contact_scale
     from quadric_contact.modes.scale_blocks import scale_stack
 
-    def stack(m: int) -> np.ndarray:
-        out = np.zeros((m, 4, 4))
-        for k in range(m):
-            R, _ = np.linalg.qr(rng.normal(size=(3, 3)))
-            A = R @ np.diag(1 / rng.uniform(0.3, 1.5, 3) ** 2) @ R.T
-            A = (A + A.T) / 2
-            c = rng.uniform(-4, 4, 3)
-            out[k, :3, :3] = A
-            out[k, :3, 3] = out[k, 3, :3] = -A @ c
-            out[k, 3, 3] = c @ A @ c - 1
-        return out
-
     base = min(n, 4096)
-    Es, Qs = stack(base), stack(base)
+    Es, Qs = _ellipsoid_stack(rng, base), _ellipsoid_stack(rng, base)
     reps = max(1, n // base)
     Es, Qs = np.tile(Es, (reps, 1, 1)), np.tile(Qs, (reps, 1, 1))
     scale_stack(Es[:10], Qs[:10])  # compiled or loaded

@@ -347,6 +347,17 @@ def _corner(dn: float, da: float, db: float, a: float, b: float, R2: float) -> b
 
 
 @njit(inline=True)
+def _on_face(ax: int, s: float, a: float, b: float) -> tuple[float, float, float]:
+    """The direction of gnomonic coordinates ``(a, b)`` on the face ``s e_ax`` of the cube
+    (the other two axes in cyclic order: ``e_(ax+1)`` takes ``a``, ``e_(ax+2)`` takes ``b``)."""
+    if ax == 0:
+        return s, a, b
+    if ax == 1:
+        return b, s, a
+    return a, b, s
+
+
+@njit(inline=True)
 def _cell_ok(dn: float, da: float, db: float, a: float, b: float, h: float, R2: float) -> bool:
     return (
         _corner(dn, da, db, a - h, b - h, R2)
@@ -670,12 +681,7 @@ def _kernel(
                         if kind == 2:
                             break  # its own point was tested before the restart
                         # its own point: the support points of E and K in the directions w, -w
-                        if ax == 0:
-                            w0, w1, w2 = sgn, a, b
-                        elif ax == 1:
-                            w0, w1, w2 = b, sgn, a
-                        else:
-                            w0, w1, w2 = a, b, sgn
+                        w0, w1, w2 = _on_face(ax, sgn, a, b)
                         cells += 1
                         usable = True
                         for which in range(2):
@@ -720,12 +726,7 @@ def _kernel(
                         for corner in range(4):
                             ca = a - h if corner % 2 == 0 else a + h
                             cb = b - h if corner < 2 else b + h
-                            if ax == 0:
-                                q0, q1, q2 = sgn, ca, cb
-                            elif ax == 1:
-                                q0, q1, q2 = cb, sgn, ca
-                            else:
-                                q0, q1, q2 = ca, cb, sgn
+                            q0, q1, q2 = _on_face(ax, sgn, ca, cb)
                             nq = math.sqrt((1.0 + ca * ca) + cb * cb)
                             fq = _phi(cd, L1, L2, q0 / nq, q1 / nq, q2 / nq)
                             if fq < least:
