@@ -183,10 +183,6 @@ def set_kernel_policy(policy: str) -> None:
     _POLICY = policy
 
 
-def kernel_policy() -> str:
-    return _POLICY
-
-
 class _Compiles:
     """One dispatcher's compiles under way in this process, by signature, and its twin."""
 
