@@ -344,3 +344,22 @@ def test_the_stack_distance_uses_both_kernels():
     assert np.array_equal(got[:3, 0], enc)
     assert got[3, 0, 0] <= 2.0 <= got[3, 0, 1]
     assert got[4, 0, 0] <= 0.0 <= got[4, 0, 1]
+
+
+def test_a_single_pair_in_float_mode_is_the_stack_of_one():
+    """One meaning for both forms: ``mode="float"`` on one pair of binary64 ellipsoids answers
+    with the enclosure the stack of one gives (the kernels'), crossing or apart: its value and
+    error bound cover that enclosure and are no wider than its rounding needs."""
+    rng = np.random.default_rng(12)
+    Es, Ks = _stack([_random(rng) for _ in range(2)])
+    Es = np.concatenate([Es, [_ellipsoid([1.0, 0.8, 0.6], np.eye(3), [0, 0, 0])]])
+    Ks = np.concatenate([Ks, [_ball(0.5, [3, 0, 0])]])
+    for k in range(3):
+        f = qc.distance(Es[k], Ks[k], mode="float")
+        ((lo, hi),) = qc.distance(Es[k][None], Ks[k][None], mode="float")
+        assert not f.uncertain
+        assert f.bounds[0] <= lo <= hi <= f.bounds[1]
+        assert f.bounds[1] - f.bounds[0] <= (hi - lo) * (1 + 1e-12) + 4e-16 * abs(hi)
+        c = qc.distance(Es[k], Ks[k], digits=20).distance
+        assert c.overlaps(flint.arb(lo).union(flint.arb(hi)))
+    assert qc.distance(Es[2], Ks[2], mode="float").distance == pytest.approx(1.5, rel=1e-12)

@@ -24,7 +24,8 @@ of the sphere by cells each certified by a point of the Minkowski difference,
 :mod:`quadric_contact.modes.depth_kernel`), both with enclosures at most
 ``max(10^-digits, 1e-12)`` relative wide; the pairs neither certifies (touching or nearly so,
 too shallow for the tolerance, not two ellipsoids), and every other stack, run the scalar path
-pair by pair.
+pair by pair.  One pair of binary64 ellipsoids in the ``float`` mode runs the same two kernels
+first: its answer is the stack of one's enclosure.
 """
 
 from __future__ import annotations
@@ -284,9 +285,12 @@ def _exact_answers(E: Any, Q: Any) -> bool:
     return is_sphere(e) or solid_of(Q).kind is QuadricKind.PLANE
 
 
-def _separated_pair(e: Any, K: Any) -> FloatDistance | None:
-    """Two ellipsoids whose entries are binary64 numbers: the compiled duality certificate
-    (:mod:`quadric_contact.modes.distance_kernel`), or None (not certified there)."""
+def _kernel_pair(e: Any, K: Any) -> FloatDistance | None:
+    """Two ellipsoids whose entries are binary64 numbers: the compiled kernels a stack of one
+    runs (the duality certificate of :mod:`quadric_contact.modes.distance_kernel` for a
+    separated pair, the depth certificate of :mod:`quadric_contact.modes.depth_kernel` for a
+    crossing one), the same enclosure as the stack's; or None (not certified there)."""
+    from quadric_contact.modes.depth_kernel import crossing_ellipsoids
     from quadric_contact.modes.distance_kernel import separated_ellipsoids
 
     mats = []
@@ -294,9 +298,12 @@ def _separated_pair(e: Any, K: Any) -> FloatDistance | None:
         m = np.array([[float(q[i, j]) for j in range(4)] for i in range(4)])
         if any(Fraction(m[i, j]) != q[i, j] for i in range(4) for j in range(4)):
             return None  # not binary64 numbers: the kernel would answer another pair
-        mats.append(m)
-    enc, rest = separated_ellipsoids(mats[0][None], mats[1][None])
-    return None if rest[0] else FloatDistance.of(float(enc[0, 0]), float(enc[0, 1]))
+        mats.append(m[None])
+    for kernel in (separated_ellipsoids, crossing_ellipsoids):
+        enc, rest = kernel(*mats)
+        if not rest[0]:
+            return FloatDistance.of(float(enc[0, 0]), float(enc[0, 1]))
+    return None
 
 
 def _float(E: Any, Q: Any) -> FloatDistance:
@@ -309,7 +316,7 @@ def _float(E: Any, Q: Any) -> FloatDistance:
         if K.kind is QuadricKind.PLANE or is_sphere(e):
             return FloatDistance.of(*_float_bounds(*distance_certified(e, K, digits=17).bounds))
         if K.kind is QuadricKind.ELLIPSOID:
-            fast = _separated_pair(e, K)
+            fast = _kernel_pair(e, K)
             if fast is not None:
                 return fast
         convex = K.kind in CONVEX_SOLIDS
