@@ -1,7 +1,8 @@
 """The package as a user installs it: ``python -m build`` makes an sdist and a wheel, the wheel
 installs into a fresh virtual environment, and there, from a directory outside the checkout,
 the first array calls answer at once (the kernels' Python twins: no compiler invoked) with the
-answers this process gets."""
+answers this process gets; and with the cache this checkout compiled its kernels into, the
+installed copy loads them (one compiled code for the tests and the installed package)."""
 
 from __future__ import annotations
 
@@ -18,7 +19,7 @@ from tests.compile_events import RECORD_COMPILES
 
 import quadric_contact as qc
 from quadric_contact.interfaces.benchmark import kernel_population
-from quadric_contact.modes._jit import HAVE_NUMBA
+from quadric_contact.modes._jit import HAVE_NUMBA, TWINS_NOTICE, kernel_cache_dir
 
 ROOT = Path(__file__).resolve().parents[1]
 PIP_OFFLINE = ("--no-deps", "--no-index", "--ignore-installed", "-q")
@@ -71,17 +72,30 @@ def test_the_wheel_installs_and_answers_in_a_fresh_environment(tmp_path):
     )
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "NUMBA_CACHE_DIR")}
     env["QUADRIC_CONTACT_KERNELS"] = "twins"  # the default, without its background process
+    env["QUADRIC_CONTACT_CACHE_DIR"] = str(tmp_path / "empty cache")
     work = tmp_path / "elsewhere"
     work.mkdir()
-    proc = subprocess.run(
-        [str(python), "-c", SMOKE], cwd=work, env=env, capture_output=True, text=True, check=True, timeout=600
-    )
-    got = json.loads(proc.stdout)
+
+    def smoke() -> tuple[dict, str]:
+        run = [str(python), "-c", SMOKE]
+        proc = subprocess.run(run, cwd=work, env=env, capture_output=True, text=True, check=True, timeout=600)
+        return json.loads(proc.stdout), proc.stderr
+
+    # an empty cache: the twins answer, nothing is compiled
+    got, err = smoke()
     assert Path(got["file"]).resolve().is_relative_to(venv.resolve())
     assert got["compiled"] == []
+    assert TWINS_NOTICE.split("{")[0] in err
     E, Q = kernel_population(1000, np.random.default_rng(0))
     assert got["contact"] == qc.transversal_contact(E, Q).tolist()
     assert got["overlap"] == qc.overlap(E, Q).tolist()
+    # the cache this checkout's kernels are in (the calls above put these ones there): the
+    # installed copy loads them, with no twin and no compile
+    env["QUADRIC_CONTACT_CACHE_DIR"] = kernel_cache_dir()
+    got, err = smoke()
+    assert got["compiled"] == []
+    assert TWINS_NOTICE.split("{")[0] not in err
+    assert got["contact"] == qc.transversal_contact(E, Q).tolist()
     # the entry point is installed too
     cli = subprocess.run(
         [str(venv / "bin" / "quadric-contact"), "--help"], cwd=work, env=env, capture_output=True, text=True

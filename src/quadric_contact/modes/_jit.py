@@ -20,8 +20,10 @@ except ImportError:  # pragma: no cover
 
 __all__ = [
     "HAVE_NUMBA",
+    "PACKAGE_ROOT",
     "compile_on_a_fresh_stack",
     "jitable",
+    "kernel_cache_dir",
     "kernel_sources",
     "njit",
     "python_twin",
@@ -385,16 +387,79 @@ def _compile_lock(dispatcher: Any) -> Iterator[None]:
         os.close(fd)
 
 
+# -- one cache for every copy of the package ---------------------------------------------------
+
+PACKAGE_ROOT = Path(__file__).resolve().parents[1]
+"""The directory of this copy of the package (a checkout's ``src/quadric_contact``, or an
+installed one)."""
+
+
+def kernel_cache_dir() -> str:
+    """The directory every copy of this package keeps its compiled kernels in.
+
+    ``QUADRIC_CONTACT_CACHE_DIR`` if set; else ``quadric-contact`` in ``NUMBA_CACHE_DIR`` if
+    that is set; else ``quadric-contact/kernels`` in the user's cache directory
+    (``$XDG_CACHE_HOME``, or ``~/.cache``; ``%LOCALAPPDATA%`` on Windows).
+
+    numba's default keeps a kernel next to its source file, so a checkout's tests and an
+    installed copy of the same sources each compiled every kernel (minutes of CPU time each).
+    numba stamps a cache entry with the digest of the source's bytes (and :func:`stamp_with_sources`
+    with those of every source the kernel is made of), not with its path or time: copies with
+    the same sources can share the compiled code, and copies with other sources replace each
+    other's entries instead of loading them."""
+    own = os.environ.get("QUADRIC_CONTACT_CACHE_DIR")
+    if own:
+        return own
+    numba_dir = os.environ.get("NUMBA_CACHE_DIR")
+    if numba_dir:
+        return os.path.join(numba_dir, "quadric-contact")
+    if os.name == "nt":  # pragma: no cover - not this platform
+        base = os.environ.get("LOCALAPPDATA") or os.path.expanduser("~")
+    else:
+        base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return os.path.join(base, "quadric-contact", "kernels")
+
+
+if HAVE_NUMBA:  # pragma: no branch
+    from numba.core import caching as _caching
+
+    class _PackageCacheLocator(_caching._SourceFileBackedLocatorMixin, _caching._CacheLocator):  # type: ignore[misc,name-defined,unused-ignore]
+        """numba's cache locator for the kernels of this package: :func:`kernel_cache_dir`, then
+        the source's folder inside the package (``modes``, ``_generated``), whichever copy the
+        source is in.  The stamp and the name of a cache file are numba's own (the digest of the
+        source, the function's name and first line).  A source outside this package, or a cache
+        directory that cannot be written, is left to numba's other locators."""
+
+        def __init__(self, py_func: Any, py_file: str) -> None:
+            self._py_file = py_file
+            self._lineno = py_func.__code__.co_firstlineno
+            rel = Path(py_file).resolve().relative_to(PACKAGE_ROOT).parent
+            self._cache_path = os.path.join(kernel_cache_dir(), *rel.parts)
+
+        def get_cache_path(self) -> str:
+            return self._cache_path
+
+        @classmethod
+        def from_function(cls, py_func: Any, py_file: str) -> Any:
+            if not Path(py_file).resolve().is_relative_to(PACKAGE_ROOT):
+                return None
+            return super().from_function(py_func, py_file)
+
+    if _PackageCacheLocator not in _caching.CacheImpl._locator_classes:
+        _caching.CacheImpl._locator_classes.insert(0, _PackageCacheLocator)
+
+
 # -- the background warm-up: its lock, its marker, its start ----------------------------------
 
 
 def _cache_root() -> str:
     """The directory numba keeps this package's kernels in (that of the decision kernel's
-    module, :mod:`quadric_contact.modes`): the warm-up's lock, log and marker live there."""
+    module, :mod:`quadric_contact.modes`; :func:`kernel_cache_dir` where it can be written):
+    the warm-up's lock, log and marker, and the compile locks, live there."""
     from numba.core.caching import CacheImpl
 
     source = str(Path(__file__).with_name("kernels_decision.py"))
-    for locator in CacheImpl._locator_classes:  # numba's own order of choice
+    for locator in CacheImpl._locator_classes:  # numba's order, this package's locator first
         found = locator.from_function(_cache_root, source)
         if found is not None:
             return str(found.get_cache_path())
@@ -596,9 +661,8 @@ def python_twin(fn: Callable[..., Any]) -> Callable[..., Any]:
 # -- first use: one line when a kernel is not in the cache ------------------------------------
 #
 # numba compiles a kernel the first time it is called with a new signature and keeps the
-# machine code in its on-disk cache (``cache=True``: next to the package when that directory
-# is writable, otherwise the user cache directory, ``~/.cache/numba`` on Linux;
-# ``NUMBA_CACHE_DIR`` overrides both).  Later processes load it in milliseconds.  The first
+# machine code in its on-disk cache (``cache=True``; :func:`kernel_cache_dir`, one directory for
+# every copy of the package).  Later processes load it in milliseconds.  The first
 # compilation of the complete decision takes minutes of CPU time, so the first time a kernel
 # of this package misses the cache the process says so, once, on stderr: that it runs the
 # twins meanwhile, or that it compiles (a large call, or the ``wait`` policy).

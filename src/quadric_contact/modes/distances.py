@@ -300,7 +300,7 @@ def _kernel_pair(e: Any, K: Any) -> FloatDistance | None:
             return None  # not binary64 numbers: the kernel would answer another pair
         mats.append(m[None])
     for kernel in (separated_ellipsoids, crossing_ellipsoids):
-        enc, rest = kernel(*mats)
+        enc, rest = kernel(mats[0], mats[1])
         if not rest[0]:
             return FloatDistance.of(float(enc[0, 0]), float(enc[0, 1]))
     return None
