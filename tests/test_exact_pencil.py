@@ -20,7 +20,7 @@ from quadric_contact.modes.exact_pencil import (
     pencil_coefficients_dyadic,
     pencil_coefficients_int,
 )
-from quadric_contact.modes.objects import dyadic_rows, integer_rows
+from quadric_contact.modes.integers import dyadic_rows, integer_rows
 from quadric_contact.testing.hardcases import hard_cases
 from quadric_contact.testing.samples import random_pairs
 

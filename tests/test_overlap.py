@@ -479,6 +479,46 @@ def test_agreement_with_the_independent_decision_on_random_float_pairs():
     assert {S, O} <= seen
 
 
+def test_the_side_of_the_centre_of_q_is_exact_for_every_pair_of_a_stack():
+    """``pipeline._centre_side`` (every pair in one pass over columns of integers) against the
+    sign of ``E`` at the centre of ``Q`` in rationals, pair by pair: inside, outside and on the
+    surface of ``E`` (either sign of its matrix), for binary64 and for exact rational stacks."""
+    from quadric_contact.modes import pipeline
+    from quadric_contact.modes.batch import as_stack, make_pairs
+    from quadric_contact.testing.samples import ellipsoid_matrix
+
+    unit = np.diag([1.0, 1.0, 1.0, -1.0])
+    centres = [
+        (0.25, 0.0, 0.0),
+        (3.0, 1.0, -2.0),
+        (1.0, 0.0, 0.0),
+        (0.0, 0.6, 0.8),
+        (0.0, 0.0, -1.0 - 2**-52),
+    ]
+    Es = np.array([unit if k % 2 else -unit for k in range(len(centres))])
+    Qs = np.array([ellipsoid_matrix([0.5, 0.25, 2.0], np.eye(3), c) for c in centres])
+
+    def want(e, q):
+        value = (q[:3, :3].inv() * q[:3, 3]).T  # minus the centre of Q
+        x = [-v for v in value] + [F(1)]
+        s = sum(x[i] * e[i, j] * x[j] for i in range(4) for j in range(4)) * (1 if e[0, 0] > 0 else -1)
+        return int(bool(s > 0)) - int(bool(s < 0))
+
+    import sympy as sp
+
+    expected = [
+        want(sp.Matrix(4, 4, [F(v) for v in e.flat]), sp.Matrix(4, 4, [F(v) for v in q.flat]))
+        for e, q in zip(Es, Qs, strict=True)
+    ]
+    assert sorted(set(expected)) == [-1, 0, 1]
+    exact_e = [[[F(v) for v in row] for row in e] for e in Es]
+    exact_q = [[[F(v) for v in row] for row in q] for q in Qs]
+    for E, Q in ((Es, Qs), (exact_e, exact_q)):
+        pairs, _ = make_pairs(as_stack(E, "E"), as_stack(Q, "Q"))
+        got = pipeline._centre_side(pairs, np.arange(len(centres)))
+        assert got.tolist() == expected
+
+
 def test_rounded_cylinders_are_decided_by_the_centre_of_q_and_agree_with_the_exact_answer(monkeypatch):
     """Cylinders and paraboloids rotated in binary64 are ellipsoids (or hyperboloids) exactly,
     nearly singular; where the first stage reads no side of such an ellipsoid, the side of E

@@ -1,7 +1,7 @@
 """The pencil coefficients ``c0, ..., c4`` of ``det(lambda E + Q)`` exactly, in compiled code,
 for integer matrices (the exact mode's binary64 input once scaled to integers).
 
-The exact mode scales each binary64 matrix to integers (:func:`~quadric_contact.modes.objects.integer_rows`);
+The exact mode scales each binary64 matrix to integers (:func:`~quadric_contact.modes.integers.integer_rows`);
 for ordinary input they are below ``2^63`` and the coefficients below ``2^256``.  Python
 integers spend most of their time on interpreter overhead at these sizes (about 40 ns an
 operation, some 260 operations a pair), so this module computes the same expansion as

@@ -50,7 +50,6 @@ under ``"<step> (<numbers>)"``, e.g. ``"criterion (filter)"``, ``"separation (ex
 
 from __future__ import annotations
 
-import math
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -71,6 +70,7 @@ from quadric_contact.modes.base import (
     StageCounts,
 )
 from quadric_contact.modes.decisions import KINDS, UNCERTAIN_ROW, rows_from_masks
+from quadric_contact.modes.integers import integer_rows
 from quadric_contact.modes.kernels_decision import CODE_RANGES
 from quadric_contact.modes.rows import unique_rows
 from quadric_contact.modes.separation import CROSSING, SEP_MINUS, SEP_PLUS
@@ -770,23 +770,6 @@ def _overlap_from_separation(
     return values
 
 
-def _upper_integers(stack: Any, rows: np.ndarray) -> list[list[int]]:
-    """The upper entries of the matrices ``rows`` of ``stack`` as integers, each matrix scaled by
-    a positive common denominator of its entries (the exact input where there is one)."""
-    from quadric_contact.exact.entries import ENTRY_INDICES
-
-    if stack.exact is not None:
-        ratios = [[(f.numerator, f.denominator) for f in stack.exact[int(r)]] for r in rows]
-    else:
-        floats = stack.rows_floats(rows)
-        ratios = [[float(m[i, j]).as_integer_ratio() for i, j in ENTRY_INDICES] for m in floats]
-    out = []
-    for entries in ratios:
-        den = math.lcm(*(d for _, d in entries))
-        out.append([n * (den // d) for n, d in entries])
-    return out
-
-
 def _centre_side(pairs: Pairs, rows: np.ndarray) -> np.ndarray:
     """For pairs of two ellipsoids: 1 where the centre of ``Q`` lies strictly outside ``E``, -1
     strictly inside, 0 on its surface; exactly.
@@ -799,13 +782,11 @@ def _centre_side(pairs: Pairs, rows: np.ndarray) -> np.ndarray:
 
     Used where the surface of ``E`` misses the solid of ``Q``: that solid, convex and holding
     its centre, is then inside ``E`` or apart from it, as its centre is."""
-    es = _upper_integers(pairs.E, pairs.e_rows_at(rows))
-    qs = _upper_integers(pairs.Q, pairs.q_rows_at(rows))
-    out = np.zeros(rows.size, dtype=np.int8)
-    for t in range(rows.size):
-        value = centre_value(es[t], qs[t]) * (1 if es[t][0] > 0 else -1)
-        out[t] = (value > 0) - (value < 0)
-    return out
+    es = integer_rows(pairs.E, pairs.e_rows_at(rows))
+    qs = integer_rows(pairs.Q, pairs.q_rows_at(rows))
+    value = centre_value(es, qs)  # columns of Python integers: every pair in one pass
+    sign = (value > 0).astype(np.int8) - (value < 0).astype(np.int8)
+    return np.where(es[0] > 0, sign, -sign).astype(np.int8)
 
 
 def centre_value(e: Any, q: Any) -> Any:
