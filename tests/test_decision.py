@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import quadric_contact as qc
-from quadric_contact.modes import ContactCode, RegionCode
+from quadric_contact.modes import ContactCode, ContactKindCode, RegionCode
 from quadric_contact.modes import separation as sep
 from quadric_contact.testing.hardcases import hard_cases
 from quadric_contact.testing.samples import random_pairs
@@ -127,9 +127,10 @@ def test_the_paper_route_agrees_where_e_is_small():
 
 
 def test_float_mode_is_right_on_symmetric_placements():
-    """The float mode reads the same table in binary64; symmetric placements (multiple roots
-    that rounding turns non-real) are answered as the exact decision answers them wherever that
-    answer is stable under a small perturbation, scalar and stack alike."""
+    """The float mode reads the same table in binary64 (and the mpmath mode in its digits);
+    symmetric placements (multiple roots that rounding turns non-real) are answered as the
+    exact decision answers them wherever that answer is stable under a small perturbation, for
+    every question (contact, region, kind), scalar and stack alike."""
     family = axis_family()
 
     def exact_contact(E, Q):
@@ -143,11 +144,16 @@ def test_float_mode_is_right_on_symmetric_placements():
     exact = exact_contact(E, Q)
     region = qc.relative_position(E, Q, mode="exact")
     assert set(exact.tolist()) == {0, 1}  # both answers occur
-    assert (qc.transversal_contact(E, Q, mode="float") == exact).all()
-    assert (qc.relative_position(E, Q, mode="float") == region).all()
-    for k in range(0, len(family), 7):
-        one = qc.transversal_contact(family[k].E, family[k].Q, mode="float")
-        assert one.transversal == bool(exact[k]), family[k].name
+    kind = qc.contact_kind(E, Q, mode="exact")
+    for mode in ("float", "mpmath"):
+        assert (qc.transversal_contact(E, Q, mode=mode) == exact).all(), mode
+        assert (qc.relative_position(E, Q, mode=mode) == region).all(), mode
+        assert (qc.contact_kind(E, Q, mode=mode) == kind).all(), mode
+        for k in range(0, len(family), 7):
+            one = qc.transversal_contact(family[k].E, family[k].Q, mode=mode)
+            assert one.transversal == bool(exact[k]), (mode, family[k].name)
+            one_kind = qc.contact_kind(family[k].E, family[k].Q, mode=mode)
+            assert ContactKindCode.from_kind(one_kind) == kind[k], family[k].name
 
 
 def test_the_symmetric_family_is_hard_for_the_raw_criterion():

@@ -14,6 +14,7 @@ read a sign (:meth:`ObjectMode.signs`).
 from __future__ import annotations
 
 import contextlib
+import math
 from contextlib import AbstractContextManager
 from fractions import Fraction
 from typing import Any
@@ -455,10 +456,40 @@ class MpmathMode(ObjectMode):
         if int(dps) < 1:
             raise ValueError("dps must be positive")
         self.dps = int(dps)
+        # as for float: the crossings read from non-real roots are confirmed by a certified
+        # reading at about the same precision (a double root of a symmetric placement reads as
+        # a non-real pair at any number of digits; the pipeline then asks the separation stage)
+        self.guard = BallMode(prec=int(self.dps * 3.33) + 8)
 
     def context(self) -> AbstractContextManager[None]:
         """mpmath's working digits (:func:`~quadric_contact.exact.precision.working_precision`)."""
         return working_precision(dps=self.dps)
+
+    def separation_samples(self, c: list[np.ndarray]) -> np.ndarray:
+        """The separation stage's sample points, between the roots of ``P`` found at the
+        mode's digits (``mpmath.polyroots``): ``(n, 3)`` mpf midpoints of consecutive real
+        roots where ``P`` has four, else NaN.  Binary64 roots of the rounded coefficients
+        cannot place a point in a gap narrower than their error, where a definite member may
+        lie alone (a spheroid deep in a cone: two roots ``1e-17`` apart), and the plain
+        reading then calls the pair a crossing."""
+        import mpmath
+
+        n = len(c[0])
+        out = np.full((n, 3), math.nan, dtype=object)
+        for p in range(n):
+            coefficients = [c[j][p] for j in range(4, -1, -1)]
+            if coefficients[0] == 0:
+                continue
+            try:
+                roots = mpmath.polyroots(coefficients, maxsteps=200, extraprec=2 * mpmath.mp.prec)
+            except mpmath.libmp.libhyper.NoConvergence:
+                continue
+            scale = max(abs(r) for r in roots) or mpmath.mpf(1)
+            tiny = scale * mpmath.mpf(2) ** (-mpmath.mp.prec // 2)
+            real = sorted(mpmath.re(r) for r in roots if abs(mpmath.im(r)) <= tiny)
+            if len(real) == 4:
+                out[p] = [(real[k] + real[k + 1]) / 2 for k in range(3)]
+        return out
 
     def number(self, value: float) -> Any:
         import mpmath

@@ -416,11 +416,14 @@ def _decide_steps(mode: NumberMode, pairs: Pairs, question: str, counts: StageCo
         settle(outside, signs_first if question == "region" else ContactCode.NO_CONTACT, labels[0])
 
     # 1c. plain modes: a crossing read from non-real roots that a certified reading cannot
-    # confirm waits for the separation stage.
-    if question != "kind":
-        crossing = int(RegionCode.CONTACT) if question == "region" else int(ContactCode.CONTACT)
-        said = np.flatnonzero(~todo & (out == crossing))
-        _confirm_crossings(mode, pairs, said, out, todo, counts, labels[0])
+    # confirm waits for the separation stage (for every question: the kind of contact too).
+    crossing = {
+        "region": int(RegionCode.CONTACT),
+        "contact": int(ContactCode.CONTACT),
+        "kind": int(ContactKindCode.TRANSVERSAL),
+    }[question]
+    said = np.flatnonzero(~todo & (out == crossing))
+    _confirm_crossings(mode, pairs, said, out, todo, counts, labels[0])
 
     # 3. separation: definite members, or four simple real roots without one.
     rest = np.flatnonzero(todo)

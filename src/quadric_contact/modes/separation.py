@@ -530,7 +530,8 @@ def sample_points(coefficients: list[np.ndarray]) -> np.ndarray:
 
 def separation_objects(mode: Any, pairs: Pairs, *, certified: bool) -> np.ndarray:
     """Separation codes with the numbers of an object mode (``ball``, ``mpmath``, ``exact``):
-    sample points from approximate roots, the members' principal-minor sums in the mode's
+    sample points from approximate roots (binary64; the mode's own ``separation_samples`` where
+    it has them: the mpmath mode's roots at its digits), the members' principal-minor sums in the mode's
     numbers, their signs by :meth:`~quadric_contact.modes.objects.ObjectMode.signs`."""
     n = pairs.n
     out = np.full(n, UNCERTAIN, dtype=np.int8)
@@ -546,16 +547,21 @@ def separation_objects(mode: Any, pairs: Pairs, *, certified: bool) -> np.ndarra
         if flip.any():
             e_cols = [np.where(flip, -col, col) for col in e_cols]
         c = formulas.pencil_coefficients(*e_cols, *q_cols)
-        samples = sample_points([_approx(x) for x in c])
+        samples = sample_points([_approx(x) for x in c]).astype(object)
+        own = getattr(mode, "separation_samples", None)  # sample points in the mode's numbers
+        if own is not None:
+            mine = own(c)
+            found = np.isfinite(_approx(mine[:, 0]))
+            samples[found] = mine[found]
         counts = np.full((n, 3), -1, dtype=np.int64)
         number = mode.number
         for k in range(3):
             s = samples[:, k]
-            ok = np.isfinite(s)
+            ok = np.isfinite(_approx(s))
             if not ok.any():
                 continue
             idx = np.flatnonzero(ok)
-            sv = np.array([number(float(v)) for v in s[idx]], dtype=object)
+            sv = np.array([number(v) if isinstance(v, float) else v for v in s[idx]], dtype=object)
             member = [sv * e[idx] + qq[idx] for e, qq in zip(e_cols, q_cols, strict=True)]
             inv = kernels.quadric_invariants(*member)
             signs = [mode.signs(np.asarray(inv[j], dtype=object)) for j in range(3, 7)]
