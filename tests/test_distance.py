@@ -189,3 +189,16 @@ def _ball_of(w):
 def test_certified_symmetric_configuration_falls_back_to_exact():
     r = qc.distance(Quadric.sphere(1), "x**2 + y**2 - 9")  # the nearest points form a circle
     assert r.distance.contains(-4) and r.distance.rad() == 0 and r.point_Q is None
+
+
+def test_float_mode_answers_symmetric_sphere_pairs_in_both_forms():
+    """Two balls on an axis (a symmetric configuration the balls of the certified search leave
+    to the exact path): the float mode answers a pair as it answers the stack of one, around
+    the exact value, instead of abstaining."""
+    E = np.diag([1.0, 1.0, 1.0, -1.0])
+    Q = np.diag([1.0, 1.0, 1.0, 5.25])
+    Q[0, 3] = Q[3, 0] = -2.5  # the unit ball at (2.5, 0, 0): gap 1/2
+    one = qc.distance(E, Q, mode="float")
+    ((lo, hi),) = qc.distance(E[None], Q[None], mode="float")
+    assert not one.uncertain and one.bounds[0] <= 0.5 <= one.bounds[1]
+    assert lo <= 0.5 <= hi and one.bounds[0] <= lo and hi <= one.bounds[1]

@@ -547,3 +547,34 @@ def test_rounded_cylinders_are_decided_by_the_centre_of_q_and_agree_with_the_exa
         e, q = Quadric.from_matrix(E[k]), Quadric.from_matrix(Q[k])
         assert q.kind is K.ELLIPSOID
         assert int(got[k]) == int(overlap_exact(e, q).code), k
+
+
+def test_concentric_copies_in_every_mode():
+    """An ellipsoid and a copy of it scaled about its centre (smaller: inside; larger:
+    around): no transversal contact, and the solids overlap, in every mode and form; the plain
+    modes once called a small ball inside a large one separate (the surface of ``E`` lies
+    outside ``Q``, which is inside ``E``)."""
+    from quadric_contact.testing.samples import ellipsoid_matrix, random_rotations
+
+    rng = np.random.default_rng(8)
+    rotations = random_rotations(40, rng)
+    Es, Qs = (
+        [np.diag([1.0, 1, 1, -1])] * 2,
+        [np.diag([16 / 9, 16 / 9, 16 / 9, -1.0]), np.diag([1e12, 1e12, 1e12, -1.0])],
+    )
+    for R in rotations:
+        axes, centre = np.exp(rng.uniform(np.log(0.2), np.log(2), 3)), rng.uniform(-3, 3, 3)
+        k = float(rng.choice([0.5, 0.25, 0.9, 2.0, 1e-3, 3.0, 1.5]))
+        Es.append(ellipsoid_matrix(axes, R, centre))
+        Qs.append(ellipsoid_matrix(axes * k, R, centre))
+    E, Q = np.stack(Es), np.stack(Qs)
+    exact_overlap = qc.overlap(E, Q, mode="exact")
+    exact_contact = qc.transversal_contact(E, Q, mode="exact")
+    assert (exact_overlap == int(OverlapCode.OVERLAPPING)).all() and (exact_contact == 0).all()
+    for mode in ("certified", "float", "filter", "mpmath"):
+        got = qc.overlap(E, Q, mode=mode)
+        assert ((got == exact_overlap) | (got == int(OverlapCode.UNCERTAIN))).all(), mode
+        if mode != "filter":
+            assert (got == exact_overlap).all(), mode
+            assert (qc.transversal_contact(E, Q, mode=mode) == exact_contact).all(), mode
+        assert qc.overlap(E[0], Q[0], mode=mode).code is OverlapCode.OVERLAPPING, mode

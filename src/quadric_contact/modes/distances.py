@@ -313,12 +313,14 @@ def _float(E: Any, Q: Any) -> FloatDistance:
     e = as_quadric(E, "E").as_ellipsoid()
     K = solid_of(Q)
     try:
-        if K.kind is QuadricKind.PLANE or is_sphere(e):
-            return FloatDistance.of(*_float_bounds(*distance_certified(e, K, digits=17).bounds))
         if K.kind is QuadricKind.ELLIPSOID:
             fast = _kernel_pair(e, K)
             if fast is not None:
                 return fast
+        if K.kind is QuadricKind.PLANE or is_sphere(e):
+            c = _certified(e, K, 17)  # None: a symmetric configuration, the exact answer
+            bounds = _float_bounds(*c.bounds) if c is not None else enclosure(distance_exact(e, K).distance)
+            return FloatDistance.of(*bounds)
         convex = K.kind in CONVEX_SOLIDS
         if not convex:
             code = overlap_exact(e, K).code

@@ -282,7 +282,7 @@ def _overlap_lane_rules(
     out = _overlap_from_criterion(crit, side, True)
     out[~lane] = _UNC
     by_crit = lane & (out != _UNC)
-    values = _overlap_from_separation(sep, qsign, True, side, True)
+    values = _overlap_from_separation(sep, qsign, True, side)
     hit = lane & ~by_crit & (values != _UNC)
     out[hit] = values[hit]
     step = np.full(crit.shape, 2, dtype=np.int8)
@@ -696,7 +696,7 @@ def _overlap_steps(mode: NumberMode, pairs: Pairs, counts: StageCounts) -> np.nd
     rest = np.flatnonzero(todo)
     if rest.size:
         sep, names, which = _staged(mode, "separation", pairs.take(rest))
-        values = _overlap_from_separation(sep, qsign[rest], ellipsoid[rest], side[rest], mode.certified)
+        values = _overlap_from_separation(sep, qsign[rest], ellipsoid[rest], side[rest])
         # an ellipsoid Q whose side step 1 could not read (a rounded cylinder or paraboloid,
         # nearly singular): the surface of E misses Q's solid, so either the solids are apart
         # or Q is inside E, and the centre of Q (in its solid) tells which
@@ -755,21 +755,20 @@ def _overlap_from_criterion(crit: np.ndarray, side: np.ndarray, sided_solid: Any
     return values
 
 
-def _overlap_from_separation(
-    sep: np.ndarray, qsign: Any, ellipsoid: Any, side: np.ndarray, certified: bool
-) -> np.ndarray:
+def _overlap_from_separation(sep: np.ndarray, qsign: Any, ellipsoid: Any, side: np.ndarray) -> np.ndarray:
     """Step 2 of the overlap question, from separation codes: a crossing, or ``E`` strictly in
     the solid, overlapping; ``E`` strictly outside, separate -- except that an ellipsoid ``Q``
-    may lie inside ``E``: there the certified modes need the two positive roots of step 1
-    (``side`` 1)."""
+    may lie inside ``E``: there every mode needs the two positive roots of step 1 (``side`` 1),
+    and without them the side of ``E`` the centre of ``Q`` is on decides (:func:`_centre_side`,
+    in :func:`_overlap_steps`).  (A plain mode that took "outside" for "apart" called a small
+    ball inside a large one separate.)"""
     sep_side = np.where((sep == SEP_MINUS) | (sep == SEP_PLUS), sep * qsign, sep)
     values = np.full(sep.shape, _UNC, dtype=np.int8)
     values[(sep_side == CROSSING) | (sep_side == SEP_MINUS)] = OverlapCode.OVERLAPPING
     outside = sep_side == SEP_PLUS
     two_positive = side == int(RegionCode.R_PLUS)
-    sure = two_positive if certified else np.ones(sep.shape, dtype=bool)
     not_ellipsoid = np.logical_not(np.asarray(ellipsoid, dtype=bool))  # a mask, also for a scalar
-    values[outside & (not_ellipsoid | sure)] = OverlapCode.SEPARATE
+    values[outside & (not_ellipsoid | two_positive)] = OverlapCode.SEPARATE
     return values
 
 
