@@ -10,6 +10,7 @@ import pytest
 from tests.oracles import criterion_contact as transversal_contact_batch
 from tests.oracles import criterion_region as relative_position_batch
 
+import quadric_contact as qc
 from quadric_contact import (
     NonFiniteError,
     NotAnEllipsoidError,
@@ -460,3 +461,34 @@ def test_certified_equals_exact_on_many_random_pairs(predicate):
     mode = CertifiedMode()
     assert (predicate(E, Q, mode=mode) == predicate(E, Q, mode="exact")).all()
     assert mode.last.escalated > 0  # the rounded cylinders and parallel planes
+
+
+def test_input_binary64_cannot_hold_is_decided_exactly_in_every_mode():
+    """Exact input beyond binary64's range or below its normal numbers: its rounding is no
+    longer the same quadric (a ball of radius ``1e-200`` rounds to a point), so the filters
+    leave it and the plain modes decide it exactly; every mode and form gives the exact answer."""
+    unit = "x**2 + y**2 + z**2 - 1"
+    tiny_ball = "x**2 + y**2 + z**2 - 1e-400"
+    huge = "1e309*x**2 + y**2 + z**2 - 1"
+    S2 = np.diag([1.0, 1.0, 1.0, -4.0])
+    for mode in ("certified", "float", "mpmath", "exact"):
+        assert qc.overlap(unit, [tiny_ball], mode=mode).tolist() == [int(qc.OverlapCode.OVERLAPPING)], mode
+        assert qc.overlap(unit, tiny_ball, mode=mode).code is qc.OverlapCode.OVERLAPPING, mode
+        assert qc.transversal_contact(huge, S2, mode=mode).transversal is False, mode
+        assert qc.transversal_contact([huge], S2, mode=mode).tolist() == [0], mode
+        assert qc.relative_position(huge, S2, mode=mode).region is qc.Region.R_MINUS, mode
+
+
+def test_matrices_of_wide_range_are_classified_without_a_crash():
+    """Signs of invariants that no quadric has together (a completion of uncertain signs with
+    ``rank A = 0`` and ``rank Q = 4``) are skipped, not looked up: a quadric whose entries span
+    a wide range of magnitudes is answered, as the exact mode answers it."""
+    S = np.diag([1.0, 1.0, 1.0, -1.0])
+    for Q in (np.diag([1.0, 1.0, 1.0, -4.0]) * 1e60, np.diag([1.0, 1.0, 1e-300, -1.0])):
+        want = qc.transversal_contact(S[None], Q[None], mode="exact").tolist()
+        for mode in ("certified", "float"):
+            assert qc.transversal_contact(S[None], Q[None], mode=mode).tolist() == want, mode
+            assert (
+                qc.relative_position(S[None], Q[None], mode=mode).tolist()
+                == qc.relative_position(S[None], Q[None], mode="exact").tolist()
+            ), mode

@@ -372,4 +372,6 @@ def kind_from_inertia(ia: Inertia, iq: Inertia) -> QuadricKind:
         if rQ == 2:
             return QuadricKind.PARALLEL_PLANES if iq.negative == 1 else QuadricKind.IMAGINARY_PARALLEL_PLANES
         return QuadricKind.COINCIDENT_PLANES
+    if rQ > 2:
+        raise ValueError(f"no quadric has a quadratic part of rank 0 and a matrix of rank {rQ}")
     return {2: QuadricKind.PLANE, 1: QuadricKind.EMPTY, 0: QuadricKind.ZERO}[rQ]

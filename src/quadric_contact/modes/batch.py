@@ -230,12 +230,21 @@ def _exact_stack(uppers: list[tuple[Fraction, ...]], batch: tuple[int, ...], nam
 
 
 def _round(v: Fraction) -> float:
-    """Correctly rounded binary64 value of ``v``, or inf when it overflows (the filter
-    then leaves the entry to the later stages)."""
+    """Correctly rounded binary64 value of ``v``, or inf (of its sign) where binary64 cannot
+    hold it with a relative error of at most ``u``: beyond its range, or below its normal
+    numbers (a non-zero entry rounded to zero or to a subnormal number changed the quadric:
+    ``x^2 + y^2 + z^2 - 10^-400`` would become a point).  The filters then leave the entry to
+    the later stages, and the plain modes to the exact ones."""
     try:
-        return float(v)
+        f = float(v)
     except OverflowError:
         return math.inf if v > 0 else -math.inf
+    if v != 0 and abs(f) < _NORMAL_MIN:
+        return math.inf if v > 0 else -math.inf
+    return f
+
+
+_NORMAL_MIN = 2.0**-1022
 
 
 def make_pairs(E: MatrixStack, Q: MatrixStack) -> tuple[Pairs, tuple[int, ...]]:

@@ -228,6 +228,19 @@ def kind_from_invariant_signs(signs: tuple[int, ...]) -> tuple[QuadricKind, int]
     return kind, sign
 
 
+@cache
+def _row_of_signs(signs: tuple[int, ...]) -> int | None:
+    """The row of the invariant signs ``signs`` (all certain), or None where no quadric has
+    them: ``rank A <= rank Q <= rank A + 2`` for every quadric (bordering ``A`` adds a row and
+    a column), and a completion of uncertain signs, or a plain mode's rounded reading, can
+    break it (``A`` of rank 0 with ``Q`` of rank 4)."""
+    ra = inertia_from_minor_sums(signs[:3]).rank
+    rq = inertia_from_minor_sums(signs[3:7]).rank
+    if not ra <= rq <= ra + 2:
+        return None
+    return row_of(*kind_from_invariant_signs(signs))
+
+
 def masks_from_invariant_signs(signs: np.ndarray) -> np.ndarray:
     """Candidate rows for an ``(n, 8)`` int8 array of invariant signs, as int64 bit masks
     (bit ``r`` for row ``r``): one bit where the signs are certain, the rows of every type
@@ -245,8 +258,8 @@ def masks_from_invariant_signs(signs: np.ndarray) -> np.ndarray:
     masks = np.zeros(1 << 16, dtype=np.int64)
     for k in present:
         combo = tuple(int((k >> (2 * j)) & 3) - 1 for j in range(8))
-        rows = {row_of(*kind_from_invariant_signs(c)) for c in _completions(combo)}
-        masks[k] = sum(1 << r for r in rows)
+        rows = {row for c in _completions(combo) if (row := _row_of_signs(c)) is not None}
+        masks[k] = sum(1 << r for r in rows)  # 0 (uncertain) if no quadric has these signs
     out[:] = masks[key]
     return out
 

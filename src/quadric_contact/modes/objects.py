@@ -174,8 +174,11 @@ def _proportional_exact(pairs: Pairs, e_rows: np.ndarray, q_rows: np.ndarray) ->
     quad = (0, 1, 2, 4, 5, 7)
     ue, ie = np.unique(e_rows, return_inverse=True)
     uq, iq = np.unique(q_rows, return_inverse=True)
-    ecols = pairs.E.upper_exact(ue)
-    qcols = pairs.Q.upper_exact(uq)
+    # as Fractions: a binary64 entry times a Fraction would be taken in binary64 (and overflow
+    # for an exact entry beyond its range)
+    exact = np.frompyfunc(Fraction, 1, 1)
+    ecols = [exact(c) for c in pairs.E.upper_exact(ue)]
+    qcols = [exact(c) for c in pairs.Q.upper_exact(uq)]
     out = np.ones(len(e_rows), dtype=bool)
     e00, q00 = ecols[0][ie], qcols[0][iq]
     for t in quad[1:]:

@@ -61,6 +61,7 @@ from quadric_contact.model.classification import (
     TABLE_1_KINDS,
     QuadricKind,
 )
+from quadric_contact.modes import errorbounds as eb
 from quadric_contact.modes.base import (
     ContactCode,
     ContactKindCode,
@@ -218,6 +219,61 @@ def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
     if pairs.n == 0:
         mode._record(counts)
         return np.full(0, _UNC, dtype=np.int8)
+    beyond, keep = _beyond_binary64(mode, pairs)
+    if beyond.size:
+        out = np.full(pairs.n, _UNC, dtype=np.int8)
+        out[beyond] = _exact_pairs(pairs, beyond, question)
+        counts.add(_BEYOND, int(beyond.size))
+        if keep.size:
+            out[keep] = _decide_pairs(mode, pairs.take(keep), question, counts)
+    else:
+        out = _decide_pairs(mode, pairs, question, counts)
+    mode._record(counts)
+    return out
+
+
+_BEYOND = "exact pair (beyond binary64)"
+
+
+def _beyond_binary64(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, np.ndarray]:
+    """For a plain mode: the pairs whose exact input binary64 cannot hold (an entry rounded to
+    inf by :func:`~quadric_contact.modes.batch._round`: beyond its range, or below its normal
+    numbers), which its binary64 reading would not describe, and the others.  A certified
+    mode's filters leave such entries by their guards: none."""
+    none = np.zeros(0, dtype=np.intp)
+    if mode.certified or (pairs.E.exact is None and pairs.Q.exact is None):
+        return none, np.arange(pairs.n)
+    bad = np.zeros(pairs.n, dtype=bool)
+    for stack, rows_at in ((pairs.E, pairs.e_rows_at), (pairs.Q, pairs.q_rows_at)):
+        if stack.exact is not None:
+            finite = np.isfinite(stack.floats.reshape(len(stack), -1)).all(axis=1)
+            bad |= ~finite[rows_at(np.arange(pairs.n))]
+    return np.flatnonzero(bad), np.flatnonzero(~bad)
+
+
+_OUTSIDE = "exact pair (outside binary64's range)"
+
+
+def _outside_range(mode: NumberMode, pairs: Pairs) -> np.ndarray:
+    """For a plain mode: the pairs with a non-zero entry outside ``[INPUT_MIN, INPUT_MAX]``
+    (:mod:`quadric_contact.modes.errorbounds`), where the binary64 programs of the criterion and
+    the separation can overflow or underflow and read signs of nothing (a matrix scaled by
+    ``1e78``, the same quadric, read as a crossing): the steps decide them exactly.  The fast
+    kernels leave such pairs to the steps by their guard, so only those few are looked at.  A
+    certified mode's filters leave them by the same guard: none here."""
+    if mode.certified or pairs.n == 0:
+        return np.zeros(0, dtype=np.intp)
+    bad = np.zeros(pairs.n, dtype=bool)
+    for stack, rows in ((pairs.E, pairs.e_rows()), (pairs.Q, pairs.q_rows())):
+        used, back = np.unique(rows, return_inverse=True)
+        a = np.abs(stack.rows_floats(used).reshape(len(used), -1))
+        inside = (a == 0) | ((a >= eb.INPUT_MIN) & (a <= eb.INPUT_MAX))
+        bad |= ~inside.all(axis=1)[back]
+    return np.flatnonzero(bad)
+
+
+def _decide_pairs(mode: NumberMode, pairs: Pairs, question: str, counts: StageCounts) -> np.ndarray:
+    """:func:`_decide` for pairs binary64 holds (the counts go to ``counts``)."""
     lane = _lane(mode, pairs, question, counts)
     if lane is None:
         out = _decide_steps(mode, pairs, question, counts)
@@ -225,7 +281,6 @@ def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
         out, rest = lane
         if rest.size:
             out[rest] = _decide_steps(mode, pairs.take(rest), question, counts)
-    mode._record(counts)
     return out
 
 
@@ -362,6 +417,11 @@ def _decide_steps(mode: NumberMode, pairs: Pairs, question: str, counts: StageCo
             out[at] = values
             todo[at] = False
         counts.add(label, int(at.size))
+
+    # 0. plain modes: pairs outside the binary64 programs' range, exactly
+    far = _outside_range(mode, pairs)
+    if far.size:
+        settle_at(far, _exact_pairs(pairs, far, question), _OUTSIDE)
 
     # 1. criterion: the root structure of P (validates the input on the way).
     klass, qsign, ellipsoid = _classes(mode, pairs)
@@ -649,13 +709,21 @@ def _decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
     if pairs.n == 0:
         mode._record(counts)
         return np.full(0, _UNC, dtype=np.int8)
-    lane = _lane(mode, pairs, "overlap", counts)
-    if lane is None:
-        out = _overlap_steps(mode, pairs, counts)
-    else:
-        out, rest = lane
-        if rest.size:
-            out[rest] = _overlap_steps(mode, pairs.take(rest), counts)
+    beyond, keep = _beyond_binary64(mode, pairs)
+    out = np.full(pairs.n, _UNC, dtype=np.int8)
+    if beyond.size:
+        out[beyond] = _exact_overlaps(pairs, beyond)
+        counts.add(_BEYOND, int(beyond.size))
+        pairs = pairs.take(keep)
+    if pairs.n:
+        lane = _lane(mode, pairs, "overlap", counts)
+        if lane is None:
+            values = _overlap_steps(mode, pairs, counts)
+        else:
+            values, rest = lane
+            if rest.size:
+                values[rest] = _overlap_steps(mode, pairs.take(rest), counts)
+        out[keep] = values
     mode._record(counts)
     return out
 
@@ -673,6 +741,13 @@ def _overlap_steps(mode: NumberMode, pairs: Pairs, counts: StageCounts) -> np.nd
             _blend(out, which, values)
             np.logical_and(todo, np.logical_not(which), out=todo)
         counts.add(label, k)
+
+    # 0. plain modes: pairs outside the binary64 programs' range, exactly
+    far = _outside_range(mode, pairs)
+    if far.size:
+        out[far] = _exact_overlaps(pairs, far)
+        todo[far] = False
+        counts.add(_OUTSIDE, int(far.size))
 
     # 1. criterion: root structure and signs (validates the input on the way).  Non-real roots
     # come from the whole cascade, the side from its first stage only, as for the region
