@@ -323,3 +323,44 @@ def test_text_is_still_read_where_it_is_valid():
 
 def test_modules_imported_by_this_test_are_the_packages():
     assert sys.modules["quadric_contact"].__file__ == qc.__file__
+
+
+def test_a_boolean_entry_is_refused_in_every_form():
+    """``True`` is not a number in a single matrix, and not in a stack either (numpy would
+    read it as 1 in a list of numbers)."""
+    Q = [[True, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, -4]]
+    E = "x**2 + y**2 + z**2 - 1"
+    for form in (Q, [Q], (Q,)):
+        with pytest.raises(qc.NotANumberError):
+            qc.transversal_contact(E, form)
+
+
+def test_root_counts_take_any_exact_number_and_refuse_the_rest():
+    """numpy integers and binary64 values are the exact numbers they store; a NaN, a boolean or a
+    complex number is refused with the package's errors."""
+    import numpy as np
+
+    want = qc.root_signs([1, 2, 3, 4, 5]).pattern
+    assert qc.root_signs(np.array([1, 2, 3, 4, 5])).pattern == want
+    assert qc.root_signs([np.int64(v) for v in (1, 2, 3, 4, 5)]).pattern == want
+    assert (
+        qc.root_structure(np.array([1.0, 2, 3, 4, 5])).describe()
+        == qc.root_structure([1, 2, 3, 4, 5]).describe()
+    )
+    for bad, error in (
+        ([1, 2, float("nan"), 4, 5], qc.NonFiniteError),
+        ([True, 1, 1, 1, 1], qc.NotANumberError),
+    ):
+        with pytest.raises(error):
+            qc.root_signs(bad)
+
+
+def test_first_contact_scales_beyond_binary64_are_answered_or_refused_by_the_work_bound():
+    """A root of the scale polynomial beyond binary64's range is bracketed in exact arithmetic:
+    an answer, or the package's bound on the work, never an overflow."""
+    r = qc.contact_scale("x**2 + y**2 + z**2 - 1", "x**2 + y**2 + z**2 - 1e320")
+    assert r.scale == 10**160
+    from quadric_contact.exact.errors import WorkLimitError
+
+    with pytest.raises(WorkLimitError):
+        qc.contact_scale("x**2 + y**2 + z**2 - 1", "x - 1e310")

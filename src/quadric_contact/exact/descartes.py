@@ -16,7 +16,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from quadric_contact.exact.algebraic import real_roots
-from quadric_contact.exact.discriminants import RootStructure, root_structure, strip
+from quadric_contact.exact.discriminants import RootStructure, exact_coefficients, root_structure, strip
 
 __all__ = ["RootSigns", "root_signs", "sign_variations"]
 
@@ -128,7 +128,7 @@ def root_signs(coeffs: Sequence[Any], structure: RootStructure | None = None) ->
     >>> root_signs([F(1, 4), F(-933, 80), F(273, 8), F(3659, 80), F(-3, 10)]).pattern
     '-+++'
     """
-    c = strip(coeffs)
+    c = strip(exact_coefficients(coeffs))
     if structure is None:
         structure = root_structure(c)
     zero = next(i for i, v in enumerate(c) if v != 0)

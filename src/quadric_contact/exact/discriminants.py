@@ -30,7 +30,7 @@ from typing import Any
 
 from quadric_contact._generated import formulas
 from quadric_contact.exact.errors import DegeneratePencilError
-from quadric_contact.exact.rational import sign
+from quadric_contact.exact.rational import sign, to_fraction
 
 __all__ = [
     "RootStructure",
@@ -47,6 +47,13 @@ _SEQUENCES: dict[int, Any] = {
     3: formulas.discrimination_sequence_3,
     4: formulas.discrimination_sequence_4,
 }
+
+
+def exact_coefficients(coeffs: Sequence[Any]) -> list[Any]:
+    """The coefficients as exact numbers: ints and Fractions as they are, anything else through
+    :func:`~quadric_contact.exact.rational.to_fraction` (numpy integers, binary64 values as the
+    dyadic rationals they store, decimal strings; a bool, NaN or complex is refused there)."""
+    return [x if type(x) in (int, Fraction) else to_fraction(x) for x in coeffs]
 
 
 def strip(coeffs: Sequence[Any]) -> list[Any]:
@@ -329,7 +336,7 @@ def root_structure(coeffs: Sequence[Any]) -> RootStructure:
     >>> root_structure([-16, -64, -67, -12, -12]).describe()   # Example 11
     '2 real (1 distinct, multiplicities [2]), 2 non-real (1 distinct pair(s))'
     """
-    c = strip(coeffs)
+    c = strip(exact_coefficients(coeffs))
     if not c:
         raise DegeneratePencilError("the polynomial vanishes identically", tuple(coeffs))
     n = len(c) - 1

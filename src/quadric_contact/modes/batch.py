@@ -152,8 +152,9 @@ def as_stack(value: Any, name: str = "M") -> MatrixStack:
         raise ShapeError(f"{name} must have shape (4, 4) or (..., 4, 4), got {arr.shape}", value)
     batch = arr.shape[:-2]
     kind = arr.dtype.kind
-    if kind == "b":
-        raise NotANumberError(f"{name} is a boolean array, not a matrix of numbers", value)
+    if kind == "b" or (kind in "iuf" and isinstance(value, (list, tuple)) and _holds_bool(value)):
+        # (numpy reads True as 1 in a list of numbers; a single matrix refuses it too)
+        raise NotANumberError(f"{name} holds a boolean, not a number", value)
     if kind == "c":
         raise NotANumberError(f"{name} is complex, not real", value)
     if kind == "f" and arr.dtype.itemsize <= 8:
@@ -165,6 +166,18 @@ def as_stack(value: Any, name: str = "M") -> MatrixStack:
     if kind in "iu":
         return _exact_stack(_object_upper(arr.reshape(-1, 4, 4).astype(object), name), batch, name)
     return _exact_stack(_object_upper(arr.reshape(-1, 4, 4), name), batch, name)
+
+
+def _holds_bool(value: Any) -> bool:
+    """A (nested) list or tuple holds a ``bool`` (or ``numpy.bool_``) somewhere."""
+    todo = [value]
+    while todo:
+        v = todo.pop()
+        if isinstance(v, (list, tuple)):
+            todo.extend(v)
+        elif isinstance(v, (bool, np.bool_)):
+            return True
+    return False
 
 
 def _packed_stack(value: Any, name: str) -> MatrixStack:

@@ -54,6 +54,7 @@ and the contact function, J. Comput. Phys. 58 (1985) 409-416.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from fractions import Fraction
@@ -366,7 +367,9 @@ def _upper_bound(R: Any) -> Fraction:
 
 
 def _beyond(t: RealAlgebraic) -> Fraction:
-    return Fraction(int(float(t.hi)) + 1) * 2 + 1
+    """A rational beyond ``t`` (``2 (floor(hi) + 1) + 1``), in exact arithmetic: ``t`` may lie
+    beyond binary64's range."""
+    return Fraction(math.floor(Fraction(t.hi)) + 1) * 2 + 1
 
 
 def _below(t: RealAlgebraic) -> Fraction:
