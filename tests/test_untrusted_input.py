@@ -364,3 +364,17 @@ def test_first_contact_scales_beyond_binary64_are_answered_or_refused_by_the_wor
 
     with pytest.raises(WorkLimitError):
         qc.contact_scale("x**2 + y**2 + z**2 - 1", "x - 1e310")
+
+
+def test_sympy_expressions_are_bounded_before_they_are_expanded():
+    """A sympy expression with a huge power is refused before expansion (it would not finish);
+    one whose numbers are too long to print is refused with a message that says so; powers that
+    cancel still make a quadric."""
+    import sympy as sp
+
+    x, y, z = sp.symbols("x y z")
+    with pytest.raises(qc.EquationError, match="degree <= 2"):
+        qc.Quadric.from_equation(sp.Pow(x, 10**9, evaluate=False) + y**2)
+    with pytest.raises(qc.EquationError, match="too long to print"):
+        qc.transversal_contact(x**2 + y**2 + z**2 - sp.Integer(10) ** 5000, "x**2 + y**2 + z**2 - 4")
+    assert qc.Quadric.from_equation((x + 1) ** 3 - x**3 + y**2 + z**2 - 5).kind is qc.QuadricKind.ELLIPSOID

@@ -780,33 +780,56 @@ def _sympy_equation_entries(equation: Any) -> tuple[Fraction, ...]:
             f"expected a string or a sympy expression, got {type(equation).__name__}", equation
         )
     if not isinstance(expr, sympy.Expr):
-        raise EquationError(f"{equation!r} is not an algebraic expression", equation)
+        raise EquationError(f"{_shown(equation)} is not an algebraic expression", equation)
     xyz = sympy.symbols("x y z")
     others = expr.free_symbols - set(xyz)
     if others:
         raise EquationError(
-            f"{equation!r} has other symbols than x, y, z: {sorted(map(str, others))}", equation
+            f"{_shown(equation)} has other symbols than x, y, z: {sorted(map(str, others))}", equation
         )
+    for power in expr.atoms(sympy.Pow):
+        # checked before expanding, which (x + 1)**(10**9) would not survive; a power up to
+        # _MAX_POWER may cancel out, as in (x + 1)**3 - x**3 (a quadric)
+        exponent = power.exp
+        if power.base.free_symbols and exponent.is_Number and abs(exponent) > _MAX_POWER:
+            raise EquationError(
+                f"{_shown(equation)} has a power {_shown(power)}; a quadric has degree <= 2", equation
+            )
     if expr.has(sympy.nan, sympy.oo, -sympy.oo, sympy.zoo):
-        raise EquationError(f"{equation!r} has a non-finite coefficient", equation)
+        raise EquationError(f"{_shown(equation)} has a non-finite coefficient", equation)
     try:
         poly = sympy.Poly(sympy.expand(expr), *xyz)
     except sympy.PolynomialError as exc:
-        raise EquationError(f"{equation!r} is not a polynomial in x, y, z", equation) from exc
+        raise EquationError(f"{_shown(equation)} is not a polynomial in x, y, z", equation) from exc
     if poly.total_degree() > 2:
         raise EquationError(
-            f"{equation!r} has degree {poly.total_degree()}; a quadric has degree <= 2", equation
+            f"{_shown(equation)} has degree {poly.total_degree()}; a quadric has degree <= 2", equation
         )
     if poly.free_symbols_in_domain:
         others_d = sorted(map(str, poly.free_symbols_in_domain))
-        raise EquationError(f"{equation!r} has other symbols than x, y, z: {others_d}", equation)
+        raise EquationError(f"{_shown(equation)} has other symbols than x, y, z: {others_d}", equation)
     terms: dict[tuple[int, ...], Fraction] = {}
     for monomial, c in poly.terms():
         try:
             terms[tuple(int(e) for e in monomial)] = to_fraction(c)
         except (NotRationalError, NotANumberError, NonFiniteError) as exc:
-            raise EquationError(f"coefficient {c} of {monomial} in {equation!r}: {exc}", equation) from exc
+            where = f"coefficient {_shown(c)} of {monomial} in {_shown(equation)}"
+            raise EquationError(f"{where}: {exc}", equation) from exc
     return quadric_entries(terms)
+
+
+_MAX_POWER = 16
+"""The largest power of x, y, z a sympy expression may hold before it is expanded."""
+
+
+def _shown(x: Any, limit: int = 120) -> str:
+    """``x`` as text for a message, cut to ``limit`` characters (a number of more digits than
+    Python converts to text is named, not printed)."""
+    try:
+        text = repr(x)
+    except ValueError:
+        return "<an expression with a number too long to print>"
+    return text if len(text) <= limit else text[: limit - 3] + "..."
 
 
 def as_quadric(value: Any, name: str = "argument") -> Quadric:
