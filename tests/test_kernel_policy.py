@@ -49,7 +49,8 @@ print(json.dumps(out))
 def _run(code: str, cache: Path, policy: str, *args: str) -> subprocess.CompletedProcess[str]:
     env = dict(
         os.environ,
-        NUMBA_CACHE_DIR=str(cache),
+        NUMBA_CACHE_DIR=str(cache),  # a kernel outside the package
+        QUADRIC_CONTACT_CACHE_DIR=str(cache),  # the package's kernels (this variable comes first)
         QUADRIC_CONTACT_KERNELS=policy,
         PYTHONPATH=os.pathsep.join([str(ROOT / "src"), str(ROOT)]),
     )

@@ -1081,7 +1081,7 @@ def cold_start() -> dict[str, Any]:
         for run_, policy in (("fresh", "twins"), ("compiling", "wait"), ("warm", "wait")):
             env = dict(
                 os.environ,
-                NUMBA_CACHE_DIR=cache,
+                QUADRIC_CONTACT_CACHE_DIR=cache,
                 QUADRIC_CONTACT_KERNELS=policy,
                 PYTHONPATH=src + os.pathsep + os.environ.get("PYTHONPATH", ""),
             )
