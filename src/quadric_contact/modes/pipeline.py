@@ -265,7 +265,7 @@ def _outside_range(mode: NumberMode, pairs: Pairs) -> np.ndarray:
         return np.zeros(0, dtype=np.intp)
     bad = np.zeros(pairs.n, dtype=bool)
     for stack, rows in ((pairs.E, pairs.e_rows()), (pairs.Q, pairs.q_rows())):
-        used, back = np.unique(rows, return_inverse=True)
+        used, back = unique_rows(rows, len(stack), return_inverse=True)
         a = np.abs(stack.rows_floats(used).reshape(len(used), -1))
         inside = (a == 0) | ((a >= eb.INPUT_MIN) & (a <= eb.INPUT_MAX))
         bad |= ~inside.all(axis=1)[back]
