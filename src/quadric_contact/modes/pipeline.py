@@ -61,7 +61,6 @@ from quadric_contact.model.classification import (
     TABLE_1_KINDS,
     QuadricKind,
 )
-from quadric_contact.modes import errorbounds as eb
 from quadric_contact.modes.base import (
     ContactCode,
     ContactKindCode,
@@ -73,6 +72,7 @@ from quadric_contact.modes.base import (
 from quadric_contact.modes.decisions import KINDS, UNCERTAIN_ROW, rows_from_masks
 from quadric_contact.modes.integers import integer_rows
 from quadric_contact.modes.kernels_decision import CODE_RANGES
+from quadric_contact.modes.kernels_range import rows_in_range
 from quadric_contact.modes.rows import unique_rows
 from quadric_contact.modes.separation import CROSSING, SEP_MINUS, SEP_PLUS
 
@@ -238,11 +238,11 @@ _BEYOND = "exact pair (beyond binary64)"
 def _beyond_binary64(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, np.ndarray]:
     """For a plain mode: the pairs whose exact input binary64 cannot hold (an entry rounded to
     inf by :func:`~quadric_contact.modes.batch._round`: beyond its range, or below its normal
-    numbers), which its binary64 reading would not describe, and the others.  A certified
-    mode's filters leave such entries by their guards: none."""
+    numbers), which its binary64 reading would not describe, and the others (only where there
+    is such a pair).  A certified mode's filters leave such entries by their guards: none."""
     none = np.zeros(0, dtype=np.intp)
     if mode.certified or (pairs.E.exact is None and pairs.Q.exact is None):
-        return none, np.arange(pairs.n)
+        return none, none  # (no pair beyond: the others are all of them)
     bad = np.zeros(pairs.n, dtype=bool)
     for stack, rows_at in ((pairs.E, pairs.e_rows_at), (pairs.Q, pairs.q_rows_at)):
         if stack.exact is not None:
@@ -256,19 +256,18 @@ _OUTSIDE = "exact pair (outside binary64's range)"
 
 def _outside_range(mode: NumberMode, pairs: Pairs) -> np.ndarray:
     """For a plain mode: the pairs with a non-zero entry outside ``[INPUT_MIN, INPUT_MAX]``
-    (:mod:`quadric_contact.modes.errorbounds`), where the binary64 programs of the criterion and
-    the separation can overflow or underflow and read signs of nothing (a matrix scaled by
-    ``1e78``, the same quadric, read as a crossing): the steps decide them exactly.  The fast
-    kernels leave such pairs to the steps by their guard, so only those few are looked at.  A
-    certified mode's filters leave them by the same guard: none here."""
+    (:func:`~quadric_contact.modes.kernels_range.rows_in_range`), where the binary64 programs of
+    the criterion and the separation can overflow or underflow and read signs of nothing (a
+    matrix scaled by ``1e78``, the same quadric, read as a crossing): the steps decide them
+    exactly.  A certified mode's filters leave such pairs by the same guard: none here."""
     if mode.certified or pairs.n == 0:
         return np.zeros(0, dtype=np.intp)
     bad = np.zeros(pairs.n, dtype=bool)
     for stack, rows in ((pairs.E, pairs.e_rows()), (pairs.Q, pairs.q_rows())):
         used, back = unique_rows(rows, len(stack), return_inverse=True)
-        a = np.abs(stack.rows_floats(used).reshape(len(used), -1))
-        inside = (a == 0) | ((a >= eb.INPUT_MIN) & (a <= eb.INPUT_MAX))
-        bad |= ~inside.all(axis=1)[back]
+        whole = stack.packed is None and 2 * len(used) >= len(stack)  # no copy of the rows used
+        inside = rows_in_range(stack.floats)[used] if whole else rows_in_range(stack.rows_floats(used))
+        bad |= ~inside[back]
     return np.flatnonzero(bad)
 
 
@@ -710,21 +709,26 @@ def _decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
         mode._record(counts)
         return np.full(0, _UNC, dtype=np.int8)
     beyond, keep = _beyond_binary64(mode, pairs)
-    out = np.full(pairs.n, _UNC, dtype=np.int8)
     if beyond.size:
+        out = np.full(pairs.n, _UNC, dtype=np.int8)
         out[beyond] = _exact_overlaps(pairs, beyond)
         counts.add(_BEYOND, int(beyond.size))
-        pairs = pairs.take(keep)
-    if pairs.n:
-        lane = _lane(mode, pairs, "overlap", counts)
-        if lane is None:
-            values = _overlap_steps(mode, pairs, counts)
-        else:
-            values, rest = lane
-            if rest.size:
-                values[rest] = _overlap_steps(mode, pairs.take(rest), counts)
-        out[keep] = values
+        if keep.size:
+            out[keep] = _overlap_pairs(mode, pairs.take(keep), counts)
+    else:
+        out = _overlap_pairs(mode, pairs, counts)
     mode._record(counts)
+    return out
+
+
+def _overlap_pairs(mode: NumberMode, pairs: Pairs, counts: StageCounts) -> np.ndarray:
+    """:func:`_decide_overlap` for pairs binary64 holds: the lane, then the steps."""
+    lane = _lane(mode, pairs, "overlap", counts)
+    if lane is None:
+        return _overlap_steps(mode, pairs, counts)
+    out, rest = lane
+    if rest.size:
+        out[rest] = _overlap_steps(mode, pairs.take(rest), counts)
     return out
 
 
