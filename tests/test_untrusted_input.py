@@ -378,3 +378,12 @@ def test_sympy_expressions_are_bounded_before_they_are_expanded():
     with pytest.raises(qc.EquationError, match="too long to print"):
         qc.transversal_contact(x**2 + y**2 + z**2 - sp.Integer(10) ** 5000, "x**2 + y**2 + z**2 - 4")
     assert qc.Quadric.from_equation((x + 1) ** 3 - x**3 + y**2 + z**2 - 5).kind is qc.QuadricKind.ELLIPSOID
+
+
+def test_a_distance_beyond_the_binary64_search_is_refused_at_once():
+    """A disc of thickness ``1e-200`` against a ball: the certified search runs in binary64
+    intervals, which cannot hold its constants; it refuses the pair before searching (it used
+    to walk a rounding loop ulp by ulp, without end)."""
+    ball = np.diag([1.0, 1.0, 1.0, -4.0])
+    with pytest.raises(qc.UndecidedError, match="beyond the range of the binary64 search"):
+        qc.distance("1e400*x**2 + y**2 + z**2 - 1", ball)

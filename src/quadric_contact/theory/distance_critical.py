@@ -186,7 +186,21 @@ class IV:
         return IV(self.lo[idx], self.hi[idx])
 
 
+_IV_RANGE = (Fraction(1, 2**1000), Fraction(2**1000))
+"""The magnitudes a constant of the binary64 search may have: beyond them its intervals would
+lose their relative precision (or the rounding loops below would walk ulp by ulp)."""
+
+
+def _in_iv_range(q: Fraction) -> None:
+    if q != 0 and not _IV_RANGE[0] <= abs(q) <= _IV_RANGE[1]:
+        raise UndecidedError(
+            "the pair's constants lie beyond the range of the binary64 search (magnitudes "
+            "2^-1000 .. 2^1000): a matrix scaled far from 1, or an ellipsoid of extreme proportions"
+        )
+
+
 def _iv_of_fraction(q: Fraction) -> IV:
+    _in_iv_range(q)
     f = float(q)
     lo = f if Fraction(f) <= q else float(_dn(f))
     hi = f if Fraction(f) >= q else float(_up(f))
@@ -194,6 +208,7 @@ def _iv_of_fraction(q: Fraction) -> IV:
 
 
 def _iv_sqrt_fraction(q: Fraction) -> IV:
+    _in_iv_range(q)
     f = math.sqrt(float(q))
     lo, hi = float(_dn(f)), float(_up(f))
     while Fraction(lo) ** 2 > q:
