@@ -387,3 +387,18 @@ def test_a_distance_beyond_the_binary64_search_is_refused_at_once():
     ball = np.diag([1.0, 1.0, 1.0, -4.0])
     with pytest.raises(qc.UndecidedError, match="beyond the range of the binary64 search"):
         qc.distance("1e400*x**2 + y**2 + z**2 - 1", ball)
+
+
+def test_distance_options_are_checked_with_the_package_errors():
+    """A mode the distance does not know is a ``ChoiceError`` naming the choices (as for the
+    other predicates), and ``digits`` must be a positive integer."""
+    from quadric_contact.exact.errors import ChoiceError
+
+    E, Q = "x**2 + y**2 + z**2 - 1", "x - 3"
+    with pytest.raises(ChoiceError, match="certified, exact, float"):
+        qc.distance(E, Q, mode="fast")
+    with pytest.raises(ChoiceError):
+        qc.contact_scale(E, Q, mode="float")
+    for digits in (-5, 0, None, 2.5, True):
+        with pytest.raises(qc.NotANumberError, match="digits"):
+            qc.distance(E, Q, digits=digits)

@@ -39,7 +39,14 @@ import flint
 import numpy as np
 
 from quadric_contact.exact.algebraic import RealAlgebraic
-from quadric_contact.exact.errors import SYMMETRIZE_HINT, NonFiniteError, NotSymmetricError, UndecidedError
+from quadric_contact.exact.errors import (
+    SYMMETRIZE_HINT,
+    ChoiceError,
+    NonFiniteError,
+    NotANumberError,
+    NotSymmetricError,
+    UndecidedError,
+)
 from quadric_contact.exact.precision import working_precision
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import as_quadric
@@ -151,7 +158,12 @@ def _pairs(E: Any, Q: Any) -> tuple[list[Any], list[Any], tuple[int, ...]]:
 
 def _check(mode: str, modes: tuple[str, ...] = _MODES) -> None:
     if mode not in modes:
-        raise ValueError(f"mode must be one of {modes}, got {mode!r}")
+        raise ChoiceError(f"mode must be one of {', '.join(modes)}, got {mode!r}", mode, choices=modes)
+
+
+def _check_digits(digits: Any) -> None:
+    if not isinstance(digits, int) or isinstance(digits, bool) or digits < 1:
+        raise NotANumberError(f"digits must be a positive integer, got {digits!r}", digits)
 
 
 def contact_scale(E: Any, Q: Any, *, scale: str = "E", mode: str = "certified") -> Any:
@@ -403,6 +415,7 @@ def distance(E: Any, Q: Any, *, mode: str = "certified", digits: int = 15) -> An
     array([1.02377939, 1.02377939])
     """
     _check(mode)
+    _check_digits(digits)
     if not (is_stack(E) or is_stack(Q)):
         if mode == "exact":
             return distance_exact(E, Q)
