@@ -219,36 +219,15 @@ def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
     if pairs.n == 0:
         mode._record(counts)
         return np.full(0, _UNC, dtype=np.int8)
-    beyond, keep = _beyond_binary64(mode, pairs)
-    if beyond.size:
-        out = np.full(pairs.n, _UNC, dtype=np.int8)
-        out[beyond] = _exact_pairs(pairs, beyond, question)
-        counts.add(_BEYOND, int(beyond.size))
-        if keep.size:
-            out[keep] = _decide_pairs(mode, pairs.take(keep), question, counts)
+    lane = _lane(mode, pairs, question, counts)
+    if lane is None:
+        out = _decide_steps(mode, pairs, question, counts)
     else:
-        out = _decide_pairs(mode, pairs, question, counts)
+        out, rest = lane
+        if rest.size:
+            out[rest] = _decide_steps(mode, pairs.take(rest), question, counts)
     mode._record(counts)
     return out
-
-
-_BEYOND = "exact pair (beyond binary64)"
-
-
-def _beyond_binary64(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, np.ndarray]:
-    """For a plain mode: the pairs whose exact input binary64 cannot hold (an entry rounded to
-    inf by :func:`~quadric_contact.modes.batch._round`: beyond its range, or below its normal
-    numbers), which its binary64 reading would not describe, and the others (only where there
-    is such a pair).  A certified mode's filters leave such entries by their guards: none."""
-    none = np.zeros(0, dtype=np.intp)
-    if mode.certified or (pairs.E.exact is None and pairs.Q.exact is None):
-        return none, none  # (no pair beyond: the others are all of them)
-    bad = np.zeros(pairs.n, dtype=bool)
-    for stack, rows_at in ((pairs.E, pairs.e_rows_at), (pairs.Q, pairs.q_rows_at)):
-        if stack.exact is not None:
-            finite = np.isfinite(stack.floats.reshape(len(stack), -1)).all(axis=1)
-            bad |= ~finite[rows_at(np.arange(pairs.n))]
-    return np.flatnonzero(bad), np.flatnonzero(~bad)
 
 
 _OUTSIDE = "exact pair (outside binary64's range)"
@@ -258,8 +237,9 @@ def _outside_range(mode: NumberMode, pairs: Pairs) -> np.ndarray:
     """For a plain mode: the pairs with a non-zero entry outside ``[INPUT_MIN, INPUT_MAX]``
     (:func:`~quadric_contact.modes.kernels_range.rows_in_range`), where the binary64 programs of
     the criterion and the separation can overflow or underflow and read signs of nothing (a
-    matrix scaled by ``1e78``, the same quadric, read as a crossing): the steps decide them
-    exactly.  A certified mode's filters leave such pairs by the same guard: none here."""
+    matrix scaled by ``1e78``, the same quadric, read as a crossing), or an exact entry binary64
+    cannot hold (rounded to inf by :func:`~quadric_contact.modes.batch._round`): the steps decide
+    them exactly.  A certified mode's filters leave such pairs by the same guard: none here."""
     if mode.certified or pairs.n == 0:
         return np.zeros(0, dtype=np.intp)
     bad = np.zeros(pairs.n, dtype=bool)
@@ -269,18 +249,6 @@ def _outside_range(mode: NumberMode, pairs: Pairs) -> np.ndarray:
         inside = rows_in_range(stack.floats)[used] if whole else rows_in_range(stack.rows_floats(used))
         bad |= ~inside[back]
     return np.flatnonzero(bad)
-
-
-def _decide_pairs(mode: NumberMode, pairs: Pairs, question: str, counts: StageCounts) -> np.ndarray:
-    """:func:`_decide` for pairs binary64 holds (the counts go to ``counts``)."""
-    lane = _lane(mode, pairs, question, counts)
-    if lane is None:
-        out = _decide_steps(mode, pairs, question, counts)
-    else:
-        out, rest = lane
-        if rest.size:
-            out[rest] = _decide_steps(mode, pairs.take(rest), question, counts)
-    return out
 
 
 def _lane(
@@ -708,27 +676,14 @@ def _decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
     if pairs.n == 0:
         mode._record(counts)
         return np.full(0, _UNC, dtype=np.int8)
-    beyond, keep = _beyond_binary64(mode, pairs)
-    if beyond.size:
-        out = np.full(pairs.n, _UNC, dtype=np.int8)
-        out[beyond] = _exact_overlaps(pairs, beyond)
-        counts.add(_BEYOND, int(beyond.size))
-        if keep.size:
-            out[keep] = _overlap_pairs(mode, pairs.take(keep), counts)
-    else:
-        out = _overlap_pairs(mode, pairs, counts)
-    mode._record(counts)
-    return out
-
-
-def _overlap_pairs(mode: NumberMode, pairs: Pairs, counts: StageCounts) -> np.ndarray:
-    """:func:`_decide_overlap` for pairs binary64 holds: the lane, then the steps."""
     lane = _lane(mode, pairs, "overlap", counts)
     if lane is None:
-        return _overlap_steps(mode, pairs, counts)
-    out, rest = lane
-    if rest.size:
-        out[rest] = _overlap_steps(mode, pairs.take(rest), counts)
+        out = _overlap_steps(mode, pairs, counts)
+    else:
+        out, rest = lane
+        if rest.size:
+            out[rest] = _overlap_steps(mode, pairs.take(rest), counts)
+    mode._record(counts)
     return out
 
 
