@@ -310,7 +310,7 @@ def _decide_block_kernel(
                     col = np.uintp(li[min(j, k - 1)])
                     for t in range(10):
                         ql2[t, j] = qb2[t, col]
-            signature_first_called(el, ql, cl, kp, S, SKt, True, fb)
+            signature_first_called(el, ql, cl, kp, SKt, True, fb)
             for j in range(k):
                 last = cl[_LAST_ROW * S + j] == 1.0
                 if witness(last, fb[S + j]):

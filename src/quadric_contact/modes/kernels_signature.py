@@ -296,11 +296,12 @@ def decide_signature(
 
 
 @_njit(inline=True)
-def signature_prepare(eb_: Any, qb_: Any, m: int, S: int, cb: Any) -> None:
-    """For the ``m`` pairs in the column buffers (``E`` in the paper's sign): the coefficients
-    ``c1 .. c4`` of ``P``, the input guard and the sign row (1: ``E`` is in the paper's sign
-    already), into ``cb`` as :func:`signature_first` reads them (first sample point: the first
-    critical point).  A straight-line loop."""
+def signature_prepare(eb_: Any, qb_: Any, m: int, cb: Any) -> None:
+    """For the ``m`` pairs in the column buffers (``E`` in the paper's sign; rows of
+    :data:`NB`): the coefficients ``c1 .. c4`` of ``P``, the input guard and the sign row (1:
+    ``E`` is in the paper's sign already), into ``cb`` as :func:`signature_first` reads them
+    (first sample point: the first critical point).  A straight-line loop."""
+    S = NB
     for i in range(m):
         e = _load(eb_, i, S)
         q = _load(qb_, i, S)
@@ -318,18 +319,25 @@ def signature_prepare(eb_: Any, qb_: Any, m: int, S: int, cb: Any) -> None:
 
 
 @_njit(inline=True)
-def signature_first(eb_: Any, qb_: Any, cb: Any, m: int, S: int, SKt: Any, certified: bool, fb: Any) -> None:
-    """The straight-line stage of the signature for the ``m`` pairs of the column buffers: the
-    sample points and the member at the first point to try, into ``fb`` for
+def signature_first(eb_: Any, qb_: Any, cb: Any, m: int, SKt: Any, certified: bool, fb: Any) -> None:
+    """The straight-line stage of the signature for the ``m`` pairs of the column buffers (rows
+    of :data:`NB`): the sample points and the member at the first point to try, into ``fb`` for
     :func:`signature_finish`.
 
-    ``cb`` holds seven rows of ``S``: the coefficients ``c1 .. c4`` of ``P`` for ``E`` in the
+    The rows are :data:`NB` wide, a constant, not a parameter: every access to one buffer is
+    then at a known distance from the others, and the vectoriser checks the buffers against
+    each other once.  With the width a run-time number each row is a pointer of its own, the
+    checks between the five rows written and the twenty-seven read exceed what LLVM allows
+    ("too many memory checks needed"), and the loop ran as scalar code.
+
+    ``cb`` holds seven rows of :data:`NB`: the coefficients ``c1 .. c4`` of ``P`` for ``E`` in the
     paper's sign (they only place the sample points, which nothing trusts), whether both
     matrices pass the input guard (1/0), which sample point to try first (1: the last critical
     point, where a positive definite member lies when ``E`` is outside; 0: the first, where a
     negative definite one lies when ``E`` is inside), and the sign ``f = +-1`` that puts the
     ``E`` of the buffer in the paper's sign.  The member ``s (f E) + Q`` is computed as
     ``(f s) E + Q``: the same bits (a change of sign is exact), without a copy of ``E``."""
+    S = NB
     for i in range(m):
         e = _load(eb_, i, S)
         q = _load(qb_, i, S)
@@ -346,9 +354,10 @@ def signature_first(eb_: Any, qb_: Any, cb: Any, m: int, S: int, SKt: Any, certi
 
 signature_first_called = _njit(getattr(signature_first, "py_func", signature_first))
 """:func:`signature_first` as a function the decision kernel calls rather than inlines: inlined
-into that kernel its loop ran at the speed of scalar code (about 60 ns a pair); called, it runs
-vectorised, 11.5 ns a pair over eight pairs or more (and at 80 ns a pair over fewer: the
-vector loop leaves the rest to scalar code, so the kernel hands it multiples of eight)."""
+into that kernel its loop ran at the speed of scalar code (about 60 ns a pair); called, its loop
+is vectorised (four doubles a vector on AVX2, the rest of the block in scalar code, so the kernel
+hands it multiples of eight pairs).  On a Xeon with AVX-512 it takes about 28 ns a pair,
+vectorised or not: the three square roots and five divisions of the sample points bound it."""
 
 
 def _witness_code(last: bool) -> int:
@@ -433,7 +442,7 @@ def signature_rows(
     both readings).  ``fb`` (``5 S``), ``e1``, ``q1`` (10): scratch."""
     SKt = (SK[0], SK[1], SK[2], SK[3])  # scalars: no store in the loop may alias them
     certified = certain_only == 1.0
-    signature_first(eb_, qb_, cb, m, S, SKt, certified, fb)
+    signature_first(eb_, qb_, cb, m, SKt, certified, fb)
     for i in range(m):
         out[at[i]] = signature_finish(eb_, qb_, cb, fb, i, S, SKt, K, KD, certified, e1, q1)
 
@@ -477,7 +486,7 @@ def _make_signature() -> Any:
                     for k in range(10):
                         eb_[k * S + t] = -eb_[k * S + t]
                 at[t] = p
-            signature_prepare(eb_, qb_, m, S, cb)
+            signature_prepare(eb_, qb_, m, cb)
             _signature_rows_called(eb_, qb_, cb, m, S, SK, K, KD, certain_only, fb, e1, q1, at, out)
 
     return kernel
