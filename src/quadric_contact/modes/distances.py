@@ -8,7 +8,13 @@ pair, ``mode="exact"`` gives it as a real algebraic number with exact witnesses 
 (:mod:`quadric_contact.modes.distance_certified`; the exact path answers the symmetric
 configurations the balls leave).  A stack answers with, for every pair, an enclosure
 ``[lo, hi]`` of that same number in binary64 (``lo <= value <= hi``, rounded outwards), in an
-array of shape ``(..., 2)``: a stack of one holds the enclosure of the pair's value.
+array of shape ``(..., 2)``: a stack of one holds the enclosure of the pair's value.  A stack
+is any form the other array predicates take (:func:`~quadric_contact.modes.batch.is_stack`):
+arrays ``(..., 4, 4)`` of any real dtype (object arrays of Fractions or ints are exact input,
+each pair answered as the pair itself is), lists, object arrays of Quadrics or equations,
+:class:`~quadric_contact.Packed` stacks (their unpacked matrices, float64 where the entries are
+binary64 numbers) and dask arrays (computed first); the batch shapes broadcast as numpy's do,
+and shapes that do not are a :class:`~quadric_contact.ShapeError`.
 
 The first-contact scale (``scale="E"``) of float64 stacks runs a compiled kernel that certifies
 each pair's enclosure (:mod:`quadric_contact.modes.scale_kernel`) and leaves the pairs it cannot
@@ -45,13 +51,15 @@ from quadric_contact.exact.errors import (
     NonFiniteError,
     NotANumberError,
     NotSymmetricError,
+    ShapeError,
     UndecidedError,
 )
 from quadric_contact.exact.precision import working_precision
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import as_quadric
-from quadric_contact.modes.batch import is_stack
+from quadric_contact.modes.batch import _is_dask, _is_single, _quadric_array, is_stack
 from quadric_contact.modes.distance_certified import DistanceEnclosure, distance_certified
+from quadric_contact.modes.packing import Packed, unpack
 from quadric_contact.theory.contact_scale import contact_scale_exact
 from quadric_contact.theory.distance import CONVEX_SOLIDS, DistanceResult, distance_exact, is_sphere
 from quadric_contact.theory.distance_critical import critical_distance_binary64
@@ -131,29 +139,68 @@ def _up(v: Fraction) -> float:
     return f if Fraction(f) >= v else math.nextafter(f, math.inf)
 
 
+def _stack_form(v: Any, name: str) -> Any:
+    """One side of a stack call in the form the kernels and :func:`_pairs` read: a
+    :class:`~quadric_contact.Packed` stack as its unpacked matrices (float64 where its entries
+    are binary64 numbers, as the other predicates read it), a dask array computed into numpy;
+    anything else as it is."""
+    if isinstance(v, Packed):
+        arr = v.array
+        kind = arr.dtype.kind
+        if kind in "bc":
+            raise NotANumberError(f"{name} is not a stack of real matrices (dtype {arr.dtype})", v)
+        full = unpack(arr)
+        if (kind == "f" and arr.dtype.itemsize <= 8) or (
+            kind in "iu" and (not arr.size or int(np.abs(arr).max()) <= 2**53)
+        ):
+            return np.ascontiguousarray(full, dtype=np.float64)
+        return full
+    if _is_dask(v):
+        return np.asarray(v)
+    return v
+
+
+def _batch_shape(se: tuple[int, ...], sq: tuple[int, ...]) -> tuple[int, ...]:
+    """The broadcast of the batch shapes of ``E`` and ``Q`` (``()`` for one matrix), or the
+    :class:`ShapeError` the other predicates raise."""
+    try:
+        return tuple(np.broadcast_shapes(se, sq))
+    except ValueError as exc:
+        raise ShapeError(f"batch shapes {se} of E and {sq} of Q do not broadcast", (se, sq)) from exc
+
+
+def _items(v: Any, name: str) -> tuple[list[Any], tuple[int, ...]]:
+    """The matrices (or Quadrics, equations) of one side and its batch shape (``()`` for one
+    matrix): an array ``(..., 4, 4)`` of any dtype (object arrays of Fractions or ints
+    included) gives its ``(4, 4)`` sub-arrays, an object array of Quadrics or equations and a
+    list of them their items, a (nested) list of matrices the sub-arrays of its array."""
+    if not is_stack(v):
+        return [v], ()
+    if isinstance(v, (list, tuple)) and (not v or any(_is_single(x) for x in v)):
+        return list(v), (len(v),)
+    if isinstance(v, np.ndarray) and v.dtype == object and _quadric_array(v):
+        return list(v.reshape(-1)), tuple(v.shape)
+    try:
+        arr = np.asarray(v)
+    except (ValueError, TypeError) as exc:
+        raise ShapeError(f"{name} is not a matrix or a stack of matrices: {exc}", v) from exc
+    if arr.ndim < 2 or arr.shape[-2:] != (4, 4):
+        raise ShapeError(f"{name} must have shape (4, 4) or (..., 4, 4), got {arr.shape}", v)
+    return list(arr.reshape(-1, 4, 4)), tuple(arr.shape[:-2])
+
+
 def _pairs(E: Any, Q: Any) -> tuple[list[Any], list[Any], tuple[int, ...]]:
-    """The pairs of a stack (either side may be one matrix, broadcast)."""
+    """The pairs of a stack, broadcast as numpy broadcasts the batch shapes (either side may
+    be one matrix), and the output batch shape."""
+    es, se = _items(E, "E")
+    qs, sq = _items(Q, "Q")
+    shape = _batch_shape(se, sq)
 
-    def items(v: Any) -> tuple[list[Any], tuple[int, ...] | None]:
-        if not is_stack(v):
-            return [v], None
-        if isinstance(v, np.ndarray) and v.dtype != object:
-            shape = v.shape[:-2]
-            return list(v.reshape(-1, 4, 4)), shape
-        arr = np.empty(len(v), dtype=object)
-        arr[:] = list(v) if not isinstance(v, np.ndarray) else list(v.reshape(-1))
-        return list(arr), (len(v),) if not isinstance(v, np.ndarray) else v.shape
+    def spread(items: list[Any], own: tuple[int, ...]) -> list[Any]:
+        index = np.broadcast_to(np.arange(len(items)).reshape(own), shape).reshape(-1)
+        return [items[int(k)] for k in index]
 
-    es, se = items(E)
-    qs, sq = items(Q)
-    shape = se if se is not None else sq
-    assert shape is not None
-    n = math.prod(shape)
-    es = es * n if se is None else es
-    qs = qs * n if sq is None else qs
-    if len(es) != len(qs):
-        raise ValueError(f"stacks of {len(es)} and {len(qs)} pairs do not match")
-    return es, qs, shape
+    return spread(es, se), spread(qs, sq), shape
 
 
 def _check(mode: str, modes: tuple[str, ...] = _MODES) -> None:
@@ -177,7 +224,8 @@ def contact_scale(E: Any, Q: Any, *, scale: str = "E", mode: str = "certified") 
     Parameters
     ----------
     E : Quadric, equation, matrix-like; or a stack ``(..., 4, 4)``
-        A real ellipsoid.
+        A real ellipsoid.  A stack in any form of the array predicates (a
+        :class:`~quadric_contact.Packed` stack, an object array of Fractions, ...).
     Q : Quadric, equation, matrix-like; or a stack
         A quadric of Table 1 or a plane; an ellipsoid with ``scale="both"``.
     scale : {"E", "both"}
@@ -192,6 +240,8 @@ def contact_scale(E: Any, Q: Any, *, scale: str = "E", mode: str = "certified") 
     Raises
     ------
     NotAnEllipsoidError, ExcludedQuadricError, UndecidedError
+    ShapeError
+        Stacks whose batch shapes do not broadcast (or not ``(..., 4, 4)``).
 
     Examples
     --------
@@ -204,6 +254,7 @@ def contact_scale(E: Any, Q: Any, *, scale: str = "E", mode: str = "certified") 
     _check(mode, ("certified", "exact"))
     if not (is_stack(E) or is_stack(Q)):
         return contact_scale_exact(E, Q, scale=scale)
+    E, Q = _stack_form(E, "E"), _stack_form(Q, "Q")
     if scale in ("E", "both") and _float_stack(E) and _float_stack(Q):
         return _scale_kernel(E, Q, scale)
     es, qs, shape = _pairs(E, Q)
@@ -242,7 +293,7 @@ def _distance_kernel(E: np.ndarray, Q: np.ndarray, mode: str, digits: int) -> np
     from quadric_contact.modes.depth_kernel import crossing_ellipsoids
     from quadric_contact.modes.distance_kernel import separated_ellipsoids
 
-    shape = np.broadcast_shapes(E.shape[:-2], Q.shape[:-2])
+    shape = _batch_shape(E.shape[:-2], Q.shape[:-2])
     Es = _validated(np.broadcast_to(E, (*shape, 4, 4)), "E")
     Qs = _validated(np.broadcast_to(Q, (*shape, 4, 4)), "Q")
     tol = max(10.0**-digits, 1e-12)
@@ -272,7 +323,7 @@ def _scale_kernel(E: np.ndarray, Q: np.ndarray, scale: str = "E") -> np.ndarray:
     from quadric_contact.modes.scale_blocks import scale_stack
     from quadric_contact.modes.scale_both import scale_both_stack
 
-    shape = np.broadcast_shapes(E.shape[:-2], Q.shape[:-2])
+    shape = _batch_shape(E.shape[:-2], Q.shape[:-2])
     Es = _validated(np.broadcast_to(E, (*shape, 4, 4)), "E")
     Qs = _validated(np.broadcast_to(Q, (*shape, 4, 4)), "Q")
     out, rest = (scale_both_stack if scale == "both" else scale_stack)(Es, Qs)
@@ -382,6 +433,8 @@ def distance(E: Any, Q: Any, *, mode: str = "certified", digits: int = 15) -> An
     Parameters
     ----------
     E : Quadric, equation, matrix-like; or a stack ``(..., 4, 4)``
+        A stack in any form of the array predicates (a :class:`~quadric_contact.Packed`
+        stack, an object array of Fractions, ...).
     Q : Quadric, equation, matrix-like; or a stack
     mode : {"certified", "exact", "float"}
         ``float``: binary64 interval arithmetic rounded outwards, a
@@ -400,6 +453,8 @@ def distance(E: Any, Q: Any, *, mode: str = "certified", digits: int = 15) -> An
     Raises
     ------
     NotAnEllipsoidError, ExcludedQuadricError, UndecidedError
+    ShapeError
+        Stacks whose batch shapes do not broadcast (or not ``(..., 4, 4)``).
 
     Examples
     --------
@@ -422,6 +477,7 @@ def distance(E: Any, Q: Any, *, mode: str = "certified", digits: int = 15) -> An
         if mode == "float":
             return _float(E, Q)
         return _certified(E, Q, digits) or _as_enclosure(distance_exact(E, Q), digits)
+    E, Q = _stack_form(E, "E"), _stack_form(Q, "Q")
     if mode in ("certified", "float") and _float_stack(E) and _float_stack(Q):
         return _distance_kernel(E, Q, mode, digits)
     es, qs, shape = _pairs(E, Q)
