@@ -24,6 +24,13 @@ def test_hierarchy_subclasses_builtin_types():
         assert issubclass(cls, errors.QuadricContactError)
 
 
+def test_the_work_limit_error_is_exported_with_the_other_errors():
+    for name in ("WorkLimitError", "NonFiniteError", "ShapeError", "UndecidedError"):
+        assert getattr(qc, name) is getattr(errors, name) and name in qc.__all__
+    assert issubclass(qc.WorkLimitError, errors.QuadricContactError)
+    assert issubclass(qc.WorkLimitError, ValueError)
+
+
 def test_not_an_ellipsoid_carries_object_and_kind():
     q = qc.Quadric.from_equation("x**2 + y**2 - z**2 - 1")
     with pytest.raises(qc.NotAnEllipsoidError) as info:

@@ -113,6 +113,22 @@ def test_pack_and_unpack():
         qc.Packed(np.zeros((2, 9)))
 
 
+def test_pack_names_a_non_finite_entry():
+    """A NaN or an infinity is a ``NonFiniteError`` naming the matrix and the entry (not an
+    asymmetry: NaN differs from itself)."""
+    M = np.repeat(np.diag([1.0, 1.0, 1.0, -1.0])[None], 3, axis=0)
+    M[1, 2, 1] = M[1, 1, 2] = np.nan
+    with pytest.raises(qc.NonFiniteError, match=r"matrix 1 of the stack .* at \(1, 2\): nan") as info:
+        qc.pack(M)
+    assert info.value.details == {"entry": (1, 2), "index": 1}
+    with pytest.raises(qc.NonFiniteError, match=r"at \(0, 0\): inf"):
+        qc.pack(np.diag([np.inf, 1.0, 1.0, -1.0]))
+    exact = np.diag([1, 1, 1, -1]).astype(object)
+    exact[3, 3] = float("-inf")
+    with pytest.raises(qc.NonFiniteError, match=r"at \(3, 3\): -inf"):
+        qc.pack(exact)
+
+
 def test_packed_input_is_validated():
     E, Q = kernel_population(4, np.random.default_rng(9))
     P = qc.pack(E)

@@ -7,9 +7,9 @@ from fractions import Fraction
 
 import pytest
 
-from quadric_contact.exact.errors import SceneError
+from quadric_contact.exact.errors import ChoiceError, SceneError
 from quadric_contact.model.parsing import parse_univariate
-from quadric_contact.scenes.scene import parse_scene
+from quadric_contact.scenes.scene import load_scene, parse_scene
 
 SCENE = """
 [scene]
@@ -95,6 +95,22 @@ def test_errors_name_the_key_what_was_expected_and_why(old, new, key, expected, 
     message = str(err)
     assert err.details["key"] == key, message
     assert f"expected {expected}" in message and cause in message, message
+
+
+def test_an_unknown_smallness_override_is_a_choice_error(tmp_path):
+    path = tmp_path / "balls.toml"
+    path.write_text(SCENE, encoding="utf-8")
+    for call in (
+        lambda: parse_scene(SCENE, "balls.toml", on_not_small="ignore"),
+        lambda: parse_scene(SCENE, "balls.toml", check_smallness=False, on_not_small="ignore"),
+        lambda: load_scene(path, on_not_small="ignore"),
+        lambda: load_scene("bee_and_tree", on_not_small="ignore"),
+    ):
+        with pytest.raises(
+            ChoiceError, match="on_not_small must be one of 'refuse', 'warn' or None, got 'ignore'"
+        ):
+            call()
+    assert parse_scene(SCENE, "balls.toml", on_not_small="warn").on_not_small == "refuse"  # the file's own
 
 
 def test_duplicate_object_names():

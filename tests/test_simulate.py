@@ -8,7 +8,7 @@ from fractions import Fraction as F
 
 import pytest
 
-from quadric_contact.exact.errors import SceneError
+from quadric_contact.exact.errors import ChoiceError, SceneError
 from quadric_contact.scenes.composite import algorithm_2
 from quadric_contact.scenes.ledger import FULL_ITEMS, Ledger
 from quadric_contact.scenes.scene import builtin_scene, builtin_scene_names, parse_scene
@@ -164,6 +164,17 @@ def test_plan_validation():
     p = Plan.from_effects(["first_contact", "smallness"])
     assert p.stop_at_first_contact and p.pieces and not p.region
     assert not Plan.from_effects(["first_contact", "zone"]).stop_at_first_contact
+
+
+def test_an_unknown_smallness_policy_is_a_choice_error_naming_the_choices():
+    scene = builtin_scene(check_smallness=False)
+    for bogus in ("bogus", "", "Warn", 1):
+        with pytest.raises(ChoiceError, match="'refuse', 'warn' or None") as info:
+            simulate(scene, effects=["zone"], on_not_small=bogus)
+        assert info.value.details["choices"] == ("refuse", "warn", None)
+    with pytest.raises(ChoiceError, match="got 'bogus'"):
+        scene.check_smallness(on_not_small="bogus")
+    assert simulate(scene, effects=["zone"], on_not_small=None).ledger is not None
 
 
 def test_progress_bar_on_request(capsys):

@@ -37,6 +37,7 @@ from quadric_contact.exact.errors import (
     QuadricContactError,
     ShapeError,
     UndecidedError,
+    WorkLimitError,
 )
 from quadric_contact.families.family import Family, family
 from quadric_contact.model.classification import QuadricKind
@@ -140,6 +141,7 @@ __all__ = [
     "SmallnessReport",
     "TouchingError",
     "UndecidedError",
+    "WorkLimitError",
     "__version__",
     "analyze_contact",
     "builtin_scene",

@@ -17,13 +17,15 @@ True
 
 from __future__ import annotations
 
+import cmath
+from decimal import Decimal
 from fractions import Fraction
 from typing import Any
 
 import numpy as np
 
 from quadric_contact.exact.entries import ENTRY_INDICES
-from quadric_contact.exact.errors import SYMMETRIZE_HINT, NotSymmetricError, ShapeError
+from quadric_contact.exact.errors import SYMMETRIZE_HINT, NonFiniteError, NotSymmetricError, ShapeError
 from quadric_contact.exact.rational import to_fraction
 
 __all__ = ["Packed", "pack", "symmetrize", "unpack"]
@@ -44,12 +46,16 @@ def pack(M: Any, *, check: bool = True) -> np.ndarray:
     ------
     ShapeError
         If ``M`` is not ``(..., 4, 4)``.
+    NonFiniteError
+        If an entry is NaN or an infinity (with ``check``, the default).
     NotSymmetricError
         If a matrix is not symmetric (with ``check``, the default).
     """
     arr = np.asarray(M)
     if arr.ndim < 2 or arr.shape[-2:] != (4, 4):
         raise ShapeError(f"pack needs (..., 4, 4) matrices, got shape {arr.shape}", M)
+    if check:
+        _check_finite(arr, M)
     if check and not (arr == np.swapaxes(arr, -1, -2)).all():
         bad = np.argwhere(~(arr == np.swapaxes(arr, -1, -2)).all(axis=(-1, -2)).reshape(-1))
         raise NotSymmetricError(
@@ -58,6 +64,33 @@ def pack(M: Any, *, check: bool = True) -> np.ndarray:
             index=int(bad[0, 0]),
         )
     return np.ascontiguousarray(arr[..., _I, _J])
+
+
+def _check_finite(arr: np.ndarray, M: Any) -> None:
+    """Raise :class:`NonFiniteError` naming the first NaN or infinite entry of ``arr``
+    (``(..., 4, 4)``): its matrix in the flattened stack and its ``(i, j)``."""
+    if arr.dtype.kind in "fc":
+        bad = ~np.isfinite(arr)
+    elif arr.dtype.kind == "O":
+        bad = np.frompyfunc(_non_finite, 1, 1)(arr).astype(bool)
+    else:
+        return
+    if not bad.any():
+        return
+    k, i, j = (int(v) for v in np.argwhere(bad.reshape(-1, 4, 4))[0])
+    value = arr.reshape(-1, 4, 4)[k, i, j]
+    value = value.item() if isinstance(value, np.generic) else value
+    where = "the matrix" if arr.ndim == 2 else f"matrix {k} of the stack"
+    raise NonFiniteError(f"{where} has a non-finite entry at ({i}, {j}): {value!r}", M, entry=(i, j), index=k)
+
+
+def _non_finite(x: Any) -> bool:
+    """A NaN or an infinity among the numbers an object array may hold."""
+    if isinstance(x, (float, complex, np.floating, np.complexfloating)):
+        return not cmath.isfinite(x)
+    if isinstance(x, Decimal):
+        return not x.is_finite()
+    return False
 
 
 def symmetrize(M: Any) -> np.ndarray:

@@ -14,7 +14,7 @@ from fractions import Fraction
 from typing import Any
 
 from quadric_contact.exact.bounds import MAX_DISTANCE_EVALUATIONS, MIN_DISTANCE_TOLERANCE
-from quadric_contact.exact.errors import QuadricContactError, SceneError
+from quadric_contact.exact.errors import ChoiceError, QuadricContactError, SceneError
 from quadric_contact.exact.rational import to_fraction
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import Quadric
@@ -27,6 +27,7 @@ __all__ = [
     "DISTANCE_TOLERANCE",
     "EFFECTS",
     "EXCLUDED_KINDS",
+    "ON_NOT_SMALL",
     "THEOREM_2_EFFECTS",
     "MovingEllipsoid",
     "Scene",
@@ -36,6 +37,37 @@ __all__ = [
 READINGS: tuple[str, ...] = ("geometry", "paper")
 """How a piece is read: as its quadric cut by the planes on its path (the
 default), or, as Algorithm 1 does, as its whole quadric."""
+
+ON_NOT_SMALL: tuple[str, ...] = ("refuse", "warn")
+"""What a scene does with a pair that is not small: refuse the scene, or keep it with a
+warning (its contacts with all roots real are then undecided)."""
+
+
+def check_on_not_small(on_not_small: Any) -> None:
+    """Check an override of a scene's smallness policy: one of :data:`ON_NOT_SMALL`, or None
+    (the scene's own).
+
+    Raises
+    ------
+    ChoiceError
+        Naming the valid values.
+
+    Examples
+    --------
+    >>> check_on_not_small("warn")
+    >>> try:
+    ...     check_on_not_small("ignore")
+    ... except ChoiceError as exc:
+    ...     print(exc)
+    on_not_small must be one of 'refuse', 'warn' or None, got 'ignore'
+    """
+    if on_not_small is not None and not (isinstance(on_not_small, str) and on_not_small in ON_NOT_SMALL):
+        raise ChoiceError(
+            f"on_not_small must be one of {', '.join(map(repr, ON_NOT_SMALL))} or None, got {on_not_small!r}",
+            on_not_small,
+            choices=(*ON_NOT_SMALL, None),
+        )
+
 
 EFFECTS: tuple[str, ...] = (
     "zone",
@@ -194,10 +226,13 @@ class Scene:
         Planes need no smallness (Theorem 14).  Raises :class:`SceneError`
         if a pair is not small and the policy is ``"refuse"``; with ``"warn"``
         the pair is kept, a warning is recorded, and its contacts with all
-        roots real are undecided (Remark 9).
+        roots real are undecided (Remark 9).  ``on_not_small`` overrides the
+        scene's policy (None: the scene's own; anything but :data:`ON_NOT_SMALL`
+        is a :class:`ChoiceError`).
         """
         from quadric_contact.theory.smallness import smallness
 
+        check_on_not_small(on_not_small)
         policy = on_not_small or self.on_not_small
         # smallness depends on the ellipsoid's shape and size, not on where it is
         # (Definition 1, Tables 1-2): congruent translates share one check

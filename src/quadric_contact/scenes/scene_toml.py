@@ -157,6 +157,7 @@ from quadric_contact.scenes.scene_model import (
     READINGS,
     MovingEllipsoid,
     Scene,
+    check_on_not_small,
     distance_options,
 )
 from quadric_contact.scenes.trajectory import (
@@ -629,7 +630,7 @@ def parse_scene(
     check_smallness : bool, default True
         Check smallness now if the scene's effects rely on Theorem 2.
     on_not_small : {"refuse", "warn"}, optional
-        Override the scene's policy.
+        Override the scene's policy (None: the scene's own).
 
     Returns
     -------
@@ -639,6 +640,8 @@ def parse_scene(
     ------
     SceneError
         For any problem, naming ``source``, the key and what was expected.
+    ChoiceError
+        ``on_not_small`` is not ``"refuse"``, ``"warn"`` or None.
 
     Examples
     --------
@@ -661,6 +664,7 @@ def parse_scene(
     >>> scene.span, scene.ellipsoids[0].quadric.center()
     ((Fraction(0, 1), Fraction(4, 1)), (Fraction(-2, 1), Fraction(0, 1), Fraction(2, 1)))
     """
+    check_on_not_small(on_not_small)
     r = _Reader(source)
     if not isinstance(text, str):
         raise SceneError(f"{source}: expected the scene's text, got {type(text).__name__}", text, file=source)
@@ -848,7 +852,7 @@ def load_scene(path: str | Path, **kwargs: Any) -> Scene:
     check_smallness : bool, default True
         Check smallness now if the scene's effects need it.
     on_not_small : {"refuse", "warn"}, optional
-        Override the scene's policy.
+        Override the scene's policy (None: the scene's own).
 
     Returns
     -------
@@ -859,6 +863,8 @@ def load_scene(path: str | Path, **kwargs: Any) -> Scene:
     SceneError
         The file cannot be read or is not a valid scene (the message names
         the file, the key and what was expected).
+    ChoiceError
+        ``on_not_small`` is not ``"refuse"``, ``"warn"`` or None.
     """
     p = Path(path)
     if not p.exists():

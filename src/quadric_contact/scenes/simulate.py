@@ -41,7 +41,7 @@ from quadric_contact.scenes.composite import Composite, Piece
 from quadric_contact.scenes.ledger import Ledger
 from quadric_contact.scenes.manybody import run_pairs
 from quadric_contact.scenes.scene_distance import PieceDistance, piece_distances
-from quadric_contact.scenes.scene_model import READINGS, MovingEllipsoid, Scene
+from quadric_contact.scenes.scene_model import READINGS, MovingEllipsoid, Scene, check_on_not_small
 from quadric_contact.scenes.scene_pairs import _progress, _simulate_pair
 from quadric_contact.scenes.simulation_reports import (
     Episode,
@@ -87,7 +87,7 @@ def simulate(
     progress : bool, optional
         Show a progress bar on stderr (default: for long runs on a terminal).
     on_not_small : {"refuse", "warn"}, optional
-        Override the scene's smallness policy.
+        Override the scene's smallness policy (None: the scene's own).
     broad_phase : bool
         Prune, with certified bounds of each ellipsoid's swept volume, the
         planes and pieces (and the stretches of time) where nothing can
@@ -109,6 +109,8 @@ def simulate(
     ------
     SceneError
         An unknown reading, unknown effects, or a pair that is not small under the ``"refuse"`` policy.
+    ChoiceError
+        ``on_not_small`` is not ``"refuse"``, ``"warn"`` or None.
 
     References
     ----------
@@ -122,6 +124,7 @@ def simulate(
     >>> result.ledger.cost("tree/crown"), result.ledger.cost("tree/trunk")
     (0, 0)
     """
+    check_on_not_small(on_not_small)
     if reading is not None and reading != scene.reading:
         if reading not in READINGS:
             raise SceneError(f"reading: expected one of {list(READINGS)}, got {reading!r}", reading)
