@@ -115,3 +115,110 @@ def test_degenerate_cases(coeffs, real, nonreal):
 def test_zero_polynomial_is_a_degenerate_pencil():
     with pytest.raises(DegeneratePencilError):
         root_structure([0, 0, 0])
+
+
+# -- the binary64 filter of the quartic's sign forms -----------------------------------------------
+
+
+def test_filter_reads_the_generated_program_its_rounding_count_assumes():
+    """The filter evaluates the generated forms in binary64; its bound counts the roundings of
+    that program as written (left to right): pin the lines, and check the magnitude program is
+    the same program on absolute values with every difference a sum."""
+    import inspect
+
+    from quadric_contact._generated import formulas
+    from quadric_contact.exact.discriminants import magnitude_programs
+
+    lines = [ln.strip() for ln in inspect.getsource(formulas.quartic_sign_forms).splitlines()]
+    body = [ln for ln in lines if "=" in ln and not ln.startswith(('"', "def"))] + [lines[-1]]
+    assert body == [
+        "I = 12*c0*c4 - 3*c1*c3 + c2*c2",
+        "J = 72*c0*c2*c4 - 27*c0*c3*c3 - 27*c1*c1*c4 + 9*c1*c2*c3 - 2*c2*c2*c2",
+        "Delta2 = -8*c2*c4 + 3*c3*c3",
+        "Delta3 = 16*c0*c2*c4*c4 - 6*c0*c3*c3*c4 - 18*c1*c1*c4*c4 + 14*c1*c2*c3*c4 - 3*c1*c3*c3*c3 "
+        "- 4*c2*c2*c2*c4 + c2*c2*c3*c3",
+        "return (Delta2, Delta3, 4*I*I*I - J*J)",
+    ]
+    # the magnitude program: each form's terms with their coefficients made positive
+    a = sp.symbols("a0:5", positive=True)
+    values = formulas.quartic_sign_forms(*a)
+    i = 12 * a[0] * a[4] - 3 * a[1] * a[3] + a[2] * a[2]
+    j = (
+        72 * a[0] * a[2] * a[4]
+        - 27 * a[0] * a[3] ** 2
+        - 27 * a[1] ** 2 * a[4]
+        + 9 * a[1] * a[2] * a[3]
+        - 2 * a[2] ** 3
+    )
+    assert sp.expand(values[2] - (4 * i**3 - j**2)) == 0
+
+    def positive(expr):
+        return sum(
+            abs(c) * m
+            for m, c in zip(sp.Poly(expr, *a).monoms(), sp.Poly(expr, *a).coeffs(), strict=True)
+            for m in [sp.Mul(*(x**k for x, k in zip(a, m, strict=True)))]
+        )
+
+    m2, m3, m4 = magnitude_programs(*a)
+    assert sp.expand(m2 - positive(values[0])) == 0
+    assert sp.expand(m3 - positive(values[1])) == 0
+    assert sp.expand(m4 - (4 * positive(i) ** 3 + positive(j) ** 2)) == 0
+
+
+def _quartics(seed, n):
+    """Integer quartics of every size, and nearly degenerate ones: a double root, nearly."""
+    import random
+
+    rng = random.Random(seed)
+    out = []
+    for k in range(n):
+        bits = rng.choice([1, 3, 8, 30, 60, 200, 600, 1000])
+        if k % 3 == 0:
+            a, b, c, d = (rng.randint(-50, 50) for _ in range(4))
+            poly = flint.fmpz_poly([-a, 1]) ** 2 * flint.fmpz_poly([-b, 1]) * flint.fmpz_poly([-c, 1])
+            cs = [int(x) * d for x in poly.coeffs()] + [0] * 5
+            cs = cs[:5]
+            cs[rng.randrange(5)] += rng.choice([-1, 0, 1])
+            out.append(cs)
+        else:
+            out.append([rng.randint(-(2**bits), 2**bits) for _ in range(5)])
+    return out
+
+
+def test_filter_error_bounds_hold_exactly():
+    """|computed - exact| <= bound for each form, the exact value of the scaled coefficients
+    computed in rationals (form k is homogeneous of degree 2, 4, 6)."""
+    from quadric_contact._generated import formulas
+    from quadric_contact.exact.discriminants import binary64_forms
+
+    checked = 0
+    for cs in _quartics(11, 1500):
+        forms = binary64_forms(cs)
+        if forms is None:
+            assert max(abs(x) for x in cs).bit_length() > 1000
+            continue
+        top = max(abs(x) for x in cs).bit_length()
+        exact = formulas.quartic_sign_forms(*cs)
+        for (value, bound), e, degree in zip(forms, exact, (2, 4, 6), strict=True):
+            assert abs(Fraction(value) - Fraction(e, 2 ** (degree * top))) <= Fraction(bound)
+            checked += 1
+    assert checked > 3000
+
+
+def test_filtered_signs_are_the_exact_signs():
+    from quadric_contact._generated import formulas
+    from quadric_contact.exact.discriminants import _binary64_form_signs, quartic_form_signs
+    from quadric_contact.exact.rational import sign
+
+    certified = 0
+    cases = _quartics(12, 1500)
+    for cs in cases:
+        exact = tuple(sign(d) for d in formulas.quartic_sign_forms(*cs))
+        assert quartic_form_signs(cs) == exact
+        fast = _binary64_form_signs(cs)
+        if fast is not None:
+            assert fast == exact
+            certified += 1
+        if 0 in exact:
+            assert fast is None  # an exact zero is never certified
+    assert certified > len(cases) // 2

@@ -289,17 +289,94 @@ def _to_int_poly(coeffs: Sequence[Any]) -> list[int]:
     return [int(Fraction(c) * d) for c in fr]
 
 
+_FORM_RELATIVE = 1e-14
+"""Relative error bound of :func:`binary64_forms`.  In the generated program of the three forms
+(:func:`~quadric_contact._generated.formulas.quartic_sign_forms`, products and sums from the
+left, as the tests pin it) each monomial, expanded, carries at most 22 roundings: a monomial of
+``I`` has two inputs, each rounded once, two products and at most two sums, 6 in all; one of
+``J`` at most 10; ``27 Delta_4 = 4 I^3 - J^2`` then has ``3 * 6 + 4 = 22`` for ``4 I^3`` and
+``2 * 10 + 2 = 22`` for ``J^2``; ``Delta_3`` has 14 and ``Delta_2`` 5.  So ``|computed - exact|
+<= gamma_22 M``, with ``M`` the same program on absolute values (:func:`magnitude_programs`), and
+the computed ``M`` is at least ``(1 - gamma_22) M``: ``gamma_22 / (1 - gamma_22) < 2.5e-15``, and
+the bound's own product adds one rounding.  The tests check the bound in exact arithmetic."""
+_FORM_ABSOLUTE = 2.0**-1000
+"""Absolute slack for underflow: with the coefficients scaled into ``[-1, 1]`` no intermediate
+exceeds ``4 * 16^3 + 137^2``, so a product rounded in the subnormal range (absolute error at most
+``2^-1075``; a sum there is exact), carried through the rest of the program, moves the result by
+far less than this."""
+
+
+def magnitude_programs(a0: Any, a1: Any, a2: Any, a3: Any, a4: Any) -> tuple[Any, Any, Any]:
+    """The program of :func:`~quadric_contact._generated.formulas.quartic_sign_forms` on the
+    absolute values ``a_k = |c_k|``, every difference made a sum: the ``M`` of the error bound
+    ``gamma_k M`` of that program in binary64."""
+    m2 = 8 * a2 * a4 + 3 * a3 * a3
+    m3 = (
+        16 * a0 * a2 * a4 * a4 + 6 * a0 * a3 * a3 * a4 + 18 * a1 * a1 * a4 * a4 + 14 * a1 * a2 * a3 * a4
+        + 3 * a1 * a3 * a3 * a3 + 4 * a2 * a2 * a2 * a4 + a2 * a2 * a3 * a3
+    )  # fmt: skip
+    i = 12 * a0 * a4 + 3 * a1 * a3 + a2 * a2
+    j = 72 * a0 * a2 * a4 + 27 * a0 * a3 * a3 + 27 * a1 * a1 * a4 + 9 * a1 * a2 * a3 + 2 * a2 * a2 * a2
+    return m2, m3, 4 * i * i * i + j * j
+
+
+def binary64_forms(c: Sequence[Any]) -> tuple[tuple[float, float], ...] | None:
+    """For integer coefficients ``c0 .. c4``: the three forms of
+    :func:`~quadric_contact._generated.formulas.quartic_sign_forms`, the generated program itself, in binary64
+    on the coefficients scaled by ``2^-t`` into ``[-1, 1]`` (``t`` the bit length of the largest;
+    form ``k`` of degree ``2k`` is then scaled by ``2^(-2k t)``: the same sign), each with its
+    error bound ``_FORM_RELATIVE * M + _FORM_ABSOLUTE``.  None for other coefficients or beyond
+    binary64's range."""
+    if len(c) != 5 or not all(type(x) is int for x in c):
+        return None
+    top = max(abs(x) for x in c).bit_length()
+    try:
+        f = [math.ldexp(float(x), -top) for x in c]
+    except OverflowError:  # a coefficient beyond binary64's range
+        return None
+    values = formulas.quartic_sign_forms(*f)
+    magnitudes = magnitude_programs(*(abs(x) for x in f))
+    return tuple((d, _FORM_RELATIVE * m + _FORM_ABSOLUTE) for d, m in zip(values, magnitudes, strict=True))
+
+
+def _binary64_form_signs(c: Sequence[Any]) -> tuple[int, int, int] | None:
+    """The signs of the three forms where :func:`binary64_forms` certifies all three (an exact
+    zero never is), else None."""
+    forms = binary64_forms(c)
+    if forms is None:
+        return None
+    signs = []
+    for d, bound in forms:
+        if d > bound:
+            signs.append(1)
+        elif d < -bound:
+            signs.append(-1)
+        else:
+            return None
+    return signs[0], signs[1], signs[2]
+
+
+def quartic_form_signs(c: Sequence[Any]) -> tuple[int, int, int]:
+    """The signs of ``(Delta_2, Delta_3, 27 Delta_4)`` of the quartic ``sum c[k] x^k`` (exact
+    coefficients): in binary64 where :func:`binary64_forms` certifies them, exactly otherwise.
+    The same signs either way."""
+    fast = _binary64_form_signs(c)
+    if fast is not None:
+        return fast
+    d2, d3, d4 = formulas.quartic_sign_forms(*c)
+    return sign(d2), sign(d3), sign(d4)
+
+
 def _counts(c: Sequence[Any]) -> tuple[int, int, int, tuple[int, ...]]:
     """(distinct real, distinct nonreal pairs, deg gcd(f, f'), signs of D) for exact coefficients."""
     n = len(c) - 1
     if n == 0:
         return 0, 0, 0, ()
-    if n == 4:
-        # D_1 = 4 c4^2 > 0 and D_k = (positive) * Delta_k for k = 2, 3, 4: the
-        # paper's normalisation has the same signs and much smaller numbers.
-        signs = (1, *(sign(d) for d in formulas.quartic_sign_forms(*c)))
-    else:
-        signs = tuple(sign(d) for d in discrimination_sequence(c))
+    # quartic: D_1 = 4 c4^2 > 0 and D_k = (positive) * Delta_k for k = 2, 3, 4: the paper's
+    # normalisation has the same signs and much smaller numbers
+    signs: tuple[int, ...] = (
+        (1, *quartic_form_signs(c)) if n == 4 else tuple(sign(d) for d in discrimination_sequence(c))
+    )
     rev = revised_sign_list(list(signs))
     nonzero = [s for s in rev if s]
     v = sum(1 for a, b in pairwise(nonzero) if a != b)
