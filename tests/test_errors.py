@@ -24,8 +24,17 @@ def test_hierarchy_subclasses_builtin_types():
         assert issubclass(cls, errors.QuadricContactError)
 
 
-def test_the_work_limit_error_is_exported_with_the_other_errors():
-    for name in ("WorkLimitError", "NonFiniteError", "ShapeError", "UndecidedError"):
+def test_every_error_of_the_package_is_exported():
+    """Every error class the package raises can be caught by its name on the package."""
+    import inspect
+
+    names = [
+        name
+        for name, cls in inspect.getmembers(errors, inspect.isclass)
+        if issubclass(cls, errors.QuadricContactError) and cls.__module__ == errors.__name__
+    ]
+    assert "WorkLimitError" in names and "ChoiceError" in names
+    for name in names:
         assert getattr(qc, name) is getattr(errors, name) and name in qc.__all__
     assert issubclass(qc.WorkLimitError, errors.QuadricContactError)
     assert issubclass(qc.WorkLimitError, ValueError)
