@@ -679,3 +679,21 @@ def test_shifted_signs_are_exact_where_certain():
                         assert s == x, (k, rel, signs, exact)
                         checked += 1
     assert checked > 1000
+
+
+def test_a_pairs_filter_code_does_not_depend_on_its_place_in_the_stack():
+    """Rounded cylinders, cones and paraboloids (their exact zero eigenvalue rounded off), each
+    distinct: the filter refines every one the binary64 stage leaves, so a pair's code in a
+    long stack is its code alone (it used to give up after the 64th), and never wrong."""
+    from quadric_contact import smallness
+    from quadric_contact.testing.samples import SAMPLE_KINDS, random_pairs
+
+    kinds = tuple(k for k in SAMPLE_KINDS if k.name.endswith(("CYLINDER", "PARABOLOID", "CONE")))
+    E, Q, _ = random_pairs(100, np.random.default_rng(3), kinds=kinds)
+    stack = smallness(E, Q, mode="filter")
+    alone = np.array([smallness(E[i : i + 1], Q[i : i + 1], mode="filter")[0] for i in range(len(E))])
+    exact = smallness(E, Q, mode="exact")
+    assert (stack == alone).all()
+    certain = stack != int(SmallnessCode.UNCERTAIN)
+    assert (stack[certain] == exact[certain]).all()
+    assert certain.sum() >= 0.9 * len(E)

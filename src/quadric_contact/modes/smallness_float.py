@@ -1250,11 +1250,6 @@ def _second_try(
     codes[todo] = np.where(again == INVALID, codes[todo], again)
 
 
-_REFINE_MAX = 64
-"""At most this many matrices per call are refined with ball arithmetic (the other uncertain
-ones stay uncertain: the later stages decide their pairs)."""
-
-
 def _refine(
     stack: MatrixStack, rows: np.ndarray, status: np.ndarray, values: np.ndarray, kinds: np.ndarray | None,
     signs: np.ndarray | None,
@@ -1262,14 +1257,19 @@ def _refine(
     """The sides of the matrices the float stage could not certify (status 1), once per matrix
     with ball arithmetic (exact invariants, isolated eigenvalues), rounded outward: a quadric
     whose type is degenerate (its exact zero eigenvalue rounded off in binary64) or close to
-    it is used by every pair of its stack, and should not send them all to the next stage."""
+    it is used by every pair of its stack, and should not send them all to the next stage.
+
+    Every such matrix is refined, whatever its place in the stack: a pair's code does not depend
+    on the other pairs of its call (a stack of one and a long stack answer it alike).  The work
+    is one refinement per distinct matrix, under a millisecond each, never more than the exact
+    stage would spend on its pairs."""
     from quadric_contact.model.classification import TABLE_1_KINDS
     from quadric_contact.modes.smallness_numbers import ball_sides
 
     todo = np.flatnonzero(status == 1)
     if kinds is not None:
         todo = todo[kinds[todo] >= 0]
-    for k in todo[:_REFINE_MAX]:
+    for k in todo:
         upper = tuple(c[0] for c in stack.upper_exact(rows[k : k + 1]))
         if kinds is None or signs is None:
             sides = ball_sides(upper, 1 if upper[0] > 0 else -1, None)
