@@ -144,12 +144,7 @@ def as_stack(value: Any, name: str = "M") -> MatrixStack:
         flat = value.reshape(-1)
         uppers = [as_quadric(v, f"{name}[{k}]").upper for k, v in enumerate(flat)]
         return _exact_stack(uppers, tuple(value.shape), name)
-    try:
-        arr = np.asarray(value)
-    except (ValueError, TypeError) as exc:
-        raise ShapeError(f"{name} is not a matrix or a stack of matrices: {exc}", value) from exc
-    if arr.ndim < 2 or arr.shape[-2:] != (4, 4):
-        raise ShapeError(f"{name} must have shape (4, 4) or (..., 4, 4), got {arr.shape}", value)
+    arr = matrix_array(value, name)
     batch = arr.shape[:-2]
     kind = arr.dtype.kind
     if kind == "b" or (kind in "iuf" and isinstance(value, (list, tuple)) and _holds_bool(value)):
@@ -166,6 +161,18 @@ def as_stack(value: Any, name: str = "M") -> MatrixStack:
     if kind in "iu":
         return _exact_stack(_object_upper(arr.reshape(-1, 4, 4).astype(object), name), batch, name)
     return _exact_stack(_object_upper(arr.reshape(-1, 4, 4), name), batch, name)
+
+
+def matrix_array(value: Any, name: str) -> np.ndarray:
+    """``value`` as a numpy array of shape ``(4, 4)`` or ``(..., 4, 4)``, or the
+    :class:`ShapeError` that names ``name`` and what it is instead."""
+    try:
+        arr = np.asarray(value)
+    except (ValueError, TypeError) as exc:
+        raise ShapeError(f"{name} is not a matrix or a stack of matrices: {exc}", value) from exc
+    if arr.ndim < 2 or arr.shape[-2:] != (4, 4):
+        raise ShapeError(f"{name} must have shape (4, 4) or (..., 4, 4), got {arr.shape}", value)
+    return arr
 
 
 def _holds_bool(value: Any) -> bool:

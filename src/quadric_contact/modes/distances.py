@@ -57,7 +57,7 @@ from quadric_contact.exact.errors import (
 from quadric_contact.exact.precision import working_precision
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import as_quadric
-from quadric_contact.modes.batch import _is_dask, _is_single, _quadric_array, is_stack
+from quadric_contact.modes.batch import _is_dask, _is_single, _quadric_array, is_stack, matrix_array
 from quadric_contact.modes.distance_certified import DistanceEnclosure, distance_certified
 from quadric_contact.modes.packing import Packed, unpack
 from quadric_contact.theory.contact_scale import contact_scale_exact
@@ -180,12 +180,7 @@ def _items(v: Any, name: str) -> tuple[list[Any], tuple[int, ...]]:
         return list(v), (len(v),)
     if isinstance(v, np.ndarray) and v.dtype == object and _quadric_array(v):
         return list(v.reshape(-1)), tuple(v.shape)
-    try:
-        arr = np.asarray(v)
-    except (ValueError, TypeError) as exc:
-        raise ShapeError(f"{name} is not a matrix or a stack of matrices: {exc}", v) from exc
-    if arr.ndim < 2 or arr.shape[-2:] != (4, 4):
-        raise ShapeError(f"{name} must have shape (4, 4) or (..., 4, 4), got {arr.shape}", v)
+    arr = matrix_array(v, name)
     return list(arr.reshape(-1, 4, 4)), tuple(arr.shape[:-2])
 
 
