@@ -547,21 +547,24 @@ def separation_objects(mode: Any, pairs: Pairs, *, certified: bool) -> np.ndarra
         if flip.any():
             e_cols = [np.where(flip, -col, col) for col in e_cols]
         c = formulas.pencil_coefficients(*e_cols, *q_cols)
-        samples = sample_points([_approx(x) for x in c]).astype(object)
+        samples: np.ndarray = sample_points([_approx(x) for x in c])
+        finite = np.isfinite(samples)
         own = getattr(mode, "separation_samples", None)  # sample points in the mode's numbers
         if own is not None:
             mine = own(c)
-            found = np.isfinite(_approx(mine[:, 0]))
+            found = np.isfinite(_approx(mine[:, 0]))  # all three, or none
+            samples = samples.astype(object)
             samples[found] = mine[found]
+            finite[found] = True
         counts = np.full((n, 3), -1, dtype=np.int64)
         number = mode.number
         for k in range(3):
             s = samples[:, k]
-            ok = np.isfinite(_approx(s))
+            ok = finite[:, k]
             if not ok.any():
                 continue
             idx = np.flatnonzero(ok)
-            sv = np.array([number(v) if isinstance(v, float) else v for v in s[idx]], dtype=object)
+            sv = np.array([number(float(v)) if isinstance(v, float) else v for v in s[idx]], dtype=object)
             member = [sv * e[idx] + qq[idx] for e, qq in zip(e_cols, q_cols, strict=True)]
             inv = kernels.quadric_invariants(*member)
             signs = [mode.signs(np.asarray(inv[j], dtype=object)) for j in range(3, 7)]
