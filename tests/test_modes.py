@@ -468,15 +468,22 @@ def test_input_binary64_cannot_hold_is_decided_exactly_in_every_mode():
     longer the same quadric (a ball of radius ``1e-200`` rounds to a point), so the filters
     leave it and the plain modes decide it exactly; every mode and form gives the exact answer."""
     unit = "x**2 + y**2 + z**2 - 1"
-    tiny_ball = "x**2 + y**2 + z**2 - 1e-400"
-    huge = "1e309*x**2 + y**2 + z**2 - 1"
-    S2 = np.diag([1.0, 1.0, 1.0, -4.0])
+    tiny_r2 = "1e-400"  # squared radius of a ball at the origin
+    tiny_ball = f"x**2 + y**2 + z**2 - {tiny_r2}"
+    huge_a = "1e309"  # the ellipsoid huge_a x^2 + y^2 + z^2 = 1 at the origin
+    huge = f"{huge_a}*x**2 + y**2 + z**2 - 1"
+    S2 = np.diag([1.0, 1.0, 1.0, -4.0])  # the ball of squared radius 4 at the origin
+    # the geometry, from the numbers above: both ellipsoids are centred at the origin, so each
+    # lies strictly inside the ball when its largest semi-axis is shorter than the ball's radius
+    assert Fraction(tiny_r2) < 1 and max(1 / Fraction(huge_a), Fraction(1)) < 4  # squared lengths
+    overlapping, inside = qc.OverlapCode.OVERLAPPING, qc.Region.R_MINUS
     for mode in ("certified", "float", "mpmath", "exact"):
-        assert qc.overlap(unit, [tiny_ball], mode=mode).tolist() == [int(qc.OverlapCode.OVERLAPPING)], mode
-        assert qc.overlap(unit, tiny_ball, mode=mode).code is qc.OverlapCode.OVERLAPPING, mode
+        assert qc.overlap(unit, [tiny_ball], mode=mode).tolist() == [int(overlapping)], mode
+        assert qc.overlap(unit, tiny_ball, mode=mode).code is overlapping, mode
         assert qc.transversal_contact(huge, S2, mode=mode).transversal is False, mode
-        assert qc.transversal_contact([huge], S2, mode=mode).tolist() == [0], mode
-        assert qc.relative_position(huge, S2, mode=mode).region is qc.Region.R_MINUS, mode
+        no_contact = int(qc.ContactCode.NO_CONTACT)
+        assert qc.transversal_contact([huge], S2, mode=mode).tolist() == [no_contact], mode
+        assert qc.relative_position(huge, S2, mode=mode).region is inside, mode
 
 
 def test_matrices_of_wide_range_are_classified_without_a_crash():
