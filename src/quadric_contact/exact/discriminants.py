@@ -327,16 +327,21 @@ def binary64_forms(c: Sequence[Any]) -> tuple[tuple[float, float], ...] | None:
     form ``k`` of degree ``2k`` is then scaled by ``2^(-2k t)``: the same sign), each with its
     error bound ``_FORM_RELATIVE * M + _FORM_ABSOLUTE``.  None for other coefficients or beyond
     binary64's range."""
-    if len(c) != 5 or not all(type(x) is int for x in c):
+    if len(c) != 5:
         return None
-    top = max(abs(x) for x in c).bit_length()
-    try:
-        f = [math.ldexp(float(x), -top) for x in c]
+    c0, c1, c2, c3, c4 = c
+    if not (type(c0) is int and type(c1) is int and type(c2) is int and type(c3) is int and type(c4) is int):
+        return None
+    top = max(abs(c0), abs(c1), abs(c2), abs(c3), abs(c4)).bit_length()
+    try:  # ldexp rounds the integer to binary64 first (once), then scales exactly
+        f0, f1, f2, f3, f4 = (math.ldexp(c0, -top), math.ldexp(c1, -top), math.ldexp(c2, -top),
+                              math.ldexp(c3, -top), math.ldexp(c4, -top))  # fmt: skip
     except OverflowError:  # a coefficient beyond binary64's range
         return None
-    values = formulas.quartic_sign_forms(*f)
-    magnitudes = magnitude_programs(*(abs(x) for x in f))
-    return tuple((d, _FORM_RELATIVE * m + _FORM_ABSOLUTE) for d, m in zip(values, magnitudes, strict=True))
+    d2, d3, d4 = formulas.quartic_sign_forms(f0, f1, f2, f3, f4)
+    m2, m3, m4 = magnitude_programs(abs(f0), abs(f1), abs(f2), abs(f3), abs(f4))
+    r, a = _FORM_RELATIVE, _FORM_ABSOLUTE
+    return (d2, r * m2 + a), (d3, r * m3 + a), (d4, r * m4 + a)
 
 
 def _binary64_form_signs(c: Sequence[Any]) -> tuple[int, int, int] | None:
@@ -345,15 +350,10 @@ def _binary64_form_signs(c: Sequence[Any]) -> tuple[int, int, int] | None:
     forms = binary64_forms(c)
     if forms is None:
         return None
-    signs = []
-    for d, bound in forms:
-        if d > bound:
-            signs.append(1)
-        elif d < -bound:
-            signs.append(-1)
-        else:
-            return None
-    return signs[0], signs[1], signs[2]
+    (d2, b2), (d3, b3), (d4, b4) = forms
+    if not (abs(d2) > b2 and abs(d3) > b3 and abs(d4) > b4):
+        return None
+    return (1 if d2 > 0 else -1), (1 if d3 > 0 else -1), (1 if d4 > 0 else -1)
 
 
 def quartic_form_signs(c: Sequence[Any]) -> tuple[int, int, int]:
@@ -377,11 +377,28 @@ def _counts(c: Sequence[Any]) -> tuple[int, int, int, tuple[int, ...]]:
     signs: tuple[int, ...] = (
         (1, *quartic_form_signs(c)) if n == 4 else tuple(sign(d) for d in discrimination_sequence(c))
     )
+    if n == 4:
+        return _QUARTIC_COUNTS[signs]
+    return _counts_of_signs(signs)
+
+
+def _counts_of_signs(signs: tuple[int, ...]) -> tuple[int, int, int, tuple[int, ...]]:
+    """:func:`_counts` from the signs of ``D_1 .. D_n`` (Yang's Theorem 1)."""
+    n = len(signs)
     rev = revised_sign_list(list(signs))
     nonzero = [s for s in rev if s]
     v = sum(1 for a, b in pairwise(nonzero) if a != b)
     k = max((i + 1 for i, s in enumerate(signs) if s), default=0)
     return len(nonzero) - 2 * v, v, n - k, signs
+
+
+_QUARTIC_COUNTS = {
+    (1, s2, s3, s4): _counts_of_signs((1, s2, s3, s4))
+    for s2 in (-1, 0, 1)
+    for s3 in (-1, 0, 1)
+    for s4 in (-1, 0, 1)
+}
+""":func:`_counts` of a quartic for each sign list of ``D_1 .. D_4`` (``D_1 > 0``): read once."""
 
 
 def root_structure(coeffs: Sequence[Any]) -> RootStructure:
