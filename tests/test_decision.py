@@ -222,6 +222,28 @@ def test_definiteness_is_sylvester_on_the_generated_program():
         assert d[3] == round(np.linalg.det(m.astype(float)))
 
 
+def test_where_p_is_positive_three_minors_decide_definiteness_as_four_do():
+    """The short reading of the common pairs: a member where ``P > 0`` has a positive
+    determinant, so Sylvester's minors of orders 1-3 decide what all four decide."""
+    rng = np.random.default_rng(11)
+    E, Q, _ = random_pairs(150, rng)
+    seen = {Definite.POSITIVE: 0, Definite.NEGATIVE: 0, Definite.NONE: 0}
+    for i in range(len(E)):
+        try:
+            pencil = dec.Pencil(characteristic_polynomial(E[i], Q[i]))
+        except qc.ExcludedQuadricError:
+            continue
+        for mu in (Fraction(k, 4) for k in range(-40, 41, 3)):
+            n, d = mu.numerator, mu.denominator
+            if pencil.sign_at(n, d) > 0:
+                got = pencil.definite_where_p_positive(n, d)
+                assert got is dec.definiteness(pencil.member(n, d)), (i, mu)
+                seen[got] += 1
+            else:
+                assert dec.definiteness(pencil.member(n, d)) is Definite.NONE, (i, mu)
+    assert min(seen.values()) > 20, seen  # every answer was met
+
+
 def test_float_mode_reads_rounded_cylinders_by_the_members_not_by_rounded_root_signs():
     """Rotated parabolic cylinders rounded to binary64 are ellipsoids with two nearly zero
     eigenvalues; binary64's signs of P's coefficients then read two positive roots (E outside)
