@@ -18,10 +18,12 @@ from __future__ import annotations
 
 import inspect
 import math
+import operator
 from collections.abc import Iterable, Sequence
 from fractions import Fraction
 from typing import Any
 
+from quadric_contact._generated.formulas import det_symmetric_4
 from quadric_contact.exact.entries import ENTRY_INDICES
 from quadric_contact.exact.errors import (
     SYMMETRIZE_HINT,
@@ -647,8 +649,6 @@ class Quadric:
         m3 = a00 * (a11 * a22 - a12 * a12) - a01 * (a01 * a22 - a12 * a02) + a02 * (a01 * a12 - a11 * a02)
         if m3 == 0 or (m3 > 0) != (a00 > 0):
             return 0
-        from quadric_contact._generated.formulas import det_symmetric_4
-
         det = det_symmetric_4(*ints)
         if det >= 0:
             return 0
@@ -673,10 +673,16 @@ class Quadric:
     # -- arithmetic and comparison -----------------------------------------------
 
     def __neg__(self) -> Quadric:
-        neg = Quadric._from_upper(tuple(-v for v in self._u))
-        if self._ints is not None:  # the same common denominator, negated integers
+        neg = Quadric.__new__(Quadric)
+        neg._kind, neg._hash = None, None
+        # the Fractions only where they are already made (a Quadric from binary64 entries makes
+        # them when first read); the integer form is the same common denominator, negated
+        neg._uf = None if self._uf is None else tuple(-v for v in self._uf)
+        if self._ints is not None:
             ints, den = self._ints
             neg._ints = (tuple(-v for v in ints), den)
+        else:
+            neg._ints = None
         return neg
 
     def scaled(self, factor: Any) -> Quadric:
@@ -726,6 +732,8 @@ class Quadric:
 
 _UPPER_FLAT = tuple(4 * i + j for i, j in ENTRY_INDICES)
 _LOWER_FLAT = tuple(4 * j + i for i, j in ENTRY_INDICES)
+_UPPER_OF = operator.itemgetter(*_UPPER_FLAT)
+_LOWER_OF = operator.itemgetter(*_LOWER_FLAT)
 
 
 def _from_float_array(
@@ -735,23 +743,25 @@ def _from_float_array(
     symmetric (every denominator is a power of two, so the least common one is the largest;
     the Fractions are made when first read), the upper entries of ``(M + M^T) / 2`` when it is
     not and ``symmetrize`` asks for it.  None otherwise."""
-    if type(matrix).__module__ != "numpy" or getattr(matrix, "dtype", None) is None:
+    if type(matrix).__module__ != "numpy":
         return None
-    if matrix.dtype.kind != "f" or matrix.dtype.itemsize != 8 or matrix.shape != (4, 4):
+    dtype = getattr(matrix, "dtype", None)
+    # binary64 in either byte order ('d'); float32, float16 and longdouble take the general path
+    if dtype is None or dtype.char != "d" or matrix.shape != (4, 4):
         return None
     flat = matrix.ravel().tolist()
     # a NaN or an infinity makes the sum non-finite (so does an overflow: then look entry by entry)
     if not math.isfinite(sum(flat)) and not all(math.isfinite(v) for v in flat):
         return None  # the general path names the offending entry
-    upper = [flat[k] for k in _UPPER_FLAT]
-    lower = [flat[k] for k in _LOWER_FLAT]
+    upper = _UPPER_OF(flat)
+    lower = _LOWER_OF(flat)
     if upper != lower:
         if not symmetrize:
             return None  # the general path raises NotSymmetricError with the entry
         return tuple((Fraction(a) + Fraction(b)) / 2 for a, b in zip(upper, lower, strict=True)), None
     ratios = [v.as_integer_ratio() for v in upper]
-    den = max(d for _, d in ratios)
-    return None, (tuple(n * (den // d) for n, d in ratios), den)
+    den = max([d for _, d in ratios])
+    return None, (tuple([n * (den // d) for n, d in ratios]), den)
 
 
 def _rotation(rotation: Any) -> Any:
