@@ -15,7 +15,7 @@ import sympy as sp
 
 from quadric_contact import Quadric
 from quadric_contact.exact.algebraic import sign_at
-from quadric_contact.exact.errors import SceneError
+from quadric_contact.exact.errors import ChoiceError, SceneError
 from quadric_contact.exact.rational import fmpq_poly_of
 from quadric_contact.scenes.composite import Piece, Split
 from quadric_contact.scenes.scene import builtin_scene, builtin_scene_names
@@ -377,7 +377,7 @@ center = [0, 0, 5]
     assert parse_scene(text.replace('reading = "paper"\n', ""), "r.toml").reading == "geometry"
     with pytest.raises(SceneError, match=r"scene\.reading"):
         parse_scene(text.replace('"paper"', '"whole"'), "r.toml")
-    with pytest.raises(SceneError, match="reading"):
+    with pytest.raises(ChoiceError, match="reading"):
         simulate(parse_scene(text, "r.toml"), reading="whole")
 
 

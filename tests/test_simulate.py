@@ -12,6 +12,7 @@ from quadric_contact.exact.errors import ChoiceError, SceneError
 from quadric_contact.scenes.composite import algorithm_2
 from quadric_contact.scenes.ledger import FULL_ITEMS, Ledger
 from quadric_contact.scenes.scene import builtin_scene, builtin_scene_names, parse_scene
+from quadric_contact.scenes.scene_model import READINGS
 from quadric_contact.scenes.simulate import Plan, simulate
 
 
@@ -175,6 +176,14 @@ def test_an_unknown_smallness_policy_is_a_choice_error_naming_the_choices():
     with pytest.raises(ChoiceError, match="got 'bogus'"):
         scene.check_smallness(on_not_small="bogus")
     assert simulate(scene, effects=["zone"], on_not_small=None).ledger is not None
+
+
+def test_an_unknown_reading_is_a_choice_error_naming_the_choices():
+    scene = builtin_scene(check_smallness=False)
+    for bogus in ("bogus", "", "Paper", 1, ["paper"]):
+        with pytest.raises(ChoiceError, match="'geometry', 'paper'") as info:
+            simulate(scene, effects=["zone"], reading=bogus)
+        assert info.value.details["choices"] == READINGS
 
 
 def test_progress_bar_on_request(capsys):

@@ -36,7 +36,7 @@ import time
 from collections.abc import Sequence
 from dataclasses import replace
 
-from quadric_contact.exact.errors import SceneError
+from quadric_contact.exact.errors import ChoiceError
 from quadric_contact.scenes.composite import Composite, Piece
 from quadric_contact.scenes.ledger import Ledger
 from quadric_contact.scenes.manybody import run_pairs
@@ -108,9 +108,10 @@ def simulate(
     Raises
     ------
     SceneError
-        An unknown reading, unknown effects, or a pair that is not small under the ``"refuse"`` policy.
+        Unknown effects, or a pair that is not small under the ``"refuse"`` policy.
     ChoiceError
-        ``on_not_small`` is not ``"refuse"``, ``"warn"`` or None.
+        ``reading`` is not ``"geometry"`` or ``"paper"``, or ``on_not_small`` is not
+        ``"refuse"``, ``"warn"`` or None.
 
     References
     ----------
@@ -126,8 +127,12 @@ def simulate(
     """
     check_on_not_small(on_not_small)
     if reading is not None and reading != scene.reading:
-        if reading not in READINGS:
-            raise SceneError(f"reading: expected one of {list(READINGS)}, got {reading!r}", reading)
+        if not (isinstance(reading, str) and reading in READINGS):
+            raise ChoiceError(
+                f"reading must be one of {', '.join(map(repr, READINGS))}, got {reading!r}",
+                reading,
+                choices=READINGS,
+            )
         scene = replace(scene, reading=reading)
     plan = Plan.from_effects(scene.effects if effects is None else effects, full=full)
     started = time.perf_counter()
