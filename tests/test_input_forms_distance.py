@@ -213,3 +213,39 @@ def test_a_dask_stack_is_read_as_its_array():
     lazy = da.from_array(Ef, chunks=(1, 4, 4))
     assert (qc.distance(lazy, Qf) == qc.distance(Ef, Qf)).all()
     assert (qc.contact_scale(lazy, Qf[1]) == qc.contact_scale(Ef, Qf[1])).all()
+
+
+HYPERBOLOID = "x**2 + y**2 - z**2 - 1"
+
+
+@pytest.mark.parametrize("form", ["float64", "fractions", "equations"])
+@pytest.mark.parametrize("mode", ["certified", "exact", "float"])
+def test_a_pair_the_scalar_path_refuses_is_named_by_its_place_in_the_stack(form, mode):
+    """The pairs a stack answers one by one raise what the pair raises alone (the same class,
+    value and details), naming where it sits in the stack: ``index`` is its flat position."""
+    es = [APART[1], HYPERBOLOID, PLANE[0]]  # a sphere, then a hyperboloid, then an ellipsoid
+    qs = [APART[0], APART[0], PLANE[1]]
+    if form == "equations":
+        E, Q = es, qs
+    else:
+        E = np.array([_matrix(e) for e in es], dtype=object)
+        Q = np.array([_matrix(q) for q in qs], dtype=object)
+        if form == "float64":
+            E, Q = E.astype(float), Q.astype(float)
+    with pytest.raises(qc.NotAnEllipsoidError) as alone:
+        qc.distance(HYPERBOLOID, APART[0], mode=mode)
+    with pytest.raises(qc.NotAnEllipsoidError, match=r"^the pair at \[1\]: ") as info:
+        qc.distance(E, Q, mode=mode)
+    assert str(info.value).endswith(str(alone.value))
+    assert info.value.details == {**alone.value.details, "index": 1}
+    if mode != "float":
+        with pytest.raises(qc.NotAnEllipsoidError, match=r"^the pair at \[1\]: ") as info:
+            qc.contact_scale(E, Q, mode=mode)
+        assert info.value.details["index"] == 1
+
+
+def test_the_place_of_a_pair_in_a_stack_of_two_axes_is_its_multi_index():
+    E = np.array([[_matrix(APART[0]), _matrix(HYPERBOLOID)]] * 2, dtype=object).astype(float)
+    with pytest.raises(qc.NotAnEllipsoidError, match=r"^the pair at \[0, 1\]: ") as info:
+        qc.distance(E, _matrix(APART[1]).astype(float))
+    assert info.value.details["index"] == 1

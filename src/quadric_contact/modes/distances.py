@@ -37,6 +37,8 @@ first: its answer is the stack of one's enclosure.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
@@ -51,6 +53,7 @@ from quadric_contact.exact.errors import (
     NonFiniteError,
     NotANumberError,
     NotSymmetricError,
+    QuadricContactError,
     ShapeError,
     UndecidedError,
 )
@@ -198,6 +201,17 @@ def _pairs(E: Any, Q: Any) -> tuple[list[Any], list[Any], tuple[int, ...]]:
     return spread(es, se), spread(qs, sq), shape
 
 
+@contextmanager
+def _naming_pair(k: int, shape: tuple[int, ...]) -> Iterator[None]:
+    """An error of the pair at flat position ``k`` of a stack's answer (batch shape ``shape``),
+    raised again naming the pair: the same class, ``.value`` and details, and ``index=k``."""
+    try:
+        yield
+    except QuadricContactError as exc:
+        at = ", ".join(str(int(i)) for i in np.unravel_index(k, shape)) if shape else ""
+        raise type(exc)(f"the pair at [{at}]: {exc}", exc.value, **{**exc.details, "index": k}) from exc
+
+
 def _check(mode: str, modes: tuple[str, ...] = _MODES) -> None:
     if mode not in modes:
         raise ChoiceError(f"mode must be one of {', '.join(modes)}, got {mode!r}", mode, choices=modes)
@@ -255,7 +269,8 @@ def contact_scale(E: Any, Q: Any, *, scale: str = "E", mode: str = "certified") 
     es, qs, shape = _pairs(E, Q)
     out = np.empty((len(es), 2))
     for k, (e, q) in enumerate(zip(es, qs, strict=True)):
-        out[k] = enclosure(contact_scale_exact(e, q, scale=scale).scale)
+        with _naming_pair(k, shape):
+            out[k] = enclosure(contact_scale_exact(e, q, scale=scale).scale)
     return out.reshape(*shape, 2)
 
 
@@ -300,14 +315,19 @@ def _distance_kernel(E: np.ndarray, Q: np.ndarray, mode: str, digits: int) -> np
         out[done] = enc[~still]
         rest[done] = False
     for k in np.flatnonzero(rest):
-        e, q = Es[k], Qs[k]
-        if mode == "float":
-            f = _float(e, q)
-            out[k] = (-math.inf, math.inf) if f.uncertain else f.bounds
-            continue
-        c = _certified(e, q, max(digits, 17))
-        out[k] = _float_bounds(*c.bounds) if c is not None else enclosure(distance_exact(e, q).distance)
+        with _naming_pair(int(k), shape):
+            out[k] = _pair_enclosure(Es[k], Qs[k], mode, digits)
     return out.reshape(*shape, 2)
+
+
+def _pair_enclosure(e: Any, q: Any, mode: str, digits: int) -> tuple[float, float]:
+    """The enclosure a stack holds for one pair it answers by the scalar path (``float``:
+    ``(-inf, inf)`` where that mode cannot tell)."""
+    if mode == "float":
+        f = _float(e, q)
+        return (-math.inf, math.inf) if f.uncertain else f.bounds
+    c = _certified(e, q, max(digits, 17)) if mode == "certified" else None
+    return _float_bounds(*c.bounds) if c is not None else enclosure(distance_exact(e, q).distance)
 
 
 def _scale_kernel(E: np.ndarray, Q: np.ndarray, scale: str = "E") -> np.ndarray:
@@ -323,7 +343,8 @@ def _scale_kernel(E: np.ndarray, Q: np.ndarray, scale: str = "E") -> np.ndarray:
     Qs = _validated(np.broadcast_to(Q, (*shape, 4, 4)), "Q")
     out, rest = (scale_both_stack if scale == "both" else scale_stack)(Es, Qs)
     for k in np.flatnonzero(rest):
-        out[k] = enclosure(contact_scale_exact(Es[k], Qs[k], scale=scale).scale)
+        with _naming_pair(int(k), shape):
+            out[k] = enclosure(contact_scale_exact(Es[k], Qs[k], scale=scale).scale)
     return out.reshape(*shape, 2)
 
 
@@ -478,10 +499,6 @@ def distance(E: Any, Q: Any, *, mode: str = "certified", digits: int = 15) -> An
     es, qs, shape = _pairs(E, Q)
     out = np.empty((len(es), 2))
     for k, (e, q) in enumerate(zip(es, qs, strict=True)):
-        if mode == "float":
-            f = _float(e, q)
-            out[k] = (-math.inf, math.inf) if f.uncertain else f.bounds
-            continue
-        c = _certified(e, q, max(digits, 17)) if mode == "certified" else None
-        out[k] = _float_bounds(*c.bounds) if c is not None else enclosure(distance_exact(e, q).distance)
+        with _naming_pair(k, shape):
+            out[k] = _pair_enclosure(e, q, mode, digits)
     return out.reshape(*shape, 2)
