@@ -392,7 +392,7 @@ def _counts_of_signs(signs: tuple[int, ...]) -> tuple[int, int, int, tuple[int, 
     return len(nonzero) - 2 * v, v, n - k, signs
 
 
-_QUARTIC_COUNTS = {
+_QUARTIC_COUNTS: dict[tuple[int, ...], tuple[int, int, int, tuple[int, ...]]] = {
     (1, s2, s3, s4): _counts_of_signs((1, s2, s3, s4))
     for s2 in (-1, 0, 1)
     for s3 in (-1, 0, 1)
