@@ -1,8 +1,8 @@
 """The array kernels compiled into numba's on-disk cache (or loaded from it), all at once.
 
 numba compiles a kernel the first time it is called with a new signature and keeps the machine
-code in its on-disk cache; the first compilation of the complete decision takes a minute or
-two, of every kernel about seven minutes of CPU time.  :func:`warm_kernels` calls every
+code in its on-disk cache; the first compilation of the complete decision takes about 40 s of
+CPU time, of every kernel about 100 s.  :func:`warm_kernels` calls every
 question of the array API in the float, filter and certified modes, on distinct pairs, on one
 matrix against a stack (either side), float64 and packed, and on nearly touching pairs (the
 later stages), the first-contact scale and the distance of separated and of crossing

@@ -150,7 +150,7 @@ TWIN_ELEMENTS = 1 << 20
 """A call whose array arguments hold at most this many elements in all, and whose kernel is not
 compiled yet, runs the kernel's Python twin (:func:`python_twin`) instead of waiting for the
 compile: for the complete decision that is about 27 000 pairs, which its twin answers in about
-a second, where the compile takes a minute or two.  A larger call compiles what it needs."""
+a second, where the compile takes about 40 s.  A larger call compiles what it needs."""
 
 KERNEL_POLICIES = ("background", "wait", "twins")
 """What a call does when its kernel is not compiled (``QUADRIC_CONTACT_KERNELS`` in the
@@ -567,8 +567,15 @@ def njit(
     cache: bool = True,
     twin_elements: int = TWIN_ELEMENTS,
 ) -> Any:
-    """``numba.njit`` (``inline="always"`` for the small helpers the kernels inline;
-    ``nogil`` and cached for the kernels themselves), or the function unchanged.
+    """``numba.njit`` (``forceinline`` for the helpers the kernels inline; ``nogil`` and cached
+    for the kernels themselves), or the function unchanged.
+
+    ``forceinline`` marks a helper ``alwaysinline`` for LLVM: numba types and lowers it once
+    per signature and LLVM inlines it into every caller, the same code in the end as numba's
+    own ``inline="always"``, which typed the helper again at every call site and through every
+    level of helpers (all 42 kernels of the warm-up: 629 s of CPU that way, 99 s this way, at
+    the same throughput).  Without either, LLVM's inliner leaves the large generated programs
+    as calls, and the kernels run three times slower.
 
     ``error_model="numpy"``: division follows IEEE 754 (no zero check raising
     ``ZeroDivisionError``, whose branch would keep the loops from vectorising); the
@@ -581,7 +588,7 @@ def njit(
         if not HAVE_NUMBA:
             return f
         if inline:
-            return numba.njit(inline="always", error_model="numpy")(f)
+            return numba.njit(forceinline=True, error_model="numpy")(f)
         dispatcher = numba.njit(nogil=True, cache=cache, error_model="numpy")(f)
         if cache:
             stamp_with_sources(dispatcher)
@@ -663,7 +670,7 @@ def python_twin(fn: Callable[..., Any]) -> Callable[..., Any]:
 # numba compiles a kernel the first time it is called with a new signature and keeps the
 # machine code in its on-disk cache (``cache=True``; :func:`kernel_cache_dir`, one directory for
 # every copy of the package).  Later processes load it in milliseconds.  The first
-# compilation of the complete decision takes minutes of CPU time, so the first time a kernel
+# compilation of the complete decision takes about 40 s of CPU time, so the first time a kernel
 # of this package misses the cache the process says so, once, on stderr: that it runs the
 # twins meanwhile, or that it compiles (a large call, or the ``wait`` policy).
 
@@ -675,14 +682,14 @@ TWINS_NOTICE = (
 """The line printed (stderr) the first time a call of a process runs a kernel's twin."""
 
 _WHO = {
-    "background": "a background process fills it, once for this machine (about seven minutes of CPU "
+    "background": "a background process fills it, once for this machine (about two minutes of CPU "
     "time at the lowest priority)",
     "twins": "`quadric-contact compile` fills it (QUADRIC_CONTACT_KERNELS=twins: no background process)",
 }
 
 COMPILE_NOTICE = (
-    "quadric-contact: compiling the numba kernels once for this machine (about two minutes of CPU "
-    "time for the first complete decision, seven for every layout and mode, spread over the first "
+    "quadric-contact: compiling the numba kernels once for this machine (about 40 s of CPU time "
+    "for the first complete decision, two minutes for every layout and mode, spread over the first "
     "calls that need them); later processes load them from the on-disk cache{where}"
 )
 """The line printed (stderr) the first time a kernel of the package is compiled in a process."""
@@ -727,7 +734,7 @@ if HAVE_NUMBA:  # pragma: no branch
             if not module.startswith("quadric_contact"):
                 return
             if not _cache_dir(dispatcher):
-                # not a cache miss: an uncached helper (inline="always") called from Python is
+                # not a cache miss: an uncached helper (forceinline) called from Python is
                 # compiled in every process, in a few seconds, and no cache would keep it
                 return
             _notice_printed = True

@@ -929,8 +929,10 @@ _INLINED = (
     "_below_at_most", "_below_at_least", "_enclose", "_power", "_monomial", "_invariant_primitive",
     "_eigen_primitive", "_q_row", "_verdict", "_only", "_fixed_code", "_newton",
 )  # fmt: skip
-"""Inlined by numba into the compiled loops, which LLVM then vectorises (every helper is
-straight-line: the loops over blocks of rows carry no branch and no call)."""
+"""Inlined into the compiled loops (``forceinline``: LLVM's ``alwaysinline``, as
+:func:`~quadric_contact.modes._jit.njit` does for the kernels' helpers), which LLVM then
+vectorises (every helper is straight-line: the loops over blocks of rows carry no branch and no
+call)."""
 _CALLED: tuple[str, ...] = ()
 _LOOPS = ("_e_rows_loop", "_e_block", "_q_rows_loop", "_pairs_loop", "_fused_loop")
 
@@ -978,9 +980,9 @@ def _make_twins() -> None:
         return select_intrinsic(c, a, b)
 
     scope["select_intrinsic"] = select_intrinsic
-    scope["select"] = numba.njit(inline="always")(select_compiled)
+    scope["select"] = numba.njit(forceinline=True)(select_compiled)
     for name in _INLINED:
-        scope[name] = twin(globals()[name], inline="always")
+        scope[name] = twin(globals()[name], forceinline=True)
     for name in (*_CALLED, *_LOOPS):
         scope[name] = twin(globals()[name])
     _twins.update({name: scope[name] for name in (*_INLINED, *_CALLED, *_LOOPS)})
