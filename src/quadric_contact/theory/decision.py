@@ -239,6 +239,12 @@ CONTACT_OF, REGION_OF, RULE_OF = _build()
 """The decision as data: contact code, region code and :class:`Rule` for every combination of
 facts, ``UNKNOWN`` ones included (indexed by :func:`table_index`)."""
 
+_ROWS: tuple[tuple[int, int, Rule], ...] = tuple(
+    (int(c), int(r), Rule(int(u))) for c, r, u in zip(CONTACT_OF, REGION_OF, RULE_OF, strict=True)
+)
+"""The same table, row by row, as Python objects: what the scalar path reads (a numpy scalar
+read and an enum made per pair were a tenth of the common pair's decision)."""
+
 
 # -- the facts, exactly ------------------------------------------------------------------------
 
@@ -598,8 +604,8 @@ def decide_pencil(P: CharacteristicPolynomial) -> PencilDecision:
     the member 5 E + Q is positive definite: X^T Q X > 0 on E (R+, strictly)
     """
     facts = pencil_facts(P)
-    k = table_index(int(facts.surface), int(facts.roots), int(facts.definite), int(facts.plane))
-    return PencilDecision(int(CONTACT_OF[k]), int(REGION_OF[k]), Rule(int(RULE_OF[k])), facts)
+    contact, region, rule = _ROWS[table_index(facts.surface, facts.roots, facts.definite, facts.plane)]
+    return PencilDecision(contact, region, rule, facts)
 
 
 def decide_exact(E: Any, Q: Any) -> PencilDecision:
