@@ -82,6 +82,8 @@ def is_stack(value: Any) -> bool:
     >>> is_stack(np.eye(4)), is_stack(np.eye(4)[None]), is_stack(["x**2 - 1"]), is_stack("x - 1")
     (False, True, True, False)
     """
+    if type(value) is np.ndarray and value.ndim == 2:
+        return False  # one matrix: the commonest single input, read first
     if _is_single(value):
         return False
 
