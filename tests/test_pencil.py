@@ -4,11 +4,12 @@ from fractions import Fraction
 
 import flint
 import numpy as np
+import pytest
 import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from quadric_contact import Quadric, characteristic_polynomial
+from quadric_contact import NotAnEllipsoidError, Quadric, characteristic_polynomial
 from quadric_contact.exact.precision import working_precision
 from quadric_contact.testing.strategies import ellipsoids, quadrics, rigid_motions
 
@@ -106,3 +107,24 @@ def test_pencil_root_signs_equal_certified_isolation(e, q):
                 counts[key] += m
     s = P.signs
     assert (s.negative, s.zero, s.positive) == (counts["-"], counts["0"], counts["+"])
+
+
+@settings(max_examples=25)  # a symbolic determinant per example
+@given(e=ellipsoids(), q=quadrics(), negate=st.booleans())
+def test_the_normalised_polynomial_is_sympys_of_the_ellipsoid_with_the_papers_sign(e, q, negate):
+    """The ellipsoid test and ``P`` share ``det E`` (``P``'s leading coefficient); an ``E`` given
+    with its inside positive gives ``P`` of ``-E``: the odd coefficients negated."""
+    given_e = -e if negate else e
+    P = characteristic_polynomial(given_e, q)
+    assert e.as_ellipsoid() == P.E and P.e_flipped == (given_e != P.E)
+    assert P.coefficients == _sympy_charpoly(P.E, q)
+
+
+def test_a_quadric_that_is_not_an_ellipsoid_is_refused_by_name():
+    for text, kind in (
+        ("x**2 + y**2 - z**2 - 1", "hyperboloid of one sheet"),  # an indefinite quadratic part
+        ("x**2 + 2*y**2 + 3*z**2 + 1", "imaginary ellipsoid"),  # definite, det > 0
+        ("x**2 + y**2 + z**2", "imaginary cone"),  # definite, det = 0
+    ):
+        with pytest.raises(NotAnEllipsoidError, match=kind):
+            characteristic_polynomial(text, "x - 1")

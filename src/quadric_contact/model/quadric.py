@@ -640,17 +640,22 @@ class Quadric:
         """+1 if a real ellipsoid with the paper's sign, -1 if its negative is, 0 otherwise.
 
         Fast exact test on the integer form: Sylvester's criterion on the
-        quadratic part and the sign of det(Q)."""
-        ints, _ = self.integer_form()
-        a00, a01, a02, _, a11, a12, _, a22, _, _ = ints
+        quadratic part (:meth:`_quadratic_part_sign`) and the sign of det(Q)."""
+        sign = self._quadratic_part_sign()
+        if sign == 0 or det_symmetric_4(*self.integer_form()[0]) >= 0:
+            return 0
+        return sign
+
+    def _quadratic_part_sign(self) -> int:
+        """+1 if the quadratic part is positive definite, -1 if negative definite, else 0
+        (Sylvester's criterion on the integer form): with ``det < 0`` the quadric is a real
+        ellipsoid, the paper's sign for +1."""
+        a00, a01, a02, _, a11, a12, _, a22, _, _ = self.integer_form()[0]
         m2 = a00 * a11 - a01 * a01
         if m2 <= 0 or a00 == 0:
             return 0
         m3 = a00 * (a11 * a22 - a12 * a12) - a01 * (a01 * a22 - a12 * a02) + a02 * (a01 * a12 - a11 * a02)
         if m3 == 0 or (m3 > 0) != (a00 > 0):
-            return 0
-        det = det_symmetric_4(*ints)
-        if det >= 0:
             return 0
         return 1 if a00 > 0 else -1
 

@@ -74,13 +74,16 @@ class CharacteristicPolynomial:
     (Fraction(-13790208, 1), Fraction(0, 1))
     """
 
-    def __init__(self, E: Quadric, Q: Quadric, e_flipped: bool = False) -> None:
+    def __init__(
+        self, E: Quadric, Q: Quadric, e_flipped: bool = False, ints: tuple[int, ...] | None = None
+    ) -> None:
         self.E = E
         self.Q = Q
         self.e_flipped = e_flipped
         eI, dE = E.integer_form()
         qI, dQ = Q.integer_form()
-        self._ints: tuple[int, ...] = pencil_coefficients(*eI, *qI)
+        # ``ints``: the coefficients, when the caller has them already (of these integer forms)
+        self._ints: tuple[int, ...] = pencil_coefficients(*eI, *qI) if ints is None else ints
         self._scale = (dE, dQ)
 
     # -- coefficients ----------------------------------------------------------
@@ -246,5 +249,15 @@ def characteristic_polynomial(E: Any, Q: Any, *, normalize: bool = True) -> Char
     q = as_quadric(Q, "Q")
     if not normalize:
         return CharacteristicPolynomial(e, q, False)
-    ne = e.as_ellipsoid()
-    return CharacteristicPolynomial(ne, q, ne is not e)
+    # Sylvester's criterion on the quadratic part of E, then det E < 0, which is P's leading
+    # coefficient: the ellipsoid test and P share that determinant
+    sign = e._quadratic_part_sign()
+    if sign:
+        C = pencil_coefficients(*e.integer_form()[0], *q.integer_form()[0])
+        if C[4] < 0:
+            if sign > 0:
+                return CharacteristicPolynomial(e, q, False, C)
+            # det(lambda (-E) + Q) = P(-lambda): the odd coefficients change sign
+            return CharacteristicPolynomial(-e, q, True, (C[0], -C[1], C[2], -C[3], C[4]))
+    ne = e.as_ellipsoid()  # raises NotAnEllipsoidError, naming what E is
+    return CharacteristicPolynomial(ne, q, ne is not e)  # pragma: no cover - as_ellipsoid raised
