@@ -431,7 +431,13 @@ def pencil_facts(P: CharacteristicPolynomial) -> PencilFacts:
     scale = pencil.root_scale
     real, other = Surface.REAL, Plane.OTHER
     try:
-        x0, x1, x2, ok = critical_points(C[1] / C[4], C[2] / C[4], C[3] / C[4], 1.0)
+        # each coefficient rounded once, then divided (a sample point needs no more: the signs
+        # of P certify); quotients of the integers where a coefficient is beyond binary64
+        try:
+            c4 = float(C[4])
+            x0, x1, x2, ok = critical_points(float(C[1]) / c4, float(C[2]) / c4, float(C[3]) / c4, 1.0)
+        except OverflowError:
+            x0, x1, x2, ok = critical_points(C[1] / C[4], C[2] / C[4], C[3] / C[4], 1.0)
     except (OverflowError, ZeroDivisionError):
         ok = False
     points: list[tuple[Fraction, Definite]] = []
