@@ -265,7 +265,7 @@ def _member(
 
 _member_called = _njit(getattr(_member, "py_func", _member))
 """:func:`_member` as a function the scalar loops call rather than inline: those loops run for
-few pairs, and each inlined copy of the member's program is compile time (numba copies the
+few pairs, and each inlined copy of the member's program is compile time (LLVM copies the
 inlined code for every call site)."""
 
 
