@@ -61,12 +61,24 @@ def check_on_not_small(on_not_small: Any) -> None:
     ...     print(exc)
     on_not_small must be one of 'refuse', 'warn' or None, got 'ignore'
     """
-    if on_not_small is not None and not (isinstance(on_not_small, str) and on_not_small in ON_NOT_SMALL):
-        raise ChoiceError(
-            f"on_not_small must be one of {', '.join(map(repr, ON_NOT_SMALL))} or None, got {on_not_small!r}",
-            on_not_small,
-            choices=(*ON_NOT_SMALL, None),
-        )
+    check_choice("on_not_small", on_not_small, (*ON_NOT_SMALL, None))
+
+
+def check_choice(name: str, value: Any, choices: tuple[str | None, ...]) -> None:
+    """Raise :class:`ChoiceError` unless ``value`` is one of ``choices`` (strings, and None
+    where None is one), naming them; ``.details['choices']`` holds them.
+
+    >>> try:
+    ...     check_choice("reading", "whole", READINGS)
+    ... except ChoiceError as exc:
+    ...     print(exc)
+    reading must be one of 'geometry', 'paper', got 'whole'
+    """
+    words = [c for c in choices if c is not None]
+    if (value is None and None in choices) or (isinstance(value, str) and value in words):
+        return
+    listed = ", ".join(map(repr, words)) + (" or None" if None in choices else "")
+    raise ChoiceError(f"{name} must be one of {listed}, got {value!r}", value, choices=choices)
 
 
 EFFECTS: tuple[str, ...] = (

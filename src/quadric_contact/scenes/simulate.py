@@ -36,12 +36,17 @@ import time
 from collections.abc import Sequence
 from dataclasses import replace
 
-from quadric_contact.exact.errors import ChoiceError
 from quadric_contact.scenes.composite import Composite, Piece
 from quadric_contact.scenes.ledger import Ledger
 from quadric_contact.scenes.manybody import run_pairs
 from quadric_contact.scenes.scene_distance import PieceDistance, piece_distances
-from quadric_contact.scenes.scene_model import READINGS, MovingEllipsoid, Scene, check_on_not_small
+from quadric_contact.scenes.scene_model import (
+    READINGS,
+    MovingEllipsoid,
+    Scene,
+    check_choice,
+    check_on_not_small,
+)
 from quadric_contact.scenes.scene_pairs import _progress, _simulate_pair
 from quadric_contact.scenes.simulation_reports import (
     Episode,
@@ -127,12 +132,7 @@ def simulate(
     """
     check_on_not_small(on_not_small)
     if reading is not None and reading != scene.reading:
-        if not (isinstance(reading, str) and reading in READINGS):
-            raise ChoiceError(
-                f"reading must be one of {', '.join(map(repr, READINGS))}, got {reading!r}",
-                reading,
-                choices=READINGS,
-            )
+        check_choice("reading", reading, READINGS)
         scene = replace(scene, reading=reading)
     plan = Plan.from_effects(scene.effects if effects is None else effects, full=full)
     started = time.perf_counter()
