@@ -259,7 +259,13 @@ def definiteness(m: tuple[int, ...]) -> Definite:
     (<Definite.POSITIVE: 0>, <Definite.NONE: 2>)
     """
     d1, d2, d3, d4 = leading_minors_4(*m)
-    if d2 > 0 and d4 > 0:
+    return _sylvester(d1, d2, d3) if d4 > 0 else Definite.NONE
+
+
+def _sylvester(d1: Any, d2: Any, d3: Any) -> Definite:
+    """Sylvester's criterion on the leading principal minors of orders 1-3 of a symmetric 4x4
+    matrix whose determinant is positive (a definite one's always is)."""
+    if d2 > 0:
         if d1 > 0 and d3 > 0:
             return Definite.POSITIVE
         if d1 < 0 and d3 < 0:
@@ -296,12 +302,7 @@ class Pencil:
         a00, a01, a02 = n * e[0] + d * q[0], n * e[1] + d * q[1], n * e[2] + d * q[2]
         a11, a12, a22 = n * e[4] + d * q[4], n * e[5] + d * q[5], n * e[7] + d * q[7]
         d2, d3 = leading_minors_3(a00, a01, a02, a11, a12, a22)
-        if d2 > 0:
-            if a00 > 0 and d3 > 0:
-                return Definite.POSITIVE
-            if a00 < 0 and d3 < 0:
-                return Definite.NEGATIVE
-        return Definite.NONE
+        return _sylvester(a00, d2, d3)
 
     def sign_at(self, n: int, d: int) -> int:
         """The sign of ``P`` at ``lambda = mu * root_scale``, ``mu = n / d`` (``d > 0``): that of
