@@ -629,12 +629,16 @@ class Quadric:
         """
         sign = self._ellipsoid_sign()
         if sign == 0:
-            raise NotAnEllipsoidError(
-                f"expected a real ellipsoid, got {self.kind.value} ({self.kind.real_points})",
-                self,
-                kind=self.kind,
-            )
+            raise self._not_an_ellipsoid()
         return self if sign > 0 else -self
+
+    def _not_an_ellipsoid(self) -> NotAnEllipsoidError:
+        """The error for this quadric where a real ellipsoid is expected, naming its type."""
+        return NotAnEllipsoidError(
+            f"expected a real ellipsoid, got {self.kind.value} ({self.kind.real_points})",
+            self,
+            kind=self.kind,
+        )
 
     def _ellipsoid_sign(self) -> int:
         """+1 if a real ellipsoid with the paper's sign, -1 if its negative is, 0 otherwise.

@@ -259,5 +259,4 @@ def characteristic_polynomial(E: Any, Q: Any, *, normalize: bool = True) -> Char
                 return CharacteristicPolynomial(e, q, False, C)
             # det(lambda (-E) + Q) = P(-lambda): the odd coefficients change sign
             return CharacteristicPolynomial(-e, q, True, (C[0], -C[1], C[2], -C[3], C[4]))
-    ne = e.as_ellipsoid()  # raises NotAnEllipsoidError, naming what E is
-    return CharacteristicPolynomial(ne, q, ne is not e)  # pragma: no cover - as_ellipsoid raised
+    raise e._not_an_ellipsoid()
