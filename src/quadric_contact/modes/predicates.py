@@ -122,7 +122,10 @@ def _single(question: str, E: Any, Q: Any, m: NumberMode) -> tuple[int, str]:
 
 
 def _record_exact(m: NumberMode) -> None:
-    m._record(StageCounts({"exact pair": 1}))
+    """Count the exact scalar decision in ``m`` when the caller holds it (an instance passed as
+    ``mode``): the shared instance of a mode named by a string is read by nobody."""
+    if _COMPLETE.get(m.name) is not m:
+        m._record(StageCounts({"exact pair": 1}))
 
 
 def _stage_name(stage: str, code_name: str) -> str:

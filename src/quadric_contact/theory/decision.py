@@ -447,6 +447,10 @@ def pencil_facts(P: CharacteristicPolynomial) -> PencilFacts:
         # Short dyadic sample points first (a readable witness, small integers); at full
         # precision again if they miss (a narrow gap).
         for bits in (_SHORT_BITS, None):
+            if bits is None and not P.structure.all_real:
+                # the short points missed because roots are non-real, which finer points cannot
+                # change: the exact root structure (read next, and needed anyway) says so
+                break
             points = []
             alternating = True
             # the likeliest definite members first: positive in the last gap (E outside Q),
