@@ -31,7 +31,9 @@ from typing import Any
 WARM_PAIRS = 64
 
 
-def _calls() -> list[tuple[str, Callable[[], Any]]]:
+def calls() -> list[tuple[str, Callable[[], Any]]]:
+    """The warm-up's calls, each with a line that says what it asks (also the list whose
+    certified calls the native kernels are built from: :mod:`quadric_contact.codegen.native`)."""
     import numpy as np
 
     import quadric_contact as qc
@@ -162,8 +164,8 @@ def warm_kernels(log: Callable[[str], None] = print, *, reverse: bool = False) -
     event.register("numba:compile", listener)
     start = time.perf_counter()
     try:
-        calls = _calls()
-        todo = list(reversed(calls) if reverse else calls)
+        listed = calls()
+        todo = list(reversed(listed) if reverse else listed)
         # first pass: a call whose kernel another process is compiling (the other warm-up of
         # the test run, a user's process) is put off rather than compiled twice at once; the
         # second pass runs what was put off, which then mostly loads from the cache

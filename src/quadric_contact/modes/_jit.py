@@ -19,14 +19,18 @@ except ImportError:  # pragma: no cover
     HAVE_NUMBA = False
 
 __all__ = [
+    "CALL_OBSERVERS",
     "HAVE_NUMBA",
     "PACKAGE_ROOT",
     "compile_on_a_fresh_stack",
     "jitable",
     "kernel_cache_dir",
     "kernel_sources",
+    "native_kernel",
     "njit",
     "python_twin",
+    "route_native",
+    "sources_digest",
     "stamp_with_sources",
 ]
 
@@ -84,8 +88,9 @@ def kernel_sources(root: Any = None, module: str | None = None) -> list[str]:
     not followed.
 
     So the Python around the kernels (the cascade of :mod:`quadric_contact.modes.pipeline`, the
-    predicates, the modes' classes) is no kernel's source, and a kernel's own module and what
-    it inlines are: editing the scale kernel does not recompile the decision kernel."""
+    predicates, the modes' classes, the lookup of native kernels) is no kernel's source, and a
+    kernel's own module and what it inlines are: editing the scale kernel does not recompile the
+    decision kernel.  This module is a source of every kernel; what it imports is not."""
     from pathlib import Path
 
     root = Path(__file__).resolve().parents[1] if root is None else Path(root)
@@ -107,9 +112,14 @@ def kernel_sources(root: Any = None, module: str | None = None) -> list[str]:
         if rel in seen:
             continue
         seen.add(rel)
-        if rel in compiled:
+        if rel in compiled and rel != _THIS:
             todo.extend(sorted(_package_imports(root, rel) - seen))
     return sorted(seen)
+
+
+_THIS = "modes/_jit.py"
+"""This module: a source of every kernel (the options it compiles them with), whose own imports
+are not (the library of native kernels it looks kernels up in is no kernel's code)."""
 
 
 def _sources_digest(root: Any = None, module: str | None = None) -> str:
@@ -128,6 +138,14 @@ def _sources_digest(root: Any = None, module: str | None = None) -> str:
 _SOURCES: dict[str, str] = {}
 
 
+def sources_digest(module: str) -> str:
+    """The digest of the sources the kernels of ``module`` (a dotted name) are made of, once per
+    process: what a cached or a native kernel is keyed on."""
+    if module not in _SOURCES:
+        _SOURCES[module] = _sources_digest(module=module or None)
+    return _SOURCES[module]
+
+
 def stamp_with_sources(dispatcher: Any) -> None:
     """numba keys a cached kernel on its own source file only, so a kernel whose file did not
     change but whose inlined helpers or generated programs did (new formulas, new error-bound
@@ -141,9 +159,7 @@ def stamp_with_sources(dispatcher: Any) -> None:
     if holder is None or not hasattr(holder, "_source_stamp"):
         return
     module = str(getattr(getattr(dispatcher, "py_func", None), "__module__", "") or "")
-    if module not in _SOURCES:
-        _SOURCES[module] = _sources_digest(module=module or None)
-    holder._source_stamp = (holder._source_stamp, _SOURCES[module])
+    holder._source_stamp = (holder._source_stamp, sources_digest(module))
 
 
 TWIN_ELEMENTS = 1 << 20
@@ -264,6 +280,48 @@ def _elements(args: Any) -> int:
     return sum(int(a.size) for a in args if isinstance(a, np.ndarray))
 
 
+CALL_OBSERVERS: list[Callable[[Any, Any], None]] = []
+"""Functions told of every call of a kernel from Python that finds no compiled version in the
+dispatcher, with the dispatcher and the argument types (the build of the native kernels
+records what the calls need this way)."""
+
+_NATIVE: dict[tuple[int, Any], Any] = {}
+
+
+def native_kernel(dispatcher: Any, sig: Any) -> Any:
+    """The kernel of ``dispatcher`` for the argument types ``sig`` in the library of native
+    kernels (:mod:`quadric_contact.modes.native`), as a Python callable; None when the library
+    has none that matches the running sources."""
+    key = (id(dispatcher), sig)
+    if key not in _NATIVE:
+        from quadric_contact.modes.native import lookup
+
+        _NATIVE[key] = lookup(dispatcher, sig, sources_digest)
+    return _NATIVE[key]
+
+
+def route_native(dispatcher: Any) -> None:
+    """Let a kernel that is compiled in the calling thread (no twin, no thread of its own: the
+    compiled twins of :mod:`~quadric_contact.modes.smallness_float`) run its native version
+    where the library has one (:func:`native_kernel`), telling :data:`CALL_OBSERVERS` first."""
+    compile_for_args = dispatcher._compile_for_args
+
+    def native_first(*args: Any, **kws: Any) -> Any:
+        if not kws:
+            try:
+                sig = tuple(dispatcher.typeof_pyval(a) for a in args)
+            except Exception:  # numba's own call says what is wrong with the arguments
+                return compile_for_args(*args, **kws)
+            for observe in CALL_OBSERVERS:
+                observe(dispatcher, sig)
+            native = native_kernel(dispatcher, sig)
+            if native is not None:
+                return native
+        return compile_for_args(*args, **kws)
+
+    dispatcher._compile_for_args = native_first
+
+
 def compile_on_a_fresh_stack(dispatcher: Any, twin_elements: int = TWIN_ELEMENTS) -> None:
     """Compile (or load from the cache) in a new thread, whose Python stack starts empty; and
     where the kernel is not in the cache, answer small calls by its Python twin (the
@@ -309,6 +367,12 @@ def compile_on_a_fresh_stack(dispatcher: Any, twin_elements: int = TWIN_ELEMENTS
                 sig = tuple(dispatcher.typeof_pyval(a) for a in args)
             except Exception:  # numba's own call says what is wrong with the arguments
                 sig = None
+        if sig is not None:
+            for observe in CALL_OBSERVERS:
+                observe(dispatcher, sig)
+            native = native_kernel(dispatcher, sig)
+            if native is not None:
+                return native
         if sig is None or not cached or _POLICY == "wait" or _elements(args) > twin_elements:
             if sig is None:
                 return compile_for_args(*args, **kws)

@@ -89,20 +89,27 @@ def _normalise(d: np.ndarray) -> None:  # pragma: no cover - compiled
     d[last] += carry
 
 
-@njit
-def pencil_words(
-    e: np.ndarray, q: np.ndarray, digits: int, nwords: int
-) -> np.ndarray:  # pragma: no cover - compiled
+def pencil_words(e: np.ndarray, q: np.ndarray, digits: int, nwords: int) -> np.ndarray:
     """``(n, 5, nwords)`` uint32: for pair ``p`` and coefficient ``k``, ``c_k`` in two's
     complement, least significant word first.
 
     ``e`` and ``q`` are ``(n, 10, digits)`` int64 base-``2^26`` digits of the upper entries,
     least significant first, normalised (the top digit signed, in ``[-2^25, 2^25)``)."""
+    out = np.empty((e.shape[0], 5, nwords), dtype=np.uint32)
+    _pencil_words_into(e, q, digits, nwords, out)
+    return out
+
+
+@njit
+def _pencil_words_into(
+    e: np.ndarray, q: np.ndarray, digits: int, nwords: int, out: np.ndarray
+) -> None:  # pragma: no cover - compiled
+    """:func:`pencil_words` into ``out`` (the caller's array: a kernel that takes arrays and
+    returns none has a native version, :mod:`quadric_contact.modes.native`)."""
     n = e.shape[0]
     D = digits
     L = 2 * D  # digits of a minor
     C = 4 * D + 1  # digits of a coefficient
-    out = np.empty((n, 5, nwords), dtype=np.uint32)
     ed = np.empty((4, 4, D), dtype=np.int64)
     qd = np.empty((4, 4, D), dtype=np.int64)
     mn = np.empty((2, 6, 3, L), dtype=np.int64)  # [top, bottom][column pair][E, mixed, Q][digit]
@@ -172,16 +179,23 @@ def pencil_words(
                 out[p, c, w] = np.uint32(buf & 0xFFFFFFFF)
                 buf >>= 32
                 w += 1
+
+
+def dyadic_digits(m: np.ndarray, shift: np.ndarray, digits: int) -> np.ndarray:
+    """Base-``2^26`` digits of the integers ``m * 2^shift`` (``|m| < 2^62``, ``shift >= 0``),
+    least significant first: ``(n, 10, digits)`` int64, each digit of the sign of its
+    integer and below ``2^26`` in magnitude (not normalised; the bounds above hold)."""
+    out = np.zeros((m.shape[0], 10, digits), dtype=np.int64)
+    _dyadic_digits_into(m, shift, digits, out)
     return out
 
 
 @njit
-def dyadic_digits(m: np.ndarray, shift: np.ndarray, digits: int) -> np.ndarray:  # pragma: no cover - compiled
-    """Base-``2^26`` digits of the integers ``m * 2^shift`` (``|m| < 2^62``, ``shift >= 0``),
-    least significant first: ``(n, 10, digits)`` int64, each digit of the sign of its
-    integer and below ``2^26`` in magnitude (not normalised; the bounds above hold)."""
+def _dyadic_digits_into(
+    m: np.ndarray, shift: np.ndarray, digits: int, out: np.ndarray
+) -> None:  # pragma: no cover - compiled
+    """:func:`dyadic_digits` into ``out`` (zeros, the caller's)."""
     n = m.shape[0]
-    out = np.zeros((n, 10, digits), dtype=np.int64)
     for p in range(n):
         for u in range(10):
             v = m[p, u]
@@ -200,7 +214,6 @@ def dyadic_digits(m: np.ndarray, shift: np.ndarray, digits: int) -> np.ndarray: 
                 else:
                     d = np.int64(0)
                 out[p, u, t] = -d if neg else d
-    return out
 
 
 def _digits(x: np.ndarray, digits: int) -> np.ndarray:

@@ -65,6 +65,7 @@ import numpy as np
 from quadric_contact._generated import formulas, kernels
 from quadric_contact.modes import errorbounds as eb
 from quadric_contact.modes._jit import njit as _njit
+from quadric_contact.modes._jit import python_twin
 from quadric_contact.modes.base import Pairs
 from quadric_contact.theory import decision
 
@@ -487,8 +488,6 @@ def _reference() -> Any:
     """:func:`_separation_impl` run by Python all the way down (``python_twin``): called from
     Python, the inline certificate would be compiled on its own, uncached, in every process."""
     if not _REFERENCE:
-        from quadric_contact.modes._jit import python_twin
-
         _REFERENCE.append(python_twin(_separation_impl))
     return _REFERENCE[0]
 
@@ -511,13 +510,26 @@ def _approx(values: np.ndarray) -> np.ndarray:
     return np.frompyfunc(one, 1, 1)(values).astype(np.float64)
 
 
+_PLAIN: dict[str, Any] = {}
+
+
+def _plain(name: str) -> Any:
+    """The Python twin of the compiled helper ``name`` of this module, for the object stages
+    (Python numbers, pair by pair): called from Python, the compiled helper would be compiled in
+    every process that calls it (it is inlined into the kernels, not cached)."""
+    if name not in _PLAIN:
+        _PLAIN[name] = python_twin(globals()[name])
+    return _PLAIN[name]
+
+
 def sample_points(coefficients: list[np.ndarray]) -> np.ndarray:
     """``(n, 3)`` float sample points ``s12, s23, s34`` between the approximate roots of each
     quartic (``coefficients``: ``c0 .. c4`` as float arrays); NaN where they cannot be had."""
     c = [np.asarray(x, dtype=np.float64) for x in coefficients]
     n = c[0].shape[0]
     out = np.full((n, 3), np.nan)
-    roots = np.vectorize(lambda *a: quartic_roots(*a), otypes=[float] * 4 + [bool])
+    # the helper's Python twin: a compiled helper called from Python is compiled in every process
+    roots = np.vectorize(_plain("quartic_roots"), otypes=[float] * 4 + [bool])
     with np.errstate(all="ignore"):
         good = np.isfinite(np.stack(c)).all(axis=0) & (c[4] != 0.0)
         if good.any():
@@ -569,11 +581,12 @@ def separation_objects(mode: Any, pairs: Pairs, *, certified: bool) -> np.ndarra
             inv = kernels.quadric_invariants(*member)
             signs = [mode.signs(np.asarray(inv[j], dtype=object)) for j in range(3, 7)]
             for t, i in enumerate(idx):
-                counts[i, k] = positive_count(
+                counts[i, k] = _plain("positive_count")(
                     int(signs[0][t]), int(signs[1][t]), int(signs[2][t]), int(signs[3][t])
                 )
+    decide_counts = _plain("decide_from_counts")
     for p in range(n):
-        out[p] = decide_from_counts(int(counts[p, 0]), int(counts[p, 1]), int(counts[p, 2]), certified)
+        out[p] = decide_counts(int(counts[p, 0]), int(counts[p, 1]), int(counts[p, 2]), certified)
     return out
 
 

@@ -97,7 +97,7 @@ import numpy as np
 from quadric_contact._generated import kernels
 from quadric_contact.exact.errors import ChoiceError
 from quadric_contact.modes import errorbounds as eb
-from quadric_contact.modes._jit import HAVE_NUMBA, numba, stamp_with_sources
+from quadric_contact.modes._jit import HAVE_NUMBA, numba, route_native, stamp_with_sources
 from quadric_contact.modes.base import INVALID, MatrixStack, Pairs
 from quadric_contact.modes.rows import unique_rows
 from quadric_contact.modes.smallness_tables import (
@@ -985,6 +985,8 @@ def _make_twins() -> None:
         scope[name] = twin(globals()[name], forceinline=True)
     for name in (*_CALLED, *_LOOPS):
         scope[name] = twin(globals()[name])
+    for name in _LOOPS:  # called from Python: the native library may have them
+        route_native(scope[name])
     _twins.update({name: scope[name] for name in (*_INLINED, *_CALLED, *_LOOPS)})
 
 

@@ -1,0 +1,244 @@
+"""The native kernels: the array kernels compiled ahead of time into a shared library, at install.
+
+The kernels have one source, the Python of :mod:`quadric_contact.modes` and the generated
+programs of :mod:`quadric_contact._generated`, which numba compiles.  Compiled at run time, the
+first calls of a machine paid for the compile (about 40 s of CPU for the complete decision).
+Here numba compiles them once, when the package is built (``pip install .``,
+``python -m build``): every kernel the calls of :func:`calls` reach, with every signature they
+call it with, becomes a C function of the library ``quadric_contact._native``:
+
+* its arguments are plain C values: each array is its data pointer followed by its shape (the
+  kernels take C-contiguous arrays only), each scalar is itself;
+* its body is the kernel's own machine code: numba's optimised LLVM module of a ``cfunc`` that
+  wraps the arrays (``numba.carray``) and calls the kernel, with every other symbol made internal
+  and emitted as a position-independent object for the machine that builds (the same code the
+  run-time compile gives, so the same bits and the same speed);
+* the library links numba's C runtime (the allocator the kernels' scratch arrays use, its
+  helper functions) from numba's own sources, as ``numba.pycc`` does.
+
+A manifest next to the library (``_native_manifest.json``) lists each function with the
+kernel and signature it stands for and the digest of the sources it was made from
+(:func:`~quadric_contact.modes._jit.kernel_sources`); :mod:`quadric_contact.modes.native`
+reads it and calls a function only where the running sources have that digest and the machine
+is the one it was built for.  So the answers are those of the run-time compile, and a kernel
+whose sources changed since the build is compiled at run time as before.
+
+``python -m quadric_contact.codegen.native --out DIR`` writes the objects, the manifest and
+``build.json`` (what the extension is built from) into ``DIR``; ``setup.py`` runs it.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import time
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import Any
+
+from quadric_contact.modes.native import MANIFEST_NAME, kernel_identity, manifest_digest
+
+__all__ = ["MANIFEST_NAME", "RUNTIME_SOURCE", "build", "calls", "kernel_identity", "main"]
+
+RUNTIME_SOURCE = Path(__file__).with_name("native_runtime.c")
+"""The C source of the library's own part: numba's runtime (included from numba's sources) and
+the module's initialisation."""
+
+_SCALARS = ("int64", "bool", "float64")
+_RETURNS = ("none", "int64", "bool", "float64")
+
+
+def calls() -> list[tuple[str, Callable[[], Any]]]:
+    """The calls whose kernels the library holds: every question of the array API in the default
+    ``certified`` mode, on every input form (:func:`quadric_contact.interfaces.warmup.calls`,
+    the warm-up's list), the first-contact scale and the distance."""
+    from quadric_contact.interfaces.warmup import calls as warm_calls
+
+    other = ("mode='filter'", "mode='float'", "read_all")  # other modes; the bench's read of memory
+    return [(what, call) for what, call in warm_calls() if not any(o in what for o in other)]
+
+
+def _record(
+    todo: Sequence[tuple[str, Callable[[], Any]]], log: Callable[[str], None]
+) -> list[tuple[Any, Any]]:
+    """Run the calls; return every (dispatcher, signature) they called from Python."""
+    from quadric_contact.modes import _jit
+
+    seen: dict[tuple[int, Any], tuple[Any, Any]] = {}
+
+    def note(dispatcher: Any, sig: Any) -> None:
+        seen.setdefault((id(dispatcher), sig), (dispatcher, sig))
+
+    _jit.set_kernel_policy("wait")
+    _jit.CALL_OBSERVERS.append(note)
+    try:
+        for what, call in todo:
+            t0 = time.perf_counter()
+            call()
+            log(f"  {what}: {time.perf_counter() - t0:.1f} s")
+    finally:
+        _jit.CALL_OBSERVERS.remove(note)
+    return list(seen.values())
+
+
+def _describe(t: Any) -> list[Any]:
+    from numba.core import types
+
+    if isinstance(t, types.Array):
+        if t.layout != "C":
+            raise TypeError(f"a {t.layout}-layout array: the native kernels take C-contiguous arrays")
+        return ["array", str(t.dtype), t.ndim]
+    name = "bool" if isinstance(t, types.Boolean) else str(t)
+    if name not in _SCALARS:
+        raise TypeError(f"an argument of type {t}")
+    return ["scalar", name]
+
+
+def _wrapper(dispatcher: Any, sig: Any) -> tuple[Any, list[list[Any]], str]:
+    """The ``cfunc`` that takes plain C values and calls the kernel, its arguments' layout and
+    its return kind."""
+    import numpy as np
+    from numba import carray, cfunc, types
+
+    kinds = [_describe(t) for t in sig]
+    ret = dispatcher.overloads[sig].signature.return_type
+    ret_name = "none" if isinstance(ret, types.NoneType) else str(ret)
+    ret_name = "bool" if isinstance(ret, types.Boolean) else ret_name
+    if ret_name not in _RETURNS:
+        raise TypeError(f"it returns {ret}")
+    params: list[str] = []
+    ctypes_: list[Any] = []
+    lines: list[str] = []
+    args: list[str] = []
+    scalar_types = {"int64": types.int64, "bool": types.boolean, "float64": types.float64}
+    for i, kind in enumerate(kinds):
+        if kind[0] == "array":
+            shape = [f"s{i}_{d}" for d in range(kind[2])]
+            params += [f"p{i}", *shape]
+            ctypes_ += [types.voidptr] + [types.intp] * kind[2]
+            lines.append(f"    a{i} = carray(p{i}, ({', '.join(shape)},), np.{kind[1]})")
+            args.append(f"a{i}")
+        else:
+            params.append(f"x{i}")
+            ctypes_.append(scalar_types[kind[1]])
+            args.append(f"x{i}")
+    call = f"kernel({', '.join(args)})"
+    body = f"    {call}\n    return 0\n" if ret_name == "none" else f"    return {call}\n"
+    source = f"def wrapper({', '.join(params)}):\n" + "\n".join(lines) + ("\n" if lines else "") + body
+    namespace: dict[str, Any] = {"carray": carray, "np": np, "kernel": dispatcher}
+    # the source is generated here, from the kernel's numba types: no text from anyone else
+    exec(compile(source, f"<native wrapper of {kernel_identity(dispatcher)}>", "exec"), namespace)
+    restype = types.int64 if ret_name == "none" else scalar_types[ret_name]
+    wrapped = cfunc(restype(*ctypes_), nopython=True, error_model="numpy")(namespace["wrapper"])
+    return wrapped, kinds, ret_name
+
+
+def _object(wrapped: Any, symbol: str, target: Any) -> bytes:
+    """The wrapper's optimised module as an object: the entry renamed ``symbol``, every other
+    definition internal (each object carries its own copy of the helpers it inlined)."""
+    import llvmlite.binding as ll
+
+    library = wrapped._library
+    library._ensure_finalized()
+    module = ll.parse_bitcode(library._final_module.as_bitcode())
+    entry = wrapped.native_name
+    for fn in module.functions:
+        if not fn.is_declaration and fn.name != entry:
+            fn.linkage = "internal"
+    for gv in module.global_variables:
+        if not gv.is_declaration:
+            gv.linkage = "internal"
+    module.get_function(entry).name = symbol
+    return bytes(target.emit_object(module))
+
+
+def _target() -> tuple[Any, str, str]:
+    """The target machine of the objects: this machine's processor and features (as the run-time
+    compile has them), position-independent code for a shared library."""
+    import llvmlite.binding as ll
+
+    cpu = ll.get_host_cpu_name()
+    features = ll.get_host_cpu_features().flatten()
+    target = ll.Target.from_default_triple().create_target_machine(
+        cpu=cpu, features=features, opt=3, reloc="pic", codemodel="default"
+    )
+    return target, cpu, features
+
+
+def build(out: Path, log: Callable[[str], None] = print) -> dict[str, Any]:
+    """Compile the kernels of :func:`calls` into objects in ``out`` and write the manifest and
+    ``build.json`` there; return the latter's content."""
+    import numba
+    import numpy as np
+    from numba import _helperlib
+
+    from quadric_contact.modes import _jit
+
+    out.mkdir(parents=True, exist_ok=True)
+    t0 = time.perf_counter()
+    recorded = _record(calls(), log)
+    log(f"quadric-contact: {len(recorded)} kernel signatures recorded in {time.perf_counter() - t0:.0f} s")
+    target, cpu, features = _target()
+    entries: list[dict[str, Any]] = []
+    objects: list[str] = []
+    skipped: list[str] = []
+    for k, (dispatcher, sig) in enumerate(recorded):
+        name = kernel_identity(dispatcher)
+        try:
+            wrapped, kinds, ret = _wrapper(dispatcher, sig)
+        except TypeError as exc:  # left to the run-time compile, and said
+            skipped.append(f"{name}: {exc}")
+            continue
+        symbol = f"qc_kernel_{k}"
+        path = out / f"{symbol}.o"
+        path.write_bytes(_object(wrapped, symbol, target))
+        objects.append(str(path))
+        module = dispatcher.py_func.__module__
+        entries.append(
+            {
+                "kernel": name,
+                "signature": [str(t) for t in sig],
+                "symbol": symbol,
+                "arguments": kinds,
+                "returns": ret,
+                "sources": _jit.sources_digest(module),
+            }
+        )
+    for line in skipped:
+        log(f"  not native (compiled at run time): {line}")
+    manifest = {"cpu": cpu, "features": features, "numba": numba.__version__, "kernels": entries}
+    text = json.dumps(manifest, indent=1)
+    (out / MANIFEST_NAME).write_text(text, encoding="utf-8")
+    numba_dir = Path(numba.__file__).resolve().parent
+    import sysconfig
+
+    info = {
+        "objects": objects,
+        "manifest": str(out / MANIFEST_NAME),
+        "sources": [str(RUNTIME_SOURCE), str(numba_dir / "core" / "runtime" / "nrt.cpp")],
+        "include_dirs": [str(numba_dir), np.get_include(), sysconfig.get_paths()["include"]],
+        # the width of LAPACK's integers numba's helper library was built with (numba.pycc
+        # passes it the same way); the kernels call no LAPACK
+        "ilp64": str(int(getattr(_helperlib, "LAPACK_BUILD_ILP64", 0))),
+        "manifest_digest": manifest_digest(text.encode()),
+    }
+    (out / "build.json").write_text(json.dumps(info, indent=1), encoding="utf-8")
+    log(f"quadric-contact: {len(entries)} native kernels in {time.perf_counter() - t0:.0f} s")
+    return info
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(
+        prog="python -m quadric_contact.codegen.native", description=(__doc__ or "").split("\n")[0]
+    )
+    parser.add_argument("--out", required=True, type=Path, help="directory for the objects and the manifest")
+    args = parser.parse_args(argv)
+    os.environ["QUADRIC_CONTACT_NATIVE"] = "0"  # record what the run-time compile calls
+    build(args.out, log=lambda line: print(line, file=sys.stderr, flush=True))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

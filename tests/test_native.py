@@ -1,0 +1,140 @@
+"""The native kernels: the default mode's kernels as the build compiled them (``setup.py``,
+:mod:`quadric_contact.codegen.native`), run through C with no compiler at run time.
+
+* The default path never invokes a JIT: in a fresh process with an empty kernel cache, every
+  question of the array API in the default mode, on every input form and on pairs that reach the
+  exact stage, answers without numba compiling anything.
+* The answers are the run-time compile's, bit for bit (the same machine code: both come from
+  numba's optimised module of the same sources).
+* A kernel whose sources are not those the library was built from is not run natively, and the
+  manifest tells the kernels made by one factory apart.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from tests.compile_events import RECORD_COMPILES
+
+from quadric_contact.modes import _jit, native
+from quadric_contact.modes._jit import HAVE_NUMBA
+
+ROOT = Path(__file__).resolve().parents[1]
+
+pytestmark = pytest.mark.skipif(not HAVE_NUMBA, reason="numba not installed")
+
+BUILD_HINT = (
+    "the native kernels of these sources are not built: `pip install .` builds them (the README's "
+    "commands), `python setup.py build_ext --inplace` in a checkout"
+)
+
+CALLS = (
+    RECORD_COMPILES
+    + """
+import json, sys
+import numpy as np
+import quadric_contact as qc
+from quadric_contact.interfaces.benchmark import kernel_population
+from quadric_contact.interfaces.warmup import calls
+from quadric_contact.modes import native
+
+done = []
+for what, call in calls():
+    if any(o in what for o in ("mode='filter'", "mode='float'", "read_all")):
+        continue
+    call()
+    done.append(what)
+E, Q = kernel_population(1000, np.random.default_rng(0))
+answers = {
+    "contact": qc.transversal_contact(E, Q).tolist(),
+    "region": qc.relative_position(E, Q).tolist(),
+    "overlap": qc.overlap(E, Q[:, :, :]).tolist(),
+}
+lib = native.library()
+print(json.dumps({"compiled": compiled, "calls": done, "answers": answers,
+                  "library": None if lib is None else str(lib.path)}))
+"""
+)
+
+
+def _run(tmp_path: Path, **env_vars: str) -> dict:
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "src"), str(ROOT)]))
+    env["QUADRIC_CONTACT_CACHE_DIR"] = str(tmp_path / "empty cache")
+    env["QUADRIC_CONTACT_KERNELS"] = "wait"  # a kernel not in the library is compiled, and seen
+    env.update(env_vars)
+    proc = subprocess.run(
+        [sys.executable, "-c", CALLS], env=env, capture_output=True, text=True, timeout=900, check=True
+    )
+    return json.loads(proc.stdout)
+
+
+def _library() -> native.NativeLibrary:
+    lib = native.library()
+    if lib is None or not lib.usable:
+        pytest.fail(BUILD_HINT)
+    return lib
+
+
+def test_the_default_path_never_invokes_a_jit(tmp_path):
+    _library()
+    got = _run(tmp_path)
+    assert got["library"] is not None, BUILD_HINT
+    assert len(got["calls"]) > 40
+    assert got["compiled"] == [], f"{BUILD_HINT} (numba compiled {got['compiled']})"
+
+
+@pytest.mark.slow
+def test_the_native_answers_are_the_run_time_compiles(tmp_path):
+    """Both ways in fresh processes: the library, and numba compiling at run time (slow: the
+    second compiles every kernel of the default mode into an empty cache)."""
+    _library()
+    native_run = _run(tmp_path / "native")
+    jit_run = _run(tmp_path / "jit", QUADRIC_CONTACT_NATIVE="0")
+    assert jit_run["compiled"] != []  # it did compile: the comparison is not vacuous
+    assert native_run["answers"] == jit_run["answers"]
+
+
+def test_the_native_kernels_answer_as_the_compiled_ones_here():
+    """In this process: each kernel of the library against numba's compile of the same kernel
+    (the tests' cache), on the kernel population with nearly touching pairs."""
+    import quadric_contact as qc
+    from quadric_contact.interfaces.benchmark import kernel_population
+
+    _library()
+    E, Q = kernel_population(3000, np.random.default_rng(5))
+    with_native = [qc.transversal_contact(E, Q), qc.relative_position(E, Q), qc.overlap(E, Q)]
+    os.environ["QUADRIC_CONTACT_NATIVE"] = "0"
+    _jit._NATIVE.clear()
+    try:
+        compiled = [qc.transversal_contact(E, Q), qc.relative_position(E, Q), qc.overlap(E, Q)]
+    finally:
+        del os.environ["QUADRIC_CONTACT_NATIVE"]
+        _jit._NATIVE.clear()
+    for a, b in zip(with_native, compiled, strict=True):
+        assert np.array_equal(a, b)
+
+
+def test_a_kernel_whose_sources_changed_is_not_run_natively():
+    from quadric_contact.modes.kernels_support import check_stack_kernel as dispatcher
+
+    lib = _library()
+    entries = [e for e in lib.manifest["kernels"] if e["kernel"] == native.kernel_identity(dispatcher)]
+    assert entries, "the stack check is a kernel of the default path"
+    sig = tuple(dispatcher.typeof_pyval(a) for a in (np.zeros((1, 4, 4)), 0, 1, np.zeros(1, np.int8)))
+    assert native.lookup(dispatcher, sig, _jit.sources_digest) is not None
+    assert native.lookup(dispatcher, sig, lambda module: "not these sources") is None
+
+
+def test_the_manifest_tells_factory_kernels_apart():
+    lib = _library()
+    names = [e["kernel"] for e in lib.manifest["kernels"]]
+    keys = [(e["kernel"], tuple(e["signature"])) for e in lib.manifest["kernels"]]
+    assert len(set(keys)) == len(keys)
+    factory = [n for n in names if "_make_pairs.<locals>.kernel" in n]
+    assert factory and all(n.endswith("]") for n in factory)
