@@ -46,16 +46,23 @@ class BuildNative(build_ext):
                 env=env,
             )
             info = json.loads((work / "build.json").read_text(encoding="utf-8"))
-            ext.sources = info["sources"]
-            ext.include_dirs = info["include_dirs"]
-            ext.extra_objects = info["objects"]
-            ext.depends = [*info["objects"], info["manifest"]]  # relink when the kernels change
-            ext.define_macros = [
-                ("PYCC_USE_NRT", "1"),
-                ("NUMBA_LAPACK_BUILD_ILP64", info["ilp64"]),
-                # the library says which manifest it was linked with (checked when loaded)
-                ("QC_MANIFEST_DIGEST", f'"{info["manifest_digest"]}"'),
-            ]
+            # the C part (numba's runtime, from numba's sources, outside this tree) compiled
+            # here: the extension's own list of sources must be paths within the project
+            runtime = self.compiler.compile(
+                info["sources"],
+                output_dir=str(work / "runtime"),
+                include_dirs=info["include_dirs"],
+                macros=[
+                    ("PYCC_USE_NRT", "1"),
+                    ("NUMBA_LAPACK_BUILD_ILP64", info["ilp64"]),
+                    # the library says which manifest it was linked with (checked when loaded)
+                    ("QC_MANIFEST_DIGEST", f'"{info["manifest_digest"]}"'),
+                ],
+                extra_preargs=["-fPIC"],
+                debug=self.debug,
+            )
+            ext.extra_objects = [*runtime, *info["objects"]]
+            ext.depends = [*ext.extra_objects, info["manifest"]]  # relink when the kernels change
             super().build_extension(ext)
             target = Path(self.get_ext_fullpath(ext.name)).parent / MANIFEST
             target.write_bytes(Path(info["manifest"]).read_bytes())

@@ -145,6 +145,7 @@ def test_fcl_peer_when_installed():
 def test_first_use_compiles_once_and_says_so():
     # minutes: every kernel of the complete decision is compiled into an empty cache directory
     c = benchmark.cold_start()
+    assert not c["native"]["notice"] and not c["native"]["twins"]  # the native kernels answer
     assert c["fresh"]["twins"] and not c["fresh"]["notice"]  # answered by the twins, said once
     assert c["compiling"]["notice"] and not c["compiling"]["twins"]
     assert not c["warm"]["notice"] and not c["warm"]["twins"]

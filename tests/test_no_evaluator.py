@@ -23,6 +23,9 @@ ALLOWED = {
     ("family_numeric.py", "compile"): "compiles the same generated, checked program",
     ("algebraic.py", "sympify"): "strict sympify of a sympy expression; text is refused just "
     "before it with EquationError",
+    ("native.py", "exec"): "codegen/native.py, at build time: the C wrapper of a kernel, generated "
+    "from the numba types of its arguments (names and numbers of its own making)",
+    ("native.py", "compile"): "compiles the same generated wrapper",
 }
 
 

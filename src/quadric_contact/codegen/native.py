@@ -135,9 +135,12 @@ def _wrapper(dispatcher: Any, sig: Any) -> tuple[Any, list[list[Any]], str]:
     return wrapped, kinds, ret_name
 
 
-def _object(wrapped: Any, symbol: str, target: Any) -> bytes:
+def _object(wrapped: Any, symbol: str, target: Any, kinds: list[list[Any]]) -> tuple[bytes, list[bool]]:
     """The wrapper's optimised module as an object: the entry renamed ``symbol``, every other
-    definition internal (each object carries its own copy of the helpers it inlined)."""
+    definition internal (each object carries its own copy of the helpers it inlined); and for
+    each array argument whether LLVM proved that the kernel only reads through its pointer (the
+    ``readonly`` attribute its analysis of the whole kernel put on the parameter): such an
+    argument may be a read-only array of the caller's, passed as it is."""
     import llvmlite.binding as ll
 
     library = wrapped._library
@@ -150,8 +153,18 @@ def _object(wrapped: Any, symbol: str, target: Any) -> bytes:
     for gv in module.global_variables:
         if not gv.is_declaration:
             gv.linkage = "internal"
-    module.get_function(entry).name = symbol
-    return bytes(target.emit_object(module))
+    function = module.get_function(entry)
+    params = list(function.arguments)
+    only_read: list[bool] = []
+    at = 0
+    for kind in kinds:
+        if kind[0] == "array":
+            only_read.append(b"readonly" in set(params[at].attributes))
+            at += 1 + kind[2]
+        else:
+            at += 1
+    function.name = symbol
+    return bytes(target.emit_object(module)), only_read
 
 
 def _target() -> tuple[Any, str, str]:
@@ -193,7 +206,10 @@ def build(out: Path, log: Callable[[str], None] = print) -> dict[str, Any]:
             continue
         symbol = f"qc_kernel_{k}"
         path = out / f"{symbol}.o"
-        path.write_bytes(_object(wrapped, symbol, target))
+        code, only_read = _object(wrapped, symbol, target, kinds)
+        path.write_bytes(code)
+        for kind, read in zip((k for k in kinds if k[0] == "array"), only_read, strict=True):
+            kind.append(read)  # ["array", dtype, ndim, only read]
         objects.append(str(path))
         module = dispatcher.py_func.__module__
         entries.append(

@@ -326,10 +326,16 @@ class Report:
                 "",
             ]
             for key, what in (
-                ("fresh", "empty cache, the default (the kernels' Python twins answer)"),
-                ("compiling", "empty cache, waiting for the compile (QUADRIC_CONTACT_KERNELS=wait)"),
-                ("warm", "a third process, the cache filled by the second"),
+                ("native", "empty cache, the default with the native kernels (nothing compiled)"),
+                ("fresh", "empty cache, without the native kernels (their Python twins answer)"),
+                (
+                    "compiling",
+                    "empty cache, without them, waiting for the compile (QUADRIC_CONTACT_KERNELS=wait)",
+                ),
+                ("warm", "without them, a fourth process, the cache filled by the third"),
             ):
+                if key not in c:
+                    continue
                 r = c[key]
                 lines.append(
                     f"- {what}: import {r['import']:.1f} s, transversal_contact {r['first']:.2f} s, "
@@ -816,6 +822,58 @@ def complete_populations(n: int, rng: np.random.Generator) -> dict[str, tuple[np
     }
 
 
+def _against_run_time_compile(
+    report: Report,
+    population: str,
+    E: np.ndarray,
+    Q: np.ndarray,
+    n: int,
+    base: float,
+    truth: dict[str, np.ndarray],
+) -> None:
+    """The same certified calls with numba's run-time compile of the same kernels instead of the
+    native ones (:func:`quadric_contact.modes.native.turned_off`), last, since a kernel that
+    compiled stays compiled: the rows say how fast the native kernels are against it, and that
+    the answers are the same.  Nothing where the package has no native kernels."""
+    from quadric_contact.modes import native
+    from quadric_contact.modes.predicates import overlap, relative_position, transversal_contact
+
+    lib = native.library() if native.enabled() else None
+    if lib is None or not lib.usable:
+        return
+    native_rows = {r["method"]: r for r in report.complete if r["population"] == population}
+    with native.turned_off():
+        head = (E[:100], Q if Q.ndim == 2 else Q[:100])
+        criterion_stack(*head)
+        seconds, _ = _best_of(functools.partial(criterion_stack, E, Q), 3)
+        report.complete.append(
+            {
+                "population": population,
+                "method": "certified criterion kernel, numba at run time",
+                "n": n,
+                "seconds": seconds,
+                "ratio": base / seconds,
+                "stages": f"native kernel {seconds / base:.2f}x its speed",
+            }
+        )
+        questions = (("contact", transversal_contact), ("region", relative_position), ("overlap", overlap))
+        for question, fn in questions:
+            fn(*head)
+            seconds, got = _best_of(functools.partial(fn, E, Q), 3)
+            mine = native_rows[f"{question}, certified"]["seconds"]
+            report.complete.append(
+                {
+                    "population": population,
+                    "method": f"{question}, certified, numba at run time",
+                    "n": n,
+                    "seconds": seconds,
+                    "ratio": base / seconds,
+                    "wrong": int(np.count_nonzero(got != truth[question])),
+                    "stages": f"native kernels {seconds / mine:.2f}x its speed",
+                }
+            )
+
+
 def _complete(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> None:
     """Population by population: the certified criterion kernel alone, and the complete decision
     of each question (certified, and float) on the same pairs, as a fraction of the kernel's
@@ -824,6 +882,7 @@ def _complete(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> 
     from quadric_contact.modes.predicates import overlap, relative_position, transversal_contact
 
     n = cfg["complete_pairs"]
+    later: list[tuple[str, np.ndarray, np.ndarray, float, dict[str, np.ndarray]]] = []
     for population, (E, Q, geometry) in complete_populations(n, rng).items():
         head = (E[:100], Q if Q.ndim == 2 else Q[:100])
         for fn in (transversal_contact, relative_position, overlap):
@@ -870,6 +929,7 @@ def _complete(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> 
                     "stages": _stage_fractions(fmode.last),
                 }
             )
+        later.append((population, E, Q, base, truth))
         if geometry is None:
             continue
         m = min(n, 200_000)
@@ -907,6 +967,9 @@ def _complete(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> 
                 "stages": "against the certified overlap",
             }
         )
+    # after every native measurement: a kernel compiled at run time stays compiled
+    for population, E, Q, base, truth in later:
+        _against_run_time_compile(report, population, E, Q, n, base, truth)
 
 
 def _exact_scalar(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> None:
@@ -1063,26 +1126,33 @@ def cold_start() -> dict[str, Any]:
     in fresh interpreters sharing a numba cache directory that starts empty, as after ``pip
     install``:
 
-    * ``fresh``: the default, the calls answered by the kernels' Python twins (the background
-      warm-up is not started here: the ``twins`` policy);
-    * ``compiling``: the ``wait`` policy, the calls compiling what they need (what the first
-      call cost before the twins, and what a large first call costs);
-    * ``warm``: a third process, which loads what the second one compiled.
+    * ``native``: the default where the package was built with its native kernels
+      (:mod:`quadric_contact.modes.native`): nothing to compile (not measured without them);
+    * ``fresh``: without the native kernels, the calls answered by the kernels' Python twins
+      (the background warm-up is not started here: the ``twins`` policy);
+    * ``compiling``: without them, the ``wait`` policy, the calls compiling what they need (what
+      the first call cost before the twins, and what a large first call costs);
+    * ``warm``: a fourth process, which loads what the third one compiled.
 
     For each: the import time, the two calls' times, the wall time of the process, and whether
     it printed the twins' or the compiler's notice."""
     import tempfile
 
+    from quadric_contact.modes import native
     from quadric_contact.modes._jit import COMPILE_NOTICE, TWINS_NOTICE
 
     src = str(Path(__file__).resolve().parents[2])
     out: dict[str, Any] = {}
+    lib = native.library() if native.enabled() else None
+    runs = [("native", "wait", "1")] if lib is not None and lib.usable else []
+    runs += [("fresh", "twins", "0"), ("compiling", "wait", "0"), ("warm", "wait", "0")]
     with tempfile.TemporaryDirectory(prefix="quadric-contact-cache-") as cache:
-        for run_, policy in (("fresh", "twins"), ("compiling", "wait"), ("warm", "wait")):
+        for run_, policy, use_native in runs:
             env = dict(
                 os.environ,
                 QUADRIC_CONTACT_CACHE_DIR=cache,
                 QUADRIC_CONTACT_KERNELS=policy,
+                QUADRIC_CONTACT_NATIVE=use_native,
                 PYTHONPATH=src + os.pathsep + os.environ.get("PYTHONPATH", ""),
             )
             t = time.perf_counter()
@@ -1273,9 +1343,19 @@ def _kernel_summary(report: Report) -> None:
     c = report.cold_start
     if c:
         fresh, warm = c["fresh"], c["warm"]
+        if "native" in c:
+            report.summary.append(
+                Figure(
+                    "first array call, empty numba cache, native kernels (nothing compiled)",
+                    "",
+                    c["native"]["first"],
+                    "s",
+                    f"import {c['native']['import']:.1f} s; process {c['native']['wall']:.1f} s in all",
+                )
+            )
         report.summary += [
             Figure(
-                "first array call, empty numba cache (the twins answer)",
+                "first array call, empty numba cache, no native kernels (the twins answer)",
                 "",
                 fresh["first"],
                 "s",

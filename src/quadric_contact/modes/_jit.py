@@ -23,6 +23,7 @@ __all__ = [
     "HAVE_NUMBA",
     "PACKAGE_ROOT",
     "compile_on_a_fresh_stack",
+    "forget_native",
     "jitable",
     "kernel_cache_dir",
     "kernel_sources",
@@ -286,6 +287,11 @@ dispatcher, with the dispatcher and the argument types (the build of the native 
 records what the calls need this way)."""
 
 _NATIVE: dict[tuple[int, Any], Any] = {}
+
+
+def forget_native() -> None:
+    """Forget which kernels have a native version (asked again at their next call)."""
+    _NATIVE.clear()
 
 
 def native_kernel(dispatcher: Any, sig: Any) -> Any:

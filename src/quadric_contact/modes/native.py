@@ -26,10 +26,13 @@ import ctypes
 import json
 import os
 import threading
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from importlib import metadata
 from pathlib import Path
 from typing import Any
+
+import numpy as np
 
 __all__ = [
     "MANIFEST_NAME",
@@ -40,6 +43,7 @@ __all__ = [
     "lookup",
     "manifest_digest",
     "reset",
+    "turned_off",
 ]
 
 MANIFEST_NAME = "_native_manifest.json"
@@ -133,18 +137,17 @@ def _same_machine(manifest: dict[str, Any]) -> bool:
 
 
 def _candidates() -> list[Path]:
-    """Directories that may hold the library: this package's, then the installed one's."""
+    """Directories that may hold the library: this package's, then those of the installed copies
+    of the distribution (every one on the path: a checkout's ``src/`` may hold the metadata a
+    build left there, which shadows the installed copy's)."""
     here = Path(__file__).resolve().parents[1]
     found = [here]
-    try:
-        dist = metadata.distribution("quadric-contact")
-    except metadata.PackageNotFoundError:
-        return found
-    for f in dist.files or ():
-        if f.name == MANIFEST_NAME:
-            where = Path(str(dist.locate_file(f))).resolve().parent
-            if where != here:
-                found.append(where)
+    for dist in metadata.distributions(name="quadric-contact"):
+        for f in dist.files or ():
+            if f.name == MANIFEST_NAME:
+                where = Path(str(dist.locate_file(f))).resolve().parent
+                if where not in found:
+                    found.append(where)
     return found
 
 
@@ -173,6 +176,27 @@ def _find() -> NativeLibrary | None:
     return None
 
 
+@contextmanager
+def turned_off() -> Iterator[None]:
+    """Within the block, kernel calls compile (or load from numba's cache) at run time instead of
+    running the native kernels: the benchmark's and the tests' comparison of the two.  A kernel
+    that compiled there stays compiled in its dispatcher, which then runs it, not the native
+    one, for the rest of the process."""
+    from quadric_contact.modes import _jit
+
+    before = os.environ.get("QUADRIC_CONTACT_NATIVE")
+    os.environ["QUADRIC_CONTACT_NATIVE"] = "0"
+    _jit.forget_native()
+    try:
+        yield
+    finally:
+        if before is None:
+            del os.environ["QUADRIC_CONTACT_NATIVE"]
+        else:
+            os.environ["QUADRIC_CONTACT_NATIVE"] = before
+        _jit.forget_native()
+
+
 def reset() -> None:
     """Forget the library found (the tests point the package at another one)."""
     with _LOCK:
@@ -189,14 +213,28 @@ def lookup(dispatcher: Any, sig: Any, digest: Callable[[str], str]) -> Callable[
     lib = library()
     if lib is None or not lib.usable:
         return None
-    entry = lib.entry(kernel_identity(dispatcher), tuple(str(t) for t in sig))
+    # a read-only array of the caller's (a broadcast, a read-only buffer) runs the kernel made
+    # for a writable one: passed as it is where the kernel only reads it (LLVM proved so at the
+    # build), else as a copy, so that nothing of the caller's is ever written
+    from numba.core import types
+
+    name = kernel_identity(dispatcher)
+    entry = lib.entry(name, tuple(str(t) for t in sig))
+    readonly = [False] * len(sig)
+    if entry is None:  # built for these types as they are, or for the writable ones
+        readonly = [isinstance(t, types.Array) and not t.mutable for t in sig]
+        as_writable = [t.copy(readonly=False) if ro else t for t, ro in zip(sig, readonly, strict=True)]
+        entry = lib.entry(name, tuple(str(t) for t in as_writable))
     if entry is None or entry["sources"] != digest(dispatcher.py_func.__module__):
         return None
-    return _caller(lib.function(entry["symbol"]), entry)
+    proved = [len(kind) > 3 and kind[3] for kind in entry["arguments"]]  # only read (arrays)
+    copy = [ro and not p for ro, p in zip(readonly, proved, strict=True)]
+    return _caller(lib.function(entry["symbol"]), entry, copy)
 
 
-def _caller(fn: Any, entry: dict[str, Any]) -> Callable[..., Any]:
-    """A Python function that passes the kernel's arguments to the C function ``fn``."""
+def _caller(fn: Any, entry: dict[str, Any], copy: list[bool]) -> Callable[..., Any]:
+    """A Python function that passes the kernel's arguments to the C function ``fn`` (the
+    arrays flagged in ``copy`` as copies)."""
     argtypes: list[Any] = []
     plain: list[Any] = []  # per argument: None for an array, else the Python type of the scalar
     for kind in entry["arguments"]:
@@ -211,7 +249,11 @@ def _caller(fn: Any, entry: dict[str, Any]) -> Callable[..., Any]:
     fn.restype = ctypes.c_int64 if returns == "none" else _CTYPES[returns]
     nothing = returns == "none"
 
+    copies = any(copy)
+
     def call(*args: Any) -> Any:
+        if copies:  # the copies live until the call returns
+            args = tuple(np.array(a) if c else a for a, c in zip(args, copy, strict=True))
         flat: list[Any] = []
         for a, kind in zip(args, plain, strict=True):
             if kind is None:
