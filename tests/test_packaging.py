@@ -21,6 +21,7 @@ from tests.compile_events import RECORD_COMPILES
 
 import quadric_contact as qc
 from quadric_contact.interfaces.benchmark import kernel_population
+from quadric_contact.modes import native
 from quadric_contact.modes._jit import HAVE_NUMBA, TWINS_NOTICE, kernel_cache_dir
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -37,7 +38,7 @@ E, Q = kernel_population(1000, np.random.default_rng(0))
 contact = qc.transversal_contact(E, Q).tolist()
 overlap = qc.overlap(E, Q).tolist()
 from quadric_contact.modes import native
-lib = native.library()
+lib = native.library() if native.enabled() else None
 where = None if lib is None or not lib.usable else str(lib.path)
 print(json.dumps({"file": qc.__file__, "contact": contact, "overlap": overlap, "compiled": compiled,
                   "native": where}))
@@ -80,8 +81,9 @@ def _venv(tmp_path: Path, name: str, wheel: Path) -> Path:
     return venv
 
 
-def _smoke(tmp_path: Path, venv: Path, cache: str) -> tuple[dict, str]:
+def _smoke(tmp_path: Path, venv: Path, cache: str, **env_vars: str) -> tuple[dict, str]:
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "NUMBA_CACHE_DIR")}
+    env.update(env_vars)
     env["QUADRIC_CONTACT_KERNELS"] = "twins"  # the default, without its background process
     env["QUADRIC_CONTACT_CACHE_DIR"] = cache
     work = tmp_path / "elsewhere"
@@ -139,14 +141,21 @@ def test_without_a_compiler_the_wheel_compiles_its_kernels_at_run_time(tmp_path)
     with zipfile.ZipFile(wheel) as whl:
         assert not any(n.startswith("quadric_contact/_native") for n in whl.namelist())
     venv = _venv(tmp_path, "venv", wheel)
-    got, err = _smoke(tmp_path, venv, str(tmp_path / "empty cache"))
+    # the environment sees this one's packages, whose copy of the package may have native kernels
+    # of the same sources (which it would rightly use): as on a machine with none, it is told
+    # not to look
+    off = {"QUADRIC_CONTACT_NATIVE": "0"}
+    got, err = _smoke(tmp_path, venv, str(tmp_path / "empty cache"), **off)
     assert got["compiled"] == [] and got["native"] is None
     assert TWINS_NOTICE.split("{")[0] in err
     E, Q = kernel_population(1000, np.random.default_rng(0))
     assert got["contact"] == qc.transversal_contact(E, Q).tolist()
     assert got["overlap"] == qc.overlap(E, Q).tolist()
-    # the cache this checkout's kernels are in: the installed copy loads them, no twin, no compile
-    got, err = _smoke(tmp_path, venv, kernel_cache_dir())
+    # the cache this checkout's kernels are in (these calls put them there, compiled at run
+    # time): the installed copy loads them, no twin, no compile
+    with native.turned_off():
+        qc.transversal_contact(E, Q), qc.overlap(E, Q)
+    got, err = _smoke(tmp_path, venv, kernel_cache_dir(), **off)
     assert got["compiled"] == []
     assert TWINS_NOTICE.split("{")[0] not in err
     assert got["contact"] == qc.transversal_contact(E, Q).tolist()
