@@ -50,14 +50,40 @@ _SCALARS = ("int64", "bool", "float64")
 _RETURNS = ("none", "int64", "bool", "float64")
 
 
+def wanted(what: str) -> bool:
+    """Whether the library holds the kernels of the warm-up's call ``what``: every question of
+    the array API in the default ``certified`` mode, on every input form, the first-contact scale
+    and the distance (not the other modes, nor the benchmark's read of memory)."""
+    return not any(o in what for o in ("mode='filter'", "mode='float'", "read_all"))
+
+
 def calls() -> list[tuple[str, Callable[[], Any]]]:
-    """The calls whose kernels the library holds: every question of the array API in the default
-    ``certified`` mode, on every input form (:func:`quadric_contact.interfaces.warmup.calls`,
-    the warm-up's list), the first-contact scale and the distance."""
+    """The calls whose kernels the library holds (:func:`wanted` of the warm-up's list,
+    :func:`quadric_contact.interfaces.warmup.calls`)."""
     from quadric_contact.interfaces.warmup import calls as warm_calls
 
-    other = ("mode='filter'", "mode='float'", "read_all")  # other modes; the bench's read of memory
-    return [(what, call) for what, call in warm_calls() if not any(o in what for o in other)]
+    return [(what, call) for what, call in warm_calls() if wanted(what)]
+
+
+def _compile_in_two(log: Callable[[str], None]) -> None:
+    """numba compiles on one core: two processes fill its on-disk cache with the kernels of
+    :func:`calls`, one from each end of the list (the warm-up's way: a kernel the other is
+    compiling is put off and loaded from the cache later), before this process records them."""
+    import subprocess
+
+    t0 = time.perf_counter()
+    code = (
+        "import sys; from quadric_contact.codegen.native import wanted; "
+        "from quadric_contact.interfaces.warmup import warm_kernels; "
+        "warm_kernels(lambda line: None, reverse=sys.argv[1] == 'reverse', only=wanted)"
+    )
+    env = dict(os.environ, QUADRIC_CONTACT_KERNELS="wait", QUADRIC_CONTACT_NATIVE="0")
+    orders = ("forward", "reverse")
+    runs = [subprocess.Popen([sys.executable, "-c", code, order], env=env) for order in orders]
+    for run in runs:
+        run.wait()
+    seconds = time.perf_counter() - t0
+    log(f"quadric-contact: the kernels compiled (or loaded) in two processes in {seconds:.0f} s")
 
 
 def _record(
@@ -180,58 +206,90 @@ def _target() -> tuple[Any, str, str]:
     return target, cpu, features
 
 
-def build(out: Path, log: Callable[[str], None] = print) -> dict[str, Any]:
-    """Compile the kernels of :func:`calls` into objects in ``out`` and write the manifest and
-    ``build.json`` there; return the latter's content."""
-    import numba
-    import numpy as np
-    from numba import _helperlib
+def _emit(
+    out: Path, log: Callable[[str], None], part: tuple[int, int]
+) -> tuple[list[dict[str, Any]], list[str]]:
+    """Record the kernels of :func:`calls` and emit the objects of share ``part = (k, n)`` of
+    them (those whose symbol's digest is ``k`` modulo ``n``) into ``out``; return their manifest
+    entries and object files."""
+    import hashlib
 
     from quadric_contact.modes import _jit
 
-    out.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
-    recorded = _record(calls(), log)
-    log(f"quadric-contact: {len(recorded)} kernel signatures recorded in {time.perf_counter() - t0:.0f} s")
-    target, cpu, features = _target()
+    recorded = _record(calls(), lambda line: None)
+    target, _, _ = _target()
     entries: list[dict[str, Any]] = []
     objects: list[str] = []
-    skipped: list[str] = []
-    for k, (dispatcher, sig) in enumerate(recorded):
+    for dispatcher, sig in recorded:
         name = kernel_identity(dispatcher)
+        signature = [str(t) for t in sig]
+        digest = hashlib.sha256(json.dumps([name, signature]).encode()).hexdigest()[:16]
+        if int(digest, 16) % part[1] != part[0]:
+            continue
         try:
             wrapped, kinds, ret = _wrapper(dispatcher, sig)
         except TypeError as exc:  # left to the run-time compile, and said
-            skipped.append(f"{name}: {exc}")
+            log(f"  not native (compiled at run time): {name}: {exc}")
             continue
-        symbol = f"qc_kernel_{k}"
+        symbol = f"qc_kernel_{digest}"
         path = out / f"{symbol}.o"
         code, only_read = _object(wrapped, symbol, target, kinds)
         path.write_bytes(code)
         for kind, read in zip((k for k in kinds if k[0] == "array"), only_read, strict=True):
             kind.append(read)  # ["array", dtype, ndim, only read]
         objects.append(str(path))
-        module = dispatcher.py_func.__module__
         entries.append(
             {
                 "kernel": name,
-                "signature": [str(t) for t in sig],
+                "signature": signature,
                 "symbol": symbol,
                 "arguments": kinds,
                 "returns": ret,
-                "sources": _jit.sources_digest(module),
+                "sources": _jit.sources_digest(dispatcher.py_func.__module__),
             }
         )
-    for line in skipped:
-        log(f"  not native (compiled at run time): {line}")
+    log(f"quadric-contact: {len(entries)} native kernels emitted in {time.perf_counter() - t0:.0f} s")
+    return entries, objects
+
+
+def build(out: Path, log: Callable[[str], None] = print) -> dict[str, Any]:
+    """Compile the kernels of :func:`calls` into objects in ``out`` and write the manifest and
+    ``build.json`` there; return the latter's content.  With two cores or more, numba compiles in
+    two processes (:func:`_compile_in_two`) and two more emit half the objects each (the
+    ``cfunc`` of a kernel loaded from numba's cache optimises the whole kernel again)."""
+    import subprocess
+    import sysconfig
+
+    import numba
+    import numpy as np
+    from numba import _helperlib
+
+    out.mkdir(parents=True, exist_ok=True)
+    t0 = time.perf_counter()
+    entries: list[dict[str, Any]] = []
+    objects: list[str] = []
+    if (os.cpu_count() or 1) >= 2:
+        _compile_in_two(log)
+        env = dict(os.environ, QUADRIC_CONTACT_KERNELS="wait", QUADRIC_CONTACT_NATIVE="0")
+        cmd = [sys.executable, "-m", "quadric_contact.codegen.native", "--out", str(out), "--part"]
+        runs = [subprocess.Popen([*cmd, f"{k}/2"], env=env) for k in range(2)]
+        if any(run.wait() for run in runs):
+            raise RuntimeError("emitting the native kernels failed (see above)")
+        for k in range(2):
+            part = json.loads((out / f"part-{k}.json").read_text(encoding="utf-8"))
+            entries += part["entries"]
+            objects += part["objects"]
+    else:
+        entries, objects = _emit(out, log, (0, 1))
+    entries.sort(key=lambda e: e["symbol"])
+    _, cpu, features = _target()
     manifest = {"cpu": cpu, "features": features, "numba": numba.__version__, "kernels": entries}
     text = json.dumps(manifest, indent=1)
     (out / MANIFEST_NAME).write_text(text, encoding="utf-8")
     numba_dir = Path(numba.__file__).resolve().parent
-    import sysconfig
-
     info = {
-        "objects": objects,
+        "objects": sorted(objects),
         "manifest": str(out / MANIFEST_NAME),
         "sources": [str(RUNTIME_SOURCE), str(numba_dir / "core" / "runtime" / "nrt.cpp")],
         "include_dirs": [str(numba_dir), np.get_include(), sysconfig.get_paths()["include"]],
@@ -250,9 +308,20 @@ def main(argv: Sequence[str] | None = None) -> int:
         prog="python -m quadric_contact.codegen.native", description=(__doc__ or "").split("\n")[0]
     )
     parser.add_argument("--out", required=True, type=Path, help="directory for the objects and the manifest")
+    parser.add_argument("--part", help="K/N: only emit share K of N of the objects (the build's own use)")
     args = parser.parse_args(argv)
     os.environ["QUADRIC_CONTACT_NATIVE"] = "0"  # record what the run-time compile calls
-    build(args.out, log=lambda line: print(line, file=sys.stderr, flush=True))
+
+    def log(line: str) -> None:
+        print(line, file=sys.stderr, flush=True)
+
+    if args.part:
+        k, n = (int(v) for v in args.part.split("/"))
+        entries, objects = _emit(args.out, log, (k, n))
+        part = {"entries": entries, "objects": objects}
+        (args.out / f"part-{k}.json").write_text(json.dumps(part), encoding="utf-8")
+        return 0
+    build(args.out, log=log)
     return 0
 
 

@@ -134,12 +134,18 @@ def _ellipsoid(axes: tuple[float, float, float], center: tuple[float, float, flo
     return M
 
 
-def warm_kernels(log: Callable[[str], None] = print, *, reverse: bool = False) -> tuple[float, int]:
+def warm_kernels(
+    log: Callable[[str], None] = print,
+    *,
+    reverse: bool = False,
+    only: Callable[[str], bool] | None = None,
+) -> tuple[float, int]:
     """Call every kernel the array API compiles, once; return the seconds it took and how many
     kernels missed numba's on-disk cache (were compiled).  A call that raises is reported on
     ``log`` and skipped (the tests will say what is wrong with it).  ``reverse``: the calls in
     the opposite order (a second process, started alongside, compiles the kernels of the other
-    end of the list first; where the two meet, each loads what the other has cached)."""
+    end of the list first; where the two meet, each loads what the other has cached).  ``only``:
+    the calls whose description it accepts (all if None)."""
     from numba.core import event
 
     from quadric_contact.modes import _jit
@@ -164,7 +170,7 @@ def warm_kernels(log: Callable[[str], None] = print, *, reverse: bool = False) -
     event.register("numba:compile", listener)
     start = time.perf_counter()
     try:
-        listed = calls()
+        listed = [c for c in calls() if only is None or only(c[0])]
         todo = list(reversed(listed) if reverse else listed)
         # first pass: a call whose kernel another process is compiling (the other warm-up of
         # the test run, a user's process) is put off rather than compiled twice at once; the
