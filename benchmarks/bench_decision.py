@@ -12,7 +12,9 @@ Three tables, each from the functions ``quadric-contact bench`` runs:
    pairs with a quadric of every type), the certified criterion kernel alone and the complete
    decision of each question (transversal contact, region, overlap; certified and float) on
    the same pairs, as a fraction of the kernel's throughput in the same run, with the fraction
-   of the pairs that reached the exact stage and the float mode's wrong answers;
+   of the pairs that reached the exact stage and the float mode's wrong answers; then the same
+   certified calls with numba's run-time compile of the kernels instead of the native ones the
+   package was built with, and how fast the native ones are against it;
 2. the exact scalar decision, one pair at a time (binary64 input): median, 90th percentile,
    slowest, and the rows of the table that decided;
 3. the float mode on the symmetric placements (:mod:`quadric_contact.testing.symmetric`) and on

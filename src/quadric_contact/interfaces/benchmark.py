@@ -190,6 +190,7 @@ class Report:
     huge: dict[str, Any] | None = None
     missing: list[str] = field(default_factory=list)
     complete: list[dict[str, Any]] = field(default_factory=list)
+    native: list[dict[str, Any]] = field(default_factory=list)
     exact_scalar: list[dict[str, Any]] = field(default_factory=list)
     float_families: list[dict[str, Any]] = field(default_factory=list)
     kernels: list[dict[str, Any]] = field(default_factory=list)
@@ -270,6 +271,23 @@ class Report:
                     f"{_fmt_time(row['seconds'] / row['n'])} "
                     f"| {row['n'] / row['seconds']:.3g} | {_fmt_ratio(row.get('ratio'))} | {exact} "
                     f"| {wrong} | {row.get('stages', '')} |"
+                )
+        if self.native:
+            lines += [
+                "",
+                "## The native kernels against numba's run-time compile of the same kernels",
+                "",
+                "Certified, distinct pairs; fresh processes, the two ways alternated three times, the",
+                "best time of each; speed: the native kernels' throughput over numba's.",
+                "",
+                "| population | question | pairs | native, a pair | numba at run time, a pair | speed |",
+                "|---|---|---:|---:|---:|---:|",
+            ]
+            for nrow in self.native:
+                lines.append(
+                    f"| {nrow['population']} | {nrow['question']} | {nrow['n']} | "
+                    f"{_fmt_time(nrow['native'] / nrow['n'])} | {_fmt_time(nrow['numba'] / nrow['n'])} | "
+                    f"{nrow['numba'] / nrow['native']:.2f} |"
                 )
         if self.exact_scalar:
             lines += [
@@ -822,56 +840,65 @@ def complete_populations(n: int, rng: np.random.Generator) -> dict[str, tuple[np
     }
 
 
-def _against_run_time_compile(
-    report: Report,
-    population: str,
-    E: np.ndarray,
-    Q: np.ndarray,
-    n: int,
-    base: float,
-    truth: dict[str, np.ndarray],
-) -> None:
-    """The same certified calls with numba's run-time compile of the same kernels instead of the
-    native ones (:func:`quadric_contact.modes.native.turned_off`), last, since a kernel that
-    compiled stays compiled: the rows say how fast the native kernels are against it, and that
-    the answers are the same.  Nothing where the package has no native kernels."""
+NATIVE_AGAINST_JIT_CODE = """
+import functools, json, sys
+import numpy as np
+from quadric_contact.interfaces.benchmark import _best_of, complete_populations, criterion_stack
+from quadric_contact.modes.predicates import overlap, relative_position, transversal_contact
+n, seed = int(sys.argv[1]), int(sys.argv[2])
+out = {}
+for population, (E, Q, _) in complete_populations(n, np.random.default_rng(seed)).items():
+    head = (E[:100], Q if Q.ndim == 2 else Q[:100])
+    for name, fn in (("criterion kernel", criterion_stack), ("contact", transversal_contact),
+                     ("region", relative_position), ("overlap", overlap)):
+        fn(*head)
+        out[population + "|" + name] = _best_of(functools.partial(fn, E, Q), 3)[0]
+print(json.dumps(out))
+"""
+
+
+def native_against_run_time_compile(n: int, rounds: int = 3, seed: int = 0) -> dict[str, dict[str, float]]:
+    """The certified criterion kernel and the complete certified decision on the populations of
+    :func:`complete_populations`, with the native kernels and with numba's run-time compile of
+    the same kernels (loaded from its cache): fresh processes, the two alternated ``rounds``
+    times (this host's speed drifts by tens of percent within a minute), the best time of each.
+    Returns ``{"population|question": {"native": s, "numba": s}}``; empty without native
+    kernels."""
+    import json
+
     from quadric_contact.modes import native
-    from quadric_contact.modes.predicates import overlap, relative_position, transversal_contact
 
     lib = native.library() if native.enabled() else None
     if lib is None or not lib.usable:
-        return
-    native_rows = {r["method"]: r for r in report.complete if r["population"] == population}
-    with native.turned_off():
-        head = (E[:100], Q if Q.ndim == 2 else Q[:100])
-        criterion_stack(*head)
-        seconds, _ = _best_of(functools.partial(criterion_stack, E, Q), 3)
-        report.complete.append(
-            {
-                "population": population,
-                "method": "certified criterion kernel, numba at run time",
-                "n": n,
-                "seconds": seconds,
-                "ratio": base / seconds,
-                "stages": f"native kernel {seconds / base:.2f}x its speed",
-            }
-        )
-        questions = (("contact", transversal_contact), ("region", relative_position), ("overlap", overlap))
-        for question, fn in questions:
-            fn(*head)
-            seconds, got = _best_of(functools.partial(fn, E, Q), 3)
-            mine = native_rows[f"{question}, certified"]["seconds"]
-            report.complete.append(
-                {
-                    "population": population,
-                    "method": f"{question}, certified, numba at run time",
-                    "n": n,
-                    "seconds": seconds,
-                    "ratio": base / seconds,
-                    "wrong": int(np.count_nonzero(got != truth[question])),
-                    "stages": f"native kernels {seconds / mine:.2f}x its speed",
-                }
+        return {}
+    src = str(Path(__file__).resolve().parents[2])
+    best: dict[str, dict[str, float]] = {}
+    for _ in range(rounds):
+        for way, flag in (("native", "1"), ("numba", "0")):
+            env = dict(
+                os.environ,
+                QUADRIC_CONTACT_NATIVE=flag,
+                QUADRIC_CONTACT_KERNELS="wait",
+                PYTHONPATH=src + os.pathsep + os.environ.get("PYTHONPATH", ""),
             )
+            proc = subprocess.run(
+                [sys.executable, "-c", NATIVE_AGAINST_JIT_CODE, str(n), str(seed)],
+                capture_output=True,
+                text=True,
+                check=True,
+                env=env,
+            )
+            for key, seconds in json.loads(proc.stdout).items():
+                row = best.setdefault(key, {})
+                row[way] = min(row.get(way, math.inf), seconds)
+    return best
+
+
+def _against_run_time_compile(report: Report, n: int) -> None:
+    """The table of :func:`native_against_run_time_compile`."""
+    for key, t in native_against_run_time_compile(n).items():
+        population, question = key.split("|")
+        report.native.append({"population": population, "question": question, "n": n, **t})
 
 
 def _complete(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> None:
@@ -882,7 +909,6 @@ def _complete(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> 
     from quadric_contact.modes.predicates import overlap, relative_position, transversal_contact
 
     n = cfg["complete_pairs"]
-    later: list[tuple[str, np.ndarray, np.ndarray, float, dict[str, np.ndarray]]] = []
     for population, (E, Q, geometry) in complete_populations(n, rng).items():
         head = (E[:100], Q if Q.ndim == 2 else Q[:100])
         for fn in (transversal_contact, relative_position, overlap):
@@ -929,7 +955,6 @@ def _complete(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> 
                     "stages": _stage_fractions(fmode.last),
                 }
             )
-        later.append((population, E, Q, base, truth))
         if geometry is None:
             continue
         m = min(n, 200_000)
@@ -967,9 +992,7 @@ def _complete(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> 
                 "stages": "against the certified overlap",
             }
         )
-    # after every native measurement: a kernel compiled at run time stays compiled
-    for population, E, Q, base, truth in later:
-        _against_run_time_compile(report, population, E, Q, n, base, truth)
+    _against_run_time_compile(report, n)
 
 
 def _exact_scalar(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> None:

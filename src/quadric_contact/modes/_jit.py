@@ -287,11 +287,51 @@ dispatcher, with the dispatcher and the argument types (the build of the native 
 records what the calls need this way)."""
 
 _NATIVE: dict[tuple[int, Any], Any] = {}
+_NATIVE_BY_PRINT: dict[tuple[int, tuple[Any, ...]], Any] = {}
+"""The native kernels found, by dispatcher and :func:`_fingerprint` of the arguments: numba
+calls the hook of a dispatcher at every call that finds no compiled version in it, and typing
+the arguments again (``typeof_pyval``, about 5 us an argument) cost more than the native call."""
+
+
+def _fingerprint(args: tuple[Any, ...]) -> tuple[Any, ...]:
+    """What numba's type of each argument depends on: an array's class, dtype, dimensions,
+    layout, whether it is writable and aligned; a scalar's class."""
+    import numpy as np
+
+    out: list[Any] = []
+    for a in args:
+        if isinstance(a, np.ndarray):
+            f = a.flags
+            out.append((type(a), a.dtype, a.ndim, f.c_contiguous, f.f_contiguous, f.writeable, f.aligned))
+        else:
+            out.append(type(a))
+    return tuple(out)
 
 
 def forget_native() -> None:
     """Forget which kernels have a native version (asked again at their next call)."""
     _NATIVE.clear()
+    _NATIVE_BY_PRINT.clear()
+
+
+def _native_for_call(dispatcher: Any, args: tuple[Any, ...]) -> Any:
+    """The native kernel of ``dispatcher`` for these arguments, if the library has one: by
+    their fingerprint when a call of the same kinds found it, else by their numba types (and
+    told to :data:`CALL_OBSERVERS`); None otherwise (the types, if they could be read, come
+    back for numba: ``(None, sig)``)."""
+    found = _NATIVE_BY_PRINT.get((id(dispatcher), _fingerprint(args)))
+    if found is not None:
+        return found, None
+    try:
+        sig = tuple(dispatcher.typeof_pyval(a) for a in args)
+    except Exception:  # numba's own call says what is wrong with the arguments
+        return None, None
+    for observe in CALL_OBSERVERS:
+        observe(dispatcher, sig)
+    native = native_kernel(dispatcher, sig)
+    if native is not None:
+        _NATIVE_BY_PRINT[(id(dispatcher), _fingerprint(args))] = native
+    return native, sig
 
 
 def native_kernel(dispatcher: Any, sig: Any) -> Any:
@@ -314,13 +354,7 @@ def route_native(dispatcher: Any) -> None:
 
     def native_first(*args: Any, **kws: Any) -> Any:
         if not kws:
-            try:
-                sig = tuple(dispatcher.typeof_pyval(a) for a in args)
-            except Exception:  # numba's own call says what is wrong with the arguments
-                return compile_for_args(*args, **kws)
-            for observe in CALL_OBSERVERS:
-                observe(dispatcher, sig)
-            native = native_kernel(dispatcher, sig)
+            native, _ = _native_for_call(dispatcher, args)
             if native is not None:
                 return native
         return compile_for_args(*args, **kws)
@@ -369,14 +403,7 @@ def compile_on_a_fresh_stack(dispatcher: Any, twin_elements: int = TWIN_ELEMENTS
     def compile_elsewhere(*args: Any, **kws: Any) -> Any:
         sig = None
         if not kws:
-            try:
-                sig = tuple(dispatcher.typeof_pyval(a) for a in args)
-            except Exception:  # numba's own call says what is wrong with the arguments
-                sig = None
-        if sig is not None:
-            for observe in CALL_OBSERVERS:
-                observe(dispatcher, sig)
-            native = native_kernel(dispatcher, sig)
+            native, sig = _native_for_call(dispatcher, args)
             if native is not None:
                 return native
         if sig is None or not cached or _POLICY == "wait" or _elements(args) > twin_elements:
