@@ -18,7 +18,7 @@ call it with, becomes a C function of the library ``quadric_contact._native``:
 
 A manifest next to the library (``_native_manifest.json``) lists each function with the
 kernel and signature it stands for and the digest of the sources it was made from
-(:func:`~quadric_contact.modes._jit.kernel_sources`); :mod:`quadric_contact.modes.native`
+(``quadric_contact.modes._jit.kernel_sources``); :mod:`quadric_contact.modes.native`
 reads it and calls a function only where the running sources have that digest and the machine
 is the one it was built for.  So the answers are those of the run-time compile, and a kernel
 whose sources changed since the build is compiled at run time as before.

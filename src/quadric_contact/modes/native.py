@@ -3,7 +3,7 @@
 ``pip install .`` (and ``python -m build``) compiles every kernel that the default ``certified``
 mode calls, with every signature it calls it with, into the extension ``quadric_contact._native``
 (how: :mod:`quadric_contact.codegen.native`).  A kernel call that finds no compiled version in
-its numba dispatcher (:func:`quadric_contact.modes._jit.compile_on_a_fresh_stack`) asks
+its numba dispatcher (``quadric_contact.modes._jit.compile_on_a_fresh_stack``) asks
 :func:`lookup` first; when the library has that kernel for those argument types, made from the
 sources that are running, on this machine, the call runs it and nothing is compiled.  Elsewhere
 (another mode, a kernel whose sources changed since the build, no library) the kernel is compiled
