@@ -162,3 +162,14 @@ def test_the_manifest_tells_factory_kernels_apart():
     assert len(set(keys)) == len(keys)
     factory = [n for n in names if "_make_pairs.<locals>.kernel" in n]
     assert factory and all(n.endswith("]") for n in factory)
+
+
+def test_a_missing_library_is_said_once(capsys, monkeypatch):
+    """Without a usable library (a build without a C compiler says so only in the installer's
+    output, which pip hides), the first kernel call says it on stderr, once."""
+    monkeypatch.setattr(native, "_SAID", [])
+    native._say_missing(None)
+    native._say_missing(None)
+    err = capsys.readouterr().err
+    assert err.count("quadric-contact: no native kernels") == 1
+    assert "compiled at run time" in err

@@ -25,6 +25,7 @@ from __future__ import annotations
 import ctypes
 import json
 import os
+import sys
 import threading
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -42,7 +43,6 @@ __all__ = [
     "library",
     "lookup",
     "manifest_digest",
-    "reset",
     "turned_off",
 ]
 
@@ -176,6 +176,29 @@ def _find() -> NativeLibrary | None:
     return None
 
 
+_SAID: list[bool] = []
+
+
+def _say_missing(lib: NativeLibrary | None) -> None:
+    """One line on stderr, once a process, where a kernel call finds no usable library: a build
+    without a C compiler says so only in the installer's output, which pip hides."""
+    with _LOCK:
+        if _SAID:
+            return
+        _SAID.append(True)
+    why = (
+        "this copy of the package has none (built without a C compiler, or from a checkout "
+        "without `pip install .`)"
+        if lib is None
+        else f"the library {lib.path} was built for another processor or does not match its manifest"
+    )
+    print(
+        f"quadric-contact: no native kernels: {why}; the kernels are compiled at run time instead",
+        file=sys.stderr,
+        flush=True,
+    )
+
+
 @contextmanager
 def turned_off() -> Iterator[None]:
     """Within the block, kernel calls compile (or load from numba's cache) at run time instead of
@@ -197,12 +220,6 @@ def turned_off() -> Iterator[None]:
         _jit.forget_native()
 
 
-def reset() -> None:
-    """Forget the library found (the tests point the package at another one)."""
-    with _LOCK:
-        _LIBRARY.clear()
-
-
 def lookup(dispatcher: Any, sig: Any, digest: Callable[[str], str]) -> Callable[..., Any] | None:
     """The native kernel of ``dispatcher`` for the numba argument types ``sig``, as a Python
     callable taking the kernel's own arguments; None when native kernels are off, there is no
@@ -212,6 +229,7 @@ def lookup(dispatcher: Any, sig: Any, digest: Callable[[str], str]) -> Callable[
         return None
     lib = library()
     if lib is None or not lib.usable:
+        _say_missing(lib)
         return None
     # a read-only array of the caller's (a broadcast, a read-only buffer) runs the kernel made
     # for a writable one: passed as it is where the kernel only reads it (LLVM proved so at the
