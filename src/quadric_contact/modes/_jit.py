@@ -314,12 +314,13 @@ def forget_native() -> None:
     _NATIVE_BY_PRINT.clear()
 
 
-def _native_for_call(dispatcher: Any, args: tuple[Any, ...]) -> Any:
-    """The native kernel of ``dispatcher`` for these arguments, if the library has one: by
-    their fingerprint when a call of the same kinds found it, else by their numba types (and
-    told to :data:`CALL_OBSERVERS`); None otherwise (the types, if they could be read, come
-    back for numba: ``(None, sig)``)."""
-    found = _NATIVE_BY_PRINT.get((id(dispatcher), _fingerprint(args)))
+def _native_for_call(dispatcher: Any, args: tuple[Any, ...]) -> tuple[Any, Any]:
+    """``(native, sig)``: the native kernel of ``dispatcher`` for these arguments if the library
+    has one (else None), found by their fingerprint when a call of the same kinds found it, else
+    by their numba types ``sig`` (told to :data:`CALL_OBSERVERS`, and returned for numba; None
+    when found by fingerprint or when the arguments cannot be typed)."""
+    key = (id(dispatcher), _fingerprint(args))
+    found = _NATIVE_BY_PRINT.get(key)
     if found is not None:
         return found, None
     try:
@@ -330,7 +331,7 @@ def _native_for_call(dispatcher: Any, args: tuple[Any, ...]) -> Any:
         observe(dispatcher, sig)
     native = native_kernel(dispatcher, sig)
     if native is not None:
-        _NATIVE_BY_PRINT[(id(dispatcher), _fingerprint(args))] = native
+        _NATIVE_BY_PRINT[key] = native
     return native, sig
 
 

@@ -570,6 +570,7 @@ def separation_objects(mode: Any, pairs: Pairs, *, certified: bool) -> np.ndarra
             finite[found] = True
         counts = np.full((n, 3), -1, dtype=np.int64)
         number = mode.number
+        count_positive = _plain("positive_count")
         for k in range(3):
             s = samples[:, k]
             ok = finite[:, k]
@@ -581,7 +582,7 @@ def separation_objects(mode: Any, pairs: Pairs, *, certified: bool) -> np.ndarra
             inv = kernels.quadric_invariants(*member)
             signs = [mode.signs(np.asarray(inv[j], dtype=object)) for j in range(3, 7)]
             for t, i in enumerate(idx):
-                counts[i, k] = _plain("positive_count")(
+                counts[i, k] = count_positive(
                     int(signs[0][t]), int(signs[1][t]), int(signs[2][t]), int(signs[3][t])
                 )
     decide_counts = _plain("decide_from_counts")
