@@ -9,10 +9,10 @@ call it with, becomes a C function of the library ``quadric_contact._native``:
 
 * its arguments are plain C values: each array is its data pointer followed by its shape (the
   kernels take C-contiguous arrays only), each scalar is itself;
-* its body is the kernel's own machine code: numba's optimised LLVM module of a ``cfunc`` that
-  wraps the arrays (``numba.carray``) and calls the kernel, with every other symbol made internal
-  and emitted as a position-independent object for the machine that builds (the same code the
-  run-time compile gives, so the same bits and the same speed);
+* its body is the kernel's own code: numba's optimised LLVM module of the kernel, as the run-time
+  compile makes it, linked under a small ``cfunc`` that wraps the arrays (``numba.carray``) and
+  calls the kernel (the whole not optimised a second time), with every other symbol made internal,
+  emitted as a position-independent object for the machine that builds;
 * the library links numba's C runtime (the allocator the kernels' scratch arrays use, its
   helper functions) from numba's own sources, as ``numba.pycc`` does.
 
@@ -34,7 +34,8 @@ import json
 import os
 import sys
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -122,6 +123,40 @@ def _describe(t: Any) -> list[Any]:
     return ["scalar", name]
 
 
+def _read_only() -> Any:
+    """A numba intrinsic that gives its array argument back typed read-only (the data model of
+    the two is the same): the wrapper passes ``numba.carray``'s writable arrays where the kernel
+    was called with read-only ones, so that it calls the very version that was recorded (not a
+    writable one compiled for it)."""
+    from numba.core.imputils import impl_ret_borrowed
+    from numba.extending import intrinsic
+
+    @intrinsic
+    def read_only(typingctx: Any, a: Any) -> Any:
+        def codegen(context: Any, builder: Any, signature: Any, args: Any) -> Any:
+            return impl_ret_borrowed(context, builder, signature.return_type, args[0])
+
+        return a.copy(readonly=True)(a), codegen
+
+    return read_only
+
+
+@contextmanager
+def _kernels_linked_as_optimised() -> Iterator[None]:
+    """While a wrapper compiles, numba links the kernel's module into the wrapper's and does not
+    optimise the whole again: the kernel's module is numba's optimised one already (the run-time
+    compile's code, bit for bit), and optimising it a second time cost two thirds of the
+    emission's time.  The wrapper's own function is optimised as numba adds it."""
+    from numba.core import codegen
+
+    original = codegen.CPUCodeLibrary._optimize_final_module
+    codegen.CPUCodeLibrary._optimize_final_module = lambda self: None
+    try:
+        yield
+    finally:
+        codegen.CPUCodeLibrary._optimize_final_module = original
+
+
 def _wrapper(dispatcher: Any, sig: Any) -> tuple[Any, list[list[Any]], str]:
     """The ``cfunc`` that takes plain C values and calls the kernel, its arguments' layout and
     its return kind."""
@@ -144,7 +179,9 @@ def _wrapper(dispatcher: Any, sig: Any) -> tuple[Any, list[list[Any]], str]:
             shape = [f"s{i}_{d}" for d in range(kind[2])]
             params += [f"p{i}", *shape]
             ctypes_ += [types.voidptr] + [types.intp] * kind[2]
-            lines.append(f"    a{i} = carray(p{i}, ({', '.join(shape)},), np.{kind[1]})")
+            array = f"carray(p{i}, ({', '.join(shape)},), np.{kind[1]})"
+            array = f"read_only({array})" if sig[i].mutable is False else array
+            lines.append(f"    a{i} = {array}")
             args.append(f"a{i}")
         else:
             params.append(f"x{i}")
@@ -153,20 +190,40 @@ def _wrapper(dispatcher: Any, sig: Any) -> tuple[Any, list[list[Any]], str]:
     call = f"kernel({', '.join(args)})"
     body = f"    {call}\n    return 0\n" if ret_name == "none" else f"    return {call}\n"
     source = f"def wrapper({', '.join(params)}):\n" + "\n".join(lines) + ("\n" if lines else "") + body
-    namespace: dict[str, Any] = {"carray": carray, "np": np, "kernel": dispatcher}
+    namespace: dict[str, Any] = {"carray": carray, "np": np, "kernel": dispatcher, "read_only": _read_only()}
     # the source is generated here, from the kernel's numba types: no text from anyone else
     exec(compile(source, f"<native wrapper of {kernel_identity(dispatcher)}>", "exec"), namespace)
     restype = types.int64 if ret_name == "none" else scalar_types[ret_name]
-    wrapped = cfunc(restype(*ctypes_), nopython=True, error_model="numpy")(namespace["wrapper"])
+    with _kernels_linked_as_optimised():
+        wrapped = cfunc(restype(*ctypes_), nopython=True, error_model="numpy")(namespace["wrapper"])
     return wrapped, kinds, ret_name
 
 
-def _object(wrapped: Any, symbol: str, target: Any, kinds: list[list[Any]]) -> tuple[bytes, list[bool]]:
-    """The wrapper's optimised module as an object: the entry renamed ``symbol``, every other
-    definition internal (each object carries its own copy of the helpers it inlined); and for
-    each array argument whether LLVM proved that the kernel only reads through its pointer (the
-    ``readonly`` attribute its analysis of the whole kernel put on the parameter): such an
-    argument may be a read-only array of the caller's, passed as it is."""
+def _only_read(dispatcher: Any, sig: Any) -> list[bool]:
+    """For each array argument of the kernel, whether LLVM proved that the kernel only reads
+    through its data pointer: the ``readonly`` attribute its analysis put on that parameter of
+    the kernel's function, in numba's optimised module (numba passes an array as its members,
+    one parameter each, after the return and exception pointers).  Such an argument may be a
+    read-only array of the caller's, passed as it is."""
+    from numba.core import types
+
+    overload = dispatcher.overloads[sig]
+    module = overload.library._get_module_for_linking()
+    function = module.get_function(overload.fndesc.mangled_name)
+    context = dispatcher.targetctx
+    packer = context.get_arg_packer(overload.fndesc.argtypes)
+    members = packer._unflattener.unflatten(list(function.arguments)[2:])
+    only_read: list[bool] = []
+    for t, member in zip(sig, members, strict=True):
+        if isinstance(t, types.Array):
+            data = member[context.data_model_manager[t]._fields.index("data")]
+            only_read.append(b"readonly" in set(data.attributes))
+    return only_read
+
+
+def _object(wrapped: Any, symbol: str, target: Any) -> bytes:
+    """The wrapper's module, the kernel linked in, as an object: the entry renamed ``symbol``,
+    every other definition internal (each object carries its own copy of the helpers it uses)."""
     import llvmlite.binding as ll
 
     library = wrapped._library
@@ -179,18 +236,8 @@ def _object(wrapped: Any, symbol: str, target: Any, kinds: list[list[Any]]) -> t
     for gv in module.global_variables:
         if not gv.is_declaration:
             gv.linkage = "internal"
-    function = module.get_function(entry)
-    params = list(function.arguments)
-    only_read: list[bool] = []
-    at = 0
-    for kind in kinds:
-        if kind[0] == "array":
-            only_read.append(b"readonly" in set(params[at].attributes))
-            at += 1 + kind[2]
-        else:
-            at += 1
-    function.name = symbol
-    return bytes(target.emit_object(module)), only_read
+    module.get_function(entry).name = symbol
+    return bytes(target.emit_object(module))
 
 
 def _target() -> tuple[Any, str, str]:
@@ -234,8 +281,8 @@ def _emit(
             continue
         symbol = f"qc_kernel_{digest}"
         path = out / f"{symbol}.o"
-        code, only_read = _object(wrapped, symbol, target, kinds)
-        path.write_bytes(code)
+        path.write_bytes(_object(wrapped, symbol, target))
+        only_read = _only_read(dispatcher, sig)
         for kind, read in zip((k for k in kinds if k[0] == "array"), only_read, strict=True):
             kind.append(read)  # ["array", dtype, ndim, only read]
         objects.append(str(path))
@@ -256,8 +303,9 @@ def _emit(
 def build(out: Path, log: Callable[[str], None] = print) -> dict[str, Any]:
     """Compile the kernels of :func:`calls` into objects in ``out`` and write the manifest and
     ``build.json`` there; return the latter's content.  With two cores or more, numba compiles in
-    two processes (:func:`_compile_in_two`) and two more emit half the objects each (the
-    ``cfunc`` of a kernel loaded from numba's cache optimises the whole kernel again)."""
+    two processes (:func:`_compile_in_two`) and two more emit half the objects each (the machine
+    code of every kernel is generated twice there: when numba finalises the wrapper, and as the
+    object)."""
     import subprocess
     import sysconfig
 

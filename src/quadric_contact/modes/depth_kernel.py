@@ -119,7 +119,7 @@ from quadric_contact.modes.distance_kernel import (
     _up,
     dot2_bilinear,
 )
-from quadric_contact.modes.threads import run_parallel
+from quadric_contact.modes.threads import kernel_stack, run_parallel
 
 __all__ = ["BUDGET", "MAX_LEVEL", "crossing_ellipsoids", "crossing_ellipsoids_cells"]
 
@@ -791,8 +791,8 @@ def crossing_ellipsoids_cells(
     Es: np.ndarray, Ks: np.ndarray, tol: float = 1e-12
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """:func:`crossing_ellipsoids`, and the number of cells (points of ``D``) each pair used."""
-    Es = np.ascontiguousarray(Es, dtype=np.float64).reshape(-1, 4, 4)
-    Ks = np.ascontiguousarray(Ks, dtype=np.float64).reshape(-1, 4, 4)
+    Es = kernel_stack(Es)
+    Ks = kernel_stack(Ks)
     n = Es.shape[0]
     out = np.empty((n, 2))
     flag = np.empty(n, dtype=np.uint8)

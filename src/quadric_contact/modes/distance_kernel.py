@@ -34,7 +34,7 @@ from typing import Any
 import numpy as np
 
 from quadric_contact.modes._jit import njit
-from quadric_contact.modes.threads import run_parallel
+from quadric_contact.modes.threads import kernel_stack, run_parallel
 
 __all__ = ["dot2_bilinear", "separated_ellipsoids"]
 
@@ -440,8 +440,8 @@ def separated_ellipsoids(Es: np.ndarray, Ks: np.ndarray, tol: float = 1e-12) -> 
     >>> bool(enc[0, 0] <= 2.0 <= enc[0, 1]), bool(rest[0])
     (True, False)
     """
-    Es = np.ascontiguousarray(Es, dtype=np.float64).reshape(-1, 4, 4)
-    Ks = np.ascontiguousarray(Ks, dtype=np.float64).reshape(-1, 4, 4)
+    Es = kernel_stack(Es)
+    Ks = kernel_stack(Ks)
     n = Es.shape[0]
     out = np.empty((n, 2))
     flag = np.empty(n, dtype=np.uint8)

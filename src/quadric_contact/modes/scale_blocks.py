@@ -54,7 +54,7 @@ from quadric_contact._generated import blocks
 from quadric_contact.modes._jit import njit
 from quadric_contact.modes.scale_kernel import _GAMMA, _TINY, _U
 from quadric_contact.modes.scale_kernel import _kernel as _scalar
-from quadric_contact.modes.threads import run_parallel
+from quadric_contact.modes.threads import kernel_stack, run_parallel
 
 __all__ = ["NB", "NEWTON", "scale_blocks", "scale_stack"]
 
@@ -514,8 +514,8 @@ def run_flags(
     ``(n, 4, 4)`` on threads: the enclosures ``(n, 2)`` and the flag of each pair (0, 2:
     certified by the block or the scalar kernel, 1: left to the exact path).  Shared by the
     one-sided and the two-sided scale."""
-    Es = np.ascontiguousarray(Es, dtype=np.float64).reshape(-1, 4, 4)
-    Qs = np.ascontiguousarray(Qs, dtype=np.float64).reshape(-1, 4, 4)
+    Es = kernel_stack(Es)
+    Qs = kernel_stack(Qs)
     n = Es.shape[0]
     out = np.empty((n, 2))
     flag = np.empty(n, dtype=np.uint8)

@@ -17,9 +17,11 @@ import threading
 from collections.abc import Callable, Iterator
 from concurrent.futures import Future, ThreadPoolExecutor
 
+import numpy as np
+
 from quadric_contact.modes._jit import HAVE_NUMBA
 
-__all__ = ["MIN_PER_THREAD", "THREADS", "run_parallel", "single_threaded"]
+__all__ = ["MIN_PER_THREAD", "THREADS", "kernel_stack", "run_parallel", "single_threaded"]
 
 THREADS = max(1, min(os.cpu_count() or 1, int(os.environ.get("QUADRIC_CONTACT_THREADS", "0") or 0) or 64))
 """Threads used by default (all cores, or ``QUADRIC_CONTACT_THREADS``)."""
@@ -31,6 +33,16 @@ SLICES_PER_THREAD = 8
 _local = threading.local()
 _pool: ThreadPoolExecutor | None = None
 _pool_lock = threading.Lock()
+
+
+def kernel_stack(a: np.ndarray) -> np.ndarray:
+    """``a`` as the kernels that only read a stack of matrices take it: float64, C-contiguous,
+    ``(n, 4, 4)`` and read-only, whatever the caller's array (a copy only where the dtype or
+    the layout differ).  numba compiles one version of a kernel for each writeable flag of its
+    arguments; given the one form, it compiles (and the native library holds) one."""
+    a = np.ascontiguousarray(a, dtype=np.float64).reshape(-1, 4, 4).view()
+    a.flags.writeable = False
+    return a
 
 
 @contextlib.contextmanager
