@@ -27,6 +27,7 @@ The paper's route stays here under its own name (``method="theory"``, or a calle
 
 from __future__ import annotations
 
+from functools import partial
 from typing import Any
 
 from quadric_contact.exact.errors import ExcludedQuadricError
@@ -144,8 +145,9 @@ def _signature_route(P: CharacteristicPolynomial) -> ContactResult:
     for a singular intersection."""
     d = decide_pencil_checked(P)
     if d.transversal is not None:
-        reason = _nonreal_reason(P) if d.rule is Rule.NONREAL_ROOTS else str(d)
-        return ContactResult(d.transversal, d.decided_by, reason, P, None, d)
+        # the sentence is written when read (``ContactResult.reason``)
+        because = partial(_nonreal_reason, P) if d.rule is Rule.NONREAL_ROOTS else d.__str__
+        return ContactResult(d.transversal, d.decided_by, because, P, None, d)
     geo = _geometric(P.E, P.Q)
     return ContactResult(
         geo.transversal,

@@ -7,9 +7,11 @@ says so (``decided is False``) and refuses to be read as a boolean.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from enum import IntEnum, StrEnum
 from fractions import Fraction
+from functools import cached_property
 from typing import TYPE_CHECKING, Any
 
 from quadric_contact.exact.errors import UndecidedError
@@ -67,7 +69,7 @@ def _poly_dict(P: CharacteristicPolynomial) -> dict[str, Any]:
     }
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class ContactResult:
     """Answer of :func:`~quadric_contact.transversal_contact`.
 
@@ -79,7 +81,8 @@ class ContactResult:
         The result that decided it ("Remark 9", "Corollary 10", "Theorem 14",
         "geometric decision", ...).
     reason : str
-        One sentence on why.
+        One sentence on why (written when first read: the constructor's third argument, ``because``,
+        is the sentence or a function without arguments that writes it).
     polynomial : CharacteristicPolynomial
     smallness : object
         The smallness report used (or ``"asserted by caller"``, or None).
@@ -107,11 +110,43 @@ class ContactResult:
 
     transversal: bool | None
     decided_by: str | None
-    reason: str
+    because: str | Callable[[], str]
     polynomial: CharacteristicPolynomial
     smallness: Any = None
     geometric: Any = None
     mode: str = "exact"
+
+    @cached_property
+    def reason(self) -> str:
+        """One sentence on why.  Writing it (exact numbers in decimal) costs about as much as a
+        tenth of the decision on binary64 input, so it is written when first read."""
+        return self.because if isinstance(self.because, str) else self.because()
+
+    def _key(self) -> tuple[Any, ...]:
+        return (
+            self.transversal,
+            self.decided_by,
+            self.reason,
+            self.polynomial,
+            self.smallness,
+            self.geometric,
+            self.mode,
+        )
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, ContactResult):
+            return NotImplemented
+        return self._key() == other._key()
+
+    def __hash__(self) -> int:
+        return hash((self.transversal, self.decided_by, self.reason, self.mode))
+
+    def __repr__(self) -> str:
+        return (
+            f"ContactResult(transversal={self.transversal!r}, decided_by={self.decided_by!r}, "
+            f"reason={self.reason!r}, polynomial={self.polynomial!r}, smallness={self.smallness!r}, "
+            f"geometric={self.geometric!r}, mode={self.mode!r})"
+        )
 
     @property
     def decided(self) -> bool:
