@@ -75,6 +75,8 @@ from typing import Any
 
 from quadric_contact.paper.proving import Finding, Method, Proof, agrees, ensure
 
+from ._support_functions import centred_exact, ellipsoid_matrix, least_support
+
 proof = Proof(
     "Depth of crossing ellipsoids",
     "the signed distance of two crossing ellipsoids lies between minus a support bound at one "
@@ -251,18 +253,6 @@ def farthest_corner() -> Finding:
 # -- 5: the kernel's binary64 bracketing and corner test ----------------------------------------
 
 
-def _ellipsoid(axes: Any, R: Any, centre: Any) -> Any:
-    import numpy as np
-
-    A = R @ np.diag(1 / np.asarray(axes, dtype=float) ** 2) @ R.T
-    A = (A + A.T) / 2
-    M = np.zeros((4, 4))
-    M[:3, :3] = A
-    M[:3, 3] = M[3, :3] = -A @ centre
-    M[3, 3] = centre @ A @ centre - 1
-    return M
-
-
 def _sample_ellipsoids(n: int, seed: int) -> list[Any]:
     import numpy as np
 
@@ -278,26 +268,8 @@ def _sample_ellipsoids(n: int, seed: int) -> list[Any]:
         else:
             axes = rng.uniform(0.5, 1.0) * (1 + 1e-9 * rng.uniform(-1, 1, 3))  # nearly round
         centre = rng.uniform(-1, 1, 3) * (10.0 if k % 2 else 0.5)
-        out.append(_ellipsoid(axes, random_rotations(1, rng)[0], centre))
+        out.append(ellipsoid_matrix(axes, random_rotations(1, rng)[0], centre))
     return out
-
-
-def _exact(M: Any) -> tuple[list[list[F]], list[F], F]:
-    """``A``, ``c_true`` and ``r`` of the solid ``(x - c)^T A (x - c) <= r`` of ``M`` (its entries
-    read as exact rationals)."""
-    Q = [[F(float(M[i, j])) for j in range(4)] for i in range(4)]
-    A = [row[:3] for row in Q[:3]]
-    a = [Q[i][3] for i in range(3)]
-
-    def cof(i: int, j: int) -> F:
-        i1, i2, j1, j2 = (i + 1) % 3, (i + 2) % 3, (j + 1) % 3, (j + 2) % 3
-        return A[i1][j1] * A[i2][j2] - A[i1][j2] * A[i2][j1]
-
-    adj = [[cof(j, i) for j in range(3)] for i in range(3)]
-    det = _dot(A[0], [adj[j][0] for j in range(3)])
-    c = [-_dot(adj[i], a) / det for i in range(3)]
-    r = _dot(c, [_dot(A[i], c) for i in range(3)]) - Q[3][3]
-    return A, c, r
 
 
 def _positive_definite(N: list[list[F]]) -> bool:
@@ -362,7 +334,7 @@ def bracketing() -> Finding:
             adj, adja, c, L = np.empty((3, 3)), np.empty((3, 3)), np.empty(3), np.zeros((3, 3))
             sigma, tau = bracket(M, adj, adja, c, L)
             ensure(0.5 < sigma <= 1 <= tau < 2, f"radii {sigma}, {tau}")
-            A, ct, r = _exact(M)
+            A, ct, r = centred_exact(M)
             Lq = [[F(float(L[i, j])) for j in range(3)] for i in range(3)]
             cq = [F(float(x)) for x in c]
             ALq = [[_dot(A[k], [Lq[m][j] for m in range(3)]) for j in range(3)] for k in range(3)]
@@ -454,52 +426,6 @@ def corner_rounding() -> Finding:
 # -- cross-check: the kernel against a brute-force minimiser -------------------------------------
 
 
-def _brute_depth(E: Any, K: Any, digits: int = 40) -> Any:
-    """``min phi`` over the unit sphere: the exact rational matrices, a grid of directions in
-    binary64, then Newton's method on the sphere at ``digits`` digits from the best four."""
-    import mpmath
-    import numpy as np
-
-    geo = []
-    for M in (E, K):
-        A, c, r = _exact(M)
-        geo.append((A, c, r))
-    with mpmath.workdps(digits + 20):
-
-        def mat(rows: Any) -> Any:
-            return mpmath.matrix([[mpmath.mpf(x.numerator) / x.denominator for x in row] for row in rows])
-
-        Ms = [mat(A) ** -1 * (mpmath.mpf(r.numerator) / r.denominator) for A, _c, r in geo]
-        cd = mat([[geo[0][1][i] - geo[1][1][i]] for i in range(3)])
-
-        def parts(u: Any) -> Any:
-            m = [M * u for M in Ms]
-            n = [mpmath.sqrt((u.T * mi)[0]) for mi in m]
-            return m, n, (u.T * cd)[0] + n[0] + n[1]
-
-        Mf = [np.array(M.tolist(), dtype=float) for M in Ms]
-        cf = np.array(cd.T.tolist()[0], dtype=float)
-        k = np.arange(3000) + 0.5
-        zz = 1 - 2 * k / 3000
-        ss = np.sqrt(1 - zz * zz)
-        V = np.stack([ss * np.cos(np.pi * (1 + 5**0.5) * k), ss * np.sin(np.pi * (1 + 5**0.5) * k), zz], -1)
-        vals = V @ cf + sum(np.sqrt(np.einsum("ij,jk,ik->i", V, Mi, V)) for Mi in Mf)
-        best = mpmath.inf
-        for i in np.argsort(vals)[:4]:
-            u = mpmath.matrix([float(x) for x in V[i]])
-            for _ in range(60):
-                m, n, f = parts(u)
-                g = cd + m[0] / n[0] + m[1] / n[1]
-                H = Ms[0] / n[0] - m[0] * m[0].T / n[0] ** 3 + Ms[1] / n[1] - m[1] * m[1].T / n[1] ** 3
-                P = mpmath.eye(3) - u * u.T
-                p = mpmath.lu_solve(P * H * P - (u.T * g)[0] * P + u * u.T, -(P * g))
-                u = (u + p) / mpmath.norm(u + p)
-                if mpmath.norm(p) < mpmath.mpf(10) ** (-digits):
-                    break
-            best = min(best, parts(u)[2])
-        return best
-
-
 @proof.check(
     "the kernel's enclosures hold the brute-force depth (random binary64 pairs read as exact rationals: "
     "general, nearly round, elongated, two equal minima) and the closed forms of two balls and of a "
@@ -532,13 +458,13 @@ def enclosures_hold() -> Finding:
             c1, c2 = np.zeros(3), R1 @ np.array([rng.uniform(0.2, 1.0), 0, 0])
         else:  # plates crossing near their middles
             c1, c2 = rng.uniform(-0.3, 0.3, (2, 3)) * (0.1 if k % 4 == 2 else 1.0)
-        pairs.append((_ellipsoid(axes1, R1, c1), _ellipsoid(axes2, R2, c2)))
+        pairs.append((ellipsoid_matrix(axes1, R1, c1), ellipsoid_matrix(axes2, R2, c2)))
     Es = np.array([p[0] for p in pairs])
     Ks = np.array([p[1] for p in pairs])
     enc, rest = crossing_ellipsoids(Es, Ks)
     ensure((~rest).sum() >= 44, f"only {(~rest).sum()} of 48 answered")
     for k in np.flatnonzero(~rest):
-        value = -_brute_depth(Es[k], Ks[k])
+        value = -least_support(Es[k], Ks[k])
         ensure(mpmath.mpf(enc[k, 0]) <= value <= mpmath.mpf(enc[k, 1]), f"pair {k}: {value} not in {enc[k]}")
         ensure(enc[k, 1] - enc[k, 0] <= 1e-12 * abs(enc[k, 1]), "at most 1e-12 relative wide")
     # closed forms: |c1 - c2| = 5/8 and 13/16; a ball of radius 1/4 concentric with axes (2, 1, 1/2)
@@ -546,12 +472,21 @@ def enclosures_hold() -> Finding:
     ball, ball_2, ball_4 = ([1.0] * 3, [0.5] * 3, [0.25] * 3)
     centre = np.array([1.0, 2, 3])
     closed = [
-        ((_ellipsoid(ball, eye, np.zeros(3)), _ellipsoid(ball_2, eye, np.array([0.375, 0.5, 0]))), F(7, 8)),
         (
-            (_ellipsoid(ball, eye, np.zeros(3)), _ellipsoid(ball_2, eye, np.array([0.3125, 0, 0.75]))),
+            (
+                ellipsoid_matrix(ball, eye, np.zeros(3)),
+                ellipsoid_matrix(ball_2, eye, np.array([0.375, 0.5, 0])),
+            ),
+            F(7, 8),
+        ),
+        (
+            (
+                ellipsoid_matrix(ball, eye, np.zeros(3)),
+                ellipsoid_matrix(ball_2, eye, np.array([0.3125, 0, 0.75])),
+            ),
             F(11, 16),
         ),
-        ((_ellipsoid([2.0, 1.0, 0.5], eye, centre), _ellipsoid(ball_4, eye, centre)), F(3, 4)),
+        ((ellipsoid_matrix([2.0, 1.0, 0.5], eye, centre), ellipsoid_matrix(ball_4, eye, centre)), F(3, 4)),
     ]
     Es = np.array([p[0][0] for p in closed])
     Ks = np.array([p[0][1] for p in closed])

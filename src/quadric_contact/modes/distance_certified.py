@@ -26,6 +26,7 @@ not decided: the exact path decides it).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
@@ -257,10 +258,145 @@ def distance_certified(E: Any, Q: Any, *, digits: int = 15) -> DistanceEnclosure
     return _curved(e, K, digits)
 
 
+def _inverse3(A: Sequence[Sequence[Fraction]]) -> list[list[Fraction]]:
+    """The inverse of a 3x3 matrix of Fractions (positive definite here), exactly."""
+    cof = [
+        [
+            A[(i + 1) % 3][(j + 1) % 3] * A[(i + 2) % 3][(j + 2) % 3]
+            - A[(i + 1) % 3][(j + 2) % 3] * A[(i + 2) % 3][(j + 1) % 3]
+            for j in range(3)
+        ]
+        for i in range(3)
+    ]
+    det = sum(A[0][j] * cof[0][j] for j in range(3))
+    return [[cof[j][i] / det for j in range(3)] for i in range(3)]  # adj = cof^T, symmetric A
+
+
+def _support_system(
+    parts: Sequence[Any], v: Sequence[Any], one: Any, sqrt: Any
+) -> tuple[list[Any], list[list[Any]]]:
+    """``F(u, lambda) = (grad phi(u) + lambda u, (u . u - 1) / 2)`` and its Jacobian at
+    ``v = (u, lambda)``, in the arithmetic of ``one`` (floats, or arb balls of a box): ``phi(u) =
+    h_E(u) + h_K(-u)``, ``h(u) = u . c + sqrt(r u^T B u)`` (``B = A^-1``), ``parts`` the
+    ``(c, B, sqrt r, sign)`` of ``E`` (sign 1) and ``K`` (sign -1)."""
+    u, lam = list(v[:3]), v[3]
+    g = [lam * u[i] for i in range(3)]
+    H = [[(lam if i == j else 0 * one) for j in range(3)] for i in range(3)]
+    for c, B, root_r, sign in parts:
+        Bu = [B[i][0] * u[0] + B[i][1] * u[1] + B[i][2] * u[2] for i in range(3)]
+        s = sqrt(u[0] * Bu[0] + u[1] * Bu[1] + u[2] * Bu[2])
+        k = root_r / s
+        k3 = k / (s * s)
+        for i in range(3):
+            g[i] = g[i] + sign * c[i] + k * Bu[i]
+            for j in range(3):
+                H[i][j] = H[i][j] + k * B[i][j] - k3 * Bu[i] * Bu[j]
+    F = [*g, (u[0] * u[0] + u[1] * u[1] + u[2] * u[2] - one) / 2]
+    J = [[*H[i], u[i]] for i in range(3)] + [[u[0], u[1], u[2], 0 * one]]
+    return F, J
+
+
+def _apart_ellipsoids(E: Quadric, K: Quadric, digits: int) -> DistanceEnclosure | None:
+    """Two ellipsoids whose solids are apart, from one isolated root (``proofs/
+    distance_of_separated_ellipsoids.py``): ``phi(u) = h_E(u) + h_K(-u)`` is convex and
+    ``dist(E, K) = -min over |u| <= 1 of phi(u)`` when positive.  A root of
+    ``grad phi(u) + lambda u = 0``, ``|u| = 1`` with ``lambda > 0`` is a KKT point of that convex
+    program, hence its minimum, and ``phi(u) = u . grad phi(u) = -lambda`` (``phi`` is positively
+    homogeneous): the distance is ``lambda``, the witnesses are the support points
+    ``c_E + sqrt(r_E) B_E u / |u|_B_E`` and ``c_K - sqrt(r_K) B_K u / |u|_B_K``, the normal of
+    ``K`` there is ``-u``.  Newton's method in binary64 then in balls finds the root; the
+    Krawczyk operator on a box around it proves it unique there and encloses it.  None where
+    the search fails or the test does not pass (the general route then answers)."""
+    import numpy as np
+
+    forms = [centred_form(E), centred_form(K)]
+    Bs = [_inverse3(A) for A, _, _ in forms]
+    # binary64 start: Newton's method from the direction of the centres
+    fparts = [
+        (
+            np.array([float(x) for x in c]),
+            np.array([[float(x) for x in row] for row in B]),
+            math.sqrt(float(r)),
+            sign,
+        )
+        for (_, c, r), B, sign in zip(forms, Bs, (1, -1), strict=True)
+    ]
+    axis = fparts[1][0] - fparts[0][0]
+    if not np.all(np.isfinite(axis)) or not np.any(axis):
+        return None
+    u = axis / np.linalg.norm(axis)
+    Fu, _ = _support_system(fparts, [*u, 0.0], 1.0, math.sqrt)
+    v = np.array([*u, -float(np.dot(u, Fu[:3]))])  # lambda = -u . grad phi(u): F's first part
+    for _ in range(60):
+        Fv, Jv = _support_system(fparts, list(v), 1.0, math.sqrt)
+        try:
+            step = np.linalg.solve(np.array(Jv, dtype=float), np.array(Fv, dtype=float))
+        except np.linalg.LinAlgError:
+            return None
+        v = v - step
+        if not np.all(np.isfinite(v)):
+            return None
+        if np.max(np.abs(step)) <= 1e-15 * (1.0 + np.max(np.abs(v))):
+            break
+    if v[3] <= 0:
+        return None  # not apart (or not found): the general route
+    bits = max(64, int(digits * 3.33) + 32)
+    while bits <= MAX_BITS:
+        with working_precision(bits):
+            one = flint.arb(1)
+            parts = [
+                ([_arb(x) for x in c], [[_arb(x) for x in row] for row in B], _arb(r).sqrt(), sign)
+                for (_, c, r), B, sign in zip(forms, Bs, (1, -1), strict=True)
+            ]
+            sqrt = flint.arb.sqrt
+            m = [flint.arb(float(x)) for x in v]
+            # Newton's method on the midpoints, to the working precision
+            for _ in range(max(2, (bits // 50).bit_length() + 2)):
+                Fm, Jm = _support_system(parts, m, one, sqrt)
+                try:
+                    step = flint.arb_mat([[x.mid() for x in row] for row in Jm]).solve(
+                        flint.arb_mat([[x.mid()] for x in Fm])
+                    )
+                except ZeroDivisionError:
+                    return None
+                m = [(m[i] - step[i, 0]).mid() for i in range(4)]
+            # Krawczyk: K(X) = m - Y F(m) + (I - Y J(X)) (X - m) inside X proves one root in X
+            width = flint.arb(2) ** (40 - bits)
+            X = [flint.arb(m[i], width * (1 + abs(m[i]).mid())) for i in range(4)]
+            Fm, Jm = _support_system(parts, m, one, sqrt)
+            try:
+                Y = flint.arb_mat([[x.mid() for x in row] for row in Jm]).inv()
+            except ZeroDivisionError:
+                return None
+            Y = flint.arb_mat([[Y[i, j].mid() for j in range(4)] for i in range(4)])
+            _, JX = _support_system(parts, X, one, sqrt)
+            R = flint.arb_mat(4, 4, [int(i == j) for i in range(4) for j in range(4)]) - Y * flint.arb_mat(JX)
+            Km = Y * flint.arb_mat([[x] for x in Fm])
+            D = R * flint.arb_mat([[X[i] - m[i]] for i in range(4)])
+            Kx = [m[i] - Km[i, 0] + D[i, 0] for i in range(4)]
+            if not all(X[i].contains_interior(Kx[i]) for i in range(4)) or not Kx[3] > 0:
+                return None
+            u_box, dist = Kx[:3], Kx[3]
+            witnesses = []
+            for c, B, root_r, sign in parts:
+                Bu = [B[i][0] * u_box[0] + B[i][1] * u_box[1] + B[i][2] * u_box[2] for i in range(3)]
+                k = root_r / sqrt(u_box[0] * Bu[0] + u_box[1] * Bu[1] + u_box[2] * Bu[2])
+                witnesses.append(tuple(c[i] + sign * k * Bu[i] for i in range(3)))
+            normal = tuple(-x for x in u_box)
+        if _good(dist, digits, bits):
+            return DistanceEnclosure(dist, witnesses[0], witnesses[1], normal, bits, "ellipsoid-ellipsoid")
+        bits *= 2
+    return None
+
+
 def _curved(E: Quadric, K: Quadric, digits: int) -> DistanceEnclosure:
     """Any ellipsoid against a curved quadric: the extremal contact critical point
     (:mod:`quadric_contact.theory.distance_critical`); a non-convex solid needs the solids
     apart, decided exactly first."""
+    if K.kind is QuadricKind.ELLIPSOID:
+        apart = _apart_ellipsoids(E, K, digits)
+        if apart is not None:
+            return apart
     convex = K.kind in CONVEX_SOLIDS
     touching = False
     if not convex:

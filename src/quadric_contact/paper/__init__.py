@@ -50,6 +50,7 @@ FURTHER_RESULTS: tuple[str, ...] = (
     "Mutual contact events",
     "Distance along a path",
     "Depth of crossing ellipsoids",
+    "Distance of separated ellipsoids",
 )
 """Results from outside the paper that the package relies on and proves in ``proofs/``
 alongside the paper's (after them, in this order): the separation condition of two
@@ -63,8 +64,10 @@ scenes rests; the choice of the root that :func:`quadric_contact.contact_scale` 
 reduction of the contacts of two moving ellipsoids with each other to the real roots of a
 discriminant in time (:mod:`quadric_contact.scenes.mutual`); the bound on the displacement of
 a rigidly moving ellipsoid's points by which the least distance along a path is enclosed
-(:mod:`quadric_contact.scenes.path_distance`); and the certificate by which the depth of two
-crossing ellipsoids is enclosed on stacks (:mod:`quadric_contact.modes.depth_kernel`)."""
+(:mod:`quadric_contact.scenes.path_distance`); the certificate by which the depth of two
+crossing ellipsoids is enclosed on stacks (:mod:`quadric_contact.modes.depth_kernel`); and the
+isolated root by which the distance of two separated ellipsoids and its witnesses are enclosed
+in the ``certified`` mode (:mod:`quadric_contact.modes.distance_certified`)."""
 
 PRINTED: dict[str, str] = {
     # Section 3.2, the two members of the discrimination system used by Corollary 10.
