@@ -16,19 +16,6 @@ def _dot(p: Any, q: Any) -> Any:
     return sum(a * b for a, b in zip(p, q, strict=True))
 
 
-def ellipsoid_matrix(axes: Any, R: Any, centre: Any) -> Any:
-    """The matrix of the ellipsoid of semi-axes ``axes`` along the columns of ``R`` about ``centre``."""
-    import numpy as np
-
-    A = R @ np.diag(1 / np.asarray(axes, dtype=float) ** 2) @ R.T
-    A = (A + A.T) / 2
-    M = np.zeros((4, 4))
-    M[:3, :3] = A
-    M[:3, 3] = M[3, :3] = -A @ centre
-    M[3, 3] = centre @ A @ centre - 1
-    return M
-
-
 def centred_exact(M: Any) -> tuple[list[list[F]], list[F], F]:
     """``A``, ``c_true`` and ``r`` of the solid ``(x - c)^T A (x - c) <= r`` of ``M`` (its entries
     read as exact rationals)."""

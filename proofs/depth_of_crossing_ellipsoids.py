@@ -74,8 +74,9 @@ from fractions import Fraction as F
 from typing import Any
 
 from quadric_contact.paper.proving import Finding, Method, Proof, agrees, ensure
+from quadric_contact.testing.samples import ellipsoid_matrix
 
-from ._support_functions import centred_exact, ellipsoid_matrix, least_support
+from ._support_functions import centred_exact, least_support
 
 proof = Proof(
     "Depth of crossing ellipsoids",

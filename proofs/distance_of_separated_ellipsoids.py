@@ -3,7 +3,7 @@ operator, is the distance, and its support points are the witnesses.
 
 Not a result of the paper: the route by which :func:`quadric_contact.distance` (``certified``
 mode) answers one pair of ellipsoids whose solids are apart
-(:func:`quadric_contact.modes.distance_certified._apart_ellipsoids`).  The solid of an
+(:func:`quadric_contact.modes.distance_certified.apart_ellipsoids`).  The solid of an
 ellipsoid is ``(x - c)^T A (x - c) <= r`` with ``A`` positive definite and ``r > 0``;
 ``B = A^-1``, ``s(u) = sqrt(u^T B u)``, ``h(u) = u . c + sqrt(r) s(u)`` and
 ``phi(u) = h_E(u) + h_K(-u)``.
@@ -52,8 +52,9 @@ from __future__ import annotations
 from typing import Any
 
 from quadric_contact.paper.proving import Finding, Method, Proof, agrees, ensure
+from quadric_contact.testing.samples import ellipsoid_matrix
 
-from ._support_functions import ellipsoid_matrix, least_support
+from ._support_functions import least_support
 
 proof = Proof(
     "Distance of separated ellipsoids",
@@ -81,6 +82,18 @@ def _support(c: Any, B: Any, rho: Any, u: Any) -> Any:
     import sympy as sp
 
     return (sp.Matrix(c).T * u)[0] + rho * sp.sqrt((u.T * sp.Matrix(B) * u)[0])
+
+
+def _pair() -> tuple[Any, Any, Any, list[Any], Any]:
+    """Generic symbols of two ellipsoids: ``u`` (a tuple and a column), ``lambda``, the parts
+    ``(c, B, sqrt r, sign)`` of ``E`` and ``K``, and ``phi(u) = h_E(u) + h_K(-u)``."""
+    import sympy as sp
+
+    us = sp.symbols("u1:4", real=True)
+    u = sp.Matrix(us)
+    (cE, BE, rE), (cK, BK, rK) = _symbols("E"), _symbols("K")
+    phi = _support(cE, BE, rE, u) + _support(cK, BK, rK, -u)
+    return us, u, sp.Symbol("lambda", real=True), [(cE, BE, rE, 1), (cK, BK, rK, -1)], phi
 
 
 @proof.check(
@@ -134,12 +147,8 @@ def system_re_derived() -> Finding:
 
     from quadric_contact.modes.distance_certified import _support_system
 
-    us = sp.symbols("u1:4", real=True)
-    lam = sp.Symbol("lambda", real=True)
-    u = sp.Matrix(us)
-    (cE, BE, rE), (cK, BK, rK) = _symbols("E"), _symbols("K")
-    F, J = _support_system([(cE, BE, rE, 1), (cK, BK, rK, -1)], [*us, lam], sp.Integer(1), sp.sqrt)
-    phi = _support(cE, BE, rE, u) + _support(cK, BK, rK, -u)
+    us, u, lam, parts, phi = _pair()
+    F, J = _support_system(parts, [*us, lam], sp.Integer(1), sp.sqrt)
     Fs = [sp.diff(phi, us[i]) + lam * us[i] for i in range(3)] + [((u.T * u)[0] - 1) / 2]
     Js = sp.Matrix(Fs).jacobian([*us, lam])
     for i in range(4):
@@ -157,11 +166,7 @@ def system_re_derived() -> Finding:
 def value_at_a_root() -> Finding:
     import sympy as sp
 
-    us = sp.symbols("u1:4", real=True)
-    lam = sp.Symbol("lambda", real=True)
-    u = sp.Matrix(us)
-    (cE, BE, rE), (cK, BK, rK) = _symbols("E"), _symbols("K")
-    phi = _support(cE, BE, rE, u) + _support(cK, BK, rK, -u)
+    us, u, lam, _, phi = _pair()
     first = [sp.diff(phi, us[i]) + lam * us[i] for i in range(3)]
     ensure(sp.simplify(phi + lam * (u.T * u)[0] - sum(us[i] * first[i] for i in range(3))) == 0, "identity")
     return agrees(
@@ -182,7 +187,7 @@ def enclosures_hold() -> Finding:
     import numpy as np
 
     from quadric_contact.model.quadric import Quadric
-    from quadric_contact.modes.distance_certified import _apart_ellipsoids
+    from quadric_contact.modes.distance_certified import apart_ellipsoids
     from quadric_contact.testing.samples import random_rotations
     from quadric_contact.theory.overlap import solid_of
 
@@ -201,7 +206,7 @@ def enclosures_hold() -> Finding:
         E = ellipsoid_matrix(axes1, R1, np.zeros(3))
         K = ellipsoid_matrix(axes2, R2, centre)
         e, q = Quadric.from_matrix(E).as_ellipsoid(), solid_of(Quadric.from_matrix(K))
-        r = _apart_ellipsoids(e, q, 30)
+        r = apart_ellipsoids(e, q, 30)
         if r is None:
             continue
         answered += 1

@@ -14,20 +14,10 @@ import pytest
 
 import quadric_contact as qc
 from quadric_contact import Quadric
-from quadric_contact.modes.distance_certified import _apart_ellipsoids
-from quadric_contact.testing.samples import random_rotations
+from quadric_contact.modes.distance_certified import apart_ellipsoids
+from quadric_contact.testing.samples import ellipsoid_matrix, random_rotations
 from quadric_contact.theory.distance_critical import critical_distance
 from quadric_contact.theory.overlap import solid_of
-
-
-def _matrix(axes, R, centre):
-    A = R @ np.diag(1 / np.asarray(axes, dtype=float) ** 2) @ R.T
-    A = (A + A.T) / 2
-    M = np.zeros((4, 4))
-    M[:3, :3] = A
-    M[:3, 3] = M[3, :3] = -A @ centre
-    M[3, 3] = centre @ A @ centre - 1
-    return M
 
 
 def _pairs(n, seed):
@@ -41,8 +31,8 @@ def _pairs(n, seed):
         d = rng.normal(size=3)
         d /= np.linalg.norm(d)
         centre = d * (axes1.max() + axes2.max() + rng.uniform(0.01, 3))
-        E = Quadric.from_matrix(_matrix(axes1, R1, np.zeros(3))).as_ellipsoid()
-        out.append((E, solid_of(Quadric.from_matrix(_matrix(axes2, R2, centre)))))
+        E = Quadric.from_matrix(ellipsoid_matrix(axes1, R1, np.zeros(3))).as_ellipsoid()
+        out.append((E, solid_of(Quadric.from_matrix(ellipsoid_matrix(axes2, R2, centre)))))
     return out
 
 
@@ -50,7 +40,7 @@ def _pairs(n, seed):
 def test_the_isolated_root_agrees_with_the_general_route(seed):
     answered = 0
     for e, k in _pairs(4, seed):
-        fast = _apart_ellipsoids(e, k, 20)
+        fast = apart_ellipsoids(e, k, 20)
         if fast is None:
             continue
         answered += 1
@@ -89,7 +79,7 @@ def test_crossing_and_touching_pairs_go_to_the_general_route():
     E = Quadric.from_equation("x**2/4 + y**2 + z**2 - 1").as_ellipsoid()
     crossing = solid_of(Quadric.from_equation("(x - 2)**2 + y**2 + z**2 - 1"))
     touching = solid_of(Quadric.from_equation("(x - 3)**2 + y**2 + z**2 - 1"))
-    assert _apart_ellipsoids(E, crossing, 15) is None
-    assert _apart_ellipsoids(E, touching, 15) is None
+    assert apart_ellipsoids(E, crossing, 15) is None
+    assert apart_ellipsoids(E, touching, 15) is None
     assert qc.distance(E, touching).distance.contains(0)
     assert qc.distance(E, crossing).distance < 0

@@ -44,7 +44,7 @@ from quadric_contact.theory.distance_critical import critical_distance
 from quadric_contact.theory.overlap import overlap_exact, solid_of
 from quadric_contact.theory.results import OverlapCode
 
-__all__ = ["DistanceEnclosure", "distance_certified"]
+__all__ = ["DistanceEnclosure", "apart_ellipsoids", "distance_certified"]
 
 MAX_BITS = 4096
 """The working precision at which an enclosure that is still too wide is returned as it is."""
@@ -296,7 +296,7 @@ def _support_system(
     return F, J
 
 
-def _apart_ellipsoids(E: Quadric, K: Quadric, digits: int) -> DistanceEnclosure | None:
+def apart_ellipsoids(E: Quadric, K: Quadric, digits: int) -> DistanceEnclosure | None:
     """Two ellipsoids whose solids are apart, from one isolated root (``proofs/
     distance_of_separated_ellipsoids.py``): ``phi(u) = h_E(u) + h_K(-u)`` is convex and
     ``dist(E, K) = -min over |u| <= 1 of phi(u)`` when positive.  A root of
@@ -394,7 +394,7 @@ def _curved(E: Quadric, K: Quadric, digits: int) -> DistanceEnclosure:
     (:mod:`quadric_contact.theory.distance_critical`); a non-convex solid needs the solids
     apart, decided exactly first."""
     if K.kind is QuadricKind.ELLIPSOID:
-        apart = _apart_ellipsoids(E, K, digits)
+        apart = apart_ellipsoids(E, K, digits)
         if apart is not None:
             return apart
     convex = K.kind in CONVEX_SOLIDS

@@ -61,7 +61,7 @@ from quadric_contact.exact.precision import working_precision
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import as_quadric
 from quadric_contact.modes.batch import _is_dask, _is_single, _quadric_array, is_stack, matrix_array
-from quadric_contact.modes.distance_certified import DistanceEnclosure, distance_certified
+from quadric_contact.modes.distance_certified import DistanceEnclosure, apart_ellipsoids, distance_certified
 from quadric_contact.modes.packing import Packed, unpack
 from quadric_contact.theory.contact_scale import contact_scale_exact
 from quadric_contact.theory.distance import CONVEX_SOLIDS, DistanceResult, distance_exact, is_sphere
@@ -396,6 +396,11 @@ def _float(E: Any, Q: Any) -> FloatDistance:
             fast = _kernel_pair(e, K)
             if fast is not None:
                 return fast
+            # not binary64 entries, or left by the kernels: two ellipsoids apart have a certified
+            # route faster than the float search (one isolated root), rounded outwards
+            apart = apart_ellipsoids(e, K, 17)
+            if apart is not None:
+                return FloatDistance.of(*_float_bounds(*apart.bounds))
         if K.kind is QuadricKind.PLANE or is_sphere(e):
             c = _certified(e, K, 17)  # None: a symmetric configuration, the exact answer
             bounds = _float_bounds(*c.bounds) if c is not None else enclosure(distance_exact(e, K).distance)
