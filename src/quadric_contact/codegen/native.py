@@ -30,6 +30,7 @@ whose sources changed since the build is compiled at run time as before.
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 import os
 import sys
@@ -123,11 +124,13 @@ def _describe(t: Any) -> list[Any]:
     return ["scalar", name]
 
 
+@functools.cache
 def _read_only() -> Any:
     """A numba intrinsic that gives its array argument back typed read-only (the data model of
     the two is the same): the wrapper passes ``numba.carray``'s writable arrays where the kernel
     was called with read-only ones, so that it calls the very version that was recorded (not a
-    writable one compiled for it)."""
+    writable one compiled for it).  One intrinsic for the whole build (numba types each
+    intrinsic object once)."""
     from numba.core.imputils import impl_ret_borrowed
     from numba.extending import intrinsic
 
