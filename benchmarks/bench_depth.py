@@ -1,6 +1,6 @@
 """The signed distance of crossing ellipsoids on a float64 stack: ``qc.distance`` (the compiled
 kernels, then the scalar certified path for the pairs they leave) and the depth kernel alone
-(:mod:`quadric_contact.modes.depth_kernel`).
+(:mod:`quadric_contact.modes.distance.depth_kernel`).
 
 Random pairs (semi-axes uniform in ``[0.3, 1.5]``, random orientations, centres uniform in
 ``[-0.5, 0.5]^3``) are kept when a binary64 minimiser of ``phi(u) = h_E(u) + h_K(-u)`` finds
@@ -21,7 +21,7 @@ import time
 import numpy as np
 
 import quadric_contact as qc
-from quadric_contact.modes.depth_kernel import _kernel, crossing_ellipsoids_cells
+from quadric_contact.modes.distance.depth_kernel import _kernel, crossing_ellipsoids_cells
 from quadric_contact.testing.samples import ellipsoid_matrix, float_depth
 
 

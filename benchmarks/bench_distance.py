@@ -12,7 +12,7 @@ rational values of the same binary64 numbers (a float is an exact dyadic rationa
 library answers about the same pair; the ellipsoid is axis-aligned so that no rotation matrix
 rounded to binary64 (not exactly orthogonal) makes the pairs differ.
 
-The reference is :func:`quadric_contact.modes.distance_certified.distance_certified` asked
+The reference is :func:`quadric_contact.modes.distance.certified.distance_certified` asked
 for 30 digits: an arb enclosure of the exact signed distance of the pair (the global minimum:
 every critical point is isolated), cross-checked against the exact algebraic answer of
 :func:`quadric_contact.theory.distance.distance_exact` on the first pairs of every table.
@@ -59,7 +59,7 @@ from typing import Any
 import numpy as np
 
 from quadric_contact import Quadric
-from quadric_contact.modes.distance_certified import distance_certified
+from quadric_contact.modes.distance.certified import distance_certified
 from quadric_contact.modes.distances import distance
 from quadric_contact.theory.distance import distance_exact
 
@@ -384,8 +384,8 @@ def _distance_stack(rng: np.random.Generator, n: int) -> None:
     same pairs for the ratio."""
     if n <= 0:
         return
-    from quadric_contact.modes.depth_kernel import crossing_ellipsoids
-    from quadric_contact.modes.distance_kernel import separated_ellipsoids
+    from quadric_contact.modes.distance.apart_kernel import separated_ellipsoids
+    from quadric_contact.modes.distance.depth_kernel import crossing_ellipsoids
 
     base = min(n, 4096)
     Es, Ks = _ellipsoid_stack(rng, base), _ellipsoid_stack(rng, base)
@@ -460,8 +460,8 @@ def _scale_throughput(rng: np.random.Generator, n: int) -> None:
     kernel), against the exact scalar path on a few of them."""
     if n <= 0:
         return
+    from quadric_contact.modes.distance.scale_blocks import scale_stack
     from quadric_contact.modes.distances import contact_scale
-    from quadric_contact.modes.scale_blocks import scale_stack
 
     base = min(n, 4096)
     Es, Qs = _ellipsoid_stack(rng, base), _ellipsoid_stack(rng, base)
@@ -500,10 +500,10 @@ def _scale_throughput(rng: np.random.Generator, n: int) -> None:
 
 def _scale_both_throughput(Es: np.ndarray, Qs: np.ndarray) -> None:
     """``scale="both"`` (the Perram-Wertheim scale) on the same stack: the compiled kernel of
-    :mod:`quadric_contact.modes.scale_both` (pairs a second, the fraction it certifies), against the
+    :mod:`quadric_contact.modes.distance.scale_both` (pairs a second, the fraction it certifies), against the
     exact scalar path."""
+    from quadric_contact.modes.distance.scale_both import _flags
     from quadric_contact.modes.distances import contact_scale
-    from quadric_contact.modes.scale_both import _flags
 
     _flags(Es[:10], Qs[:10])  # compiled or loaded
     _flags(Es[:10], Qs[:10], blocks=False)

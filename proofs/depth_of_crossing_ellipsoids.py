@@ -2,7 +2,7 @@
 support bound at one direction and a covering of the sphere by cells, each certified by one point
 of the Minkowski difference.
 
-Not a result of the paper: the certificate of :mod:`quadric_contact.modes.depth_kernel`, on which
+Not a result of the paper: the certificate of :mod:`quadric_contact.modes.distance.depth_kernel`, on which
 :func:`quadric_contact.distance` answers the crossing ellipsoid pairs of float64 stacks.  ``E`` and
 ``K`` are ellipsoids (solids), ``D = E + (-K)``, ``phi(u) = h_E(u) + h_K(-u)`` its support
 function and ``depth = min over unit u of phi(u)``: when the interiors meet, ``0`` is inside
@@ -46,7 +46,7 @@ The argument.
    a cell of a face): every point of the cell is at least as close to ``v`` as the farthest
    corner.
 5. The triangle inequality in the norm of ``A`` (the solid is ``||x - c_true||_A^2 <= r``), with
-   the error bounds of binary64 arithmetic, as the module :mod:`quadric_contact.modes.depth_kernel`
+   the error bounds of binary64 arithmetic, as the module :mod:`quadric_contact.modes.distance.depth_kernel`
    states them.  With 1 and 2 the kernel's enclosure ``[-phi(u*) / |u*|, -r]`` (``phi(u*)``
    bounded through the outer ellipsoids, ``r`` through the inner points) holds the signed distance.
 
@@ -322,8 +322,8 @@ def _sqrt_bounds(x: F) -> tuple[F, F]:
 def bracketing() -> Finding:
     import numpy as np
 
-    from quadric_contact.modes._jit import python_twin
-    from quadric_contact.modes.depth_kernel import _bracket, _point
+    from quadric_contact.modes.distance.depth_kernel import _bracket, _point
+    from quadric_contact.modes.kernels._jit import python_twin
 
     bracket, point = python_twin(_bracket), python_twin(_point)
     rng = np.random.default_rng(5)
@@ -392,8 +392,8 @@ def bracketing() -> Finding:
 def corner_rounding() -> Finding:
     import numpy as np
 
-    from quadric_contact.modes._jit import python_twin
-    from quadric_contact.modes.depth_kernel import _corner
+    from quadric_contact.modes.distance.depth_kernel import _corner
+    from quadric_contact.modes.kernels._jit import python_twin
 
     corner = python_twin(_corner)
     rng = np.random.default_rng(6)
@@ -439,7 +439,7 @@ def enclosures_hold() -> Finding:
     import mpmath
     import numpy as np
 
-    from quadric_contact.modes.depth_kernel import crossing_ellipsoids
+    from quadric_contact.modes.distance.depth_kernel import crossing_ellipsoids
     from quadric_contact.testing.samples import random_rotations
 
     rng = np.random.default_rng(8)

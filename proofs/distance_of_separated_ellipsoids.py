@@ -3,7 +3,7 @@ operator, is the distance, and its support points are the witnesses.
 
 Not a result of the paper: the route by which :func:`quadric_contact.distance` (``certified``
 mode) answers one pair of ellipsoids whose solids are apart
-(:func:`quadric_contact.modes.distance_certified.apart_ellipsoids`).  The solid of an
+(:func:`quadric_contact.modes.distance.certified.apart_ellipsoids`).  The solid of an
 ellipsoid is ``(x - c)^T A (x - c) <= r`` with ``A`` positive definite and ``r > 0``;
 ``B = A^-1``, ``s(u) = sqrt(u^T B u)``, ``h(u) = u . c + sqrt(r) s(u)`` and
 ``phi(u) = h_E(u) + h_K(-u)``.
@@ -145,7 +145,7 @@ def gradient_and_homogeneity() -> Finding:
 def system_re_derived() -> Finding:
     import sympy as sp
 
-    from quadric_contact.modes.distance_certified import _support_system
+    from quadric_contact.modes.distance.certified import _support_system
 
     us, u, lam, parts, phi = _pair()
     F, J = _support_system(parts, [*us, lam], sp.Integer(1), sp.sqrt)
@@ -187,7 +187,7 @@ def enclosures_hold() -> Finding:
     import numpy as np
 
     from quadric_contact.model.quadric import Quadric
-    from quadric_contact.modes.distance_certified import apart_ellipsoids
+    from quadric_contact.modes.distance.certified import apart_ellipsoids
     from quadric_contact.testing.samples import random_rotations
     from quadric_contact.theory.overlap import solid_of
 

@@ -51,7 +51,7 @@ Not proven here: step 5's last case, a tangency at a multiple root of the struct
 ``G`` at which ``P~`` does not vanish; the bracketing search supports the claim there.
 
 The certificate of the compiled kernel for ``scale="both"``
-(:mod:`quadric_contact.modes.scale_both`).  With ``f = 1 + E(x) / r_E`` and
+(:mod:`quadric_contact.modes.distance.scale_both`).  With ``f = 1 + E(x) / r_E`` and
 ``g = 1 + Q(x) / r_Q`` (``r_E = -det E / det A``, ``r_Q = -det Q / det B``; the scaled solids are
 ``f <= s^2`` and ``g <= s^2``), ``s*^2 = min_x max(f(x), g(x))``: the solids scaled by ``s``
 meet iff some ``x`` has ``max(f, g) <= s^2``, and the minimum is attained (``max(f, g)`` is

@@ -148,7 +148,7 @@ def multiplicity_transfer() -> Finding:
 )
 def centre_rule() -> Finding:
     from quadric_contact.exact.entries import ENTRY_INDICES
-    from quadric_contact.modes.pipeline import centre_value
+    from quadric_contact.modes.decision.pipeline import centre_value
 
     def symmetric4(name: str) -> sp.Matrix:
         return sp.Matrix(4, 4, lambda i, j: sp.Symbol(f"{name}{min(i, j)}{max(i, j)}", real=True))

@@ -35,10 +35,10 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "default"))
 
 def pytest_configure(config: pytest.Config) -> None:
     """Every call waits for its compiled kernel (the ``wait`` policy of
-    :data:`quadric_contact.modes._jit.KERNEL_POLICIES`), in this process, its workers and the
+    :data:`quadric_contact.modes.kernels._jit.KERNEL_POLICIES`), in this process, its workers and the
     processes the tests start: a test of a compiled kernel must run the compiled kernel, not
     its Python twin, and no test starts the background warm-up."""
-    from quadric_contact.modes import _jit
+    from quadric_contact.modes.kernels import _jit
 
     os.environ["QUADRIC_CONTACT_KERNELS"] = "wait"
     _jit.set_kernel_policy("wait")

@@ -61,7 +61,7 @@ def _criterion(what, E, Q, mode="certified"):
     """The paper's criterion on a stack (or one pair): the first stage of every mode, which
     these tests check mode by mode; ``mode.last`` counts its stages by name."""
     from quadric_contact.modes import StageCounts, get_mode
-    from quadric_contact.modes.batch import as_stack, make_pairs
+    from quadric_contact.modes.stacks.batch import as_stack, make_pairs
 
     m = get_mode(mode)
     pairs, shape = make_pairs(as_stack(E, "E"), as_stack(Q, "Q"))
@@ -90,7 +90,7 @@ def smallness_codes(E, Q, *, mode="certified", client=None, compute=True):
     """Smallness codes of a stack (as :func:`quadric_contact.theory.smallness` gives them), and for a
     single pair its :class:`SmallnessCode` (the scalar predicate gives the report)."""
     from quadric_contact.modes import SmallnessCode
-    from quadric_contact.modes.batch import is_stack, run_stack
+    from quadric_contact.modes.stacks.batch import is_stack, run_stack
 
     if is_stack(E) or is_stack(Q):
         return run_stack("smallness", E, Q, mode, client, compute)

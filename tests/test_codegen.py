@@ -111,7 +111,7 @@ def test_value_and_magnitude_program_has_the_bits_of_the_two_programs():
     gives bit for bit what the value program and the companion at the absolute values give, with
     numpy and compiled; so the error bounds derived for the two programs hold for it unchanged."""
     from quadric_contact._generated import blocks
-    from quadric_contact.modes._jit import njit
+    from quadric_contact.modes.kernels._jit import njit
 
     rng = np.random.default_rng(5)
     c = tuple(_wide_floats(rng, 20000) for _ in range(5))

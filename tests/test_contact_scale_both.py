@@ -12,7 +12,7 @@ import pytest
 import quadric_contact as qc
 from quadric_contact import Quadric
 from quadric_contact.exact.errors import NonFiniteError, NotAnEllipsoidError, NotSymmetricError
-from quadric_contact.modes.scale_both import WIDTH, _flags, scale_both_stack
+from quadric_contact.modes.distance.scale_both import WIDTH, _flags, scale_both_stack
 from quadric_contact.testing.samples import random_ellipsoids
 
 

@@ -11,7 +11,7 @@ import pytest
 import quadric_contact as qc
 from quadric_contact import Quadric
 from quadric_contact.exact.errors import NonFiniteError, NotSymmetricError
-from quadric_contact.modes.scale_blocks import scale_stack
+from quadric_contact.modes.distance.scale_blocks import scale_stack
 
 
 def _ellipsoids(n, seed):
@@ -124,7 +124,7 @@ def _random_pairs(n, seed):
 def _agree(Es, Qs):
     """Blocks and the scalar kernel on the same pairs: a pair the blocks leave to the exact path
     is one the scalar kernel leaves too, and the two enclosures of every other pair meet."""
-    from quadric_contact.modes.scale_blocks import _scale_flags
+    from quadric_contact.modes.distance.scale_blocks import _scale_flags
 
     enc, flag = _scale_flags(Es, Qs)
     ref, rflag = _scale_flags(Es, Qs, blocks=False)
@@ -192,7 +192,7 @@ def test_blocks_on_near_touching_pairs(delta):
 def test_a_pair_the_blocks_leave_goes_to_the_scalar_kernel():
     """``E``'s centre inside a long ``Q``: the root is far along the negative side, past the
     steps the blocks take; the scalar kernel answers, exactly as alone."""
-    from quadric_contact.modes.scale_blocks import _scale_flags
+    from quadric_contact.modes.distance.scale_blocks import _scale_flags
 
     E = np.array(Quadric.ellipsoid(0.1, 0.2, 0.3, center=(0.5, 0.3, 0.1)).matrix, dtype=float)
     Q = np.array(Quadric.ellipsoid(40, 1, 1).matrix, dtype=float)

@@ -12,7 +12,7 @@ import pytest
 
 import quadric_contact as qc
 from quadric_contact.modes import ContactCode, ContactKindCode, RegionCode
-from quadric_contact.modes import separation as sep
+from quadric_contact.modes.decision import separation as sep
 from quadric_contact.testing.hardcases import hard_cases
 from quadric_contact.testing.samples import random_pairs
 from quadric_contact.testing.symmetric import axis_family, stable
@@ -189,7 +189,7 @@ def test_scalar_and_stack_read_the_same_facts_through_the_same_table():
     """The kernels' Sylvester test and the scalar path's read the same generated program; on
     the same pairs, a definite member found by the certified kernel is the one the exact facts
     report (same sign), and a crossing it certifies is a crossing of the exact decision."""
-    from quadric_contact.modes.batch import as_stack, make_pairs
+    from quadric_contact.modes.stacks.batch import as_stack, make_pairs
 
     E, Q, _ = random_pairs(60, np.random.default_rng(11))
     pairs, _ = make_pairs(as_stack(E, "E"), as_stack(Q, "Q"))

@@ -15,14 +15,14 @@ from tests.brute_distance import _centred, minimise_on_sphere
 import quadric_contact as qc
 from quadric_contact import Quadric
 from quadric_contact.exact.precision import working_precision
-from quadric_contact.modes._jit import python_twin
-from quadric_contact.modes.depth_kernel import (
+from quadric_contact.modes.distance.apart_kernel import separated_ellipsoids
+from quadric_contact.modes.distance.depth_kernel import (
     _kernel,
     crossing_ellipsoids,
     crossing_ellipsoids_cells,
 )
-from quadric_contact.modes.distance_kernel import separated_ellipsoids
-from quadric_contact.modes.threads import single_threaded
+from quadric_contact.modes.kernels._jit import python_twin
+from quadric_contact.modes.kernels.threads import single_threaded
 from quadric_contact.testing.samples import ellipsoid_matrix as _ellipsoid
 from quadric_contact.testing.samples import float_depth as _float_depth
 from quadric_contact.testing.samples import random_rotations

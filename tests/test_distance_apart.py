@@ -14,7 +14,7 @@ import pytest
 
 import quadric_contact as qc
 from quadric_contact import Quadric
-from quadric_contact.modes.distance_certified import apart_ellipsoids
+from quadric_contact.modes.distance.certified import apart_ellipsoids
 from quadric_contact.testing.samples import ellipsoid_matrix, random_rotations
 from quadric_contact.theory.distance_critical import critical_distance
 from quadric_contact.theory.overlap import solid_of

@@ -19,7 +19,7 @@ from quadric_contact import Quadric, QuadricKind
 from quadric_contact.exact.errors import UndecidedError
 from quadric_contact.exact.precision import working_precision
 from quadric_contact.model.motions import RigidMotion
-from quadric_contact.modes.distance_certified import distance_certified
+from quadric_contact.modes.distance.certified import distance_certified
 from quadric_contact.theory.distance import CONVEX_SOLIDS, distance_exact
 from quadric_contact.theory.distance_critical import critical_distance
 from quadric_contact.theory.overlap import solid_of

@@ -9,7 +9,7 @@ import numpy as np
 
 import quadric_contact as qc
 from quadric_contact import Quadric
-from quadric_contact.modes.distance_kernel import separated_ellipsoids
+from quadric_contact.modes.distance.apart_kernel import separated_ellipsoids
 
 
 def _stack(m, seed, spread=4.0):

@@ -14,13 +14,13 @@ import pytest
 from quadric_contact import codegen
 from quadric_contact._generated import dd_programs, kernels
 from quadric_contact.exact.entries import ENTRY_INDICES
-from quadric_contact.modes import double_double as dd
-from quadric_contact.modes import errorbounds as eb
-from quadric_contact.modes._jit import HAVE_NUMBA, njit
-from quadric_contact.modes.batch import as_stack
-from quadric_contact.modes.float_modes import exact_facts, float_invariant_signs
-from quadric_contact.modes.numpy_fallback import dd_invariant_quantities
-from quadric_contact.modes.objects import ExactMode
+from quadric_contact.modes.kernels import double_double as dd
+from quadric_contact.modes.kernels import errorbounds as eb
+from quadric_contact.modes.kernels._jit import HAVE_NUMBA, njit
+from quadric_contact.modes.kernels.numpy_backend import dd_invariant_quantities
+from quadric_contact.modes.numbers.binary64 import exact_facts, float_invariant_signs
+from quadric_contact.modes.numbers.objects import ExactMode
+from quadric_contact.modes.stacks.batch import as_stack
 from quadric_contact.testing.hardcases import hard_cases
 from quadric_contact.testing.samples import random_pairs, random_rotations
 
@@ -365,8 +365,8 @@ def test_only_exact_zeros_are_left_to_the_integers():
 
 
 def test_exact_facts_ask_the_integers_only_about_exact_zeros(monkeypatch):
-    from quadric_contact.modes import objects
-    from quadric_contact.modes.decisions import masks_from_invariant_signs
+    from quadric_contact.modes.decision.answers import masks_from_invariant_signs
+    from quadric_contact.modes.numbers import objects
 
     asked = []
     exact = objects.ObjectMode.invariant_signs

@@ -14,8 +14,8 @@ from hypothesis import strategies as st
 
 from quadric_contact._generated import formulas, kernels
 from quadric_contact.exact.entries import ENTRY_INDICES
-from quadric_contact.modes import errorbounds as eb
-from quadric_contact.modes.float64 import filter_quantities
+from quadric_contact.modes.kernels import errorbounds as eb
+from quadric_contact.modes.kernels.numpy_backend import filter_quantities
 from quadric_contact.testing.hardcases import hard_cases
 from quadric_contact.testing.samples import random_pairs
 from quadric_contact.testing.strategies import ellipsoids, quadrics
@@ -141,7 +141,7 @@ def test_invariant_and_minor_bounds_hold(rounded):
 
 def _screen_check(E, Q):
     """Every sign the screen reports as certain is the exact one."""
-    from quadric_contact.modes.float64 import screen_quantities
+    from quadric_contact.modes.kernels.numpy_backend import screen_quantities
 
     sq = screen_quantities(E, Q)
     decided = 0

@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from quadric_contact._generated import kernels
-from quadric_contact.modes.objects import ExactMode, filtered_delta_signs
+from quadric_contact.modes.numbers.objects import ExactMode, filtered_delta_signs
 
 _UNC = 2
 

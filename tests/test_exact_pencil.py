@@ -1,4 +1,4 @@
-"""The exact mode's compiled pencil (quadric_contact.modes.exact_pencil): the same values of
+"""The exact mode's compiled pencil (quadric_contact.modes.kernels.exact_pencil): the same values of
 c0 .. c4 (and so of the Deltas) as the generated expansion on Python integers, and the same
 codes as the fmpz backend, on random float pairs, extreme digit ranges, the hard cases and
 exact rational input."""
@@ -13,14 +13,14 @@ import pytest
 from quadric_contact._generated import formulas, kernels
 from quadric_contact.interfaces.benchmark import criterion_stack
 from quadric_contact.modes import ExactMode
-from quadric_contact.modes.base import Pairs
-from quadric_contact.modes.batch import as_stack
-from quadric_contact.modes.exact_pencil import (
+from quadric_contact.modes.kernels.exact_pencil import (
     MAX_DIGITS,
     pencil_coefficients_dyadic,
     pencil_coefficients_int,
 )
-from quadric_contact.modes.integers import dyadic_rows, integer_rows
+from quadric_contact.modes.stacks.batch import as_stack
+from quadric_contact.modes.stacks.integers import dyadic_rows, integer_rows
+from quadric_contact.modes.stacks.pairs import Pairs
 from quadric_contact.testing.hardcases import hard_cases
 from quadric_contact.testing.samples import random_pairs
 

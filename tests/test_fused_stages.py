@@ -17,9 +17,9 @@ import pytest
 
 from quadric_contact import Quadric, relative_position, transversal_contact
 from quadric_contact.modes import CertifiedMode, FilterMode, RegionCode
-from quadric_contact.modes._jit import HAVE_NUMBA
-from quadric_contact.modes.base import Pairs
-from quadric_contact.modes.batch import as_stack, make_pairs
+from quadric_contact.modes.kernels._jit import HAVE_NUMBA
+from quadric_contact.modes.stacks.batch import as_stack, make_pairs
+from quadric_contact.modes.stacks.pairs import Pairs
 from quadric_contact.testing.samples import random_ellipsoids
 from quadric_contact.theory.contact import transversal_contact_exact
 from quadric_contact.theory.regions import relative_position_exact

@@ -1,5 +1,5 @@
 """What a call does when its compiled kernel is not in numba's on-disk cache
-(:data:`quadric_contact.modes._jit.KERNEL_POLICIES`): the kernels' Python twins answer small
+(:data:`quadric_contact.modes.kernels._jit.KERNEL_POLICIES`): the kernels' Python twins answer small
 calls with the compiled kernels' bits, a kernel that is in the cache is loaded rather than run
 as a twin, and the background warm-up is started once, guarded by its lock and its marker.
 
@@ -21,8 +21,8 @@ from tests.compile_events import RECORD_COMPILES
 
 import quadric_contact as qc
 from quadric_contact.interfaces.benchmark import complete_populations
-from quadric_contact.modes import _jit
-from quadric_contact.modes._jit import COMPILE_NOTICE, HAVE_NUMBA, TWINS_NOTICE
+from quadric_contact.modes.kernels import _jit
+from quadric_contact.modes.kernels._jit import COMPILE_NOTICE, HAVE_NUMBA, TWINS_NOTICE
 
 pytestmark = pytest.mark.skipif(not HAVE_NUMBA, reason="numba not installed")
 
@@ -84,7 +84,7 @@ def test_the_twins_answer_with_the_compiled_kernels_bits(tmp_path):
 
 
 KERNEL_MODULE = """
-from quadric_contact.modes._jit import njit
+from quadric_contact.modes.kernels._jit import njit
 
 @njit
 def twice(x):

@@ -14,7 +14,7 @@ from tests.oracles import criterion_contact, criterion_region
 import quadric_contact as qc
 from quadric_contact.interfaces.benchmark import kernel_population
 from quadric_contact.modes import CertifiedMode, FilterMode, FloatMode
-from quadric_contact.modes._jit import HAVE_NUMBA
+from quadric_contact.modes.kernels._jit import HAVE_NUMBA
 from quadric_contact.testing.hardcases import hard_cases
 from quadric_contact.testing.samples import random_pairs
 
@@ -142,7 +142,7 @@ def test_packed_input_is_validated():
 
 
 def test_the_first_compilation_says_so_once(monkeypatch, capsys):
-    from quadric_contact.modes import _jit
+    from quadric_contact.modes.kernels import _jit
 
     if not HAVE_NUMBA:
         pytest.skip("numba not installed")
@@ -156,17 +156,17 @@ def test_the_first_compilation_says_so_once(monkeypatch, capsys):
 
     listener.on_start(event("somebody_else"))
     # an uncached helper compiled for a call from Python is not a cache miss: no notice
-    listener.on_start(event("quadric_contact.modes.separation", cached=False))
+    listener.on_start(event("quadric_contact.modes.decision.separation", cached=False))
     assert capsys.readouterr().err == ""
-    listener.on_start(event("quadric_contact.modes.kernels_criterion"))
-    listener.on_start(event("quadric_contact.modes.separation"))
+    listener.on_start(event("quadric_contact.modes.kernels.criterion"))
+    listener.on_start(event("quadric_contact.modes.decision.separation"))
     err = capsys.readouterr().err
     assert err.count("compiling the numba kernels once") == 1
 
 
 def test_kernels_compile_in_a_thread_of_their_own():
     """The compiler runs on a fresh Python stack whatever the depth of the caller (see
-    :func:`~quadric_contact.modes._jit.compile_on_a_fresh_stack`): the compile event is seen
+    :func:`~quadric_contact.modes.kernels._jit.compile_on_a_fresh_stack`): the compile event is seen
     in the compiler's thread, not the caller's; a kernel that calls another compiles it in
     that same thread (no wait on the compiler's lock); errors reach the caller."""
     import threading
@@ -176,7 +176,7 @@ def test_kernels_compile_in_a_thread_of_their_own():
     from numba.core import event
     from numba.core.errors import TypingError
 
-    from quadric_contact.modes._jit import njit
+    from quadric_contact.modes.kernels._jit import njit
 
     @njit(cache=False)
     def inner(x):
@@ -214,7 +214,7 @@ def test_run_parallel_covers_every_item_once(n: int, threads: int) -> None:
     """The threads take the slices in turn: together they cover ``range(n)`` exactly once."""
     import threading
 
-    from quadric_contact.modes.threads import run_parallel
+    from quadric_contact.modes.kernels.threads import run_parallel
 
     seen = np.zeros(n, dtype=np.int64)
     lock = threading.Lock()
@@ -231,7 +231,7 @@ def test_run_parallel_covers_every_item_once(n: int, threads: int) -> None:
 def test_slices_shrink_and_cover_the_batch(n: int) -> None:
     """Guided slices: they tile ``range(n)``, no slice but the last is under MIN_PER_THREAD,
     and they never grow, so the last slice a thread takes is a short one."""
-    from quadric_contact.modes.threads import MIN_PER_THREAD, _slices
+    from quadric_contact.modes.kernels.threads import MIN_PER_THREAD, _slices
 
     bounds = _slices(n, 2)
     sizes = np.diff(bounds)
@@ -248,8 +248,8 @@ def test_certified_ellipsoids_are_ellipsoids():
     where that is certain, and it certifies the ordinary ellipsoids of a stack (what it is for)."""
     from quadric_contact.model.classification import QuadricKind
     from quadric_contact.model.quadric import Quadric
-    from quadric_contact.modes.decisions import UNCERTAIN_ROW, row_of, rows_from_invariant_signs
-    from quadric_contact.modes.float_modes import certified_ellipsoid_signs, float_invariant_signs
+    from quadric_contact.modes.decision.answers import UNCERTAIN_ROW, row_of, rows_from_invariant_signs
+    from quadric_contact.modes.numbers.binary64 import certified_ellipsoid_signs, float_invariant_signs
 
     rng = np.random.default_rng(11)
     E, Q, _ = random_pairs(400, rng)
@@ -271,10 +271,10 @@ def test_exact_facts_agree_with_the_integers():
     from fractions import Fraction
 
     from quadric_contact.exact.linalg import nullspace
-    from quadric_contact.modes.batch import as_stack
-    from quadric_contact.modes.decisions import masks_from_invariant_signs
-    from quadric_contact.modes.float_modes import exact_facts
-    from quadric_contact.modes.objects import ExactMode
+    from quadric_contact.modes.decision.answers import masks_from_invariant_signs
+    from quadric_contact.modes.numbers.binary64 import exact_facts
+    from quadric_contact.modes.numbers.objects import ExactMode
+    from quadric_contact.modes.stacks.batch import as_stack
 
     rng = np.random.default_rng(12)
     E, Q, _ = random_pairs(300, rng)
@@ -295,8 +295,8 @@ def test_cached_kernels_are_keyed_on_every_source_they_inline(tmp_path):
     import shutil
     from pathlib import Path
 
-    from quadric_contact.modes import _jit
-    from quadric_contact.modes.kernels_criterion import kernel
+    from quadric_contact.modes.kernels import _jit
+    from quadric_contact.modes.kernels.criterion import kernel
 
     k = kernel("fixed_q", True, False)
     holder = getattr(k._cache, "_cache_file", k._cache)
@@ -304,7 +304,7 @@ def test_cached_kernels_are_keyed_on_every_source_they_inline(tmp_path):
     assert holder._source_stamp[1] == _jit._sources_digest(module=module)
     package = Path(_jit.__file__).resolve().parents[1]
     shutil.copytree(package, tmp_path, dirs_exist_ok=True, ignore=shutil.ignore_patterns("__pycache__"))
-    decision_kernel = "quadric_contact.modes.kernels_decision"
+    decision_kernel = "quadric_contact.modes.kernels.decision"
     before = _jit._sources_digest(tmp_path, module)
     assert before == _jit._sources_digest(module=module)
     blocks = tmp_path / "_generated" / "blocks.py"
@@ -330,7 +330,7 @@ def test_kernel_sources_are_the_compiled_modules_and_what_they_import():
     imports; the cascade, the predicates and the modes' classes are not."""
     from pathlib import Path
 
-    from quadric_contact.modes import _jit
+    from quadric_contact.modes.kernels import _jit
 
     sources = set(_jit.kernel_sources())
     package = Path(_jit.__file__).resolve().parents[1]
@@ -341,17 +341,22 @@ def test_kernel_sources_are_the_compiled_modules_and_what_they_import():
     assert {
         "theory/decision.py",
         "theory/regions.py",
-        "modes/errorbounds.py",
+        "modes/kernels/errorbounds.py",
         "_generated/blocks.py",
     } <= sources
     assert sources.isdisjoint(
-        {"modes/pipeline.py", "modes/predicates.py", "modes/number_mode.py", "modes/objects.py"}
+        {
+            "modes/decision/pipeline.py",
+            "modes/predicates.py",
+            "modes/numbers/number_mode.py",
+            "modes/numbers/objects.py",
+        }
     )
     # a kernel's sources are its module and what it imports, followed through compiled modules
-    assert _jit.kernel_sources(module="quadric_contact.modes.scale_kernel") == [
-        "modes/_jit.py",
-        "modes/scale_kernel.py",
+    assert _jit.kernel_sources(module="quadric_contact.modes.distance.scale_kernel") == [
+        "modes/kernels/_jit.py",
+        "modes/distance/scale_kernel.py",
     ]
-    decision = set(_jit.kernel_sources(module="quadric_contact.modes.kernels_decision"))
-    assert {"modes/kernels_criterion.py", "modes/kernels_signature.py", "_generated/blocks.py"} <= decision
-    assert "modes/scale_kernel.py" not in decision
+    decision = set(_jit.kernel_sources(module="quadric_contact.modes.kernels.decision"))
+    assert {"modes/kernels/criterion.py", "modes/kernels/signature.py", "_generated/blocks.py"} <= decision
+    assert "modes/distance/scale_kernel.py" not in decision

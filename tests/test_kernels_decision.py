@@ -1,4 +1,4 @@
-"""The decision kernel (quadric_contact.modes.kernels_decision) and the lane of the pipeline that
+"""The decision kernel (quadric_contact.modes.kernels.decision) and the lane of the pipeline that
 runs it: its codes against the exact decision, the lane against the general steps on the same
 pairs, its compiled and Python forms, and the pairs it must leave to the general steps."""
 
@@ -7,13 +7,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from quadric_contact.modes import kernels_decision as kd
-from quadric_contact.modes import separation as sep
-from quadric_contact.modes.base import RegionCode
-from quadric_contact.modes.batch import as_stack, make_pairs
-from quadric_contact.modes.certified import CertifiedMode
-from quadric_contact.modes.float_modes import FilterMode, FloatMode
+from quadric_contact.modes.codes import RegionCode
+from quadric_contact.modes.decision import separation as sep
+from quadric_contact.modes.kernels import decision as kd
+from quadric_contact.modes.numbers.binary64 import FilterMode, FloatMode
+from quadric_contact.modes.numbers.certified import CertifiedMode
 from quadric_contact.modes.predicates import contact_kind, overlap, relative_position, transversal_contact
+from quadric_contact.modes.stacks.batch import as_stack, make_pairs
 from quadric_contact.testing.hardcases import hard_cases
 from quadric_contact.testing.samples import random_ellipsoids, random_pairs
 from quadric_contact.theory import decision as dec
@@ -76,7 +76,7 @@ def test_left_out_pairs_are_those_without_two_certain_ellipsoids():
 
 
 def test_the_compiled_kernel_is_the_python_one():
-    from quadric_contact.modes import pipeline
+    from quadric_contact.modes.decision import pipeline
 
     rng = np.random.default_rng(61)
     E, _ = random_ellipsoids(70, rng, axes=(0.5, 2.0), box=3.0)
@@ -102,8 +102,8 @@ def test_the_compiled_kernel_is_the_python_one():
 def test_the_kernel_reads_its_codes_as_the_table_does(question):
     """The kernel reads every pair's codes through the lane table as it goes, slice by slice
     on two threads: the answers, the pairs left and the counts are what reading its codes
-    afterwards (:func:`~quadric_contact.modes.kernels_decision.read_codes`) gives."""
-    from quadric_contact.modes import pipeline
+    afterwards (:func:`~quadric_contact.modes.kernels.decision.read_codes`) gives."""
+    from quadric_contact.modes.decision import pipeline
 
     rng = np.random.default_rng(71)
     n = 40_000  # several slices on each thread
@@ -187,7 +187,7 @@ def test_invalid_input_still_raises_through_the_lane():
 def test_the_codes_are_read_through_the_rules_table():
     """The lane reads the kernel's three codes through a table built by the steps' own rules:
     the compiled reading gives, pair by pair, the rules' answer and step."""
-    from quadric_contact.modes import pipeline
+    from quadric_contact.modes.decision import pipeline
 
     rng = np.random.default_rng(67)
     n = 5000

@@ -1,4 +1,4 @@
-"""The signature kernel (quadric_contact.modes.kernels_signature): its sample points, its
+"""The signature kernel (quadric_contact.modes.kernels.signature): its sample points, its
 semi-static bounds against exact rational arithmetic, its reading of the facts against the
 decision table's rule, and its answers against the exact decision."""
 
@@ -14,10 +14,10 @@ from numpy.polynomial import polynomial as npoly
 
 from quadric_contact._generated import formulas, kernels
 from quadric_contact.exact.entries import ENTRY_INDICES
-from quadric_contact.modes import errorbounds as eb
-from quadric_contact.modes import kernels_signature as ks
-from quadric_contact.modes import separation as sep
-from quadric_contact.modes.batch import as_stack, make_pairs
+from quadric_contact.modes.decision import separation as sep
+from quadric_contact.modes.kernels import errorbounds as eb
+from quadric_contact.modes.kernels import signature as ks
+from quadric_contact.modes.stacks.batch import as_stack, make_pairs
 from quadric_contact.testing.hardcases import hard_cases
 from quadric_contact.testing.samples import random_ellipsoids, random_pairs
 from quadric_contact.theory import decision as dec

@@ -247,9 +247,9 @@ def test_no_function_level_import_dodges_a_cycle() -> None:
     "modules",
     [
         # the modules that once imported the generator at run time
-        "quadric_contact.families.family_numeric, quadric_contact.modes.smallness_float, "
-        "quadric_contact.modes.batch, quadric_contact.testing.hardcases, "
-        "quadric_contact.interfaces.benchmark, quadric_contact.modes.float64",
+        "quadric_contact.families.family_numeric, quadric_contact.modes.smallness.binary64, "
+        "quadric_contact.modes.stacks.batch, quadric_contact.testing.hardcases, "
+        "quadric_contact.interfaces.benchmark, quadric_contact.modes.numbers.binary64",
     ],
 )
 def test_importing_the_package_does_not_load_the_generator(modules: str) -> None:

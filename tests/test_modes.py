@@ -37,7 +37,7 @@ from quadric_contact.modes import (
     StageCounts,
     get_mode,
 )
-from quadric_contact.modes.decisions import (
+from quadric_contact.modes.decision.answers import (
     CONTACT_TABLE,
     ELLIPSOID_TABLE,
     KINDS,
@@ -229,7 +229,7 @@ def test_numba_and_numpy_backends_give_identical_codes(predicate):
 
 @pytest.mark.parametrize("stage", ["screen", "filter"])
 def test_each_float_stage_is_the_same_in_both_backends(stage):
-    from quadric_contact.modes.float64 import stage_codes
+    from quadric_contact.modes.numbers.binary64 import stage_codes
 
     E, Q, _ = random_pairs(3000, np.random.default_rng(21))
     cases = [
@@ -277,7 +277,7 @@ def test_binary64_criterion_goes_from_the_filter_to_the_exact_stage(monkeypatch)
     the answers are the exact ones."""
     from fractions import Fraction
 
-    from quadric_contact.modes.objects import BallMode
+    from quadric_contact.modes.numbers.objects import BallMode
 
     asked = []
     ball = BallMode.criterion_contact
@@ -310,9 +310,9 @@ def test_binary64_types_go_from_the_filter_to_the_exact_stage(monkeypatch):
     worth from 0, is certified by the filter's double-double reading and never asks the exact
     stage; the types are the exact ones, and the exact invariants are computed once per
     quadric and stack."""
-    from quadric_contact.modes import objects
-    from quadric_contact.modes.batch import as_stack
-    from quadric_contact.modes.decisions import rows_from_masks
+    from quadric_contact.modes.decision.answers import rows_from_masks
+    from quadric_contact.modes.numbers import objects
+    from quadric_contact.modes.stacks.batch import as_stack
 
     asked = []
     ball = objects.BallMode.classify

@@ -15,8 +15,8 @@ from tests.oracles import mpmath_nonreal, numpy_nonreal, scalar_codes
 
 from quadric_contact import Quadric, characteristic_polynomial
 from quadric_contact.modes import ContactCode
-from quadric_contact.modes.decisions import CONTACT_TABLE, sign_index
-from quadric_contact.modes.float64 import filter_quantities
+from quadric_contact.modes.decision.answers import CONTACT_TABLE, sign_index
+from quadric_contact.modes.kernels.numpy_backend import filter_quantities
 from quadric_contact.testing.strategies import ellipsoids, quadrics, tangent_pairs
 
 pairs = st.one_of(

@@ -22,8 +22,8 @@ import numpy as np
 import pytest
 from tests.compile_events import RECORD_COMPILES
 
-from quadric_contact.modes import _jit, native
-from quadric_contact.modes._jit import HAVE_NUMBA
+from quadric_contact.modes.kernels import _jit, native
+from quadric_contact.modes.kernels._jit import HAVE_NUMBA
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -42,7 +42,7 @@ import numpy as np
 import quadric_contact as qc
 from quadric_contact.interfaces.benchmark import kernel_population
 from quadric_contact.interfaces.warmup import calls
-from quadric_contact.modes import native
+from quadric_contact.modes.kernels import native
 
 done = []
 for what, call in calls():
@@ -145,7 +145,7 @@ print(json.dumps({"compiled": compiled, "out": out, "same": same}))
 
 
 def test_a_kernel_whose_sources_changed_is_not_run_natively():
-    from quadric_contact.modes.kernels_support import check_stack_kernel as dispatcher
+    from quadric_contact.modes.kernels.support import check_stack_kernel as dispatcher
 
     lib = _library()
     entries = [e for e in lib.manifest["kernels"] if e["kernel"] == native.kernel_identity(dispatcher)]

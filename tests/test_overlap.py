@@ -483,8 +483,8 @@ def test_the_side_of_the_centre_of_q_is_exact_for_every_pair_of_a_stack():
     """``pipeline._centre_side`` (every pair in one pass over columns of integers) against the
     sign of ``E`` at the centre of ``Q`` in rationals, pair by pair: inside, outside and on the
     surface of ``E`` (either sign of its matrix), for binary64 and for exact rational stacks."""
-    from quadric_contact.modes import pipeline
-    from quadric_contact.modes.batch import as_stack, make_pairs
+    from quadric_contact.modes.decision import pipeline
+    from quadric_contact.modes.stacks.batch import as_stack, make_pairs
     from quadric_contact.testing.samples import ellipsoid_matrix
 
     unit = np.diag([1.0, 1.0, 1.0, -1.0])
@@ -524,7 +524,7 @@ def test_rounded_cylinders_are_decided_by_the_centre_of_q_and_agree_with_the_exa
     nearly singular; where the first stage reads no side of such an ellipsoid, the side of E
     its centre lies on decides (pipeline._centre_side), never the exact pair, and the answer is
     the exact one."""
-    from quadric_contact.modes import pipeline
+    from quadric_contact.modes.decision import pipeline
     from quadric_contact.testing.samples import random_pairs
 
     seen: list[np.ndarray] = []

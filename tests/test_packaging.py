@@ -21,8 +21,8 @@ from tests.compile_events import RECORD_COMPILES
 
 import quadric_contact as qc
 from quadric_contact.interfaces.benchmark import kernel_population
-from quadric_contact.modes import native
-from quadric_contact.modes._jit import HAVE_NUMBA, TWINS_NOTICE, kernel_cache_dir
+from quadric_contact.modes.kernels import native
+from quadric_contact.modes.kernels._jit import HAVE_NUMBA, TWINS_NOTICE, kernel_cache_dir
 
 ROOT = Path(__file__).resolve().parents[1]
 PIP_OFFLINE = ("--no-deps", "--no-index", "--ignore-installed", "-q")
@@ -37,7 +37,7 @@ from quadric_contact.interfaces.benchmark import kernel_population
 E, Q = kernel_population(1000, np.random.default_rng(0))
 contact = qc.transversal_contact(E, Q).tolist()
 overlap = qc.overlap(E, Q).tolist()
-from quadric_contact.modes import native
+from quadric_contact.modes.kernels import native
 lib = native.library() if native.enabled() else None
 where = None if lib is None or not lib.usable else str(lib.path)
 print(json.dumps({"file": qc.__file__, "contact": contact, "overlap": overlap, "compiled": compiled,

@@ -14,12 +14,7 @@ from hypothesis import strategies as st
 from quadric_contact import Quadric, characteristic_polynomial
 from quadric_contact._generated import kernels
 from quadric_contact.model.classification import inertia_from_minor_sums, principal_minor_sums_4
-from quadric_contact.modes import errorbounds as eb
-from quadric_contact.modes.batch import as_stack, make_pairs
-from quadric_contact.modes.kernels_signature import (
-    signature_float,
-)
-from quadric_contact.modes.separation import (
+from quadric_contact.modes.decision.separation import (
     CROSSING,
     SEP_MINUS,
     SEP_PLUS,
@@ -29,6 +24,11 @@ from quadric_contact.modes.separation import (
     quartic_roots,
     separation_float,
 )
+from quadric_contact.modes.kernels import errorbounds as eb
+from quadric_contact.modes.kernels.signature import (
+    signature_float,
+)
+from quadric_contact.modes.stacks.batch import as_stack, make_pairs
 from quadric_contact.testing.strategies import ellipsoids, quadrics, tangent_pairs
 from quadric_contact.theory.certificate import separation_certificate
 from quadric_contact.theory.geometric import decide_geometrically

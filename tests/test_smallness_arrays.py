@@ -26,10 +26,9 @@ from quadric_contact.modes import (
     FloatMode,
     get_mode,
 )
-from quadric_contact.modes import smallness_float as sf
-from quadric_contact.modes.base import SmallnessCode
-from quadric_contact.modes.batch import as_stack, make_pairs
-from quadric_contact.modes.smallness_tables import (
+from quadric_contact.modes.codes import SmallnessCode
+from quadric_contact.modes.smallness import binary64 as sf
+from quadric_contact.modes.smallness.tables import (
     E_SIDES,
     NPRIM,
     Q_SIDES,
@@ -37,6 +36,7 @@ from quadric_contact.modes.smallness_tables import (
     evaluate,
     kind_signs,
 )
+from quadric_contact.modes.stacks.batch import as_stack, make_pairs
 from quadric_contact.testing.strategies import ellipsoids, quadrics
 from quadric_contact.theory.smallness import smallness
 
@@ -506,7 +506,7 @@ def test_quadric_sides_enclose_the_exact_values(kind):
     """Binary64 input of each type (axis-aligned, a dyadic translation and a signed permutation:
     the type survives) and exact input (a rational rotation, rounded for the filter: the
     enclosures of the rounded matrix widened by Weyl's inequality)."""
-    from quadric_contact.modes.float64 import exact_facts
+    from quadric_contact.modes.numbers.binary64 import exact_facts
 
     params = dict(zip("abc", (Fraction(5, 2), Fraction(7, 4), Fraction(3, 4)), strict=False))
     std = Quadric.standard(kind, **{k: params[k] for k in Quadric.standard_parameters(kind)})

@@ -24,7 +24,7 @@ import numpy as np
 import quadric_contact as qc
 from quadric_contact.interfaces.benchmark import EIG_TOL, GENERIC_KINDS, peer_numpy_eigvals, peer_numpy_roots
 from quadric_contact.modes import MODES, BallMode, CertifiedMode, CriterionCode, FilterMode, MpmathMode
-from quadric_contact.modes.float64 import filter_quantities
+from quadric_contact.modes.kernels.numpy_backend import filter_quantities
 from quadric_contact.testing.hardcases import hard_cases
 from quadric_contact.testing.samples import SAMPLE_KINDS, random_pairs
 
@@ -206,7 +206,7 @@ plt.tight_layout()
 #
 # The filter computes $\Delta_4$ in binary64 together with a rigorous bound on its
 # rounding error (derived once from the straight-line formulas; see
-# `quadric_contact.modes.errorbounds`), and reports a sign only when $|\Delta_4|$ exceeds
+# `quadric_contact.modes.kernels.errorbounds`), and reports a sign only when $|\Delta_4|$ exceeds
 # the bound.  `filter_quantities` exposes those numbers.  Along the ellipsoid's rung on
 # the $R_+$ side, moving away ($\Delta_4>0$, all roots real), compare the exact $\Delta_4$
 # of the same scaled coefficients, the actual error of the float value, and the bound:

@@ -58,7 +58,6 @@ from quadric_contact.modes import (
     SmallnessCode,
 )
 from quadric_contact.modes.distances import contact_scale, distance
-from quadric_contact.modes.packing import Packed, pack, symmetrize, unpack
 from quadric_contact.modes.predicates import (
     CriterionResult,
     contact_kind,
@@ -69,6 +68,7 @@ from quadric_contact.modes.predicates import (
     smallness,
     transversal_contact,
 )
+from quadric_contact.modes.stacks.packing import Packed, pack, symmetrize, unpack
 from quadric_contact.scenes.composite import Composite, Piece
 from quadric_contact.scenes.scene import (
     MovingEllipsoid,

@@ -7,11 +7,11 @@ the invariants (``quadric_invariants_dd``), with products of two entries by Dekk
 exact product, further factors by DWTimesFP1 and sums by AccurateDWPlusDW in balanced
 trees, and the magnitudes of the three invariants formed from the cofactors
 (``quadric_invariants_cofactor_magnitude``, binary64).  The operations are arguments
-(:mod:`quadric_contact.modes.double_double` defines them; the programs run on floats, on
+(:mod:`quadric_contact.modes.kernels.double_double` defines them; the programs run on floats, on
 numpy arrays and compiled by numba alike), and DD_COUNTS gives, for every output, its
 degree and the largest numbers of rounding double-double additions and multiplications
 on a path from the inputs (and for the magnitude program its binary64 rounding count),
-from which :mod:`quadric_contact.modes.errorbounds` derives the error bounds.
+from which :mod:`quadric_contact.modes.kernels.errorbounds` derives the error bounds.
 """
 
 # ruff: noqa

@@ -48,19 +48,19 @@ Companions for the number modes (``_generated/kernels.py``)
     For every output of every straight-line function, the largest number of
     rounded operations on any path from the inputs (an AST walk of the
     emitted text: a sum counts ``max + 1``, a product ``sum + 1``) and the
-    degree.  :mod:`quadric_contact.modes.errorbounds` turns them into the
+    degree.  :mod:`quadric_contact.modes.kernels.errorbounds` turns them into the
     error-bound constants.
 
 Double-double programs (``_generated/dd_programs.py``)
 -------------------------------------------------------
 ``quadric_invariants_dd``
     ``quadric_invariants`` evaluated in double-double arithmetic (the operations of
-    :mod:`quadric_contact.modes.double_double`, passed as arguments): the same monomials,
+    :mod:`quadric_contact.modes.kernels.double_double`, passed as arguments): the same monomials,
     products by Dekker's exact product and DWTimesFP1, sums by AccurateDWPlusDW in balanced
     trees.  Checked by reading it exactly (it computes the invariants) and along its paths
     (its magnitude is the binary64 magnitude companion's); ``DD_COUNTS`` gives the rounding
     double-double operations on its paths, from which
-    :data:`quadric_contact.modes.errorbounds.INVARIANTS_DD_ERRBOUND` is derived.
+    :data:`quadric_contact.modes.kernels.errorbounds.INVARIANTS_DD_ERRBOUND` is derived.
 
 The reading of straight-line code (printer, magnitude companion, rounding counts)
 is :mod:`quadric_contact.exact.straight_line` and the emitter of programs for polynomials
@@ -852,7 +852,7 @@ def verify_member_minor_row_bounds() -> None:
     generated ``kernels.leading_minors_4`` is at most ``k! R0 .. R_(k-1)`` (``R_r`` a bound of
     every entry of row ``r``): coefficient by coefficient it is at most the general ``k x k``
     determinant's ``k!`` products at the symmetric point, each of which takes one entry per row
-    (the semi-static bound :data:`~quadric_contact.modes.errorbounds.MEMBER_MINORS_SEMI`)."""
+    (the semi-static bound :data:`~quadric_contact.modes.kernels.errorbounds.MEMBER_MINORS_SEMI`)."""
     from itertools import permutations
 
     from quadric_contact._generated import kernels
@@ -1143,7 +1143,7 @@ DD_PATH = Path(__file__).parents[1] / "_generated" / "dd_programs.py"
 
 DD_OPERATIONS: tuple[str, ...] = ("two_sum", "two_prod", "dd_add", "dd_sub", "dd_mul_d", "dd_scale")
 """The operations a double-double program takes as its first arguments, in order (those of
-:data:`quadric_contact.modes.double_double.OPERATIONS`)."""
+:data:`quadric_contact.modes.kernels.double_double.OPERATIONS`)."""
 
 COFACTOR_INDICES: tuple[tuple[int, int], ...] = ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))
 """The six independent cofactors ``C_ij`` (``i <= j``) of the symmetric quadratic part, in order."""
@@ -1581,11 +1581,11 @@ def emit_dd_programs() -> str:
         "exact product, further factors by DWTimesFP1 and sums by AccurateDWPlusDW in balanced",
         "trees, and the magnitudes of the three invariants formed from the cofactors",
         "(``quadric_invariants_cofactor_magnitude``, binary64).  The operations are arguments",
-        "(:mod:`quadric_contact.modes.double_double` defines them; the programs run on floats, on",
+        "(:mod:`quadric_contact.modes.kernels.double_double` defines them; the programs run on floats, on",
         "numpy arrays and compiled by numba alike), and DD_COUNTS gives, for every output, its",
         "degree and the largest numbers of rounding double-double additions and multiplications",
         "on a path from the inputs (and for the magnitude program its binary64 rounding count),",
-        "from which :mod:`quadric_contact.modes.errorbounds` derives the error bounds.",
+        "from which :mod:`quadric_contact.modes.kernels.errorbounds` derives the error bounds.",
         '"""',
         "",
         "# ruff: noqa",

@@ -18,7 +18,7 @@ call it with, becomes a C function of the library ``quadric_contact._native``:
 
 A manifest next to the library (``_native_manifest.json``) lists each function with the
 kernel and signature it stands for and the digest of the sources it was made from
-(``quadric_contact.modes._jit.kernel_sources``); :mod:`quadric_contact.modes.native`
+(``quadric_contact.modes.kernels._jit.kernel_sources``); :mod:`quadric_contact.modes.kernels.native`
 reads it and calls a function only where the running sources have that digest and the machine
 is the one it was built for.  So the answers are those of the run-time compile, and a kernel
 whose sources changed since the build is compiled at run time as before.
@@ -40,7 +40,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
-from quadric_contact.modes.native import MANIFEST_NAME, kernel_identity, manifest_digest
+from quadric_contact.modes.kernels.native import MANIFEST_NAME, kernel_identity, manifest_digest
 
 __all__ = ["MANIFEST_NAME", "RUNTIME_SOURCE", "build", "calls", "kernel_identity", "main"]
 
@@ -92,7 +92,7 @@ def _record(
     todo: Sequence[tuple[str, Callable[[], Any]]], log: Callable[[str], None]
 ) -> list[tuple[Any, Any]]:
     """Run the calls; return every (dispatcher, signature) they called from Python."""
-    from quadric_contact.modes import _jit
+    from quadric_contact.modes.kernels import _jit
 
     seen: dict[tuple[int, Any], tuple[Any, Any]] = {}
 
@@ -264,7 +264,7 @@ def _emit(
     entries and object files."""
     import hashlib
 
-    from quadric_contact.modes import _jit
+    from quadric_contact.modes.kernels import _jit
 
     t0 = time.perf_counter()
     recorded = _record(calls(), lambda line: None)

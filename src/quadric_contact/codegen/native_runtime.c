@@ -6,7 +6,7 @@
  * scratch arrays (NRT, numba/core/runtime/nrt.cpp, linked beside this file) and a few helper
  * functions of numba's helper library, included here from numba's sources as numba.pycc does for
  * its ahead-of-time modules.  Importing the module initialises the allocator; the kernels are then
- * called through ctypes (quadric_contact/modes/native.py), which releases the GIL.
+ * called through ctypes (quadric_contact/modes/kernels/native.py), which releases the GIL.
  */
 #include "_numba_common.h"
 #include "_pymodule.h"

@@ -9,7 +9,7 @@ and unary minus, and a tuple return.  This module reads such a function
 (:func:`emit_magnitude_function`: every minus turned into a plus) and both in one
 program that shares their products (:func:`emit_value_and_magnitude_function`), counts the
 rounded operations on every path from the inputs (:func:`rounding_counts`, what the
-error bounds of :mod:`quadric_contact.modes.errorbounds` are built from) and runs it
+error bounds of :mod:`quadric_contact.modes.kernels.errorbounds` are built from) and runs it
 without compiling it (:func:`_interpret`).
 
 It imports nothing but the standard library: the code generator

@@ -5,7 +5,7 @@ generated modules for polynomials known only at run time (the coefficients of ``
 the Deltas, ... as polynomials in the family's parameters): a straight-line function
 in the grammar of :mod:`quadric_contact.exact.straight_line`, with its magnitude companion
 and its rounding counts, so that the float filter's error bounds
-(:mod:`quadric_contact.modes.errorbounds`) apply to it unchanged.  Each polynomial is
+(:mod:`quadric_contact.modes.kernels.errorbounds`) apply to it unchanged.  Each polynomial is
 put in nested Horner form (one variable after the other) and the subexpressions the
 outputs share are computed once (sympy's ``cse``).
 

@@ -102,9 +102,9 @@ class _Decider:
 
     The pairs go to the certified mode's stack questions exactly as
     :func:`~quadric_contact.relative_position` and :func:`~quadric_contact.contact_kind`
-    send a stack (:func:`~quadric_contact.modes.batch.run_stack`); only the conversion of the
+    send a stack (:func:`~quadric_contact.modes.stacks.batch.run_stack`); only the conversion of the
     input is done here, from the exact entries, with the binary64 roundings the float
-    stages read (as :func:`~quadric_contact.modes.batch.as_stack` makes them for exact input).
+    stages read (as :func:`~quadric_contact.modes.stacks.batch.as_stack` makes them for exact input).
     """
 
     def __init__(self, fam: Family) -> None:
@@ -180,7 +180,7 @@ class _Decider:
         """The answers at the points ``(us[k], ws[k])`` (binary64)."""
         import flint
 
-        from quadric_contact.modes.batch import as_stack, make_pairs
+        from quadric_contact.modes.stacks.batch import as_stack, make_pairs
 
         n = len(us)
         out = np.full(n, MapAnswer.UNDEFINED, dtype=np.int8)
@@ -238,7 +238,7 @@ class _Decider:
 
     def _one_by_one(self, question: str, E: Any, Q: Any) -> np.ndarray:
         """Pair by pair, where a stack was refused (the refused pairs are undefined)."""
-        from quadric_contact.modes.batch import make_pairs
+        from quadric_contact.modes.stacks.batch import make_pairs
 
         pairs, _ = make_pairs(E, Q)
         res = np.full(pairs.n, MapAnswer.UNDEFINED, dtype=np.int8)

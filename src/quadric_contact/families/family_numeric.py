@@ -16,7 +16,7 @@ the float filter's error bounds are derived from.  The same program runs in ever
 ``"certified"``
     the *sign* of the quantity at each binary64 point, never wrong: the value and its
     magnitude companion in binary64 (numba when it is installed), the rigorous bound
-    ``|fl(p) - p| <= K M`` of :func:`quadric_contact.modes.errorbounds.program_errbound`
+    ``|fl(p) - p| <= K M`` of :func:`quadric_contact.modes.kernels.errorbounds.program_errbound`
     for each of numerator and denominator; ``-1, 0, 1`` where the bound decides it and
     ``2`` (``UNCERTAIN``) where it does not, at a pole, where an input is not finite or
     where a product underflowed (below) -- an int8 array;
@@ -24,7 +24,7 @@ the float filter's error bounds are derived from.  The same program runs in ever
     the exact value (:class:`~fractions.Fraction`) at each point, point by point with
     python-flint (the reference the others are measured against).
 
-The error model (Higham's, as in :mod:`quadric_contact.modes.errorbounds`) needs every
+The error model (Higham's, as in :mod:`quadric_contact.modes.kernels.errorbounds`) needs every
 operation to be rounded with relative error at most ``u``.  Sums and differences always are
 (a result in the subnormal range is exact); a product is when its result is at least
 ``2^-1021`` in magnitude or an operand is zero.  The certified programs are run one
@@ -63,7 +63,7 @@ from quadric_contact.exact.straight_line import (
     _straight_line,
 )
 from quadric_contact.families.family_emit import Program, emit_program
-from quadric_contact.modes.errorbounds import program_errbound
+from quadric_contact.modes.kernels.errorbounds import program_errbound
 
 if TYPE_CHECKING:
     from quadric_contact.families.family import Family
@@ -426,7 +426,7 @@ class FamilyFunction:
         if b == "mpmath":
             return _mpmath_values(cq, xs, int(self.options.get("dps", 50)))
         if b in ("numba", "certified"):
-            from quadric_contact.modes._jit import HAVE_NUMBA
+            from quadric_contact.modes.kernels._jit import HAVE_NUMBA
 
             if not HAVE_NUMBA:
                 return _numpy_values(cq, xs) if b == "numba" else _numpy_signs(cq, xs)

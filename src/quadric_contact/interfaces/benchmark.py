@@ -60,7 +60,7 @@ from quadric_contact.modes import (
     NumberMode,
     OverlapCode,
 )
-from quadric_contact.modes.batch import run_stack
+from quadric_contact.modes.stacks.batch import run_stack
 from quadric_contact.testing.samples import SAMPLE_KINDS, random_pairs
 
 __all__ = [
@@ -751,7 +751,7 @@ def _hard(report: Report, cfg: dict[str, Any]) -> None:
 def read_bandwidth(E: np.ndarray, Q: np.ndarray, repeat: int = 15) -> dict[str, float]:
     """The time to read every byte of ``E`` and ``Q`` once (a compiled, threaded sum):
     no kernel that reads its inputs can be faster."""
-    from quadric_contact.modes.float64 import read_all
+    from quadric_contact.modes.numbers.binary64 import read_all
 
     read_all(E[:10], Q[:10])
     seconds, _ = _best_of(lambda: read_all(E, Q), repeat)
@@ -868,7 +868,7 @@ def native_against_run_time_compile(n: int, rounds: int = 3, seed: int = 0) -> d
     kernels."""
     import json
 
-    from quadric_contact.modes import native
+    from quadric_contact.modes.kernels import native
 
     lib = native.library() if native.enabled() else None
     if lib is None or not lib.usable:
@@ -1087,8 +1087,8 @@ def _kernels(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> N
     decision on distinct pairs and on one matrix against the stack (broadcasting), each against
     the time it takes to read its inputs once, and numpy's batch eigenvalues on the same pairs
     (distinct, and one matrix against the stack) against the certified codes."""
-    from quadric_contact.modes.packing import Packed, pack
     from quadric_contact.modes.predicates import transversal_contact
+    from quadric_contact.modes.stacks.packing import Packed, pack
 
     n = cfg["kernel_pairs"]
     E, Q = kernel_population(n, rng)
@@ -1165,7 +1165,7 @@ def cold_start() -> dict[str, Any]:
     install``:
 
     * ``native``: the default where the package was built with its native kernels
-      (:mod:`quadric_contact.modes.native`): nothing to compile (not measured without them);
+      (:mod:`quadric_contact.modes.kernels.native`): nothing to compile (not measured without them);
     * ``fresh``: without the native kernels, the calls answered by the kernels' Python twins
       (the background warm-up is not started here: the ``twins`` policy);
     * ``compiling``: without them, the ``wait`` policy, the calls compiling what they need (what
@@ -1176,8 +1176,8 @@ def cold_start() -> dict[str, Any]:
     it printed the twins' or the compiler's notice."""
     import tempfile
 
-    from quadric_contact.modes import native
-    from quadric_contact.modes._jit import COMPILE_NOTICE, TWINS_NOTICE
+    from quadric_contact.modes.kernels import native
+    from quadric_contact.modes.kernels._jit import COMPILE_NOTICE, TWINS_NOTICE
 
     src = str(Path(__file__).resolve().parents[2])
     out: dict[str, Any] = {}

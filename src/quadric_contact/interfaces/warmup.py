@@ -18,7 +18,7 @@ Who runs it:
   background process (``--background``: lowest priority, no output but a log next to the
   cache, one at a time): the first call of a process that finds a kernel missing from the
   cache starts it, and meanwhile answers small calls with the kernels' Python twins
-  (``quadric_contact.modes._jit.compile_on_a_fresh_stack``).
+  (``quadric_contact.modes.kernels._jit.compile_on_a_fresh_stack``).
 """
 
 from __future__ import annotations
@@ -101,7 +101,7 @@ def calls() -> list[tuple[str, Callable[[], Any]]]:
     calls.append(("distance(ellipsoids apart)", functools.partial(qc.distance, far, near)))
     crossing = np.stack([_ellipsoid((0.5, 0.7, 0.9), (0.5 + 0.2 * k, 0.0, 0.0)) for k in range(4)])
     calls.append(("distance(ellipsoids crossing)", functools.partial(qc.distance, crossing, near)))
-    from quadric_contact.modes.float64 import read_all
+    from quadric_contact.modes.numbers.binary64 import read_all
 
     calls.append(("read_all (the bench's read-bandwidth limit)", functools.partial(read_all, Es, Qs)))
     return first + calls
@@ -148,7 +148,7 @@ def warm_kernels(
     the calls whose description it accepts (all if None)."""
     from numba.core import event
 
-    from quadric_contact.modes import _jit
+    from quadric_contact.modes.kernels import _jit
 
     missed = []
 
@@ -201,7 +201,7 @@ def warm_kernels(
 def run(*, reverse: bool = False, log: Callable[[str], None] = print) -> int:
     """Warm the kernels in this process, every call waiting for its kernel (no twins); say on
     ``log`` how long it took; return how many kernels were compiled."""
-    from quadric_contact.modes import _jit
+    from quadric_contact.modes.kernels import _jit
 
     _jit.set_kernel_policy("wait")
     seconds, compiled = warm_kernels(log=log, reverse=reverse)
@@ -218,7 +218,7 @@ def background() -> None:
     import contextlib
     import os
 
-    from quadric_contact.modes import _jit
+    from quadric_contact.modes.kernels import _jit
 
     with _jit.warmup_lock() as held:
         if not held:

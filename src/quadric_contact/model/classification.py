@@ -342,7 +342,7 @@ def kind_from_inertia(ia: Inertia, iq: Inertia) -> QuadricKind:
     of the module docstring (``ia`` normalised to ``positive >= negative``).
 
     Shared by :func:`classify` (exact inertias) and the number modes
-    (:mod:`quadric_contact.modes.decisions`: inertias from certified signs)."""
+    (:mod:`quadric_contact.modes.decision.answers`: inertias from certified signs)."""
     rA, rQ = ia.rank, iq.rank
     if rA == 3:
         if rQ == 4:

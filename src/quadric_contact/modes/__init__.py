@@ -1,7 +1,7 @@
 """Number modes: one question, many number types.
 
 A number mode chooses the arithmetic of every stage of the decision
-(:mod:`~quadric_contact.modes.pipeline`), never the question:
+(:mod:`~quadric_contact.modes.decision.pipeline`), never the question:
 
 * ``certified``: ``filter``, then ``ball``, then ``exact``, and the exact scalar
   predicates for what the stages leave; always answers, never wrong;
@@ -32,22 +32,21 @@ from __future__ import annotations
 from typing import Any
 
 from quadric_contact.exact.errors import ChoiceError
-from quadric_contact.modes.base import (
+from quadric_contact.modes.codes import (
     ContactCode,
     ContactKindCode,
     CriterionCode,
-    MatrixStack,
     OverlapCode,
-    Pairs,
     RegionCode,
     Sign,
     SmallnessCode,
     StageCounts,
 )
-from quadric_contact.modes.certified import CertifiedMode
-from quadric_contact.modes.float_modes import FilterMode, FloatMode
-from quadric_contact.modes.number_mode import NumberMode
-from quadric_contact.modes.objects import BallMode, ExactMode, MpmathMode
+from quadric_contact.modes.numbers.binary64 import FilterMode, FloatMode
+from quadric_contact.modes.numbers.certified import CertifiedMode
+from quadric_contact.modes.numbers.number_mode import NumberMode
+from quadric_contact.modes.numbers.objects import BallMode, ExactMode, MpmathMode
+from quadric_contact.modes.stacks.pairs import MatrixStack, Pairs
 
 __all__ = [
     "MODES",

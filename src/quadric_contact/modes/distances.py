@@ -5,11 +5,11 @@ One meaning for every input form and mode: the exact number of
 :mod:`quadric_contact.theory.contact_scale` or :mod:`quadric_contact.theory.distance`.  For a
 pair, ``mode="exact"`` gives it as a real algebraic number with exact witnesses and
 ``mode="certified"`` (the distance) as arb balls enclosing it to ``digits`` digits
-(:mod:`quadric_contact.modes.distance_certified`; the exact path answers the symmetric
+(:mod:`quadric_contact.modes.distance.certified`; the exact path answers the symmetric
 configurations the balls leave).  A stack answers with, for every pair, an enclosure
 ``[lo, hi]`` of that same number in binary64 (``lo <= value <= hi``, rounded outwards), in an
 array of shape ``(..., 2)``: a stack of one holds the enclosure of the pair's value.  A stack
-is any form the other array predicates take (:func:`~quadric_contact.modes.batch.is_stack`):
+is any form the other array predicates take (:func:`~quadric_contact.modes.stacks.batch.is_stack`):
 arrays ``(..., 4, 4)`` of any real dtype (object arrays of Fractions or ints are exact input,
 each pair answered as the pair itself is), lists, object arrays of Quadrics or equations,
 :class:`~quadric_contact.Packed` stacks (their unpacked matrices, float64 where the entries are
@@ -17,17 +17,17 @@ binary64 numbers) and dask arrays (computed first); the batch shapes broadcast a
 and shapes that do not are a :class:`~quadric_contact.ShapeError`.
 
 The first-contact scale (``scale="E"``) of float64 stacks runs a compiled kernel that certifies
-each pair's enclosure (:mod:`quadric_contact.modes.scale_kernel`) and leaves the pairs it cannot
+each pair's enclosure (:mod:`quadric_contact.modes.distance.scale_kernel`) and leaves the pairs it cannot
 certify (a centre on the surface, a degenerate ``Q`` other than a plane) to the exact path;
 with ``scale="both"`` (two ellipsoids) a kernel of its own certifies the Perram-Wertheim scale
 by a lower and an upper bound that meet at the optimal multiplier
-(:mod:`quadric_contact.modes.scale_both`), and leaves nearly concentric pairs and pairs that are
+(:mod:`quadric_contact.modes.distance.scale_both`), and leaves nearly concentric pairs and pairs that are
 not two ellipsoids to the exact path.
 The distance of float64 stacks runs a compiled kernel for separated ellipsoid pairs (a
-duality certificate, :mod:`quadric_contact.modes.distance_kernel`), then one for the crossing
+duality certificate, :mod:`quadric_contact.modes.distance.apart_kernel`), then one for the crossing
 ellipsoid pairs it leaves (the depth between a support enclosure at a minimiser and a covering
 of the sphere by cells each certified by a point of the Minkowski difference,
-:mod:`quadric_contact.modes.depth_kernel`), both with enclosures at most
+:mod:`quadric_contact.modes.distance.depth_kernel`), both with enclosures at most
 ``max(10^-digits, 1e-12)`` relative wide; the pairs neither certifies (touching or nearly so,
 too shallow for the tolerance, not two ellipsoids), and every other stack, run the scalar path
 pair by pair.  One pair of binary64 ellipsoids in the ``float`` mode runs the same two kernels
@@ -60,9 +60,9 @@ from quadric_contact.exact.errors import (
 from quadric_contact.exact.precision import working_precision
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import as_quadric
-from quadric_contact.modes.batch import _is_dask, _is_single, _quadric_array, is_stack, matrix_array
-from quadric_contact.modes.distance_certified import DistanceEnclosure, apart_ellipsoids, distance_certified
-from quadric_contact.modes.packing import Packed, unpack
+from quadric_contact.modes.distance.certified import DistanceEnclosure, apart_ellipsoids, distance_certified
+from quadric_contact.modes.stacks.batch import _is_dask, _is_single, _quadric_array, is_stack, matrix_array
+from quadric_contact.modes.stacks.packing import Packed, unpack
 from quadric_contact.theory.contact_scale import contact_scale_exact
 from quadric_contact.theory.distance import CONVEX_SOLIDS, DistanceResult, distance_exact, is_sphere
 from quadric_contact.theory.distance_critical import critical_distance_binary64
@@ -297,11 +297,11 @@ def _validated(v: np.ndarray, name: str) -> np.ndarray:
 
 def _distance_kernel(E: np.ndarray, Q: np.ndarray, mode: str, digits: int) -> np.ndarray:
     """Float64 stacks: separated ellipsoid pairs by the compiled duality certificate
-    (:mod:`quadric_contact.modes.distance_kernel`), crossing ellipsoid pairs by the compiled
-    depth certificate (:mod:`quadric_contact.modes.depth_kernel`), enclosures at most
+    (:mod:`quadric_contact.modes.distance.apart_kernel`), crossing ellipsoid pairs by the compiled
+    depth certificate (:mod:`quadric_contact.modes.distance.depth_kernel`), enclosures at most
     ``max(10^-digits, 1e-12)`` relative wide; the other pairs by the scalar path."""
-    from quadric_contact.modes.depth_kernel import crossing_ellipsoids
-    from quadric_contact.modes.distance_kernel import separated_ellipsoids
+    from quadric_contact.modes.distance.apart_kernel import separated_ellipsoids
+    from quadric_contact.modes.distance.depth_kernel import crossing_ellipsoids
 
     shape = _batch_shape(E.shape[:-2], Q.shape[:-2])
     Es = _validated(np.broadcast_to(E, (*shape, 4, 4)), "E")
@@ -331,12 +331,12 @@ def _pair_enclosure(e: Any, q: Any, mode: str, digits: int) -> tuple[float, floa
 
 
 def _scale_kernel(E: np.ndarray, Q: np.ndarray, scale: str = "E") -> np.ndarray:
-    """The compiled kernels on float64 stacks (:mod:`quadric_contact.modes.scale_kernel` for
-    ``scale="E"``, :mod:`quadric_contact.modes.scale_both` for ``scale="both"``); the pairs they
+    """The compiled kernels on float64 stacks (:mod:`quadric_contact.modes.distance.scale_kernel` for
+    ``scale="E"``, :mod:`quadric_contact.modes.distance.scale_both` for ``scale="both"``); the pairs they
     leave go to the exact scalar path (which raises for a pair that is not one of two real
     ellipsoids with ``scale="both"``)."""
-    from quadric_contact.modes.scale_blocks import scale_stack
-    from quadric_contact.modes.scale_both import scale_both_stack
+    from quadric_contact.modes.distance.scale_blocks import scale_stack
+    from quadric_contact.modes.distance.scale_both import scale_both_stack
 
     shape = _batch_shape(E.shape[:-2], Q.shape[:-2])
     Es = _validated(np.broadcast_to(E, (*shape, 4, 4)), "E")
@@ -366,11 +366,11 @@ def _exact_answers(E: Any, Q: Any) -> bool:
 
 def _kernel_pair(e: Any, K: Any) -> FloatDistance | None:
     """Two ellipsoids whose entries are binary64 numbers: the compiled kernels a stack of one
-    runs (the duality certificate of :mod:`quadric_contact.modes.distance_kernel` for a
-    separated pair, the depth certificate of :mod:`quadric_contact.modes.depth_kernel` for a
+    runs (the duality certificate of :mod:`quadric_contact.modes.distance.apart_kernel` for a
+    separated pair, the depth certificate of :mod:`quadric_contact.modes.distance.depth_kernel` for a
     crossing one), the same enclosure as the stack's; or None (not certified there)."""
-    from quadric_contact.modes.depth_kernel import crossing_ellipsoids
-    from quadric_contact.modes.distance_kernel import separated_ellipsoids
+    from quadric_contact.modes.distance.apart_kernel import separated_ellipsoids
+    from quadric_contact.modes.distance.depth_kernel import crossing_ellipsoids
 
     mats = []
     for q in (e, K):
@@ -467,7 +467,7 @@ def distance(E: Any, Q: Any, *, mode: str = "certified", digits: int = 15) -> An
     Returns
     -------
     For a pair, a :class:`~quadric_contact.DistanceResult` (``exact``) or a
-    :class:`~quadric_contact.modes.distance_certified.DistanceEnclosure` (``certified``: arb
+    :class:`~quadric_contact.modes.distance.certified.DistanceEnclosure` (``certified``: arb
     balls; in a symmetric configuration those of the exact answer); for a stack a float64
     array ``(..., 2)`` of enclosures.
 

@@ -1,7 +1,7 @@
 """The public predicates: one question each, whatever the numbers and the input form.
 
 Every predicate here answers the geometric question for every pair, small or not
-(:mod:`quadric_contact.modes.pipeline` says how); the number mode chooses the
+(:mod:`quadric_contact.modes.decision.pipeline` says how); the number mode chooses the
 arithmetic of each stage, never the question.  One dispatcher decides scalar or
 stack by the *type of the input*, never by the mode:
 
@@ -45,7 +45,7 @@ from quadric_contact.modes import (
     StageCounts,
     get_mode,
 )
-from quadric_contact.modes.batch import (
+from quadric_contact.modes.stacks.batch import (
     as_stack,
     is_stack,
     make_pairs,

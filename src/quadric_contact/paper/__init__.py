@@ -65,9 +65,9 @@ reduction of the contacts of two moving ellipsoids with each other to the real r
 discriminant in time (:mod:`quadric_contact.scenes.mutual`); the bound on the displacement of
 a rigidly moving ellipsoid's points by which the least distance along a path is enclosed
 (:mod:`quadric_contact.scenes.path_distance`); the certificate by which the depth of two
-crossing ellipsoids is enclosed on stacks (:mod:`quadric_contact.modes.depth_kernel`); and the
+crossing ellipsoids is enclosed on stacks (:mod:`quadric_contact.modes.distance.depth_kernel`); and the
 isolated root by which the distance of two separated ellipsoids and its witnesses are enclosed
-in the ``certified`` mode (:mod:`quadric_contact.modes.distance_certified`)."""
+in the ``certified`` mode (:mod:`quadric_contact.modes.distance.certified`)."""
 
 PRINTED: dict[str, str] = {
     # Section 3.2, the two members of the discrimination system used by Corollary 10.

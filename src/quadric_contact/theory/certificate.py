@@ -1,7 +1,7 @@
 """The separation certificate, exactly: a definite member of the pencil, or four simple roots.
 
 For an ellipsoid ``E`` (the paper's sign) and any quadric ``Q``, with ``f = X^T Q X`` on
-the surface of ``E`` (see :mod:`quadric_contact.modes.separation` for the three facts
+the surface of ``E`` (see :mod:`quadric_contact.modes.decision.separation` for the three facts
 behind it):
 
 * some member ``lambda E + Q`` positive definite  <=>  ``f > 0`` on ``E`` (strictly in ``R+``);

@@ -76,7 +76,7 @@ __all__ = [
     "table_index",
 ]
 
-# The codes of the array predicates (quadric_contact.modes.base.ContactCode / RegionCode), which
+# The codes of the array predicates (quadric_contact.modes.codes.ContactCode / RegionCode), which
 # this layer may not import; a test checks they agree.
 NO_CONTACT, CONTACT, UNCERTAIN = 0, 1, 2
 R_MINUS, R_CONTACT, R_PLUS = -1, 0, 1

@@ -379,7 +379,7 @@ class OverlapCode(IntEnum):
 
     Also the code of an exact :class:`~quadric_contact.theory.overlap.OverlapResult`; it lives
     here, with the other results, so that :mod:`quadric_contact.theory.overlap` does not import
-    the number modes (:mod:`quadric_contact.modes.base` re-exports it with the other codes).
+    the number modes (:mod:`quadric_contact.modes.codes` re-exports it with the other codes).
     """
 
     SEPARATE = 0

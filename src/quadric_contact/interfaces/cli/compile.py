@@ -22,7 +22,7 @@ def register(sub: Any) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from quadric_contact.interfaces import warmup
-    from quadric_contact.modes import _jit
+    from quadric_contact.modes.kernels import _jit
 
     print(f"quadric-contact compile: the cache is {_jit._cache_root()}", flush=True)
     with _jit.warmup_lock() as held:

@@ -1,0 +1,240 @@
+"""The codes of the array predicates, in one place: the three-valued :class:`Sign`, the
+result codes of each question, ``UNCERTAIN`` and ``INVALID``, and the counts of which stage
+decided how many entries.
+
+Every kernel, number mode and table of the package reads these names from here: the integer
+constants (``UNCERTAIN``, ``INVALID``, ``EXCLUDED``) are what compiled code compares with, the
+enums what callers read.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from enum import IntEnum
+from typing import Any
+
+from quadric_contact.exact.errors import UndecidedError
+from quadric_contact.theory.results import OverlapCode, Region
+
+__all__ = [
+    "EXCLUDED",
+    "INVALID",
+    "UNCERTAIN",
+    "ContactCode",
+    "ContactKindCode",
+    "CriterionCode",
+    "OverlapCode",
+    "RegionCode",
+    "Sign",
+    "SmallnessCode",
+    "StageCounts",
+]
+
+UNCERTAIN = 2
+"""The code of 'this mode cannot tell' in every int8 array of the package (``Sign.UNCERTAIN``,
+``ContactCode.UNCERTAIN``, ...): never read as false."""
+
+EXCLUDED = 3
+"""The smallness code of a quadric without a row of Table 1 (``SmallnessCode.EXCLUDED``)."""
+
+
+class Sign(IntEnum):
+    """A sign as a number mode knows it.
+
+    ``UNCERTAIN`` means "this mode cannot tell"; it is never read as ``False``
+    (``bool(Sign.UNCERTAIN)`` raises :class:`~quadric_contact.exact.errors.UndecidedError`),
+    and in the int8 arrays of the modes its value 2 is non-zero.
+    """
+
+    NEGATIVE = -1
+    ZERO = 0
+    POSITIVE = 1
+    UNCERTAIN = 2
+
+    def __bool__(self) -> bool:
+        if self is Sign.UNCERTAIN:
+            raise UndecidedError("an UNCERTAIN sign has no truth value", self)
+        return self is not Sign.ZERO
+
+    @property
+    def certain(self) -> bool:
+        return self is not Sign.UNCERTAIN
+
+
+class ContactCode(IntEnum):
+    """Codes of the array predicate :func:`~quadric_contact.transversal_contact` (int8 arrays).
+
+    ``CONTACT``: the surfaces of ``E`` and ``Q`` cross (transversal contact);
+    ``NO_CONTACT``: they do not (apart, or touching without crossing); for every
+    pair, small or not.  ``UNCERTAIN`` (only from the modes that abstain, ``filter``
+    and ``ball``) is 2: non-zero, so a cast to bool reads it as a possible contact,
+    never as a clearance.
+    """
+
+    NO_CONTACT = 0
+    CONTACT = 1
+    UNCERTAIN = 2
+
+    @property
+    def transversal(self) -> bool | None:
+        """True, False, or None for ``UNCERTAIN``."""
+        return None if self is ContactCode.UNCERTAIN else self is ContactCode.CONTACT
+
+
+class CriterionCode(IntEnum):
+    """Codes of :func:`~quadric_contact.corollary_10`, the paper's raw criterion: the nature
+    of the roots of ``P(lambda) = det(lambda E + Q)``, not the geometry.
+
+    ``NON_REAL``: ``P`` has a pair of non-real roots (transversal contact for any pair,
+    Remark 9); ``ALL_REAL``: all roots are real (no transversal contact *when* ``E`` is
+    small with respect to ``Q``, Corollary 10; for a plane always, Theorem 14);
+    ``UNCERTAIN``: the mode cannot tell.
+    """
+
+    ALL_REAL = 0
+    NON_REAL = 1
+    UNCERTAIN = 2
+
+
+class ContactKindCode(IntEnum):
+    """Codes of the array predicate :func:`~quadric_contact.contact_kind` (the rows of Table 3).
+
+    ``NONE`` no contact, ``TRANSVERSAL`` the surfaces cross, ``UNCERTAIN`` (abstaining
+    modes only), ``TANGENT_POINT``, ``TWO_TANGENT_POINTS``, ``TANGENT_CURVE``.
+    """
+
+    NONE = 0
+    TRANSVERSAL = 1
+    UNCERTAIN = 2
+    TANGENT_POINT = 3
+    TWO_TANGENT_POINTS = 4
+    TANGENT_CURVE = 5
+
+    @classmethod
+    def from_kind(cls, kind: Any) -> ContactKindCode:
+        """The code of a :class:`~quadric_contact.theory.contact_kind.ContactKind`."""
+        return cls[str(getattr(kind, "name", kind)).upper()]
+
+    def to_kind(self) -> Any:
+        """The :class:`~quadric_contact.theory.contact_kind.ContactKind` of the code."""
+        from quadric_contact.theory.contact_kind import ContactKind
+
+        return ContactKind[self.name]
+
+
+class SmallnessCode(IntEnum):
+    """Codes of the array smallness predicate (int8 arrays).
+
+    ``SMALL``: ``E`` is small with respect to ``Q`` in the direct sense (Table 1 row of
+    ``Q`` holds): Corollary 10 and Theorem 13 / Table 4 apply.  ``SMALL_ENCLOSING``:
+    two ellipsoids, small only because ``Q`` is small with respect to ``E``
+    (Definition 1 is symmetric): Corollary 10 holds, Table 4 does not (the
+    scalar report has ``small and not table_4_applies``).  ``EXCLUDED``: ``Q`` has no
+    row in Table 1 (a plane, a cone, intersecting or coincident planes, a quadric
+    without real points); the scalar :func:`~quadric_contact.theory.smallness.smallness`
+    raises :class:`~quadric_contact.exact.errors.ExcludedQuadricError` there.
+    ``UNCERTAIN`` only comes from the modes that abstain; it is non-zero, so a cast
+    to bool never reads it as "not small".
+    """
+
+    NOT_SMALL = 0
+    SMALL = 1
+    UNCERTAIN = 2
+    EXCLUDED = 3
+    SMALL_ENCLOSING = 4
+
+    @property
+    def small(self) -> bool | None:
+        """Definition 1: True for both small codes, False for ``NOT_SMALL``, None otherwise."""
+        if self in (SmallnessCode.SMALL, SmallnessCode.SMALL_ENCLOSING):
+            return True
+        return False if self is SmallnessCode.NOT_SMALL else None
+
+    @property
+    def table_4_applies(self) -> bool | None:
+        """True only for ``SMALL`` (Theorem 13 / Table 4 may be used), None when unknown."""
+        if self in (SmallnessCode.UNCERTAIN, SmallnessCode.EXCLUDED):
+            return None
+        return self is SmallnessCode.SMALL
+
+
+class RegionCode(IntEnum):
+    """Codes of the array predicates :func:`~quadric_contact.relative_position` and
+    :func:`~quadric_contact.plane_side` (int8 arrays).
+
+    The three regions of :class:`~quadric_contact.theory.results.Region` are the sign of
+    ``X^T Q X`` over the surface of the ellipsoid: ``R_MINUS = -1`` (``<= 0``),
+    ``CONTACT = 0`` (both signs: the surfaces cross), ``R_PLUS = 1`` (``>= 0``);
+    tangency counts as being in a region.  ``UNCERTAIN`` (2): an abstaining mode
+    cannot tell.  Only the paper's raw reading of Table 4 (internal: the criterion
+    stage) produces the last two: ``NO_ROW`` (3) all roots are real but their sign
+    pattern is in no row of Table 4 for the type of ``Q``; ``EXCLUDED`` (4) ``Q`` is
+    of a type without a row.
+    """
+
+    R_MINUS = -1
+    CONTACT = 0
+    R_PLUS = 1
+    UNCERTAIN = 2
+    NO_ROW = 3
+    EXCLUDED = 4
+
+    @property
+    def region(self) -> Region | None:
+        """The :class:`Region`, or None for the codes that are not regions."""
+        return _CODE_TO_REGION.get(self)
+
+    @classmethod
+    def from_region(cls, region: Region | str | None) -> RegionCode:
+        """The code of a region (None, as from an undecided result, is ``NO_ROW``)."""
+        if region is None:
+            return cls.NO_ROW
+        return {v: k for k, v in _CODE_TO_REGION.items()}[Region(region)]
+
+
+_CODE_TO_REGION = {
+    RegionCode.R_MINUS: Region.R_MINUS,
+    RegionCode.CONTACT: Region.CONTACT,
+    RegionCode.R_PLUS: Region.R_PLUS,
+}
+
+INVALID = 5
+"""Internal code of the float kernels: the entry failed validation (the
+predicates diagnose it and raise the matching error)."""
+
+
+@dataclass
+class StageCounts:
+    """How many entries each stage of a mode decided, and how many stayed undecided.
+
+    ``decided`` maps a stage name (``"float"``, ``"filter"``, ``"ball"``,
+    ``"mpmath"``, ``"exact"``) to a count; ``undecided`` counts entries returned
+    ``UNCERTAIN``.
+    """
+
+    decided: dict[str, int] = field(default_factory=dict)
+    undecided: int = 0
+
+    @property
+    def total(self) -> int:
+        return sum(self.decided.values()) + self.undecided
+
+    @property
+    def escalated(self) -> int:
+        """Entries the first stage left to a later one (or left undecided)."""
+        first = next(iter(self.decided.values()), 0)
+        return self.total - first
+
+    def add(self, stage: str, count: int) -> None:
+        self.decided[stage] = self.decided.get(stage, 0) + int(count)
+
+    def merge(self, other: StageCounts) -> None:
+        for stage, count in other.decided.items():
+            self.add(stage, count)
+        self.undecided += other.undecided
+
+    def __str__(self) -> str:
+        parts = [f"{stage} {count}" for stage, count in self.decided.items() if count]
+        if self.undecided:
+            parts.append(f"undecided {self.undecided}")
+        return ", ".join(parts) or "nothing"

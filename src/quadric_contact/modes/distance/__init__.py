@@ -1,0 +1,1 @@
+"""How far from contact on stacks: distance, penetration depth and the first-contact scale, certified."""

@@ -1,0 +1,1 @@
+"""The number modes as strategies: how each mode computes a sign, never which question it answers."""

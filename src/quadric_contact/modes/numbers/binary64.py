@@ -1,0 +1,630 @@
+"""The binary64 modes: plain ``float`` and the certified ``filter``, and their drivers.
+
+Both evaluate the generated closed forms (:mod:`quadric_contact._generated`): numba compiles
+the very functions of ``formulas.py``, ``kernels.py`` and ``blocks.py`` into loop kernels
+(``backend="numba"``), and numpy evaluates the same functions on whole columns
+(``backend="numpy"``, :mod:`~quadric_contact.modes.kernels.numpy_backend`, also the fallback when
+numba is missing).  The two give identical codes (tested).
+
+A stack of binary64 pairs goes first to the fast kernels
+(:mod:`~quadric_contact.modes.kernels.criterion`: plain float, or the filter's semi-static
+screen), which read the input once at the speed of memory and answer every pair they are
+sure of; the few they leave go to the general kernels
+(:mod:`~quadric_contact.modes.kernels.filter`: plain float with the exact facts about the
+quadrics, or the dynamic filter), as does exact input rounded to binary64.  The filter then
+runs the pairs still uncertain a second time with exact facts about their quadrics.  Anything
+still uncertain is ``UNCERTAIN`` and goes to the next stage of the mode.
+
+Threads split the pair range (:mod:`~quadric_contact.modes.kernels.threads`); the kernels release the
+GIL.
+"""
+
+from __future__ import annotations
+
+import functools
+from typing import Any
+
+import numpy as np
+
+from quadric_contact.exact.errors import ChoiceError
+from quadric_contact.model.classification import QuadricKind
+from quadric_contact.modes.codes import INVALID
+from quadric_contact.modes.decision.answers import (
+    UNCERTAIN_ROW,
+    masks_from_invariant_signs,
+    row_of,
+    rows_from_masks,
+)
+from quadric_contact.modes.kernels import errorbounds as eb
+from quadric_contact.modes.kernels._jit import HAVE_NUMBA
+from quadric_contact.modes.kernels.criterion import FALLBACK, NB, fast_codes
+from quadric_contact.modes.kernels.support_drivers import check_stack, region_codes_from_signs
+from quadric_contact.modes.kernels.threads import run_parallel
+from quadric_contact.modes.numbers.number_mode import NumberMode
+from quadric_contact.modes.stacks.pairs import MatrixStack, Pairs
+from quadric_contact.modes.stacks.rows import set_rows, unique_rows
+from quadric_contact.modes.stacks.validation import (
+    exact_matrix,
+    raise_not_ellipsoid,
+    rows_view,
+    validate_rows,
+)
+
+__all__ = [
+    "BACKENDS",
+    "BLOCK",
+    "HAVE_NUMBA",
+    "FilterMode",
+    "FloatMode",
+    "check_stack",
+    "exact_facts",
+    "float_invariant_signs",
+    "float_pairs",
+    "read_all",
+    "region_codes_from_signs",
+    "stage_codes",
+]
+
+BACKENDS = ("numba", "numpy") if HAVE_NUMBA else ("numpy",)
+BLOCK = NB
+"""Pairs per block of the numba kernels."""
+
+_UNC = 2
+
+
+# -- the general path -----------------------------------------------------------------------
+
+
+def _constants(rounded: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    KP = np.array(eb.PENCIL_ERRBOUND[rounded])
+    KL = np.array(eb.MINORS_ERRBOUND[rounded])
+    DR = np.array(eb.DELTA_RELATIVE)
+    DA = np.array(eb.DELTA_ABSOLUTE)
+    return KP, KL, DR, DA
+
+
+def float_pairs(
+    E: np.ndarray,
+    Q: np.ndarray,
+    indices: tuple[np.ndarray, np.ndarray, int, int],
+    n: int,
+    *,
+    filtered: bool,
+    rounded: bool = False,
+    qrows: np.ndarray | None = None,
+    qmasks: np.ndarray | None = None,
+    qflags: np.ndarray | None = None,
+    same_ok: bool = False,
+    prop: np.ndarray | None = None,
+    backend: str = "numba",
+    threads: int | None = None,
+    screen: bool = False,
+) -> np.ndarray:
+    """Codes for ``n`` pairs of the float64 stacks ``E``, ``Q`` (``(m, 4, 4)``) by the general
+    kernels (the dynamic filter, or plain float with the structural ``qflags``).
+
+    ``prop`` (plain float only): per pair, whether the quadratic parts are proportional,
+    decided exactly beforehand (for rounded exact input, whose floats cannot tell).
+    ``screen``: the numpy variant lets the semi-static screen decide first, as the compiled
+    path does (binary64 input, first pass of the filter).
+
+    Returns :class:`ContactCode` values (or :class:`RegionCode` values when ``qrows``, the row
+    of every quadric, is given), ``UNCERTAIN`` where the filter cannot decide and
+    :data:`~quadric_contact.modes.codes.INVALID` where an input fails validation.
+    """
+    eidx, qidx, es, qs = indices
+    want_region = qrows is not None
+    flags = (
+        np.zeros(Q.shape[0], dtype=np.int8) if qflags is None else np.ascontiguousarray(qflags, dtype=np.int8)
+    )
+    rows = np.zeros(1, dtype=np.int16) if qrows is None else np.ascontiguousarray(qrows, dtype=np.int16)
+    masks = np.zeros(1, dtype=np.int64) if qmasks is None else np.ascontiguousarray(qmasks, dtype=np.int64)
+    pp = np.zeros(0, dtype=np.int8) if prop is None else np.ascontiguousarray(prop, dtype=np.int8)
+    out = np.empty(n, dtype=np.int8)
+    if n == 0:
+        return out
+    if backend == "numpy" or not HAVE_NUMBA:
+        from quadric_contact.modes.kernels.numpy_backend import numpy_pairs
+
+        return numpy_pairs(
+            E,
+            Q,
+            eidx,
+            qidx,
+            es,
+            qs,
+            n,
+            filtered,
+            rounded,
+            rows,
+            masks,
+            want_region,
+            flags,
+            same_ok,
+            pp,
+            screen,
+        )
+    if backend != "numba":
+        raise ChoiceError(
+            f"backend must be one of {', '.join(BACKENDS)}, got {backend!r}", backend, choices=tuple(BACKENDS)
+        )
+    from quadric_contact.modes.kernels.filter import filter_kernel, float_kernel
+
+    E2 = np.ascontiguousarray(E).reshape(-1, 16)
+    Q2 = np.ascontiguousarray(Q).reshape(-1, 16)
+    if filtered:
+        KP, KL, DR, DA = _constants(rounded)
+        run_parallel(
+            lambda lo, hi: filter_kernel(
+                E2,
+                Q2,
+                eidx,
+                qidx,
+                es,
+                qs,
+                lo,
+                hi,
+                KP,
+                KL,
+                DR,
+                DA,
+                flags,
+                same_ok,
+                rows,
+                masks,
+                want_region,
+                out,
+            ),
+            n,
+            threads,
+        )
+    else:
+        run_parallel(
+            lambda lo, hi: float_kernel(
+                E2, Q2, eidx, qidx, es, qs, lo, hi, rows, masks, want_region, flags, same_ok, pp, out
+            ),
+            n,
+            threads,
+        )
+    return out
+
+
+def _compact(stack: MatrixStack, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(floats, used, index)``: the ``(k, 4, 4)`` matrices of the distinct ``rows``, the rows
+    they are, and where each entry of ``rows`` finds its matrix among them."""
+    used, index = unique_rows(rows, len(stack), return_inverse=True)
+    return stack.rows_floats(used), used, index
+
+
+def stage_codes(E: np.ndarray, Q: np.ndarray, stage: str, *, backend: str = "numba") -> np.ndarray:
+    """Contact codes of one stage alone (``"screen"``, the semi-static screen, or ``"filter"``,
+    the dynamic filter) for the pairs ``(E[k], Q[k])`` of two ``(n, 4, 4)`` binary64 stacks:
+    ``UNCERTAIN`` where the stage is not sure (for the screen also where it would not look: an
+    input outside its guards); for tests and measurements."""
+    from quadric_contact.modes.decision.answers import CONTACT_TABLE, ELLIPSOID_NOT, ELLIPSOID_UNCERTAIN
+    from quadric_contact.modes.kernels.numpy_backend import _table_index, filter_quantities, screen_quantities
+
+    n = E.shape[0]
+    e0 = np.zeros(0, dtype=np.intp)
+    if stage == "screen":
+        if backend == "numba" and HAVE_NUMBA:
+            out, _ = fast_codes(
+                E.reshape(-1, 16), Q.reshape(-1, 16), False, False, (e0, e0, 1, 1), n, filtered=True,
+                qrows=None, qmasks=None, run=lambda k, m: k(0, m),
+            )  # fmt: skip
+            return np.where(out == FALLBACK, _UNC, out).astype(np.int8)
+        sq = screen_quantities(E, Q)
+        code = CONTACT_TABLE[_table_index(sq["signs"][5:])]
+        return np.where(sq["ok"], code, _UNC).astype(np.int8)
+    if backend == "numba" and HAVE_NUMBA:
+        from quadric_contact.modes.kernels.filter import filter_kernel
+
+        out = np.empty(n, dtype=np.int8)
+        rows, masks = np.zeros(1, dtype=np.int16), np.zeros(1, dtype=np.int64)
+        KP, KL, DR, DA = _constants(False)
+        flags = np.zeros(Q.shape[0], dtype=np.int8)
+        filter_kernel(
+            E.reshape(-1, 16), Q.reshape(-1, 16), e0, e0, 1, 1, 0, n, KP, KL, DR, DA, flags, True, rows,
+            masks, False, out,
+        )  # fmt: skip
+        return out
+    q = filter_quantities(E, Q)
+    code = CONTACT_TABLE[_table_index(q["signs"][5:])]
+    code = np.where(q["outside"] | (q["ell"] == ELLIPSOID_UNCERTAIN), _UNC, code)
+    bad = ~(np.isfinite(E).all(axis=(1, 2)) & np.isfinite(Q).all(axis=(1, 2)))
+    bad |= ~((np.swapaxes(E, 1, 2) == E).all(axis=(1, 2)) & (np.swapaxes(Q, 1, 2) == Q).all(axis=(1, 2)))
+    return np.where(bad | (q["ell"] == ELLIPSOID_NOT), INVALID, code).astype(np.int8)
+
+
+_ELLIPSOID_PLUS = np.int64(1) << row_of(QuadricKind.ELLIPSOID, 1)
+_ELLIPSOID_MINUS = np.int64(1) << row_of(QuadricKind.ELLIPSOID, -1)
+
+
+def _ellipsoid_masks(ell: np.ndarray) -> np.ndarray:
+    """Table 4 candidate masks from :func:`certified_ellipsoid_signs` (0 where it cannot tell)."""
+    return np.where(ell > 0, _ELLIPSOID_PLUS, np.where(ell < 0, _ELLIPSOID_MINUS, np.int64(0)))
+
+
+def float_invariant_signs(
+    Q: np.ndarray, *, filtered: bool, rounded: bool = False, backend: str = "numba"
+) -> np.ndarray:
+    """``(m, 8)`` int8 signs of ``(trA, J, detA, E1, E2, E3, E4, q33)`` for every quadric.
+
+    ``filtered``: certain signs, ``UNCERTAIN`` elsewhere: binary64 with the bounds
+    :data:`~quadric_contact.modes.kernels.errorbounds.INVARIANTS_ERRBOUND` and, for binary64 input (not
+    ``rounded`` from exact input), the quadrics with a sign binary64 cannot tell read again in
+    double-double (:data:`~quadric_contact.modes.kernels.errorbounds.INVARIANTS_DD_ERRBOUND` and, for
+    ``JA``, ``detA``, ``E4``,
+    :data:`~quadric_contact.modes.kernels.errorbounds.INVARIANTS_DD_COFACTOR_ERRBOUND`):
+    what it leaves is a value within about 1e-30 of its magnitude (in practice, an exact zero),
+    or input outside the guard."""
+    out = np.empty((Q.shape[0], 8), dtype=np.int8)
+    K = np.array(eb.INVARIANTS_ERRBOUND[rounded])
+    KD = np.array(eb.INVARIANTS_DD_ERRBOUND)
+    KC = np.array(eb.INVARIANTS_DD_COFACTOR_ERRBOUND)
+    dd = filtered and not rounded
+    if backend == "numpy" or not HAVE_NUMBA:
+        from quadric_contact.modes.kernels.numpy_backend import numpy_invariant_signs
+
+        return numpy_invariant_signs(Q, filtered, K, (KD, KC) if dd else None)
+    from quadric_contact.modes.kernels.support import invariant_signs_kernel
+
+    flat = np.ascontiguousarray(Q).reshape(-1, 16)
+    run_parallel(
+        lambda lo, hi: invariant_signs_kernel(flat, lo, hi, K, KD, KC, filtered, dd, out), Q.shape[0]
+    )
+    return out
+
+
+def certified_ellipsoid_signs(Q: np.ndarray, *, backend: str = "numba") -> np.ndarray:
+    """``(m,)`` int8: +1/-1 where the binary64 quadric ``Q[k]`` (not rounded from exact input) is
+    certainly an ellipsoid of that canonical sign, 0 where this short test cannot tell (the
+    invariant signs decide those)."""
+    if backend == "numpy" or not HAVE_NUMBA:
+        from quadric_contact.modes.kernels.numpy_backend import numpy_ellipsoid_signs
+
+        return numpy_ellipsoid_signs(np.asarray(Q, dtype=np.float64))
+    from quadric_contact.modes.kernels.support import ellipsoid_signs_kernel
+
+    out = np.empty(Q.shape[0], dtype=np.int8)
+    flat = np.ascontiguousarray(Q).reshape(-1, 16)
+    run_parallel(lambda lo, hi: ellipsoid_signs_kernel(flat, lo, hi, out), Q.shape[0])
+    return out
+
+
+def read_all(*arrays: np.ndarray, threads: int | None = None) -> float:
+    """Read every byte of the arrays once (a compiled, threaded streaming sum): the
+    memory-bandwidth floor of any kernel that reads them."""
+    from quadric_contact.modes.kernels.support import read_all_kernel
+
+    def one(flat: np.ndarray) -> float:
+        parts: list[float] = []
+        run_parallel(lambda lo, hi: parts.append(read_all_kernel(flat, lo, hi)), flat.shape[0], threads)
+        return float(sum(parts))
+
+    return sum(one(np.ascontiguousarray(a).reshape(-1)) for a in arrays)
+
+
+# -- the modes -------------------------------------------------------------------------------
+
+
+class FloatMode(NumberMode):
+    """Plain binary64 (``mode="float"``): the fastest; it always answers and may be wrong
+    near tangency, but not on structural zeros: it reads the exact facts the filter reads
+    (``det Q = 0``, ``rank Q <= 2``, the type, computed exactly once per quadric where
+    binary64 cannot tell) and recognises proportional quadratic parts exactly.
+
+    Parameters
+    ----------
+    backend : {"numba", "numpy"}, optional
+        Compiled kernels (default when numba is installed) or numpy on columns.
+    threads : int, optional
+        Threads for the compiled kernels (default: all cores; 1 under dask).
+    """
+
+    name = "float"
+    stage = "float"
+    certified = False
+    filtered = False
+
+    def __init__(self, backend: str | None = None, threads: int | None = None) -> None:
+        super().__init__()
+        self.backend = backend or BACKENDS[0]
+        if self.backend not in BACKENDS:
+            choices = tuple(BACKENDS)
+            message = f"backend must be one of {', '.join(choices)}, got {backend!r}"
+            raise ChoiceError(message, backend, choices=choices)
+        self.threads = threads
+        if not self.filtered:
+            # binary64's reading of non-real roots is confirmed by the filter's (see the pipeline)
+            self.guard = FilterMode(self.backend, threads)
+        # what classify remembers within one decision (None: nothing, not remembering)
+        self._classified: tuple[MatrixStack, np.ndarray, np.ndarray] | tuple[()] | None = None
+
+    def _fast(self, pairs: Pairs) -> bool:
+        """The fast kernels apply: compiled, binary64 input (not rounded exact input)."""
+        return self.backend == "numba" and HAVE_NUMBA and not (pairs.E.rounded or pairs.Q.rounded)
+
+    def _kernel(
+        self, pairs: Pairs, qtypes: Any, qflags: np.ndarray | None
+    ) -> tuple[np.ndarray, np.ndarray | None]:
+        """Codes of every pair: the fast kernels first when they apply (and no exact facts are
+        given), the general ones for what they leave.  Also the pairs that may be ``INVALID``
+        or ``UNCERTAIN`` (increasing; None: any of them): the screen answers only what it is
+        sure of, so for the filter they are among those it left to the general kernels."""
+        qrows, qmasks = qtypes if qtypes is not None else (None, None)
+        if qflags is None and self._fast(pairs):
+            E, epacked = pairs.E.kernel_array()
+            Q, qpacked = pairs.Q.kernel_array()
+            codes, fall = fast_codes(
+                E, Q, epacked, qpacked, pairs.kernel_indices(), pairs.n, filtered=self.filtered, qrows=qrows,
+                qmasks=qmasks, run=functools.partial(run_parallel, threads=self.threads),
+            )  # fmt: skip
+            if fall.size:
+                codes[fall] = self._general(pairs.take(fall), qrows, qmasks, None, screen_done=True)
+            return codes, (fall if self.filtered else None)
+        return self._general(pairs, qrows, qmasks, qflags, screen_done=False), None
+
+    def _general(
+        self, pairs: Pairs, qrows: Any, qmasks: Any, qflags: np.ndarray | None, *, screen_done: bool
+    ) -> np.ndarray:
+        """The general kernels on ``pairs``; plain float computes the exact facts of the quadrics
+        involved when they are not given.  The matrices of the pairs are gathered into compact
+        stacks first when the pairs index them (a subset: nothing else is unpacked)."""
+        rounded = pairs.E.rounded or pairs.Q.rounded
+        if not self.filtered and qflags is None:
+            qflags = self._structural_flags(pairs.Q, np.unique(pairs.q_rows()))
+        prop = None
+        if rounded and not self.filtered:
+            from quadric_contact.modes.numbers.objects import _proportional_exact
+
+            prop = _proportional_exact(pairs, pairs.e_rows(), pairs.q_rows()).astype(np.int8)
+        if pairs.e_index is None and pairs.q_index is None:
+            E, Q, indices = pairs.E.floats, pairs.Q.floats, pairs.kernel_indices()
+            flags, rows, masks = qflags, qrows, qmasks
+        else:
+            E, _, eidx = _compact(pairs.E, pairs.e_rows())
+            Q, used, qidx = _compact(pairs.Q, pairs.q_rows())
+            indices = (eidx, qidx, 0, 0)
+            flags = None if qflags is None else qflags[used]
+            rows = None if qrows is None else np.asarray(qrows)[used]
+            masks = None if qmasks is None else np.asarray(qmasks)[used]
+        return float_pairs(
+            E,
+            Q,
+            indices,
+            pairs.n,
+            filtered=self.filtered,
+            rounded=rounded,
+            qrows=rows,
+            qmasks=masks,
+            qflags=flags,
+            same_ok=not rounded,
+            prop=prop,
+            backend=self.backend,
+            threads=self.threads,
+            screen=self.filtered and not rounded and qflags is None and not screen_done,
+        )
+
+    def _structural_flags(self, Q: MatrixStack, used: np.ndarray) -> np.ndarray:
+        """Per quadric (length ``len(Q)``): the exact facts ``det Q = 0`` (bit 0) and
+        ``rank Q <= 2`` (bit 1), computed exactly (:func:`exact_facts`) for the quadrics whose
+        determinant binary64 cannot tell from zero, so that plain float reads the structural
+        zeros of cylinders, planes and parallel planes as the filter does."""
+        flags = np.zeros(len(Q), dtype=np.int8)
+        if used.size == 0:
+            return flags
+        signs = float_invariant_signs(
+            Q.rows_floats(used), filtered=True, rounded=Q.rounded, backend=self.backend
+        )
+        maybe = used[(signs[:, 6] == 0) | (signs[:, 6] == _UNC)]
+        if maybe.size:
+            flags[maybe] = exact_facts(Q, maybe)[0]
+        return flags
+
+    def _codes(self, pairs: Pairs, qtypes: Any) -> tuple[np.ndarray, np.ndarray | None]:
+        """The criterion codes and the pairs that may be ``UNCERTAIN`` (see :meth:`_kernel`)."""
+        codes, maybe = self._kernel(pairs, qtypes, None)
+
+        def where(value: int) -> np.ndarray:
+            return set_rows(codes == value) if maybe is None else maybe[codes[maybe] == value]
+
+        invalid = where(INVALID)
+        if invalid.size:
+            codes[invalid] = _diagnose(pairs, invalid)
+        if self.filtered:
+            todo = where(_UNC)
+            if todo.size:
+                # Second pass with exact facts about the quadrics involved (once per quadric):
+                # structural zeros of c0, c1 and, for regions, the exact type.
+                used = np.unique(pairs.q_rows_at(todo))
+                facts, exact_masks = exact_facts(pairs.Q, used)
+                flags = np.zeros(len(pairs.Q), dtype=np.int8)
+                flags[used] = facts
+                types = None
+                if qtypes is not None:
+                    masks = qtypes[1].copy()
+                    masks[used] = exact_masks
+                    types = (rows_from_masks(masks), masks)
+                if flags.any() or types is not None:
+                    again, _ = self._kernel(pairs.take(todo), types, flags)
+                    codes[todo] = np.where(again == INVALID, _UNC, again)
+        return codes, maybe
+
+    def criterion_contact(self, pairs: Pairs) -> np.ndarray:
+        return self._codes(pairs, None)[0]
+
+    def criterion_region(self, pairs: Pairs) -> np.ndarray:
+        return self._codes(pairs, self._region_types(pairs))[0]
+
+    def _region_types(self, pairs: Pairs) -> tuple[np.ndarray, np.ndarray]:
+        used = _used_rows(pairs.q_index, len(pairs.Q), pairs.n)
+        masks = np.zeros(len(pairs.Q), dtype=np.int64)
+        masks[used] = self.classify(pairs.Q, used)
+        if used.size == len(pairs.Q):
+            return rows_from_masks(masks), masks
+        # a few pairs of a large stack (those the decision kernel left): the rows of the
+        # quadrics they use only (the others are never read; a zero mask is UNCERTAIN_ROW)
+        rows = np.full(len(pairs.Q), UNCERTAIN_ROW, dtype=np.int16)
+        rows[used] = rows_from_masks(masks[used])
+        return rows, masks
+
+    def with_candidates(self, method: str, pairs: Pairs) -> tuple[np.ndarray, np.ndarray | None]:
+        if method == "criterion_contact":
+            return self._codes(pairs, None)
+        if method == "criterion_region":
+            return self._codes(pairs, self._region_types(pairs))
+        return super().with_candidates(method, pairs)
+
+    def decide_ellipsoids(
+        self, pairs: Pairs, *, outside_too: bool, table: tuple[np.ndarray, np.ndarray] | None = None
+    ) -> tuple[np.ndarray, ...] | None:
+        """The decision kernel's reading of every pair, and its answers read through ``table``
+        (:func:`~quadric_contact.modes.kernels.decision.decide_ellipsoids`: certified, in one pass),
+        or None where it does not apply (input rounded from exact numbers, the numpy backend)."""
+        if not self._fast(pairs):
+            return None
+        from quadric_contact.modes.kernels.decision import decide_ellipsoids
+
+        return decide_ellipsoids(pairs, outside_too=outside_too, table=table, threads=self.threads)
+
+    def separation(self, pairs: Pairs) -> np.ndarray:
+        from quadric_contact.modes.kernels.signature import signature_float
+
+        return signature_float(pairs, certified=self.filtered, backend=self.backend, threads=self.threads)
+
+    def smallness(self, pairs: Pairs) -> np.ndarray:
+        from quadric_contact.modes.smallness import binary64 as smallness_float
+
+        return smallness_float.run(self, pairs)
+
+    def classify(self, Q: MatrixStack, rows: np.ndarray | None = None) -> np.ndarray:
+        """The type of each quadric: binary64 with the filter's bounds; plain ``float`` takes
+        the exact type where binary64 cannot tell (once per quadric), so that a structural
+        zero (a cylinder's ``det Q = 0``) is never read from rounding noise."""
+        index = np.arange(len(Q)) if rows is None else np.asarray(rows, dtype=np.intp)
+        seen = self._classified
+        if seen and seen[0] is Q and bool(seen[1][index].all()):
+            # the stages of one decision ask about the same quadrics (the pipeline's classes,
+            # then smallness): once per quadric and call (see remember)
+            return seen[2][index]
+        validate_rows(Q, index)
+        sub = Q.floats if rows is None else rows_view(Q, index)
+        if Q.rounded:
+            rest = None
+            masks = masks_from_invariant_signs(
+                float_invariant_signs(sub, filtered=True, rounded=True, backend=self.backend)
+            )
+        else:
+            # Most quadrics of a stack of pairs are ellipsoids: a short certified test settles
+            # them (a third of the invariants' work); the invariant signs decide the others.
+            ell = certified_ellipsoid_signs(sub, backend=self.backend)
+            masks = _ellipsoid_masks(ell)
+            rest = np.flatnonzero(ell == 0)
+            if rest.size:
+                masks[rest] = masks_from_invariant_signs(
+                    float_invariant_signs(sub[rest], filtered=True, rounded=False, backend=self.backend)
+                )
+        if not self.filtered:
+            unsure = np.flatnonzero(rows_from_masks(masks) == UNCERTAIN_ROW)
+            if unsure.size:
+                masks[unsure] = exact_facts(Q, index[unsure])[1]
+        if seen is not None:
+            if not seen or seen[0] is not Q:
+                seen = (Q, np.zeros(len(Q), dtype=bool), np.zeros(len(Q), dtype=masks.dtype))
+            seen[2][index] = masks
+            seen[1][index] = True
+            self._classified = seen
+        return masks
+
+    def remember(self) -> None:
+        """From now on :meth:`classify` answers again from memory for the same stack (the
+        pipeline calls this at the start of a decision and :meth:`forget` at its end)."""
+        self._classified = ()
+
+    def forget(self) -> None:
+        """Drop what :meth:`classify` remembers, and stop remembering."""
+        self._classified = None
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}(backend={self.backend!r})"
+
+
+class FilterMode(FloatMode):
+    """binary64 with a rigorous error bound (``mode="filter"``, the first stage of
+    ``certified``): a sign only where it is certain, ``UNCERTAIN`` elsewhere.
+    The bounds are derived in :mod:`quadric_contact.modes.kernels.errorbounds`.
+
+    Binary64 input goes first through the semi-static screen (one bound per coefficient from
+    the row maxima of the two matrices; a few flops more than plain float), then, for what the
+    screen leaves, the dynamic filter.  Structural zeros are recognised, not left to rounding:
+    an exact zero entry gives an exact zero bound (a plane's ``c0 = c1 = 0``); equal quadratic
+    parts (compared exactly) give ``Delta_4 = 0``; and the pairs still undecided after the first
+    pass are run again with exact facts about their quadrics, computed once per quadric in
+    integer arithmetic (:func:`exact_facts`: ``det Q = 0``, ``rank Q <= 2``, the type)."""
+
+    name = "filter"
+    stage = "filter"
+    certified = True
+    filtered = True
+
+
+def _used_rows(index: np.ndarray | None, m: int, n: int) -> np.ndarray:
+    """The distinct rows of a stack that ``n`` pairs use (no sorting when they use them all)."""
+    if index is None:
+        return np.arange(m, dtype=np.intp) if m == n else np.zeros(1, dtype=np.intp)
+    return unique_rows(index, m)
+
+
+def exact_facts(Q: MatrixStack, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Exact facts about the quadrics ``rows``, from their exact invariant signs, once per
+    quadric: ``(flags, masks)`` with bit 0 of ``flags`` set when ``det Q = 0`` (then ``c0 = 0``
+    for every ``E``) and bit 1 when ``rank Q <= 2`` (then ``c1 = 0`` too; for a symmetric matrix
+    the rank is 4 minus the number of trailing zeros of ``E1 .. E4``), and ``masks`` their
+    Table 4 rows.
+
+    For binary64 input the signs are certified before any integer is formed: a quadric the
+    short test finds an ellipsoid needs none (``det Q != 0``, rank 4, its type known), and the
+    others get the filtered signs of :func:`float_invariant_signs` (binary64, then
+    double-double); only a quadric with a sign neither can tell (in practice an exact zero of
+    an invariant that is not a product of zeros) goes to integer arithmetic."""
+    from quadric_contact.modes.numbers.objects import ExactMode
+
+    rows = np.asarray(rows, dtype=np.intp)
+    flags = np.zeros(rows.size, dtype=np.int8)
+    masks = np.zeros(rows.size, dtype=np.int64)
+    todo = np.arange(rows.size)
+    if not Q.rounded and rows.size:
+        # (the environment of a simulation is asked about on every call)
+        ell = certified_ellipsoid_signs(Q.rows_floats(rows))
+        masks = _ellipsoid_masks(ell)
+        todo = np.flatnonzero(ell == 0)
+        if todo.size:
+            signs = float_invariant_signs(Q.rows_floats(rows[todo]), filtered=True)
+            sure = (signs[:, :7] != _UNC).all(axis=1)
+            flags[todo[sure]] = _structural_bits(signs[sure])
+            masks[todo[sure]] = masks_from_invariant_signs(signs[sure])
+            todo = todo[~sure]
+    if todo.size:
+        signs = ExactMode().invariant_signs(Q, rows[todo])
+        flags[todo] = _structural_bits(signs)
+        masks[todo] = masks_from_invariant_signs(signs)
+    return flags, masks
+
+
+def _structural_bits(signs: np.ndarray) -> np.ndarray:
+    """Bit 0: ``det Q = 0``; bit 1: ``rank Q <= 2`` (``E4 = E3 = 0``), from certain signs."""
+    det_zero = signs[:, 6] == 0
+    return (det_zero.astype(np.int8) | ((det_zero & (signs[:, 5] == 0)).astype(np.int8) << 1)).astype(np.int8)
+
+
+def _diagnose(pairs: Pairs, which: np.ndarray) -> np.ndarray:
+    """Raise for the first really invalid pair among ``which``; return ``UNCERTAIN`` for
+    pairs flagged only because a plain float test could not see ``E`` as an ellipsoid."""
+    e_rows, q_rows = pairs.e_rows_at(which), pairs.q_rows_at(which)
+    validate_rows(pairs.E, np.unique(e_rows))
+    validate_rows(pairs.Q, np.unique(q_rows))
+    for row in np.unique(e_rows):
+        if exact_matrix(pairs.E, int(row))._ellipsoid_sign() == 0:  # type: ignore[attr-defined]
+            raise_not_ellipsoid(pairs.E, int(row))
+    return np.full(which.size, _UNC, dtype=np.int8)
