@@ -6,7 +6,7 @@ compiles the kernels of the default mode into objects (about a minute of CPU the
 machine; its on-disk cache makes a rebuild of the same sources take seconds), and the extension
 links them with numba's C runtime.  Where that fails (no C compiler, say), the build says why
 and goes on without the extension: the package then compiles its kernels at run time, as
-``quadric_contact.modes.native`` explains.  ``QUADRIC_CONTACT_NATIVE_BUILD=0`` skips it.
+``quadric_contact.modes.kernels.native`` explains.  ``QUADRIC_CONTACT_NATIVE_BUILD=0`` skips it.
 """
 
 from __future__ import annotations
