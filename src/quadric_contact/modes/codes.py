@@ -1,4 +1,5 @@
-"""The codes of the array predicates, in one place: the three-valued :class:`Sign`, the
+"""The codes of the array predicates, in one place (the integers the decision table reads are
+:mod:`quadric_contact.theory.decision`'s, the layer below): the three-valued :class:`Sign`, the
 result codes of each question, ``UNCERTAIN`` and ``INVALID``, and the counts of which stage
 decided how many entries.
 
@@ -14,6 +15,7 @@ from enum import IntEnum
 from typing import Any
 
 from quadric_contact.exact.errors import UndecidedError
+from quadric_contact.theory import decision as _table
 from quadric_contact.theory.results import OverlapCode, Region
 
 __all__ = [
@@ -30,8 +32,8 @@ __all__ = [
     "StageCounts",
 ]
 
-UNCERTAIN = 2
-"""The code of 'this mode cannot tell' in every int8 array of the package (``Sign.UNCERTAIN``,
+UNCERTAIN = _table.UNCERTAIN
+"""The code of 'this mode cannot tell' (2) in every int8 array of the package (``Sign.UNCERTAIN``,
 ``ContactCode.UNCERTAIN``, ...): never read as false."""
 
 EXCLUDED = 3
@@ -49,7 +51,7 @@ class Sign(IntEnum):
     NEGATIVE = -1
     ZERO = 0
     POSITIVE = 1
-    UNCERTAIN = 2
+    UNCERTAIN = UNCERTAIN
 
     def __bool__(self) -> bool:
         if self is Sign.UNCERTAIN:
@@ -71,9 +73,9 @@ class ContactCode(IntEnum):
     never as a clearance.
     """
 
-    NO_CONTACT = 0
-    CONTACT = 1
-    UNCERTAIN = 2
+    NO_CONTACT = _table.NO_CONTACT
+    CONTACT = _table.CONTACT
+    UNCERTAIN = UNCERTAIN
 
     @property
     def transversal(self) -> bool | None:
@@ -93,7 +95,7 @@ class CriterionCode(IntEnum):
 
     ALL_REAL = 0
     NON_REAL = 1
-    UNCERTAIN = 2
+    UNCERTAIN = UNCERTAIN
 
 
 class ContactKindCode(IntEnum):
@@ -105,7 +107,7 @@ class ContactKindCode(IntEnum):
 
     NONE = 0
     TRANSVERSAL = 1
-    UNCERTAIN = 2
+    UNCERTAIN = UNCERTAIN
     TANGENT_POINT = 3
     TWO_TANGENT_POINTS = 4
     TANGENT_CURVE = 5
@@ -139,7 +141,7 @@ class SmallnessCode(IntEnum):
 
     NOT_SMALL = 0
     SMALL = 1
-    UNCERTAIN = 2
+    UNCERTAIN = UNCERTAIN
     EXCLUDED = 3
     SMALL_ENCLOSING = 4
 
@@ -172,10 +174,10 @@ class RegionCode(IntEnum):
     of a type without a row.
     """
 
-    R_MINUS = -1
-    CONTACT = 0
-    R_PLUS = 1
-    UNCERTAIN = 2
+    R_MINUS = _table.R_MINUS
+    CONTACT = _table.R_CONTACT
+    R_PLUS = _table.R_PLUS
+    UNCERTAIN = UNCERTAIN
     NO_ROW = 3
     EXCLUDED = 4
 

@@ -36,7 +36,7 @@ from quadric_contact.model.classification import (
     inertia_from_minor_sums,
     kind_from_inertia,
 )
-from quadric_contact.modes.codes import ContactCode, RegionCode
+from quadric_contact.modes.codes import UNCERTAIN, ContactCode, RegionCode
 from quadric_contact.modes.kernels._jit import njit
 from quadric_contact.theory.regions import ROOT_SIGN_TABLE
 from quadric_contact.theory.results import Region
@@ -59,7 +59,6 @@ __all__ = [
     "sign_index",
 ]
 
-UNCERTAIN = 2
 _CONCRETE = (-1, 0, 1)
 
 

@@ -61,7 +61,14 @@ from quadric_contact.model.classification import (
     TABLE_1_KINDS,
     QuadricKind,
 )
-from quadric_contact.modes.codes import ContactCode, ContactKindCode, OverlapCode, RegionCode, StageCounts
+from quadric_contact.modes.codes import (
+    UNCERTAIN,
+    ContactCode,
+    ContactKindCode,
+    OverlapCode,
+    RegionCode,
+    StageCounts,
+)
 from quadric_contact.modes.decision.answers import KINDS, UNCERTAIN_ROW, rows_from_masks
 from quadric_contact.modes.decision.separation import CROSSING, SEP_MINUS, SEP_PLUS
 from quadric_contact.modes.kernels.decision import CODE_RANGES
@@ -75,7 +82,6 @@ if TYPE_CHECKING:
 
 __all__ = ["QUESTIONS", "decide", "decide_overlap"]
 
-_UNC = 2
 
 QUESTIONS = ("contact", "region", "kind")
 
@@ -212,7 +218,7 @@ def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
     counts = StageCounts()
     if pairs.n == 0:
         mode._record(counts)
-        return np.full(0, _UNC, dtype=np.int8)
+        return np.full(0, UNCERTAIN, dtype=np.int8)
     lane = _lane(mode, pairs, question, counts)
     if lane is None:
         out = _decide_steps(mode, pairs, question, counts)
@@ -277,12 +283,12 @@ def _lane_rules(
     by the rules of steps 1 and 2 (:func:`_criterion_answers`, :func:`_from_separation`), and
     which step gave each (0: the criterion, 1: the separation, 2: neither, the pair goes on
     to the general steps).  The lane reads them from :func:`_lane_table`."""
-    out = np.full(crit.shape, _UNC, dtype=np.int8)
+    out = np.full(crit.shape, UNCERTAIN, dtype=np.int8)
     todo = qsign != 0
     _criterion_answers(crit, qsign, question, out, todo)
     step = np.where(todo | (qsign == 0), 2, 0).astype(np.int8)
     values = _from_separation(sep, question)
-    hit = todo & (values != _UNC)
+    hit = todo & (values != UNCERTAIN)
     out[hit] = values[hit]
     step[hit] = 1
     return out, step
@@ -296,10 +302,10 @@ def _overlap_lane_rules(
     lane = qsign != 0
     side = _side(crit, qsign)
     out = _overlap_from_criterion(crit, side, True)
-    out[~lane] = _UNC
-    by_crit = lane & (out != _UNC)
+    out[~lane] = UNCERTAIN
+    by_crit = lane & (out != UNCERTAIN)
     values = _overlap_from_separation(sep, qsign, True, side)
-    hit = lane & ~by_crit & (values != _UNC)
+    hit = lane & ~by_crit & (values != UNCERTAIN)
     out[hit] = values[hit]
     step = np.full(crit.shape, 2, dtype=np.int8)
     step[by_crit] = 0
@@ -357,7 +363,7 @@ def _criterion_answers(crit: np.ndarray, qsign: Any, question: str, out: np.ndar
 def _decide_steps(mode: NumberMode, pairs: Pairs, question: str, counts: StageCounts) -> np.ndarray:
     """:func:`decide`, step by step (the counts go to ``counts``)."""
     n = pairs.n
-    out = np.full(n, _UNC, dtype=np.int8)
+    out = np.full(n, UNCERTAIN, dtype=np.int8)
     todo = np.ones(n, dtype=bool)
 
     def settle(which: np.ndarray | bool, values: Any, label: str) -> None:
@@ -452,7 +458,7 @@ def _decide_steps(mode: NumberMode, pairs: Pairs, question: str, counts: StageCo
         sep, names, which = _staged(mode, "separation", pairs.take(rest))
         values = _from_separation(sep, question)
         for k, name in enumerate(names):
-            hit = np.flatnonzero((which == k) & (values != _UNC))
+            hit = np.flatnonzero((which == k) & (values != UNCERTAIN))
             settle_at(rest[hit], values[hit], f"separation ({name})")
 
     # 4. the exact scalar predicates, pair by pair.
@@ -483,7 +489,7 @@ def _confirm_crossings(
     sure = guard.criterion_contact(pairs.take(said))
     reopen = said[sure != int(ContactCode.CONTACT)]
     if reopen.size:
-        out[reopen] = _UNC
+        out[reopen] = UNCERTAIN
         todo[reopen] = True
         counts.decided[label] -= int(reopen.size)
 
@@ -526,7 +532,7 @@ def _contact_with_signs(
     crit = (signs == int(RegionCode.CONTACT)).view(np.int8)
     # UNCERTAIN, and EXCLUDED (a type without a row of Table 4, or without real points: the
     # reading does not say whether the roots are real there), go to the contact criterion
-    unsure = np.flatnonzero((signs == _UNC) | (signs == int(RegionCode.EXCLUDED)))
+    unsure = np.flatnonzero((signs == UNCERTAIN) | (signs == int(RegionCode.EXCLUDED)))
     names = [str(getattr(s, "stage", s.name)) for s in getattr(mode, "stages", (mode,))]
     which = np.zeros(pairs.n, dtype=np.int8)
     deciding = {0} if unsure.size < pairs.n else set()
@@ -543,7 +549,7 @@ def _separation_table(question: str) -> np.ndarray:
     """The answer to ``question`` for each separation code (``SEP_MINUS``, ``CROSSING``,
     ``SEP_PLUS``, ``UNCERTAIN``, and the lane's ``NOT_RUN``), at the code plus one: apart means
     no contact, a crossing transversal contact, the region is the code itself."""
-    table = np.full(5, _UNC, dtype=np.int8)
+    table = np.full(5, UNCERTAIN, dtype=np.int8)
     for code in (SEP_MINUS, CROSSING, SEP_PLUS):
         crossing = code == CROSSING
         answer: int
@@ -562,7 +568,7 @@ _SEPARATION_TABLES = {question: _separation_table(question) for question in ("co
 
 def _from_separation(sep: np.ndarray, question: str) -> np.ndarray:
     """The answers the separation codes ``sep`` give to ``question`` (:func:`_separation_table`;
-    ``_UNC`` where the code is uncertain or the separation was not run): one lookup a pair."""
+    ``UNCERTAIN`` where the code is uncertain or the separation was not run): one lookup a pair."""
     table = _SEPARATION_TABLES["kind" if question not in ("contact", "region") else question]
     return table[sep + np.int8(1)]
 
@@ -669,7 +675,7 @@ def _decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
     counts = StageCounts()
     if pairs.n == 0:
         mode._record(counts)
-        return np.full(0, _UNC, dtype=np.int8)
+        return np.full(0, UNCERTAIN, dtype=np.int8)
     lane = _lane(mode, pairs, "overlap", counts)
     if lane is None:
         out = _overlap_steps(mode, pairs, counts)
@@ -684,7 +690,7 @@ def _decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
 def _overlap_steps(mode: NumberMode, pairs: Pairs, counts: StageCounts) -> np.ndarray:
     """:func:`_decide_overlap`, step by step (the counts go to ``counts``)."""
     n = pairs.n
-    out = np.full(n, _UNC, dtype=np.int8)
+    out = np.full(n, UNCERTAIN, dtype=np.int8)
     todo = np.ones(n, dtype=bool)
 
     def settle(which: np.ndarray, values: Any, label: str) -> None:
@@ -716,7 +722,7 @@ def _overlap_steps(mode: NumberMode, pairs: Pairs, counts: StageCounts) -> np.nd
     said = _overlap_from_criterion(crit, side, plane | ellipsoid)
     for k, name in enumerate(names):
         here = which == k
-        settle(here & (said != _UNC), said, f"criterion ({name})")
+        settle(here & (said != UNCERTAIN), said, f"criterion ({name})")
     said = np.flatnonzero(~todo & (crit == int(RegionCode.CONTACT)))
     _confirm_crossings(mode, pairs, said, out, todo, counts, f"criterion ({names[0]})")
 
@@ -728,7 +734,7 @@ def _overlap_steps(mode: NumberMode, pairs: Pairs, counts: StageCounts) -> np.nd
         # an ellipsoid Q whose side step 1 could not read (a rounded cylinder or paraboloid,
         # nearly singular): the surface of E misses Q's solid, so either the solids are apart
         # or Q is inside E, and the centre of Q (in its solid) tells which
-        open_ = np.flatnonzero((values == _UNC) & (sep * qsign[rest] == SEP_PLUS) & ellipsoid[rest])
+        open_ = np.flatnonzero((values == UNCERTAIN) & (sep * qsign[rest] == SEP_PLUS) & ellipsoid[rest])
         if open_.size:
             where_ = _centre_side(pairs, rest[open_])
             values[open_[where_ > 0]] = OverlapCode.SEPARATE
@@ -736,28 +742,28 @@ def _overlap_steps(mode: NumberMode, pairs: Pairs, counts: StageCounts) -> np.nd
         for k, name in enumerate(names):
             here = np.zeros(n, dtype=bool)
             here[rest[which == k]] = True
-            full = np.full(n, _UNC, dtype=np.int8)
+            full = np.full(n, UNCERTAIN, dtype=np.int8)
             full[rest] = values
-            settle(here & (full != _UNC), full, f"separation ({name})")
+            settle(here & (full != UNCERTAIN), full, f"separation ({name})")
 
     # 2b. an ellipsoid or a plane whose side the first stage could not read (a tangency of exact
     # input): the side read by the whole cascade, where step 1's rules use it (E in the solid
     # of an ellipsoid or on the solid's side of a plane: overlapping).
-    rest = np.flatnonzero(todo & (side == _UNC) & (plane | ellipsoid))
+    rest = np.flatnonzero(todo & (side == UNCERTAIN) & (plane | ellipsoid))
     if rest.size:
         crit, names, which = _staged(mode, "criterion_region", pairs.take(rest))
         values = _overlap_from_criterion(crit, _side(crit, qsign[rest]), True)
         for k, name in enumerate(names):
             here = np.zeros(n, dtype=bool)
-            here[rest[(which == k) & (values != _UNC)]] = True
-            full = np.full(n, _UNC, dtype=np.int8)
+            here[rest[(which == k) & (values != UNCERTAIN)]] = True
+            full = np.full(n, UNCERTAIN, dtype=np.int8)
             full[rest] = values
             settle(here, full, f"criterion ({name})")
 
     # 3. the exact decision, pair by pair.
     rest = np.flatnonzero(todo)
     if rest.size and getattr(mode, "complete", False):
-        full = np.full(n, _UNC, dtype=np.int8)
+        full = np.full(n, UNCERTAIN, dtype=np.int8)
         full[rest] = _exact_overlaps(pairs, rest)
         here = np.zeros(n, dtype=bool)
         here[rest] = True
@@ -770,14 +776,14 @@ def _side(crit: np.ndarray, qsign: Any) -> np.ndarray:
     """The criterion's side of ``Q``'s solid: -1 in it, 1 outside (``R-``/``R+`` of the canonical
     sign), ``UNCERTAIN`` where the criterion read no side."""
     sided = (crit == int(RegionCode.R_MINUS)) | (crit == int(RegionCode.R_PLUS))
-    return np.where(sided, crit * qsign, _UNC).astype(np.int8)
+    return np.where(sided, crit * qsign, UNCERTAIN).astype(np.int8)
 
 
 def _overlap_from_criterion(crit: np.ndarray, side: np.ndarray, sided_solid: Any) -> np.ndarray:
     """Step 1 of the overlap question: non-real roots, the surfaces cross (Remark 9); ``E`` on
     the solid's side of a plane (Theorem 14) or, for two ellipsoids, no positive root
     (Wang-Wang-Kim): overlapping (``sided_solid``: ``Q`` a plane or an ellipsoid)."""
-    values = np.full(crit.shape, _UNC, dtype=np.int8)
+    values = np.full(crit.shape, UNCERTAIN, dtype=np.int8)
     values[crit == int(RegionCode.CONTACT)] = OverlapCode.OVERLAPPING
     values[(side == int(RegionCode.R_MINUS)) & np.asarray(sided_solid, dtype=bool)] = OverlapCode.OVERLAPPING
     return values
@@ -791,7 +797,7 @@ def _overlap_from_separation(sep: np.ndarray, qsign: Any, ellipsoid: Any, side: 
     in :func:`_overlap_steps`).  (A plain mode that took "outside" for "apart" called a small
     ball inside a large one separate.)"""
     sep_side = np.where((sep == SEP_MINUS) | (sep == SEP_PLUS), sep * qsign, sep)
-    values = np.full(sep.shape, _UNC, dtype=np.int8)
+    values = np.full(sep.shape, UNCERTAIN, dtype=np.int8)
     values[(sep_side == CROSSING) | (sep_side == SEP_MINUS)] = OverlapCode.OVERLAPPING
     outside = sep_side == SEP_PLUS
     two_positive = side == int(RegionCode.R_PLUS)

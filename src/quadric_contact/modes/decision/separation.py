@@ -63,6 +63,7 @@ from typing import Any
 import numpy as np
 
 from quadric_contact._generated import formulas, kernels
+from quadric_contact.modes.codes import UNCERTAIN
 from quadric_contact.modes.kernels import errorbounds as eb
 from quadric_contact.modes.kernels._jit import njit as _njit
 from quadric_contact.modes.kernels._jit import python_twin
@@ -84,7 +85,6 @@ __all__ = [
 SEP_MINUS = -1
 CROSSING = 0
 SEP_PLUS = 1
-UNCERTAIN = 2
 
 _pencil = _njit(formulas.pencil_coefficients, inline=True)
 _invariants = _njit(kernels.quadric_invariants, inline=True)

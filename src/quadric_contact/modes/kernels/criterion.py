@@ -35,7 +35,7 @@ from typing import Any
 import numpy as np
 
 from quadric_contact._generated import blocks, formulas, kernels
-from quadric_contact.modes.codes import INVALID
+from quadric_contact.modes.codes import INVALID, UNCERTAIN
 from quadric_contact.modes.decision.answers import CONTACT_TABLE, ROWS, region_code_masked
 from quadric_contact.modes.kernels import errorbounds as eb
 from quadric_contact.modes.kernels._jit import njit
@@ -61,7 +61,6 @@ larger blocks evict each other's rows (measured: 64 pairs per block is a third s
 FALLBACK = 6
 """Internal code of the fast kernels: the general kernels must decide this pair."""
 
-_UNC = 2
 
 # compile-time constants of the kernels
 _SP0, _SP1, _SP2, _SP3, _SP4 = eb.SEMI_PENCIL
@@ -237,7 +236,7 @@ def _float_core(e: Any, q: Any, c: Any, r0: float, plane: bool, guard: bool) -> 
 
 
 _TABLE = np.concatenate(
-    [np.where(CONTACT_TABLE == _UNC, FALLBACK, CONTACT_TABLE), [FALLBACK, INVALID]]
+    [np.where(CONTACT_TABLE == UNCERTAIN, FALLBACK, CONTACT_TABLE), [FALLBACK, INVALID]]
 ).astype(np.int8)
 """The contact code of a table index (0 .. 63), with :data:`FALLBACK` where the signs leave it
 uncertain, and two more entries: 64 fall back, 65 invalid."""
@@ -257,7 +256,7 @@ def region_out(idx: float, sb: Any, i: int, S: int, row: int, mask: int) -> int:
         code, int(sb[i]), int(sb[S + i]), int(sb[2 * S + i]), int(sb[3 * S + i]), int(sb[4 * S + i]),
         row, mask, ROWS,
     )  # fmt: skip
-    return FALLBACK if region == _UNC else int(region)
+    return FALLBACK if region == UNCERTAIN else int(region)
 
 
 @njit(inline=True)

@@ -50,8 +50,8 @@ import numpy as np
 
 from quadric_contact._generated import blocks
 from quadric_contact.model.classification import QuadricKind
-from quadric_contact.modes.codes import ContactCode, RegionCode
-from quadric_contact.modes.decision.answers import ROWS, UNCERTAIN, region_code_masked, row_of
+from quadric_contact.modes.codes import UNCERTAIN, ContactCode, RegionCode
+from quadric_contact.modes.decision.answers import ROWS, region_code_masked, row_of
 from quadric_contact.modes.kernels import errorbounds as eb
 from quadric_contact.modes.kernels._jit import HAVE_NUMBA, python_twin
 from quadric_contact.modes.kernels._jit import njit as _njit

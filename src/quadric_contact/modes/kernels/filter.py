@@ -26,7 +26,7 @@ from typing import Any
 import numpy as np
 
 from quadric_contact._generated import blocks, formulas, kernels
-from quadric_contact.modes.codes import INVALID
+from quadric_contact.modes.codes import INVALID, UNCERTAIN
 from quadric_contact.modes.decision.answers import (
     CONTACT_TABLE,
     ELLIPSOID_NOT,
@@ -41,7 +41,6 @@ from quadric_contact.modes.kernels._jit import njit as _njit
 
 __all__ = ["NB", "filter_kernel", "float_kernel"]
 
-_UNC = 2
 NB = 32
 """Pairs per block; the block buffers are 1-D, row ``k`` at ``k * NB`` (constant offsets from one
 base pointer: the compiled loops then need no run-time overlap checks and vectorise)."""
@@ -78,7 +77,7 @@ def _sgn(v: float, err: float) -> int:
         return -1
     if err == 0.0:
         return 0
-    return _UNC
+    return UNCERTAIN
 
 
 @_njit(inline=True)
@@ -93,7 +92,7 @@ def _psgn(v: float) -> int:
 
 @_njit(inline=True)
 def _sidx(s: int) -> int:
-    return 3 if s == _UNC else s + 1
+    return 3 if s == UNCERTAIN else s + 1
 
 
 @_njit(inline=True)
@@ -461,8 +460,8 @@ def _filter_decide(ra: Any, rc: Any, i: int, DR: Any, DA: Any, want_region: bool
     if ell == ELLIPSOID_NOT:
         return INVALID
     if ra[_OUT * _NB + i] + rc[_OUT2 * _NB + i] != 0.0 or ell == ELLIPSOID_UNCERTAIN:
-        return _UNC
-    contact = _UNC
+        return UNCERTAIN
+    contact = UNCERTAIN
     y0 = rc[_Y * _NB + i]
     y1 = rc[(_Y + 1) * _NB + i]
     y2 = rc[(_Y + 2) * _NB + i]
@@ -482,7 +481,7 @@ def _filter_decide(ra: Any, rc: Any, i: int, DR: Any, DA: Any, want_region: bool
         g3 = _sgn(rc[(_D + 1) * _NB + i], (DR[1, 0] * rho + DR[1, 1]) * rc[(_DE + 1) * _NB + i])
         g4 = _sgn(rc[(_D + 2) * _NB + i], (DR[2, 0] * rho + DR[2, 1]) * rc[(_DE + 2) * _NB + i])
         contact = CONTACT_TABLE[_sidx(g2) + 4 * _sidx(g3) + 16 * _sidx(g4)]
-    if contact == _UNC:
+    if contact == UNCERTAIN:
         # The absolute form: magnitudes at a and at b >= a + e (two programs).
         a0 = abs(rc[_X * _NB + i])
         a1 = abs(rc[(_X + 1) * _NB + i])

@@ -14,7 +14,7 @@ import numpy as np
 
 from quadric_contact._generated import blocks, dd_programs, formulas, kernels
 from quadric_contact.exact.entries import ENTRY_INDICES
-from quadric_contact.modes.codes import INVALID
+from quadric_contact.modes.codes import INVALID, UNCERTAIN
 from quadric_contact.modes.decision.answers import (
     CONTACT_TABLE,
     ELLIPSOID_NOT,
@@ -36,7 +36,6 @@ __all__ = [
     "screen_quantities",
 ]
 
-_UNC = 2
 _QUADRATIC_PART = (0, 1, 2, 4, 5, 7)
 """Positions of ``q00, q01, q02, q11, q12, q22`` among the ten upper entries."""
 _NO_EXPONENT = -100000
@@ -57,12 +56,12 @@ _NUMPY_CHUNK = 1 << 16
 def _numpy_sign(v: np.ndarray, err: np.ndarray | None) -> np.ndarray:
     if err is None:
         return np.sign(v).astype(np.int8)
-    s = np.where(v > err, 1, np.where(v < -err, -1, np.where(err == 0.0, 0, _UNC)))
+    s = np.where(v > err, 1, np.where(v < -err, -1, np.where(err == 0.0, 0, UNCERTAIN)))
     return s.astype(np.int8)
 
 
 def _table_index(signs: list[np.ndarray]) -> np.ndarray:
-    return sum(m * np.where(x == _UNC, 3, x + 1) for m, x in zip((1, 4, 16), signs, strict=True))  # type: ignore[return-value]
+    return sum(m * np.where(x == UNCERTAIN, 3, x + 1) for m, x in zip((1, 4, 16), signs, strict=True))  # type: ignore[return-value]
 
 
 def _split_np(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -167,7 +166,7 @@ def filter_quantities(
         rel = [_numpy_sign(d[j], bound_rel[j]) for j in range(3)]
         absolute = [_numpy_sign(d[j], bound_abs[j]) for j in range(3)]
         tier_a = CONTACT_TABLE[_table_index(rel)]
-        use_b = (rho > eb.RHO_MAX) | (tier_a == _UNC)
+        use_b = (rho > eb.RHO_MAX) | (tier_a == UNCERTAIN)
         ds = [np.where(use_b, absolute[j], rel[j]).astype(np.int8) for j in range(3)]
         cs = [_numpy_sign(x[t], y[t]) for t in range(5)]
     return {
@@ -346,7 +345,7 @@ def numpy_pairs(
         else:
             code = contact.astype(np.int8)
         if filtered:
-            code = np.where(fq["outside"] | (ell == ELLIPSOID_UNCERTAIN), _UNC, code)
+            code = np.where(fq["outside"] | (ell == ELLIPSOID_UNCERTAIN), UNCERTAIN, code)
             invalid = bad | (ell == ELLIPSOID_NOT)
             if sq is not None:
                 # the screen first: where it is sure, its answer (the filter agrees where both are)
@@ -357,7 +356,7 @@ def numpy_pairs(
                     )
                 else:
                     s_code = s_contact.astype(np.int8)
-                screened = sq["ok"] & (s_code != _UNC)
+                screened = sq["ok"] & (s_code != UNCERTAIN)
                 code = np.where(screened, s_code, code)
         else:
             invalid = bad | (ell != ELLIPSOID_YES)
@@ -370,7 +369,7 @@ def _numpy_dd_sign(v: tuple[np.ndarray, np.ndarray], err: np.ndarray) -> np.ndar
     hi, lo = v
     pos = (hi > err) | ((hi == err) & (lo > 0))
     neg = (hi < -err) | ((hi == -err) & (lo < 0))
-    return np.where(pos, 1, np.where(neg, -1, np.where(err == 0, 0, _UNC))).astype(np.int8)
+    return np.where(pos, 1, np.where(neg, -1, np.where(err == 0, 0, UNCERTAIN))).astype(np.int8)
 
 
 def _dd_read(
@@ -412,7 +411,7 @@ def dd_invariant_quantities(Qm: np.ndarray) -> dict[str, Any]:
         "hi": [v[0] for v in w],
         "lo": [v[1] for v in w],
         "bound": bounds,
-        "signs": np.where(outside[:, None], _UNC, signs).astype(np.int8),
+        "signs": np.where(outside[:, None], UNCERTAIN, signs).astype(np.int8),
         "outside": outside,
     }
 
@@ -435,15 +434,15 @@ def numpy_invariant_signs(
             ).any(axis=0)
         for k in range(7):
             if filtered:
-                out[:, k] = np.where(outside, _UNC, _numpy_sign(v[k], K[k] * mags[k]))
+                out[:, k] = np.where(outside, UNCERTAIN, _numpy_sign(v[k], K[k] * mags[k]))
             else:
                 out[:, k] = _numpy_sign(v[k], None)
         if filtered and KD is not None:
-            todo = np.flatnonzero(~outside & (out[:, :7] == _UNC).any(axis=1))
+            todo = np.flatnonzero(~outside & (out[:, :7] == UNCERTAIN).any(axis=1))
             if todo.size:
                 w, bounds = _dd_read([x[todo] for x in q], [m[todo] for m in mags], *KD)
                 for k in range(7):
                     s = _numpy_dd_sign(w[k], bounds[k])
-                    out[todo, k] = np.where(out[todo, k] == _UNC, s, out[todo, k])
+                    out[todo, k] = np.where(out[todo, k] == UNCERTAIN, s, out[todo, k])
     out[:, 7] = np.sign(q[9]).astype(np.int8)
     return out

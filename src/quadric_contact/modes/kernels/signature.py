@@ -44,7 +44,8 @@ from typing import Any
 import numpy as np
 
 from quadric_contact._generated import blocks, kernels
-from quadric_contact.modes.decision.separation import UNCERTAIN, _separation_one
+from quadric_contact.modes.codes import UNCERTAIN
+from quadric_contact.modes.decision.separation import _separation_one
 from quadric_contact.modes.kernels import errorbounds as eb
 from quadric_contact.modes.kernels._jit import HAVE_NUMBA, python_twin
 from quadric_contact.modes.kernels._jit import njit as _njit

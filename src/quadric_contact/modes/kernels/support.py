@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from quadric_contact._generated import blocks, dd_programs, kernels
+from quadric_contact.modes.codes import UNCERTAIN
 from quadric_contact.modes.decision.answers import ROWS, region_code_masked
 from quadric_contact.modes.kernels import double_double as dd
 from quadric_contact.modes.kernels import errorbounds as eb
@@ -24,7 +25,6 @@ __all__ = [
     "region_codes_kernel",
 ]
 
-_UNC = 2
 _INPUT_MIN = eb.INPUT_MIN
 _INPUT_MAX = eb.INPUT_MAX
 _FLOAT_MAX = float(np.finfo(np.float64).max)
@@ -55,7 +55,7 @@ def _sgn(v: float, err: float) -> int:
         return -1
     if err == 0.0:
         return 0
-    return _UNC
+    return UNCERTAIN
 
 
 @_njit(inline=True)
@@ -79,7 +79,7 @@ def _dd_sgn(v: Any, err: float) -> int:
         return -1
     if err == 0.0:
         return 0
-    return _UNC
+    return UNCERTAIN
 
 
 def _invariant_signs_impl(
@@ -107,9 +107,9 @@ def _invariant_signs_impl(
         mags = _invariants_mag(a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8], a[9])
         unsure = g != 0
         for k in range(7):
-            s = _UNC if g != 0 else _sgn(v[k], K[k] * mags[k])
+            s = UNCERTAIN if g != 0 else _sgn(v[k], K[k] * mags[k])
             out[p, k] = s
-            unsure |= s == _UNC
+            unsure |= s == UNCERTAIN
         if dd and unsure and g == 0:
             C = _adjugate_dd(
                 _two_sum, _two_prod, _dd_add, _dd_sub, _dd_mul_d, _dd_scale, q00, q01, q02, q11, q12, q22
@@ -123,7 +123,7 @@ def _invariant_signs_impl(
                 abs(C[0][0]), abs(C[1][0]), abs(C[2][0]), abs(C[3][0]), abs(C[4][0]), abs(C[5][0]),
             )  # fmt: skip
             for k in range(7):
-                if out[p, k] == _UNC:
+                if out[p, k] == UNCERTAIN:
                     b = KD[k] * mags[k]
                     for j in range(3):
                         if eb.COFACTOR_AT[j] == k:

@@ -28,7 +28,7 @@ import numpy as np
 
 from quadric_contact.exact.errors import ChoiceError
 from quadric_contact.model.classification import QuadricKind
-from quadric_contact.modes.codes import INVALID
+from quadric_contact.modes.codes import INVALID, UNCERTAIN
 from quadric_contact.modes.decision.answers import (
     UNCERTAIN_ROW,
     masks_from_invariant_signs,
@@ -68,8 +68,6 @@ __all__ = [
 BACKENDS = ("numba", "numpy") if HAVE_NUMBA else ("numpy",)
 BLOCK = NB
 """Pairs per block of the numba kernels."""
-
-_UNC = 2
 
 
 # -- the general path -----------------------------------------------------------------------
@@ -212,10 +210,10 @@ def stage_codes(E: np.ndarray, Q: np.ndarray, stage: str, *, backend: str = "num
                 E.reshape(-1, 16), Q.reshape(-1, 16), False, False, (e0, e0, 1, 1), n, filtered=True,
                 qrows=None, qmasks=None, run=lambda k, m: k(0, m),
             )  # fmt: skip
-            return np.where(out == FALLBACK, _UNC, out).astype(np.int8)
+            return np.where(out == FALLBACK, UNCERTAIN, out).astype(np.int8)
         sq = screen_quantities(E, Q)
         code = CONTACT_TABLE[_table_index(sq["signs"][5:])]
-        return np.where(sq["ok"], code, _UNC).astype(np.int8)
+        return np.where(sq["ok"], code, UNCERTAIN).astype(np.int8)
     if backend == "numba" and HAVE_NUMBA:
         from quadric_contact.modes.kernels.filter import filter_kernel
 
@@ -230,7 +228,7 @@ def stage_codes(E: np.ndarray, Q: np.ndarray, stage: str, *, backend: str = "num
         return out
     q = filter_quantities(E, Q)
     code = CONTACT_TABLE[_table_index(q["signs"][5:])]
-    code = np.where(q["outside"] | (q["ell"] == ELLIPSOID_UNCERTAIN), _UNC, code)
+    code = np.where(q["outside"] | (q["ell"] == ELLIPSOID_UNCERTAIN), UNCERTAIN, code)
     bad = ~(np.isfinite(E).all(axis=(1, 2)) & np.isfinite(Q).all(axis=(1, 2)))
     bad |= ~((np.swapaxes(E, 1, 2) == E).all(axis=(1, 2)) & (np.swapaxes(Q, 1, 2) == Q).all(axis=(1, 2)))
     return np.where(bad | (q["ell"] == ELLIPSOID_NOT), INVALID, code).astype(np.int8)
@@ -417,7 +415,7 @@ class FloatMode(NumberMode):
         signs = float_invariant_signs(
             Q.rows_floats(used), filtered=True, rounded=Q.rounded, backend=self.backend
         )
-        maybe = used[(signs[:, 6] == 0) | (signs[:, 6] == _UNC)]
+        maybe = used[(signs[:, 6] == 0) | (signs[:, 6] == UNCERTAIN)]
         if maybe.size:
             flags[maybe] = exact_facts(Q, maybe)[0]
         return flags
@@ -433,7 +431,7 @@ class FloatMode(NumberMode):
         if invalid.size:
             codes[invalid] = _diagnose(pairs, invalid)
         if self.filtered:
-            todo = where(_UNC)
+            todo = where(UNCERTAIN)
             if todo.size:
                 # Second pass with exact facts about the quadrics involved (once per quadric):
                 # structural zeros of c0, c1 and, for regions, the exact type.
@@ -448,7 +446,7 @@ class FloatMode(NumberMode):
                     types = (rows_from_masks(masks), masks)
                 if flags.any() or types is not None:
                     again, _ = self._kernel(pairs.take(todo), types, flags)
-                    codes[todo] = np.where(again == INVALID, _UNC, again)
+                    codes[todo] = np.where(again == INVALID, UNCERTAIN, again)
         return codes, maybe
 
     def criterion_contact(self, pairs: Pairs) -> np.ndarray:
@@ -601,7 +599,7 @@ def exact_facts(Q: MatrixStack, rows: np.ndarray) -> tuple[np.ndarray, np.ndarra
         todo = np.flatnonzero(ell == 0)
         if todo.size:
             signs = float_invariant_signs(Q.rows_floats(rows[todo]), filtered=True)
-            sure = (signs[:, :7] != _UNC).all(axis=1)
+            sure = (signs[:, :7] != UNCERTAIN).all(axis=1)
             flags[todo[sure]] = _structural_bits(signs[sure])
             masks[todo[sure]] = masks_from_invariant_signs(signs[sure])
             todo = todo[~sure]
@@ -627,4 +625,4 @@ def _diagnose(pairs: Pairs, which: np.ndarray) -> np.ndarray:
     for row in np.unique(e_rows):
         if exact_matrix(pairs.E, int(row))._ellipsoid_sign() == 0:  # type: ignore[attr-defined]
             raise_not_ellipsoid(pairs.E, int(row))
-    return np.full(which.size, _UNC, dtype=np.int8)
+    return np.full(which.size, UNCERTAIN, dtype=np.int8)

@@ -17,6 +17,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from quadric_contact.modes.codes import UNCERTAIN
 from quadric_contact.modes.decision.answers import UNCERTAIN_ROW
 from quadric_contact.modes.numbers.binary64 import FilterMode
 from quadric_contact.modes.numbers.number_mode import NumberMode
@@ -26,7 +27,6 @@ from quadric_contact.modes.stacks.rows import set_rows
 
 __all__ = ["CertifiedMode"]
 
-_UNC = 2
 _UNCERTAIN_BIT = 1 << UNCERTAIN_ROW
 
 
@@ -81,7 +81,7 @@ class CertifiedMode(NumberMode):
         stages = self.stages
         codes, maybe = stages[0].with_candidates(method, pairs)
         # the entries the first stage left: among ``maybe`` when it says where they can be
-        todo = set_rows(codes == _UNC) if maybe is None else maybe[codes[maybe] == _UNC]
+        todo = set_rows(codes == UNCERTAIN) if maybe is None else maybe[codes[maybe] == UNCERTAIN]
         later = todo
         which = np.zeros(pairs.n, dtype=np.int8)  # 0 decided by the first stage
         which[todo] = -1  # not yet
@@ -93,7 +93,7 @@ class CertifiedMode(NumberMode):
                 continue
             sub = getattr(stage, method)(pairs.take(todo))
             codes[todo] = sub
-            done = sub != _UNC
+            done = sub != UNCERTAIN
             which[todo[done]] = k
             todo = todo[~done]
         return codes, [_stage(s) for s in stages], which, later

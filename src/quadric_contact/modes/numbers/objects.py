@@ -24,6 +24,7 @@ import numpy as np
 from quadric_contact._generated import blocks, formulas, kernels
 from quadric_contact.exact.errors import ChoiceError
 from quadric_contact.exact.precision import working_precision
+from quadric_contact.modes.codes import UNCERTAIN
 from quadric_contact.modes.decision.answers import (
     ELLIPSOID_NOT,
     ELLIPSOID_UNCERTAIN,
@@ -39,8 +40,6 @@ from quadric_contact.modes.stacks.pairs import MatrixStack, Pairs
 from quadric_contact.modes.stacks.validation import raise_not_ellipsoid, validate_rows
 
 __all__ = ["BallMode", "ExactMode", "MpmathMode", "ObjectMode"]
-
-_UNC = 2
 
 
 class ObjectMode(NumberMode):
@@ -120,7 +119,7 @@ class ObjectMode(NumberMode):
         bad = ell == ELLIPSOID_NOT
         if bad.any():
             raise_not_ellipsoid(pairs.E, int(e_rows[np.argmax(bad)]))
-        return np.where(ell == ELLIPSOID_UNCERTAIN, _UNC, codes).astype(np.int8)
+        return np.where(ell == ELLIPSOID_UNCERTAIN, UNCERTAIN, codes).astype(np.int8)
 
     def number(self, value: float) -> Any:
         """A float sample point as a number of this mode (exactly)."""
@@ -188,7 +187,7 @@ def _proportional_exact(pairs: Pairs, e_rows: np.ndarray, q_rows: np.ndarray) ->
 
 
 def _neg(s: np.ndarray) -> np.ndarray:
-    return np.where(s == _UNC, _UNC, -s).astype(np.int8)
+    return np.where(s == UNCERTAIN, UNCERTAIN, -s).astype(np.int8)
 
 
 _RHO_EXACT = 2.0**-52
@@ -212,7 +211,7 @@ def filtered_delta_signs(c: list[np.ndarray]) -> np.ndarray:
     :data:`~quadric_contact.modes.kernels.errorbounds.COEFFICIENT_MIN` (no subnormal intermediate).  A
     coefficient beyond binary64's range, or a pair outside that guard, is ``UNCERTAIN``."""
     n = len(c[0])
-    out = np.full((n, 3), _UNC, dtype=np.int8)
+    out = np.full((n, 3), UNCERTAIN, dtype=np.int8)
     if n == 0:
         return out
     cols_in = [np.asarray(x, dtype=object) for x in c]
@@ -234,8 +233,8 @@ def filtered_delta_signs(c: list[np.ndarray]) -> np.ndarray:
         d, A = both[:3], both[3:]
         for j, ((R, G), dj, Aj) in enumerate(zip(eb.SEMI_DELTA, d, A, strict=True)):
             bound = (R * _RHO_EXACT + G) * Aj
-            sign = np.where(dj > bound, 1, np.where(dj < -bound, -1, np.where(bound == 0, 0, _UNC)))
-            out[:, j] = np.where(ok, sign, _UNC)
+            sign = np.where(dj > bound, 1, np.where(dj < -bound, -1, np.where(bound == 0, 0, UNCERTAIN)))
+            out[:, j] = np.where(ok, sign, UNCERTAIN)
     return out
 
 
@@ -342,7 +341,7 @@ class ExactMode(ObjectMode):
         a multiple root: tangencies).  Exact either way; the integer Deltas of coefficients of
         hundreds of bits were most of the exact stage's time."""
         sd = filtered_delta_signs(c)
-        todo = np.flatnonzero((sd == _UNC).any(axis=1))
+        todo = np.flatnonzero((sd == UNCERTAIN).any(axis=1))
         if todo.size:
             sub = [x[todo] for x in c]
             sd[todo] = np.stack([self.signs(x) for x in self.deltas(sub)], axis=1)
@@ -357,7 +356,7 @@ class ExactMode(ObjectMode):
         from quadric_contact.modes.decision.separation import separation_isolated
 
         codes = super().separation(pairs)
-        todo = np.flatnonzero(codes == _UNC)
+        todo = np.flatnonzero(codes == UNCERTAIN)
         if todo.size:
             codes[todo] = separation_isolated(pairs.take(todo))
         return codes
@@ -423,7 +422,7 @@ class BallMode(ObjectMode):
         pos = np.asarray(values > 0, dtype=bool)
         neg = np.asarray(values < 0, dtype=bool)
         zero = np.frompyfunc(lambda x: x.is_zero(), 1, 1)(values).astype(bool)
-        return np.where(pos, 1, np.where(neg, -1, np.where(zero, 0, _UNC))).astype(np.int8)
+        return np.where(pos, 1, np.where(neg, -1, np.where(zero, 0, UNCERTAIN))).astype(np.int8)
 
     def smallness(self, pairs: Pairs) -> np.ndarray:
         from quadric_contact.modes.smallness.objects import BallNumbers, object_smallness

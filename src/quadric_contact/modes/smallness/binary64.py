@@ -96,7 +96,7 @@ import numpy as np
 
 from quadric_contact._generated import kernels
 from quadric_contact.exact.errors import ChoiceError
-from quadric_contact.modes.codes import INVALID
+from quadric_contact.modes.codes import EXCLUDED, INVALID, UNCERTAIN
 from quadric_contact.modes.kernels import errorbounds as eb
 from quadric_contact.modes.kernels._jit import HAVE_NUMBA, numba, route_native, stamp_with_sources
 from quadric_contact.modes.smallness.tables import (
@@ -128,8 +128,6 @@ __all__ = [
     "table_kinds",
 ]
 
-_UNC = 2
-_EXCL = 3
 _U = eb.UNIT_ROUNDOFF
 
 # -- constants, derived in exact arithmetic --------------------------------------------------------
@@ -327,7 +325,7 @@ _inv_mag = kernels.quadric_invariants_magnitude
 
 def _sign(v: Any, e: Any) -> Any:
     """Three-valued sign of a value known to within ``e`` (``e == 0``: exact)."""
-    return select(v > e, 1, select(v < -e, -1, select(e == 0.0, 0, _UNC)))
+    return select(v > e, 1, select(v < -e, -1, select(e == 0.0, 0, UNCERTAIN)))
 
 
 def _shift_signs(a00: Any, a01: Any, a02: Any, a11: Any, a12: Any, a22: Any, t: Any) -> Any:
@@ -372,8 +370,12 @@ def _below_at_most(s1: Any, s2: Any, s3: Any, j: int) -> Any:
     1, independently: the count is certainly at most 0 when no sign can be negative, at most 1
     when no sign that can be negative comes before one that can be positive (two variations
     need a ``-`` followed by a ``+``), at most 2 unless the signs can be ``-, +, -``."""
-    n1, n2, n3 = (s1 == -1) | (s1 == _UNC), (s2 == -1) | (s2 == _UNC), (s3 == -1) | (s3 == _UNC)
-    p2, p3 = (s2 == 1) | (s2 == _UNC), (s3 == 1) | (s3 == _UNC)
+    n1, n2, n3 = (
+        (s1 == -1) | (s1 == UNCERTAIN),
+        (s2 == -1) | (s2 == UNCERTAIN),
+        (s3 == -1) | (s3 == UNCERTAIN),
+    )
+    p2, p3 = (s2 == 1) | (s2 == UNCERTAIN), (s3 == 1) | (s3 == UNCERTAIN)
     if j == 0:
         return ~(n1 | n2 | n3)
     if j == 1:
@@ -663,13 +665,13 @@ _INVARIANT_OF_PRIMITIVE = (6, 2, 1, 5, 4, 0)
 def _compare(qlo: Any, qhi: Any, elo: Any, ehi: Any, rel: Any) -> Any:
     """Three-valued ``Q >= E`` (``rel == 0``) or ``Q <= E`` (``rel == 1``) on intervals:
     1 holds, 0 fails, 2 uncertain."""
-    ge = select(qlo >= ehi, 1, select(qhi < elo, 0, _UNC))
-    le = select(qhi <= elo, 1, select(qlo > ehi, 0, _UNC))
+    ge = select(qlo >= ehi, 1, select(qhi < elo, 0, UNCERTAIN))
+    le = select(qhi <= elo, 1, select(qlo > ehi, 0, UNCERTAIN))
     return select(rel == 0, ge, le)
 
 
 def _and3(a: Any, b: Any) -> Any:
-    return select((a == 0) | (b == 0), 0, select((a == 1) & (b == 1), 1, _UNC))
+    return select((a == 0) | (b == 0), 0, select((a == 1) & (b == 1), 1, UNCERTAIN))
 
 
 def _pick(values: Any, k: Any) -> Any:
@@ -696,7 +698,9 @@ def _conjunction(qv: Any, ev: Any, conds: Any, n: Any, kind: Any, width: int) ->
 
 def _verdict(inner: Any, outer: Any) -> Any:
     """The code from the three-valued direct conditions and enclosing alternative."""
-    return select(inner == 1, 1, select(inner == 0, select(outer == 1, 4, select(outer == 0, 0, _UNC)), _UNC))
+    return select(
+        inner == 1, 1, select(inner == 0, select(outer == 1, 4, select(outer == 0, 0, UNCERTAIN)), UNCERTAIN)
+    )
 
 
 def _pair_code(est: Any, ev: Any, qst: Any, qv: Any, qkind: Any) -> Any:
@@ -707,8 +711,8 @@ def _pair_code(est: Any, ev: Any, qst: Any, qv: Any, qkind: Any) -> Any:
     inner = _conjunction(qv, ev, _COND, _NCOND[k], k, MAX_CONDITIONS)
     outer = select(_NALT[k] > 0, _conjunction(qv, ev, _ALT, _NALT[k], k, MAX_ALTERNATIVE), 0)
     code = _verdict(inner, outer)
-    code = select((est == 1) | (qst == 1) | (qkind == -2), _UNC, code)
-    code = select(qkind == -1, _EXCL, code)
+    code = select((est == 1) | (qst == 1) | (qkind == -2), UNCERTAIN, code)
+    code = select(qkind == -1, EXCLUDED, code)
     return select((est == INVALID) | (qst == INVALID), INVALID, code)
 
 
@@ -728,9 +732,9 @@ def fixed_conditions(qst: int, qkind: int, qv: np.ndarray) -> tuple[np.ndarray, 
     if qst == INVALID:
         code = INVALID
     elif qkind == -1:
-        code = _EXCL
+        code = EXCLUDED
     elif qst == 1 or qkind == -2:
-        code = _UNC
+        code = UNCERTAIN
     else:
         code = -1
         rows = [(c, 0) for c in _COND[qkind, : _NCOND[qkind]]] + [(c, 1) for c in _ALT[qkind, : _NALT[qkind]]]
@@ -761,7 +765,7 @@ def _fixed_code(est: Any, e: Any, code: Any, q: Any, relations: Any, groups: Any
                   _and3(_only(r3, groups[3], 1), _only(r4, groups[4], 1)))  # fmt: skip
     alt = (groups[0] == 1) | (groups[1] == 1) | (groups[2] == 1) | (groups[3] == 1) | (groups[4] == 1)
     out = _verdict(inner, select(alt, outer, 0))
-    out = select(est == 1, _UNC, out)
+    out = select(est == 1, UNCERTAIN, out)
     out = select(code >= 0, code, out)
     return select(est == INVALID, INVALID, out)
 
@@ -1233,7 +1237,7 @@ def _second_try(
     TIGHT_WIDTH enclosures of their ellipsoids and quadrics (the quadric's wide ones where the
     tight ones fail): a pair with sides within a relative ``1e-6`` of each other is decided here
     rather than by the next stage."""
-    todo = np.flatnonzero((codes == _UNC) | (codes == INVALID))
+    todo = np.flatnonzero((codes == UNCERTAIN) | (codes == INVALID))
     if todo.size == 0:
         return
     sub = pairs.take(todo)

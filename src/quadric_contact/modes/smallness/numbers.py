@@ -23,6 +23,7 @@ import numpy as np
 from quadric_contact._generated import kernels
 from quadric_contact.exact.precision import working_precision
 from quadric_contact.model.classification import TABLE_1_KINDS
+from quadric_contact.modes.codes import UNCERTAIN
 from quadric_contact.modes.smallness.tables import (
     E_SIDES,
     GE,
@@ -34,7 +35,6 @@ from quadric_contact.modes.smallness.tables import (
 
 __all__ = ["BallNumbers", "MpmathNumbers", "ball_sides", "used_signs"]
 
-_UNC = 2
 _INV = (6, 2, 1, 5, 4, 0)  # primitives P .. T: outputs of quadric_invariants
 
 
@@ -93,7 +93,7 @@ class BallNumbers:
             return 1
         if d < 0:
             return 0
-        return _UNC
+        return UNCERTAIN
 
 
 class MpmathNumbers:

@@ -30,6 +30,7 @@ from typing import Any
 import numpy as np
 
 from quadric_contact.model.classification import TABLE_1_KINDS
+from quadric_contact.modes.codes import EXCLUDED, UNCERTAIN
 from quadric_contact.modes.numbers.number_mode import NumberMode
 from quadric_contact.modes.smallness.binary64 import table_kinds
 from quadric_contact.modes.smallness.numbers import BallNumbers, MpmathNumbers, used_signs
@@ -38,9 +39,6 @@ from quadric_contact.modes.stacks.pairs import Pairs
 from quadric_contact.modes.stacks.validation import exact_matrix, raise_not_ellipsoid, validate_rows
 
 __all__ = ["BallNumbers", "MpmathNumbers", "exact_smallness", "object_smallness"]
-
-_UNC = 2
-_EXCL = 3
 
 
 def _unique(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -63,14 +61,14 @@ def _code(inner: int, outer: int) -> int:
     if inner == 1:
         return 1
     if inner == 0:
-        return {1: 4, 0: 0}.get(outer, _UNC)
-    return _UNC
+        return {1: 4, 0: 0}.get(outer, UNCERTAIN)
+    return UNCERTAIN
 
 
 def _and3(values: list[int]) -> int:
     if 0 in values:
         return 0
-    return 1 if all(v == 1 for v in values) else _UNC
+    return 1 if all(v == 1 for v in values) else UNCERTAIN
 
 
 def object_smallness(mode: NumberMode, pairs: Pairs, numbers: Any) -> np.ndarray:
@@ -108,11 +106,11 @@ def object_smallness(mode: NumberMode, pairs: Pairs, numbers: Any) -> np.ndarray
         codes = np.empty(len(combos), dtype=np.int8)
         for c, (a, b) in enumerate(combos):
             if kinds[b] == -1:
-                codes[c] = _EXCL
+                codes[c] = EXCLUDED
                 continue
             es, qs = e_sides[a], q_sides[b]
             if kinds[b] == -2 or es is None or qs is None:
-                codes[c] = _UNC
+                codes[c] = UNCERTAIN
                 continue
             inner, outer = TABLE_CONDITIONS[TABLE_1_KINDS[kinds[b]]]
             v_in = _and3([numbers.compare(qs[s], es[t], rel) for s, t, rel in inner])
@@ -150,7 +148,7 @@ def exact_smallness(mode: NumberMode, pairs: Pairs) -> np.ndarray:
     codes = np.empty(len(combos), dtype=np.int8)
     for c, (a, b) in enumerate(combos):
         if params[b] is None:
-            codes[c] = _EXCL
+            codes[c] = EXCLUDED
             continue
         kind, p = params[b]
         report = smallness_report(kind, p, axes[a])
