@@ -2,7 +2,7 @@
 
 import sys
 
-from quadric_contact.codegen import main
+from quadric_contact.codegen.command import main
 
 if __name__ == "__main__":
     sys.exit(main())

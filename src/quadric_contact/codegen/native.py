@@ -31,15 +31,22 @@ from __future__ import annotations
 
 import argparse
 import functools
+import hashlib
 import json
 import os
+import subprocess
 import sys
+import sysconfig
 import time
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
+from quadric_contact.interfaces.warmup import calls as warm_calls
+from quadric_contact.modes.kernels import _jit
 from quadric_contact.modes.kernels.native import MANIFEST_NAME, kernel_identity, manifest_digest
 
 __all__ = ["MANIFEST_NAME", "RUNTIME_SOURCE", "build", "calls", "kernel_identity", "main"]
@@ -62,8 +69,6 @@ def wanted(what: str) -> bool:
 def calls() -> list[tuple[str, Callable[[], Any]]]:
     """The calls whose kernels the library holds (:func:`wanted` of the warm-up's list,
     :func:`quadric_contact.interfaces.warmup.calls`)."""
-    from quadric_contact.interfaces.warmup import calls as warm_calls
-
     return [(what, call) for what, call in warm_calls() if wanted(what)]
 
 
@@ -71,8 +76,6 @@ def _compile_in_two(log: Callable[[str], None]) -> None:
     """numba compiles on one core: two processes fill its on-disk cache with the kernels of
     :func:`calls`, one from each end of the list (the warm-up's way: a kernel the other is
     compiling is put off and loaded from the cache later), before this process records them."""
-    import subprocess
-
     t0 = time.perf_counter()
     code = (
         "import sys; from quadric_contact.codegen.native import wanted; "
@@ -92,8 +95,6 @@ def _record(
     todo: Sequence[tuple[str, Callable[[], Any]]], log: Callable[[str], None]
 ) -> list[tuple[Any, Any]]:
     """Run the calls; return every (dispatcher, signature) they called from Python."""
-    from quadric_contact.modes.kernels import _jit
-
     seen: dict[tuple[int, Any], tuple[Any, Any]] = {}
 
     def note(dispatcher: Any, sig: Any) -> None:
@@ -112,7 +113,7 @@ def _record(
 
 
 def _describe(t: Any) -> list[Any]:
-    from numba.core import types
+    from numba.core import types  # optional numba: only the build needs it
 
     if isinstance(t, types.Array):
         if t.layout != "C":
@@ -131,8 +132,8 @@ def _read_only() -> Any:
     was called with read-only ones, so that it calls the very version that was recorded (not a
     writable one compiled for it).  One intrinsic for the whole build (numba types each
     intrinsic object once)."""
-    from numba.core.imputils import impl_ret_borrowed
-    from numba.extending import intrinsic
+    from numba.core.imputils import impl_ret_borrowed  # optional numba: only the build needs it
+    from numba.extending import intrinsic  # optional numba: only the build needs it
 
     @intrinsic
     def read_only(typingctx: Any, a: Any) -> Any:
@@ -150,7 +151,7 @@ def _kernels_linked_as_optimised() -> Iterator[None]:
     optimise the whole again: the kernel's module is numba's optimised one already (the run-time
     compile's code, bit for bit), and optimising it a second time cost two thirds of the
     emission's time.  The wrapper's own function is optimised as numba adds it."""
-    from numba.core import codegen
+    from numba.core import codegen  # optional numba: only the build needs it
 
     original = codegen.CPUCodeLibrary._optimize_final_module
     codegen.CPUCodeLibrary._optimize_final_module = lambda self: None
@@ -163,8 +164,7 @@ def _kernels_linked_as_optimised() -> Iterator[None]:
 def _wrapper(dispatcher: Any, sig: Any) -> tuple[Any, list[list[Any]], str]:
     """The ``cfunc`` that takes plain C values and calls the kernel, its arguments' layout and
     its return kind."""
-    import numpy as np
-    from numba import carray, cfunc, types
+    from numba import carray, cfunc, types  # optional numba: only the build needs it
 
     kinds = [_describe(t) for t in sig]
     ret = dispatcher.overloads[sig].signature.return_type
@@ -208,7 +208,7 @@ def _only_read(dispatcher: Any, sig: Any) -> list[bool]:
     the kernel's function, in numba's optimised module (numba passes an array as its members,
     one parameter each, after the return and exception pointers).  Such an argument may be a
     read-only array of the caller's, passed as it is."""
-    from numba.core import types
+    from numba.core import types  # optional numba: only the build needs it
 
     overload = dispatcher.overloads[sig]
     module = overload.library._get_module_for_linking()
@@ -227,7 +227,7 @@ def _only_read(dispatcher: Any, sig: Any) -> list[bool]:
 def _object(wrapped: Any, symbol: str, target: Any) -> bytes:
     """The wrapper's module, the kernel linked in, as an object: the entry renamed ``symbol``,
     every other definition internal (each object carries its own copy of the helpers it uses)."""
-    import llvmlite.binding as ll
+    import llvmlite.binding as ll  # numba's, optional: only the build needs it
 
     library = wrapped._library
     library._ensure_finalized()
@@ -246,7 +246,7 @@ def _object(wrapped: Any, symbol: str, target: Any) -> bytes:
 def _target() -> tuple[Any, str, str]:
     """The target machine of the objects: this machine's processor and features (as the run-time
     compile has them), position-independent code for a shared library."""
-    import llvmlite.binding as ll
+    import llvmlite.binding as ll  # numba's, optional: only the build needs it
 
     cpu = ll.get_host_cpu_name()
     features = ll.get_host_cpu_features().flatten()
@@ -262,10 +262,6 @@ def _emit(
     """Record the kernels of :func:`calls` and emit the objects of share ``part = (k, n)`` of
     them (those whose symbol's digest is ``k`` modulo ``n``) into ``out``; return their manifest
     entries and object files."""
-    import hashlib
-
-    from quadric_contact.modes.kernels import _jit
-
     t0 = time.perf_counter()
     recorded = _record(calls(), lambda line: None)
     target, _, _ = _target()
@@ -309,12 +305,8 @@ def build(out: Path, log: Callable[[str], None] = print) -> dict[str, Any]:
     two processes (:func:`_compile_in_two`) and two more emit half the objects each (the machine
     code of every kernel is generated twice there: when numba finalises the wrapper, and as the
     object)."""
-    import subprocess
-    import sysconfig
-
-    import numba
-    import numpy as np
-    from numba import _helperlib
+    import numba  # optional numba: only the build needs it
+    from numba import _helperlib  # optional numba: only the build needs it
 
     out.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()

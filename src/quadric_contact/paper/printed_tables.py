@@ -2,7 +2,7 @@
 
 :func:`printed_table_2` evaluates one row of Table 2 with the formulas as the
 paper prints them (also where they are wrong, see
-:data:`quadric_contact.paper.ERRATA`), so that Example 6's printed numbers and
+:data:`quadric_contact.paper.errata.ERRATA`), so that Example 6's printed numbers and
 the misprints can be checked; the corrected decision is
 :func:`quadric_contact.theory.smallness.smallness`.
 """
@@ -91,7 +91,7 @@ def printed_table_2(E: Any, Q: Any, *, reading: QuadricKind | str | None = None)
     smallest curvature (about 0.416): not small.
 
     >>> from fractions import Fraction
-    >>> from quadric_contact.paper import PRINTED
+    >>> from quadric_contact.paper.printed import PRINTED
     >>> E, Q = (
     ...     [[Fraction(v) for v in row.split()] for row in PRINTED[f"Example 6 {name}"].split(";")]
     ...     for name in "EQ"

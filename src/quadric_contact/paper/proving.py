@@ -24,8 +24,8 @@ searches and cross-checks).  ``quadric-contact prove`` runs the default
 profile, ``quadric-contact prove --full`` everything.
 
 The expectation is declared with the check: a check that is expected to
-find a misprint names the key of an :class:`~quadric_contact.paper.Erratum`
-in :data:`~quadric_contact.paper.ERRATA`.  The status of a check is then
+find a misprint names the key of an :class:`~quadric_contact.paper.errata.Erratum`
+in :data:`~quadric_contact.paper.errata.ERRATA`.  The status of a check is then
 
 ``PASS``
     the paper's statement was re-derived and no erratum was expected;
@@ -47,7 +47,7 @@ checks is ``FAIL`` or ``ERROR``.
 
 The report ``proofs/REPORT.md`` is rendered from the declarations (result,
 checks, methods, verdicts, expected errata) and from
-:data:`~quadric_contact.paper.ERRATA`, never from timings, so it is
+:data:`~quadric_contact.paper.errata.ERRATA`, never from timings, so it is
 deterministic; :func:`write_report` runs every check of the full profile
 first and refuses to write a report that the checks do not support, and the
 test suite checks that the committed file equals :func:`render_report`.
@@ -69,16 +69,12 @@ from types import ModuleType
 from typing import Any
 
 from quadric_contact.exact.errors import MissingDependencyError, ProofsNotFoundError, QuadricContactError
-from quadric_contact.paper import (
-    ERRATA,
-    FURTHER_RESULTS,
-    NUMBERED_RESULTS,
-    Erratum,
-)
+from quadric_contact.paper.errata import ERRATA, Erratum
+from quadric_contact.paper.results import FURTHER_RESULTS, NUMBERED_RESULTS
 
 RESULTS: tuple[str, ...] = NUMBERED_RESULTS + FURTHER_RESULTS
 """The results a proof module may prove: the paper's numbered ones, then the further results
-the package relies on (:data:`~quadric_contact.paper.FURTHER_RESULTS`)."""
+the package relies on (:data:`~quadric_contact.paper.results.FURTHER_RESULTS`)."""
 
 __all__ = [
     "PACKAGE_NAME",
@@ -242,7 +238,7 @@ def search_settings(examples: int) -> Any:
     its size and gives the same evidence on every run; no deadline, no health checks
     (the examples are exact computations of very different costs).  Hypothesis is
     imported here, when a search runs: the proofs load without it."""
-    from hypothesis import HealthCheck, settings
+    from hypothesis import HealthCheck, settings  # hypothesis is heavy and optional: only a search imports it
 
     return settings(
         max_examples=examples,
@@ -259,9 +255,9 @@ class Proof:
     Parameters
     ----------
     result : str
-        The paper's label, one of :data:`~quadric_contact.paper.NUMBERED_RESULTS`
+        The paper's label, one of :data:`~quadric_contact.paper.results.NUMBERED_RESULTS`
         (``"Lemma 3"``, ``"eq. (1)"``, ``"Section 3.2"``), or a further result the package
-        relies on, one of :data:`~quadric_contact.paper.FURTHER_RESULTS`.
+        relies on, one of :data:`~quadric_contact.paper.results.FURTHER_RESULTS`.
     title : str
         What the result says, in a few words.
     covers : sequence of str
@@ -330,7 +326,7 @@ class Proof:
             How.  ``Method.EVIDENCE`` and ``Method.CROSS_CHECK`` require ``size``
             (how many examples).
         erratum : str, optional
-            Key of the :class:`~quadric_contact.paper.Erratum` this check is
+            Key of the :class:`~quadric_contact.paper.errata.Erratum` this check is
             expected to demonstrate.
         full : bool
             Only in the full profile (``quadric-contact prove --full``; pytest
