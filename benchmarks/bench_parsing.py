@@ -3,7 +3,7 @@
 Measures the time per text of
 
 * ``Quadric.from_equation`` (the package's tokenizer, recursive-descent parser
-  and exact polynomial evaluation, :mod:`quadric_contact.model.parsing`), and
+  and exact polynomial evaluation, :mod:`quadric_contact.exact.reading`), and
 * the peer: the sympy-based reader the package used before (``parse_expr``
   with implicit multiplication, ``^``, rationalised decimals, then
   ``sympy.Poly``), kept here, and only here, as a private copy,
@@ -34,7 +34,8 @@ from typing import Any
 from quadric_contact import Quadric
 from quadric_contact.exact.errors import QuadricContactError
 from quadric_contact.exact.rational import to_fraction
-from quadric_contact.model.parsing import MAX_DEPTH, MAX_LENGTH, parse_quadric_equation
+from quadric_contact.exact.reading import MAX_DEPTH, MAX_LENGTH
+from quadric_contact.model.parsing import parse_quadric_equation
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -33,7 +33,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 
 from quadric_contact.scenes.composite import algorithm_2
-from quadric_contact.scenes.scene import builtin_scene, parse_scene
+from quadric_contact.scenes.scene_toml import builtin_scene, parse_scene
 from quadric_contact.scenes.simulate import simulate
 
 

@@ -323,9 +323,9 @@ def bracketing() -> Finding:
     import numpy as np
 
     from quadric_contact.modes.distance.depth_kernel import _bracket, _point
-    from quadric_contact.modes.kernels._jit import python_twin
+    from quadric_contact.modes.kernels._jit import plain
 
-    bracket, point = python_twin(_bracket), python_twin(_point)
+    bracket, point = plain(_bracket), plain(_point)
     rng = np.random.default_rng(5)
     ellipsoids = points = 0
     gaps = []
@@ -393,9 +393,9 @@ def corner_rounding() -> Finding:
     import numpy as np
 
     from quadric_contact.modes.distance.depth_kernel import _corner
-    from quadric_contact.modes.kernels._jit import python_twin
+    from quadric_contact.modes.kernels._jit import plain
 
-    corner = python_twin(_corner)
+    corner = plain(_corner)
     rng = np.random.default_rng(6)
     passed = failed = 0
     for _ in range(1500):

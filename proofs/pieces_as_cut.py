@@ -199,7 +199,7 @@ def critical_levels() -> Finding:
     method=Method.COMPUTATION,
 )
 def scout_and_crown() -> Finding:
-    from quadric_contact.scenes.scene import builtin_scene
+    from quadric_contact.scenes.scene_toml import builtin_scene
     from quadric_contact.scenes.simulate import simulate
 
     t, x, y, z = sp.symbols("t x y z", real=True)

@@ -1,15 +1,49 @@
 """``quadric-contact bench`` runs, writes its table, JSON and plot to ``--out`` (by default the
 user cache directory, never the current one) and says where; the table speaks of what it
-measured (smoke profile: seconds; the timings themselves are not asserted)."""
+measured (smoke profile: seconds; the timings themselves are not asserted).  The command is
+run as the user runs it (the command line, or a fresh process); the peers it measures are
+checked against the exact answers."""
 
 import json
+import os
 import re
+import subprocess
+import sys
+from pathlib import Path
 
+import numpy as np
 import pytest
 
-from quadric_contact.interfaces import benchmark
 from quadric_contact.interfaces.cli import main
 from quadric_contact.interfaces.cli.arguments import user_cache_dir
+from quadric_contact.model.classification import QuadricKind
+from quadric_contact.modes.kernels._jit import kernel_cache_dir
+from quadric_contact.modes.predicates import corollary_10
+from quadric_contact.testing.peers import peer_fcl, peer_numpy_eigvals, peer_numpy_roots, peer_sympy
+from quadric_contact.testing.references import exact_overlap
+from quadric_contact.testing.samples import GENERIC_KINDS, random_pairs
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _bench(cwd: Path, extra: dict[str, str], *args: str) -> subprocess.CompletedProcess[str]:
+    """``quadric-contact bench`` in a fresh process, run from ``cwd``, this checkout's sources
+    first on the path and the kernels compiled into this process's cache (also where ``extra``
+    moves the user's cache directory)."""
+    env = {
+        **os.environ,
+        "QUADRIC_CONTACT_CACHE_DIR": kernel_cache_dir(),
+        **extra,
+        "PYTHONPATH": os.pathsep.join([str(ROOT / "src"), os.environ.get("PYTHONPATH", "")]),
+    }
+    return subprocess.run(
+        [sys.executable, "-m", "quadric_contact", "bench", *args],
+        cwd=cwd,
+        env=env,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
 
 
 def _assert_speaks_of_measurements(table):
@@ -82,15 +116,10 @@ def test_bench_smoke_profile_writes_to_out_and_nothing_to_the_current_directory(
     )
 
 
-def test_bench_writes_to_the_user_cache_directory_by_default(tmp_path, capsys, monkeypatch):
+def test_bench_writes_to_the_user_cache_directory_by_default(tmp_path):
     cwd, cache = tmp_path / "cwd", tmp_path / "cache"
     cwd.mkdir()
-    monkeypatch.chdir(cwd)
-    monkeypatch.setenv("XDG_CACHE_HOME", str(cache))
-    # the measurement itself is the smoke test's; here only where the files go
-    monkeypatch.setattr(benchmark, "run", lambda profile, **_: benchmark.Report(profile, {"cpus": 1}))
-    assert main(["bench", "--profile", "smoke", "--no-plot"]) == 0
-    out = capsys.readouterr().out
+    out = _bench(cwd, {"XDG_CACHE_HOME": str(cache)}, "--profile", "smoke", "--no-plot").stdout
     where = cache / "quadric-contact" / "bench"
     assert list(cwd.iterdir()) == []
     assert sorted(p.name for p in where.iterdir()) == ["bench_smoke.json", "bench_smoke.md"]
@@ -110,26 +139,15 @@ def test_user_cache_directory(tmp_path, monkeypatch):
 
 
 def test_peers_agree_with_exact_far_from_tangency():
-    import numpy as np
-
-    from quadric_contact.interfaces.benchmark import criterion_stack as transversal_contact_batch
-    from quadric_contact.testing.samples import random_pairs
-
-    E, Q, _ = random_pairs(30, np.random.default_rng(4), kinds=benchmark.GENERIC_KINDS)
-    truth = transversal_contact_batch(E, Q, mode="exact")
-    assert (benchmark.peer_sympy(E[:3], Q[:3]) == truth[:3]).all()
-    assert (benchmark.peer_numpy_eigvals(E, Q) == truth).all()
-    assert (benchmark.peer_numpy_roots(E, Q) == truth).all()
+    E, Q, _ = random_pairs(30, np.random.default_rng(4), kinds=GENERIC_KINDS)
+    truth = corollary_10(E, Q, mode="exact")
+    assert (peer_sympy(E[:3], Q[:3]) == truth[:3]).all()
+    assert (peer_numpy_eigvals(E, Q) == truth).all()
+    assert (peer_numpy_roots(E, Q) == truth).all()
 
 
 def test_fcl_peer_when_installed():
     pytest.importorskip("fcl")
-    import numpy as np
-
-    from quadric_contact.interfaces.benchmark import criterion_stack as transversal_contact_batch
-    from quadric_contact.model.classification import QuadricKind
-    from quadric_contact.testing.samples import random_pairs
-
     E, Q, _, ge, gq = random_pairs(
         40, np.random.default_rng(8), kinds=(QuadricKind.ELLIPSOID,), with_geometry=True
     )
@@ -137,14 +155,16 @@ def test_fcl_peer_when_installed():
     E, Q = E[keep], Q[keep]
     ge = {k: v[keep] for k, v in ge.items()}
     gq = {k: v[keep] for k, v in gq.items()}
-    truth = benchmark.exact_overlap(E, Q, transversal_contact_batch(E, Q, mode="exact"))
-    assert (benchmark.peer_fcl(ge, gq, range(len(E))) == truth).all()
+    truth = exact_overlap(E, Q, corollary_10(E, Q, mode="exact"))
+    assert (peer_fcl(ge, gq, range(len(E))) == truth).all()
 
 
 @pytest.mark.slow
-def test_first_use_compiles_once_and_says_so():
-    # minutes: every kernel of the complete decision is compiled into an empty cache directory
-    c = benchmark.cold_start()
+def test_first_use_compiles_once_and_says_so(tmp_path):
+    # minutes: the quick profile measures the first use in fresh processes, every kernel of the
+    # complete decision compiled into an empty cache directory
+    _bench(tmp_path, {}, "--profile", "quick", "--no-plot", "--out", str(tmp_path / "out"))
+    c = json.loads((tmp_path / "out" / "bench_quick.json").read_text())["cold_start"]
     assert not c["native"]["notice"] and not c["native"]["twins"]  # the native kernels answer
     assert c["fresh"]["twins"] and not c["fresh"]["notice"]  # answered by the twins, said once
     assert c["compiling"]["notice"] and not c["compiling"]["twins"]

@@ -484,9 +484,9 @@ def test_command_line_numbers_are_read_by_the_package_and_bounded(args, message,
     "address", ["file:///etc/passwd", "__import__('os').system('x')", "tcp://h:99999", "h"]
 )
 def test_a_malformed_scheduler_address_is_refused_before_anything(address, capsys, monkeypatch):
-    import quadric_contact.scenes.scene_toml as scene_toml
+    import quadric_contact.interfaces.cli.sweep as sweep_command
 
-    monkeypatch.setattr(scene_toml, "read_scene_file", lambda *a: pytest.fail("the scene was read"))
+    monkeypatch.setattr(sweep_command, "read_scene_file", lambda *a: pytest.fail("the scene was read"))
     status, _, err = _cli(["sweep", "--scheduler", address, "-n", "1"], capsys)
     assert status == 2 and "is not a scheduler address" in err, err
 
@@ -513,11 +513,11 @@ def test_an_unreachable_scheduler_is_a_clear_error_after_the_timeout(monkeypatch
 
 @pytest.mark.parametrize("command", ["simulate", "sweep"])
 def test_an_output_path_that_is_a_directory_is_refused_before_the_run(command, tmp_path, capsys, monkeypatch):
-    import quadric_contact.scenes.simulate as simulate_module
-    import quadric_contact.scenes.sweep as sweep_module
+    import quadric_contact.interfaces.cli.simulate as simulate_command
+    import quadric_contact.interfaces.cli.sweep as sweep_command
 
-    monkeypatch.setattr(simulate_module, "simulate", lambda *a, **k: pytest.fail("the run started"))
-    monkeypatch.setattr(sweep_module, "run_sweep", lambda *a, **k: pytest.fail("the run started"))
+    monkeypatch.setattr(simulate_command, "simulate", lambda *a, **k: pytest.fail("the run started"))
+    monkeypatch.setattr(sweep_command, "run_sweep", lambda *a, **k: pytest.fail("the run started"))
     extra = ["--serial", "-n", "1"] if command == "sweep" else []
     status, _, err = _cli([command, *extra, "-o", str(tmp_path), "bee_and_tree"], capsys)
     assert status == 2 and "is a directory" in err, err
@@ -667,7 +667,7 @@ def test_names_given_through_the_api_are_escaped_in_the_report():
     from dataclasses import replace
 
     from quadric_contact.exact.printing import unsafe_characters
-    from quadric_contact.scenes.scene import builtin_scene
+    from quadric_contact.scenes.scene_toml import builtin_scene
     from quadric_contact.scenes.simulate import simulate
 
     scene = builtin_scene("bee_and_tree", check_smallness=False)

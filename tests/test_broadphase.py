@@ -22,7 +22,7 @@ from quadric_contact.scenes.broadphase import (
     swept_box,
 )
 from quadric_contact.scenes.manybody import many_body_scene, totem
-from quadric_contact.scenes.scene import builtin_scene, builtin_scene_names
+from quadric_contact.scenes.scene_toml import builtin_scene, builtin_scene_names
 from quadric_contact.scenes.simulate import simulate
 from quadric_contact.scenes.trajectory import PolynomialMotion
 from quadric_contact.testing.strategies import ellipsoids, quadrics, rationals

@@ -181,7 +181,7 @@ def test_animate_shows_progress_and_draws_the_path(tmp_path, capsys):
     pytest.importorskip("matplotlib")
     pytest.importorskip("PIL")
     from quadric_contact.interfaces.animation import animate_result
-    from quadric_contact.scenes.scene import builtin_scene
+    from quadric_contact.scenes.scene_toml import builtin_scene
     from quadric_contact.scenes.simulate import simulate
 
     target = tmp_path / "walls.gif"

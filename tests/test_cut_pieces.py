@@ -18,8 +18,7 @@ from quadric_contact.exact.algebraic import sign_at
 from quadric_contact.exact.errors import ChoiceError, SceneError
 from quadric_contact.exact.rational import fmpq_poly_of
 from quadric_contact.scenes.composite import Piece, Split
-from quadric_contact.scenes.scene import builtin_scene, builtin_scene_names
-from quadric_contact.scenes.scene_toml import parse_scene
+from quadric_contact.scenes.scene_toml import builtin_scene, builtin_scene_names, parse_scene
 from quadric_contact.scenes.simulate import simulate
 from quadric_contact.theory.sections import (
     conic_pencil_coefficients,

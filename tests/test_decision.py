@@ -249,8 +249,8 @@ def test_float_mode_reads_rounded_cylinders_by_the_members_not_by_rounded_root_s
     eigenvalues; binary64's signs of P's coefficients then read two positive roots (E outside)
     where E lies well inside.  The float mode keeps that reading only where its certified guard
     reads the same, and answers the region of every such pair as the exact decision does."""
-    from quadric_contact.interfaces.benchmark import complete_populations
     from quadric_contact.modes.predicates import relative_position
+    from quadric_contact.testing.samples import complete_populations
 
     E, Q, _ = complete_populations(300_000, np.random.default_rng(0))["every type"]
     # the pairs of that population (seed 0) where binary64's root signs misread the side

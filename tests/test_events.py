@@ -19,7 +19,7 @@ from quadric_contact.exact.rational import simplest_between
 from quadric_contact.scenes.composite import Composite
 from quadric_contact.scenes.events import PieceTrack
 from quadric_contact.scenes.ledger import Ledger
-from quadric_contact.scenes.scene import MovingEllipsoid, Scene
+from quadric_contact.scenes.scene_model import MovingEllipsoid, Scene
 from quadric_contact.scenes.simulate import simulate
 from quadric_contact.scenes.trajectory import PolynomialMotion
 from quadric_contact.testing.strategies import ellipsoids, quadrics, rationals

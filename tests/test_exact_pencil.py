@@ -11,13 +11,13 @@ import numpy as np
 import pytest
 
 from quadric_contact._generated import formulas, kernels
-from quadric_contact.interfaces.benchmark import criterion_stack
 from quadric_contact.modes import ExactMode
 from quadric_contact.modes.kernels.exact_pencil import (
     MAX_DIGITS,
     pencil_coefficients_dyadic,
     pencil_coefficients_int,
 )
+from quadric_contact.modes.predicates import corollary_10
 from quadric_contact.modes.stacks.batch import as_stack
 from quadric_contact.modes.stacks.integers import dyadic_rows, integer_rows
 from quadric_contact.modes.stacks.pairs import Pairs
@@ -133,9 +133,7 @@ def test_hard_cases_values_and_codes(exact_input: bool) -> None:
     E, Q = _hard_stacks(exact_input)
     c, want, _ = _mode_pencil(E, Q)
     _assert_same(c, want)
-    assert (
-        criterion_stack(E, Q, mode=ExactMode("int")) == criterion_stack(E, Q, mode=ExactMode("fmpz"))
-    ).all()
+    assert (corollary_10(E, Q, mode=ExactMode("int")) == corollary_10(E, Q, mode=ExactMode("fmpz"))).all()
 
 
 def test_fraction_input() -> None:
@@ -155,13 +153,9 @@ def test_fraction_input() -> None:
                     M[p, i, j] = M[p, j, i] = v
     c, want, _ = _mode_pencil(Ef, Qf)
     _assert_same(c, want)
-    assert (
-        criterion_stack(Ef, Qf, mode=ExactMode("int")) == criterion_stack(Ef, Qf, mode=ExactMode("fmpz"))
-    ).all()
+    assert (corollary_10(Ef, Qf, mode=ExactMode("int")) == corollary_10(Ef, Qf, mode=ExactMode("fmpz"))).all()
 
 
 def test_codes_agree_with_fmpz_backend_on_random_pairs() -> None:
     E, Q, _ = random_pairs(400, np.random.default_rng(21))
-    assert (
-        criterion_stack(E, Q, mode=ExactMode("int")) == criterion_stack(E, Q, mode=ExactMode("fmpz"))
-    ).all()
+    assert (corollary_10(E, Q, mode=ExactMode("int")) == corollary_10(E, Q, mode=ExactMode("fmpz"))).all()

@@ -12,7 +12,7 @@ import pytest
 from tests.scene_oracle import check_timeline
 
 from quadric_contact.model.classification import QuadricKind
-from quadric_contact.scenes.scene import builtin_scene, builtin_scene_names
+from quadric_contact.scenes.scene_toml import builtin_scene, builtin_scene_names
 from quadric_contact.scenes.simulate import simulate
 
 NEW_SCENES = ("probe_two_sheets", "parallel_walls", "trough_and_channel")

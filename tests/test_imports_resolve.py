@@ -13,9 +13,15 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def _python_files() -> list[Path]:
-    out = subprocess.run(["git", "ls-files", "*.py"], cwd=ROOT, capture_output=True, text=True)
+    """The checkout's Python files as they are: tracked or new (not ignored), not deleted."""
+    out = subprocess.run(
+        ["git", "ls-files", "--cached", "--others", "--exclude-standard", "*.py"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+    )
     if out.returncode == 0 and out.stdout.strip():
-        return [ROOT / f for f in out.stdout.split()]
+        return sorted({ROOT / f for f in out.stdout.split() if (ROOT / f).exists()})
     folders = ("src", "tests", "proofs", "benchmarks", "docs", "notebooks")
     return [p for d in folders for p in (ROOT / d).rglob("*.py")]
 

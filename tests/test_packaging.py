@@ -20,9 +20,9 @@ import pytest
 from tests.compile_events import RECORD_COMPILES
 
 import quadric_contact as qc
-from quadric_contact.interfaces.benchmark import kernel_population
-from quadric_contact.modes.kernels import native
+from quadric_contact.modes.kernels import _jit
 from quadric_contact.modes.kernels._jit import HAVE_NUMBA, TWINS_NOTICE, kernel_cache_dir
+from quadric_contact.testing.samples import kernel_population
 
 ROOT = Path(__file__).resolve().parents[1]
 PIP_OFFLINE = ("--no-deps", "--no-index", "--ignore-installed", "-q")
@@ -33,11 +33,11 @@ SMOKE = (
 import json
 import numpy as np
 import quadric_contact as qc
-from quadric_contact.interfaces.benchmark import kernel_population
+from quadric_contact.testing.samples import kernel_population
 E, Q = kernel_population(1000, np.random.default_rng(0))
 contact = qc.transversal_contact(E, Q).tolist()
 overlap = qc.overlap(E, Q).tolist()
-from quadric_contact.modes.kernels import native
+from quadric_contact.modes.kernels import _jit, native
 lib = native.library() if native.enabled() else None
 where = None if lib is None or not lib.usable else str(lib.path)
 print(json.dumps({"file": qc.__file__, "contact": contact, "overlap": overlap, "compiled": compiled,
@@ -153,7 +153,7 @@ def test_without_a_compiler_the_wheel_compiles_its_kernels_at_run_time(tmp_path)
     assert got["overlap"] == qc.overlap(E, Q).tolist()
     # the cache this checkout's kernels are in (these calls put them there, compiled at run
     # time): the installed copy loads them, no twin, no compile
-    with native.turned_off():
+    with _jit.turned_off():
         qc.transversal_contact(E, Q), qc.overlap(E, Q)
     got, err = _smoke(tmp_path, venv, kernel_cache_dir(), **off)
     assert got["compiled"] == []

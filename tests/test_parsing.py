@@ -1,4 +1,5 @@
-"""The package's parser (``quadric_contact.model.parsing``): exact values, refusals that
+"""The package's parser (``quadric_contact.exact.reading``, and the reader of a quadric's
+equation, ``quadric_contact.model.parsing``): exact values, refusals that
 name the offending text and its position, every documented bound at its edge, an
 algebra of sympy objects for parametric families, and hypothesis properties
 (random well-formed expressions against an independent polynomial arithmetic,
@@ -22,7 +23,7 @@ from tests.untrusted import untrusted
 from quadric_contact import Quadric
 from quadric_contact.exact.errors import EquationError, NonFiniteError, NotANumberError, QuadricContactError
 from quadric_contact.exact.rational import to_fraction
-from quadric_contact.model.parsing import (
+from quadric_contact.exact.reading import (
     MAX_DEGREE,
     MAX_DEPTH,
     MAX_DIGITS,
@@ -37,9 +38,9 @@ from quadric_contact.model.parsing import (
     parse_expression,
     parse_number,
     parse_polynomial,
-    parse_quadric_equation,
     parse_univariate,
 )
+from quadric_contact.model.parsing import parse_quadric_equation
 from quadric_contact.testing.strategies import quadrics, rationals
 
 XYZ = ("x", "y", "z")

@@ -182,7 +182,7 @@ def test_plot_result_keeps_the_backend_of_a_session_that_uses_pyplot():
     import matplotlib.pyplot as plt
 
     from quadric_contact.interfaces.plotting import plot_result
-    from quadric_contact.scenes.scene import builtin_scene
+    from quadric_contact.scenes.scene_toml import builtin_scene
     from quadric_contact.scenes.simulate import simulate
 
     before = matplotlib.get_backend()

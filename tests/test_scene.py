@@ -11,7 +11,7 @@ from tests.bee_and_tree import bee_and_tree
 from quadric_contact import Quadric
 from quadric_contact.exact.errors import SceneError
 from quadric_contact.model.classification import QuadricKind
-from quadric_contact.scenes.scene import builtin_scene, builtin_scene_names, load_scene, parse_scene
+from quadric_contact.scenes.scene_toml import builtin_scene, builtin_scene_names, load_scene, parse_scene
 from quadric_contact.scenes.trajectory import Keyframes, PolynomialMotion, Stationary
 
 GOOD = bee_and_tree(

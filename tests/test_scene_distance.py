@@ -15,8 +15,8 @@ from quadric_contact.exact.errors import SceneError
 from quadric_contact.interfaces.cli import main
 from quadric_contact.model.quadric import Quadric
 from quadric_contact.scenes.path_distance import path_distance
-from quadric_contact.scenes.scene import builtin_scene, parse_scene
 from quadric_contact.scenes.scene_model import DISTANCE_EVALUATIONS, DISTANCE_TOLERANCE, Scene
+from quadric_contact.scenes.scene_toml import builtin_scene, parse_scene
 from quadric_contact.scenes.simulate import simulate
 from quadric_contact.scenes.trajectory import PolynomialMotion
 

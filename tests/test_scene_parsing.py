@@ -8,8 +8,8 @@ from fractions import Fraction
 import pytest
 
 from quadric_contact.exact.errors import ChoiceError, SceneError
-from quadric_contact.model.parsing import parse_univariate
-from quadric_contact.scenes.scene import load_scene, parse_scene
+from quadric_contact.exact.reading import parse_univariate
+from quadric_contact.scenes.scene_toml import load_scene, parse_scene
 
 SCENE = """
 [scene]

@@ -11,9 +11,10 @@ import pytest
 from quadric_contact.exact.errors import ChoiceError, SceneError
 from quadric_contact.scenes.composite import algorithm_2
 from quadric_contact.scenes.ledger import FULL_ITEMS, Ledger
-from quadric_contact.scenes.scene import builtin_scene, builtin_scene_names, parse_scene
 from quadric_contact.scenes.scene_model import READINGS
-from quadric_contact.scenes.simulate import Plan, simulate
+from quadric_contact.scenes.scene_toml import builtin_scene, builtin_scene_names, parse_scene
+from quadric_contact.scenes.simulate import simulate
+from quadric_contact.scenes.simulation_reports import Plan
 
 
 @pytest.fixture

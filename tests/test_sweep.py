@@ -11,7 +11,7 @@ import pytest
 
 from quadric_contact.exact.errors import SceneError
 from quadric_contact.interfaces.cli import main
-from quadric_contact.scenes.scene import builtin_scene
+from quadric_contact.scenes.scene_toml import builtin_scene
 from quadric_contact.scenes.simulate import simulate
 from quadric_contact.scenes.sweep import perturbed, run_sweep, summarize
 

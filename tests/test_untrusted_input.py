@@ -28,7 +28,7 @@ from quadric_contact.exact.errors import QuadricContactError, SceneError
 from quadric_contact.exact.rational import to_fraction
 from quadric_contact.interfaces.cli import main
 from quadric_contact.model.motions import rotation_from_quaternion
-from quadric_contact.scenes.scene import load_scene, parse_scene
+from quadric_contact.scenes.scene_toml import load_scene, parse_scene
 from quadric_contact.scenes.trajectory import Keyframes, PolynomialMotion
 from quadric_contact.theory.pencil import as_quadric
 

@@ -1,7 +1,7 @@
 """Pages of the documentation that are made from the package itself at build time.
 
 * ``_generated/errata_table.md`` and ``_generated/errata_entries.md``: the errata registry
-  :data:`quadric_contact.paper.ERRATA`, as a table and entry by entry (included by
+  :data:`quadric_contact.paper.errata.ERRATA`, as a table and entry by entry (included by
   ``departures.md`` and ``errata.md``), so the site cannot disagree with the registry.
 * ``notebooks/*.ipynb``: copies of the teaching notebooks of ``notebooks/`` (which Sphinx
   cannot read outside its source folder), rendered by myst-nb with their outputs.
@@ -42,7 +42,7 @@ def _cell(text: str) -> str:
 
 
 def errata_table() -> str:
-    from quadric_contact.paper import ERRATA
+    from quadric_contact.paper.errata import ERRATA
 
     lines = [
         "| key | where | corrected |",
@@ -54,7 +54,7 @@ def errata_table() -> str:
 
 
 def errata_entries() -> str:
-    from quadric_contact.paper import ERRATA
+    from quadric_contact.paper.errata import ERRATA
 
     out = [f"The registry holds {len(ERRATA)} errata.\n"]
     for e in ERRATA:

@@ -18,7 +18,7 @@ sys.path.insert(0, str(HERE.parents[1] / "src"))
 from quadric_contact.exact.optional import pyplot  # noqa: E402
 from quadric_contact.interfaces.animation import render_gif  # noqa: E402
 from quadric_contact.interfaces.plotting import plot_result  # noqa: E402
-from quadric_contact.scenes.scene import builtin_scene, builtin_scene_names  # noqa: E402
+from quadric_contact.scenes.scene_toml import builtin_scene, builtin_scene_names  # noqa: E402
 from quadric_contact.scenes.simulate import simulate  # noqa: E402
 
 

@@ -27,7 +27,7 @@ from quadric_contact.interfaces.plotting import plot_quadric, plot_result
 from quadric_contact.paper import PRINTED
 from quadric_contact.scenes.composite import algorithm_1, algorithm_2
 from quadric_contact.scenes.ledger import Ledger
-from quadric_contact.scenes.scene import builtin_scene
+from quadric_contact.scenes.scene_toml import builtin_scene
 from quadric_contact.scenes.simulate import simulate
 
 # %% [markdown]

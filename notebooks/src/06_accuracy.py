@@ -22,11 +22,11 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import quadric_contact as qc
-from quadric_contact.interfaces.benchmark import EIG_TOL, GENERIC_KINDS, peer_numpy_eigvals, peer_numpy_roots
 from quadric_contact.modes import MODES, BallMode, CertifiedMode, CriterionCode, FilterMode, MpmathMode
 from quadric_contact.modes.kernels.numpy_backend import filter_quantities
 from quadric_contact.testing.hardcases import hard_cases
-from quadric_contact.testing.samples import SAMPLE_KINDS, random_pairs
+from quadric_contact.testing.peers import EIG_TOL, peer_numpy_eigvals, peer_numpy_roots
+from quadric_contact.testing.samples import GENERIC_KINDS, SAMPLE_KINDS, random_pairs
 
 # %% [markdown]
 # ## One formula, many number modes
@@ -134,7 +134,7 @@ for d in DISTANCES[-4:]:
     print(f"d = {d:6s}: rounding changed the answer in {np.count_nonzero(sel & (truth != intended)):2d} of {sel.sum()} cases")
 
 # %% [markdown]
-# Now every mode, and two floating-point peers from `quadric_contact.interfaces.benchmark`:
+# Now every mode, and two floating-point peers from `quadric_contact.testing.peers`:
 #
 # * **numpy eigvals**: the eigenvalues of $-E^{-1}Q$ (the roots of $\mathfrak P$), in
 #   batch; "non-real" when an imaginary part exceeds $10^{-9}$ of the largest modulus;

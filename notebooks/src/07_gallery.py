@@ -20,7 +20,7 @@ from quadric_contact.interfaces.animation import render_gif
 from quadric_contact.interfaces.plotting import plot_result
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.scenes.manybody import many_body_scene
-from quadric_contact.scenes.scene import builtin_scene, builtin_scene_names
+from quadric_contact.scenes.scene_toml import builtin_scene, builtin_scene_names
 from quadric_contact.scenes.simulate import simulate
 from quadric_contact.scenes.sweep import run_sweep
 

@@ -70,15 +70,10 @@ from quadric_contact.modes.predicates import (
 )
 from quadric_contact.modes.stacks.packing import Packed, pack, symmetrize, unpack
 from quadric_contact.scenes.composite import Composite, Piece
-from quadric_contact.scenes.scene import (
-    MovingEllipsoid,
-    Scene,
-    builtin_scene,
-    builtin_scene_names,
-    load_scene,
-    parse_scene,
-)
-from quadric_contact.scenes.simulate import SimulationResult, simulate
+from quadric_contact.scenes.scene_model import MovingEllipsoid, Scene
+from quadric_contact.scenes.scene_toml import builtin_scene, builtin_scene_names, load_scene, parse_scene
+from quadric_contact.scenes.simulate import simulate
+from quadric_contact.scenes.simulation_reports import SimulationResult
 from quadric_contact.theory.contact_kind import ContactAnalysis, ContactKind, analyze_contact
 from quadric_contact.theory.contact_scale import ContactScaleResult
 from quadric_contact.theory.distance import DistanceResult

@@ -652,7 +652,7 @@ class RealAlgebraic:
 
     def poly_str(self, var: str = "x", *, integer: bool = False) -> str:
         """The minimal polynomial in ``var``: monic, or primitive over Z with ``integer``."""
-        import sympy
+        import sympy  # sympy is heavy: only to print
 
         x = sympy.Symbol(var)
         if integer:
@@ -673,7 +673,7 @@ class RealAlgebraic:
 
     def to_sympy(self) -> Any:
         """``Rational`` or ``CRootOf`` (same root index convention)."""
-        import sympy
+        import sympy  # sympy is heavy: only for sympy output
 
         if self.is_rational:
             v = self._lo
@@ -799,7 +799,7 @@ def compile_expression(expr: Any, symbols: Sequence[Any]) -> Callable[..., Any]:
     the returned function, default :class:`fractions.Fraction`), so the same
     compiled expression evaluates on Fractions, arb balls and matrices.
     """
-    import sympy
+    import sympy  # sympy is heavy: only for sympy input
 
     index = {s: i for i, s in enumerate(symbols)}
 
@@ -840,10 +840,10 @@ def compile_expression(expr: Any, symbols: Sequence[Any]) -> Callable[..., Any]:
 
     if isinstance(expr, (str, bytes)):
         # Text is never evaluated (sympify would run it as Python): build the
-        # expression with sympy, or read text with quadric_contact.model.parsing.
+        # expression with sympy, or read text with quadric_contact.exact.reading.
         raise EquationError(
             "compile_expression takes a sympy expression, not text "
-            "(read text with quadric_contact.model.parsing)",
+            "(read text with quadric_contact.exact.reading)",
             expr,
         )
     fn = build(sympy.sympify(expr, strict=True))
@@ -1307,7 +1307,7 @@ class QuadraticNumber:
         return float(self.a) + float(self.b) * math.sqrt(self.d)
 
     def to_sympy(self) -> Any:
-        import sympy
+        import sympy  # sympy is heavy: only for sympy output
 
         return sympy.Rational(self.a.numerator, self.a.denominator) + sympy.Rational(
             self.b.numerator, self.b.denominator

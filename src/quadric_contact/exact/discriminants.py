@@ -28,6 +28,8 @@ from fractions import Fraction
 from itertools import pairwise
 from typing import Any
 
+import flint
+
 from quadric_contact._generated import formulas
 from quadric_contact.exact.errors import DegeneratePencilError
 from quadric_contact.exact.rational import sign, to_fraction
@@ -159,7 +161,7 @@ def paper_deltas(coeffs: Sequence[Any]) -> tuple[Any, Any, Any]:
 
     Example 11.  The paper prints ``Delta_4 = 0`` and ``Delta_3 = -400``; the
     printed formula gives ``Delta_3 = -13790208`` (same sign; see
-    :data:`quadric_contact.paper.ERRATA`):
+    :data:`quadric_contact.paper.errata.ERRATA`):
 
     >>> paper_deltas([-16, -64, -67, -12, -12])
     (-6000, -13790208, 0)
@@ -437,7 +439,6 @@ def root_structure(coeffs: Sequence[Any]) -> RootStructure:
     real_f, pairs_f, gdeg, signs = _counts(c)
     if gdeg == 0:
         return RootStructure(n, (1,) * real_f, (1,) * pairs_f, signs)
-    import flint
 
     ints = _to_int_poly(c)
     f = flint.fmpz_poly(ints)

@@ -60,7 +60,7 @@ class NotSymmetricError(QuadricContactError, ValueError):
 
 class EquationError(QuadricContactError, ValueError):
     """An equation or expression cannot be read: the package's parser
-    (:mod:`quadric_contact.model.parsing`) refuses the text, or it is not a
+    (:mod:`quadric_contact.exact.reading`) refuses the text, or it is not a
     polynomial of the degree required (<= 2 in x, y, z for a quadric).
 
     For text, the message names the offending part and its position and

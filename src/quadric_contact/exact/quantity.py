@@ -54,7 +54,7 @@ class Quantity:
         q = value.as_fraction() if isinstance(value, RealAlgebraic) else Fraction(value)
 
         def show() -> Any:
-            import sympy
+            import sympy  # sympy is heavy: only for sympy output
 
             return sympy.Rational(q.numerator, q.denominator)
 

@@ -20,6 +20,8 @@ from fractions import Fraction
 from typing import Any
 
 import flint
+import mpmath
+import numpy as np
 
 from quadric_contact.exact.bounds import MAX_DIGITS
 from quadric_contact.exact.errors import (
@@ -59,7 +61,7 @@ def _from_string(s: str) -> Fraction:
 
 
 def _from_sympy(expr: Any, original: Any = None) -> Fraction:
-    import sympy
+    import sympy  # sympy is heavy: only for sympy input
 
     original = expr if original is None else original
     if expr.has(sympy.nan) or expr.has(sympy.zoo) or expr.has(sympy.oo) or expr.has(-sympy.oo):
@@ -174,8 +176,6 @@ def _to_fraction(value: Any) -> Fraction:
         raise NotANumberError(f"{value!r} is complex, not real", value)
     mod = type(value).__module__ or ""
     if mod.startswith("numpy"):
-        import numpy as np
-
         if isinstance(value, np.bool_) or getattr(value, "dtype", None) == np.bool_:
             raise NotANumberError("a boolean is not accepted as a number", value)
         if isinstance(value, np.ndarray):
@@ -192,8 +192,6 @@ def _to_fraction(value: Any) -> Fraction:
     if mod.startswith("sympy"):
         return _from_sympy(value)
     if mod.startswith("mpmath"):
-        import mpmath
-
         if isinstance(value, mpmath.mpf):
             if not mpmath.isfinite(value):
                 raise NonFiniteError(f"{value!r} is not finite", value)
@@ -221,8 +219,6 @@ def _to_fraction(value: Any) -> Fraction:
 
 
 def _longdouble(value: Any) -> Fraction:
-    import numpy as np
-
     if not np.isfinite(value):
         raise NonFiniteError(f"{value!r} is not finite", value)
     num, den = value.as_integer_ratio()
@@ -233,8 +229,6 @@ def _rows(matrix: Any) -> list[list[Any]]:
     """Turn a matrix-like object into a list of rows without losing exactness."""
     mod = type(matrix).__module__ or ""
     if mod.startswith("numpy"):
-        import numpy as np
-
         arr = np.asarray(matrix)
         if arr.ndim != 2:
             raise ShapeError(f"expected a 2-d matrix, got shape {arr.shape}", matrix)

@@ -24,8 +24,6 @@ reader of a quadric's equation (its ten matrix entries) is
 This module sits with the exact arithmetic (it imports only
 :mod:`~quadric_contact.exact.errors`): :func:`~quadric_contact.exact.rational.to_fraction`
 reads every number given as text with :func:`parse_number`.
-:mod:`quadric_contact.model.parsing` re-exports every name here, so
-``from quadric_contact.model.parsing import parse_number`` keeps working.
 
 Grammar
 -------

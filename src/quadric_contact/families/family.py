@@ -79,6 +79,7 @@ from quadric_contact.exact.errors import (
     ShapeError,
 )
 from quadric_contact.exact.rational import to_fraction
+from quadric_contact.exact.reading import MAX_DEGREE, MAX_DIGITS, Refusal, evaluate, parse_expression
 from quadric_contact.families.family_budget import CountedPolynomial, PolynomialBudget
 from quadric_contact.families.family_maps import contact_map
 from quadric_contact.families.family_numeric import lambdify
@@ -93,13 +94,6 @@ from quadric_contact.families.rational_functions import (
     _sympy_rational,
 )
 from quadric_contact.model.classification import QuadricKind, principal_minor_sums_3
-from quadric_contact.model.parsing import (
-    MAX_DEGREE,
-    MAX_DIGITS,
-    Refusal,
-    evaluate,
-    parse_expression,
-)
 from quadric_contact.model.quadric import Quadric
 from quadric_contact.theory.regions import region_patterns
 from quadric_contact.theory.results import Region
@@ -119,7 +113,7 @@ __all__ = [
 
 MAX_FAMILY_WORK = 20_000
 """Most term products the reader of a family's equations spends on one text (the
-parameters multiply the terms: the bound of :data:`~quadric_contact.model.parsing.MAX_WORK`
+parameters multiply the terms: the bound of :data:`~quadric_contact.exact.reading.MAX_WORK`
 for plain equations is lower)."""
 
 _XYZ = ("x", "y", "z")
@@ -136,11 +130,11 @@ def _height_bits(c: Any) -> int:
 
 class _FamilyAlgebra:
     """Polynomials in ``x, y, z`` whose coefficients are rational functions of the
-    parameters, for :func:`~quadric_contact.model.parsing.evaluate`: an element is ``(num, den)``
+    parameters, for :func:`~quadric_contact.exact.reading.evaluate`: an element is ``(num, den)``
     with ``num`` in ``Q[x, y, z, params]`` and ``den`` in ``Q[params]`` (same context).
     Division is by expressions in the parameters only; degrees, digits and work are
-    bounded (:data:`~quadric_contact.model.parsing.MAX_DEGREE` in ``x, y, z`` and in the
-    parameters, :data:`~quadric_contact.model.parsing.MAX_DIGITS`, :data:`MAX_FAMILY_WORK`)."""
+    bounded (:data:`~quadric_contact.exact.reading.MAX_DEGREE` in ``x, y, z`` and in the
+    parameters, :data:`~quadric_contact.exact.reading.MAX_DIGITS`, :data:`MAX_FAMILY_WORK`)."""
 
     def __init__(self, parameters: Sequence[str]) -> None:
         self.ctx = flint.fmpq_mpoly_ctx.get((*_XYZ, *parameters), "lex")

@@ -45,13 +45,18 @@ from enum import IntEnum
 from fractions import Fraction
 from typing import TYPE_CHECKING, Any
 
+import flint
 import numpy as np
 
 from quadric_contact.exact.entries import ENTRY_INDICES
 from quadric_contact.exact.errors import QuadricContactError, ShapeError
 from quadric_contact.exact.optional import pyplot
 from quadric_contact.exact.rational import to_fraction
+from quadric_contact.families.family_numeric import _numpy_signs, compile_quantity
 from quadric_contact.families.rational_functions import RationalFunction
+from quadric_contact.modes.numbers.registry import get_mode
+from quadric_contact.modes.stacks.batch import as_stack, make_pairs
+from quadric_contact.modes.stacks.pairs import MatrixStack
 
 if TYPE_CHECKING:
     from quadric_contact.families.family import Family
@@ -108,8 +113,6 @@ class _Decider:
     """
 
     def __init__(self, fam: Family) -> None:
-        from quadric_contact.modes import get_mode
-
         self.fam = fam
         self.mode = get_mode("certified")
         self.calls = 0
@@ -147,8 +150,6 @@ class _Decider:
         return out
 
     def _stack(self, entries: Sequence[Any], args: list[list[Any]], name: str) -> tuple[Any, np.ndarray]:
-        from quadric_contact.modes import MatrixStack
-
         n = len(args)
         exact = np.empty((n, 10), dtype=object)
         floats = np.empty((n, 4, 4), dtype=np.float64)
@@ -178,10 +179,6 @@ class _Decider:
 
     def decide(self, us: np.ndarray, ws: np.ndarray) -> np.ndarray:
         """The answers at the points ``(us[k], ws[k])`` (binary64)."""
-        import flint
-
-        from quadric_contact.modes.stacks.batch import as_stack, make_pairs
-
         n = len(us)
         out = np.full(n, MapAnswer.UNDEFINED, dtype=np.int8)
         if n == 0:
@@ -238,8 +235,6 @@ class _Decider:
 
     def _one_by_one(self, question: str, E: Any, Q: Any) -> np.ndarray:
         """Pair by pair, where a stack was refused (the refused pairs are undefined)."""
-        from quadric_contact.modes.stacks.batch import make_pairs
-
         pairs, _ = make_pairs(E, Q)
         res = np.full(pairs.n, MapAnswer.UNDEFINED, dtype=np.int8)
         for k in range(pairs.n):
@@ -326,9 +321,9 @@ class ContactMap:
         matplotlib Figure
         """
         plt = pyplot("contact maps")
-        from matplotlib.colors import ListedColormap
-        from matplotlib.lines import Line2D
-        from matplotlib.patches import Patch
+        from matplotlib.colors import ListedColormap  # optional (the plot extra)
+        from matplotlib.lines import Line2D  # optional (the plot extra)
+        from matplotlib.patches import Patch  # optional (the plot extra)
 
         if ax is None:
             fig, ax = plt.subplots(figsize=(7, 6))
@@ -395,8 +390,6 @@ def _draw_curve(
 ) -> bool:
     """The zero set of the polynomial ``f`` in two variables: a zero contour of its exact
     value (float evaluation of the generated program) and certified points on lines."""
-    from quadric_contact.families.family_numeric import compile_quantity
-
     cq = compile_quantity("curve", RationalFunction(f), 2)
     n = 600
     U, W = np.meshgrid(np.linspace(*ur, n), np.linspace(*wr, n), indexing="ij")
@@ -423,8 +416,6 @@ def _draw_curve(
 def _real_roots_on_line(f: Any, axis: int, t: Fraction, lo: float, hi: float) -> list[float]:
     """The real roots in ``[lo, hi]`` of ``f`` with variable ``axis`` set to ``t`` (certified
     isolation by python-flint), as floats."""
-    import flint
-
     coeffs: dict[int, Any] = {}
     tq = flint.fmpq(t.numerator, t.denominator)
     for mono, c in f.to_dict().items():
@@ -449,8 +440,6 @@ def _boundary_cells(
 ) -> np.ndarray:
     """Cells to refine: an answer that differs from a neighbour's, or a boundary polynomial
     whose certified signs at the corners and the centre are not one non-zero sign."""
-    from quadric_contact.families.family_numeric import _numpy_signs, compile_quantity
-
     mark = np.zeros(codes.shape, dtype=bool)
     diff_u = codes[1:, :] != codes[:-1, :]
     diff_w = codes[:, 1:] != codes[:, :-1]
@@ -567,8 +556,6 @@ def contact_map(
 
 def _reorder(fam: Family, order: tuple[str, ...]) -> Family:
     """The same family with its parameters in another order."""
-    import flint
-
     perm = [fam.parameters.index(p) for p in order]
     ctx = flint.fmpq_mpoly_ctx.get(order, "lex")
 

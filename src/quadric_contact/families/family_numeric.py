@@ -52,6 +52,8 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import TYPE_CHECKING, Any
 
+import flint
+import mpmath
 import numpy as np
 
 from quadric_contact.exact.errors import ChoiceError
@@ -63,6 +65,7 @@ from quadric_contact.exact.straight_line import (
     _straight_line,
 )
 from quadric_contact.families.family_emit import Program, emit_program
+from quadric_contact.modes.kernels._jit import HAVE_NUMBA
 from quadric_contact.modes.kernels.errorbounds import program_errbound
 
 if TYPE_CHECKING:
@@ -294,7 +297,7 @@ def _numba_kernel(cq: CompiledQuantity, kind: str) -> Any:
     key = f"numba_{kind}"
     if key in cq.functions:
         return cq.functions[key]
-    import numba
+    import numba  # numba is optional: only the numba backend imports it
 
     program = _compile_source(
         _values_source(cq.program) + "\n\n" + cq.checked_source, {"__builtins__": {"abs": abs}}
@@ -346,8 +349,6 @@ def _numpy_signs(cq: CompiledQuantity, xs: list[np.ndarray]) -> np.ndarray:
 
 
 def _mpmath_values(cq: CompiledQuantity, xs: list[np.ndarray], dps: int) -> np.ndarray:
-    import mpmath
-
     with working_precision(dps=dps):
         to_mpf = np.frompyfunc(mpmath.mpf, 1, 1)
         ys = [to_mpf(np.asarray(x, dtype=np.float64)) for x in xs]
@@ -359,8 +360,6 @@ def _mpmath_values(cq: CompiledQuantity, xs: list[np.ndarray], dps: int) -> np.n
 
 
 def _exact_values(value: RationalFunction, xs: list[np.ndarray]) -> np.ndarray:
-    import flint
-
     shape = np.shape(xs[0]) if xs else ()
     flat = [np.asarray(x, dtype=np.float64).reshape(-1) for x in xs]
     n = int(np.prod(shape, dtype=np.int64))
@@ -426,8 +425,6 @@ class FamilyFunction:
         if b == "mpmath":
             return _mpmath_values(cq, xs, int(self.options.get("dps", 50)))
         if b in ("numba", "certified"):
-            from quadric_contact.modes.kernels._jit import HAVE_NUMBA
-
             if not HAVE_NUMBA:
                 return _numpy_values(cq, xs) if b == "numba" else _numpy_signs(cq, xs)
             shape = np.shape(xs[0]) if xs else ()

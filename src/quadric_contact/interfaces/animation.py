@@ -9,7 +9,7 @@ timeline then counts the bodies in each state.  :func:`render_gif` writes it
 as an animated GIF (``quadric-contact simulate --animate out.gif``).
 
 The frames are drawn with floats at rational frame times; the states come
-from the exact timeline (:meth:`~quadric_contact.scenes.simulate.PairResult.state_at`).
+from the exact timeline (:meth:`~quadric_contact.scenes.simulation_reports.PairResult.state_at`).
 """
 
 from __future__ import annotations
@@ -20,6 +20,8 @@ import tempfile
 from fractions import Fraction
 from pathlib import Path
 from typing import Any
+
+import numpy as np
 
 from quadric_contact.exact.optional import pyplot, require
 from quadric_contact.interfaces.plotting import (
@@ -39,7 +41,7 @@ def body_states(result: Any, t: Fraction) -> dict[str, str]:
     """Ellipsoid name -> one state word at the rational time ``t``: ``contact`` if it
     crosses any object or meets another body (mutual contacts), else its state
     against the first object in scene order
-    (:meth:`~quadric_contact.scenes.simulate.ObjectState.category`)."""
+    (:meth:`~quadric_contact.scenes.simulation_reports.ObjectState.category`)."""
     out: dict[str, str] = {}
     for pair in result.pairs:
         try:
@@ -55,8 +57,6 @@ def body_states(result: Any, t: Fraction) -> dict[str, str]:
 
 
 def _centres(result: Any, times: list[Fraction]) -> dict[str, Any]:
-    import numpy as np
-
     scene = result.scene
     t0, t1 = scene.span
     out = {}
@@ -71,7 +71,7 @@ def _centres(result: Any, times: list[Fraction]) -> dict[str, Any]:
 
 
 def animate_result(result: Any, *, frames: int = 40, fps: int = 10, whole: int = 12) -> Any:
-    """A matplotlib animation of a :class:`~quadric_contact.scenes.simulate.SimulationResult`.
+    """A matplotlib animation of a :class:`~quadric_contact.scenes.simulation_reports.SimulationResult`.
 
     Parameters
     ----------
@@ -92,8 +92,6 @@ def animate_result(result: Any, *, frames: int = 40, fps: int = 10, whole: int =
     MissingDependencyError
         If matplotlib is not installed.
     """
-    import numpy as np
-
     plt = pyplot("animations")
     animation = require("matplotlib.animation", extra="plot", purpose="animations")
     if frames < 2:
@@ -242,7 +240,7 @@ def _frames_bar(total: int, enabled: bool | None) -> Any:
         enabled = sys.stderr.isatty()
     if not enabled:
         return None
-    from tqdm import tqdm
+    from tqdm import tqdm  # tqdm takes tens of ms to import: only when a progress bar is shown
 
     # every frame is drawn: a frame takes tenths of a second, and a bar that skips
     # updates by time may never show the last one before it is cleared

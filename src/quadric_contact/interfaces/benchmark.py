@@ -12,18 +12,20 @@ Populations
     *nearly* degenerate, so some of their pairs are genuinely hard.
 ``generic``
     The same with the types that rounding does not make nearly degenerate for the
-    contact question (ellipsoid, both hyperboloids, both paraboloids, plane).
+    contact question (:data:`~quadric_contact.testing.samples.GENERIC_KINDS`).
 ``hard``
     The hard-case suite (:mod:`quadric_contact.testing.hardcases`).
 
+The populations of the complete decision and of the kernels are
+:func:`~quadric_contact.testing.samples.complete_populations` and
+:func:`~quadric_contact.testing.samples.kernel_population`.
+
 Peers
 -----
-``numpy eigvals``: batched eigenvalues of ``-Q E^-1`` (non-real when an imaginary
-part exceeds ``1e-9`` of the modulus); ``numpy roots``: ``numpy.roots`` of the
-float pencil coefficients, pair by pair, same tolerance; ``fcl GJK``: python-fcl
-ellipsoid-ellipsoid collision (solid overlap, compared with the exact "contact
-or one inside the other"); ``sympy``: sympy determinant of ``lambda E + Q`` over
-the rationals, its discriminant and a Sturm count of the real roots (exact, slow).
+``numpy eigvals``, ``numpy roots``, ``sympy`` and ``fcl GJK``
+(:mod:`quadric_contact.testing.peers`); python-fcl's solid overlap is compared with the
+exact "contact or one inside the other"
+(:func:`~quadric_contact.testing.references.exact_overlap`).
 """
 
 from __future__ import annotations
@@ -37,11 +39,11 @@ import platform
 import resource
 import subprocess
 import sys
+import tempfile
 import time
 import tracemalloc
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator
 from dataclasses import asdict, dataclass, field
-from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
@@ -53,6 +55,7 @@ from quadric_contact.model.classification import QuadricKind
 from quadric_contact.modes import (
     BallMode,
     CertifiedMode,
+    ContactCode,
     ExactMode,
     FilterMode,
     FloatMode,
@@ -60,29 +63,27 @@ from quadric_contact.modes import (
     NumberMode,
     OverlapCode,
 )
+from quadric_contact.modes.kernels import native
+from quadric_contact.modes.kernels._jit import COMPILE_NOTICE, TWINS_NOTICE
+from quadric_contact.modes.kernels.support_drivers import read_all
+from quadric_contact.modes.predicates import corollary_10, overlap, relative_position, transversal_contact
 from quadric_contact.modes.stacks.batch import run_stack
-from quadric_contact.testing.samples import SAMPLE_KINDS, random_pairs
+from quadric_contact.modes.stacks.packing import Packed, pack
+from quadric_contact.testing.hardcases import FAMILIES, hard_cases
+from quadric_contact.testing.peers import EIG_TOL, peer_fcl, peer_numpy_eigvals, peer_numpy_roots, peer_sympy
+from quadric_contact.testing.references import exact_overlap
+from quadric_contact.testing.samples import (
+    GENERIC_KINDS,
+    SAMPLE_KINDS,
+    complete_populations,
+    kernel_population,
+    random_pairs,
+)
+from quadric_contact.testing.symmetric import axis_family, stable
 
-__all__ = [
-    "EIG_TOL",
-    "GENERIC_KINDS",
-    "PROFILES",
-    "Measurement",
-    "Report",
-    "peer_numpy_eigvals",
-    "peer_numpy_roots",
-    "run",
-]
+__all__ = ["PROFILES", "Measurement", "Report", "run"]
 
 K = QuadricKind
-GENERIC_KINDS = (
-    K.ELLIPSOID,
-    K.HYPERBOLOID_ONE_SHEET,
-    K.HYPERBOLOID_TWO_SHEETS,
-    K.ELLIPTIC_PARABOLOID,
-    K.HYPERBOLIC_PARABOLOID,
-    K.PLANE,
-)
 
 PROFILES: dict[str, dict[str, Any]] = {
     "smoke": {  # seconds: what the test suite runs
@@ -440,7 +441,7 @@ def _traced() -> Iterator[list[int]]:
 
 
 def machine_info() -> dict[str, Any]:
-    import numba
+    import numba  # heavy and optional: only its version is read
 
     info = {
         "python": platform.python_version(),
@@ -455,103 +456,6 @@ def machine_info() -> dict[str, Any]:
                 info["cpu"] = line.split(":", 1)[1].strip()
                 break
     return info
-
-
-# -- peers -----------------------------------------------------------------------------------
-
-EIG_TOL = 1e-9
-"""The numpy peers' test for a non-real eigenvalue or root: an imaginary part above ``EIG_TOL``
-times the largest modulus (at least 1)."""
-
-
-def peer_numpy_eigvals(E: np.ndarray, Q: np.ndarray, tol: float = EIG_TOL) -> np.ndarray:
-    """Contact codes from the batched eigenvalues of ``-Q E^-1`` (same as of ``-E^-1 Q``)."""
-    w = np.linalg.eigvals(-np.linalg.solve(E, Q))
-    scale = np.maximum(1.0, np.abs(w).max(axis=-1, keepdims=True))
-    return (np.abs(w.imag) > tol * scale).any(axis=-1).astype(np.int8)
-
-
-def _float_coefficients(E: np.ndarray, Q: np.ndarray) -> np.ndarray:
-    from quadric_contact._generated import formulas
-    from quadric_contact.exact.entries import ENTRY_INDICES
-
-    e = [E[:, i, j] for i, j in ENTRY_INDICES]
-    q = [Q[:, i, j] for i, j in ENTRY_INDICES]
-    return np.stack(formulas.pencil_coefficients(*e, *q), axis=1)
-
-
-def peer_numpy_roots(E: np.ndarray, Q: np.ndarray, tol: float = EIG_TOL) -> np.ndarray:
-    """Contact codes from ``numpy.roots`` of the float pencil coefficients, pair by pair."""
-    c = _float_coefficients(E, Q)
-    out = np.empty(len(c), dtype=np.int8)
-    for k, row in enumerate(c):
-        r = np.roots(row[::-1])
-        out[k] = bool((np.abs(r.imag) > tol * max(1.0, float(np.abs(r).max(initial=0.0)))).any())
-    return out
-
-
-def peer_sympy(E: np.ndarray, Q: np.ndarray) -> np.ndarray:
-    """Exact contact codes by sympy: the determinant of ``lambda E + Q`` over the
-    rationals, its discriminant, and a Sturm count of the real roots when needed."""
-    import sympy
-
-    lam = sympy.Symbol("lambda")
-    out = np.empty(len(E), dtype=np.int8)
-    for k in range(len(E)):
-        entries = [
-            lam * sympy.Rational(Fraction(float(E[k, i, j]))) + sympy.Rational(Fraction(float(Q[k, i, j])))
-            for i in range(4)
-            for j in range(4)
-        ]
-        M = sympy.Matrix(4, 4, entries)
-        P = sympy.Poly(M.det(method="berkowitz"), lam)
-        disc = sympy.discriminant(P)
-        if disc < 0:
-            out[k] = 1
-            continue
-        real = sum(m * f.count_roots() for f, m in P.sqf_list()[1])
-        out[k] = int(bool(int(real) < P.degree()))
-    return out
-
-
-def _fcl_objects(geometry: dict[str, np.ndarray], k: int) -> Any:
-    import fcl
-
-    a = geometry["axes"][k]
-    return fcl.CollisionObject(
-        fcl.Ellipsoid(float(a[0]), float(a[1]), float(a[2])),
-        fcl.Transform(
-            np.asarray(geometry["rotation"][k], dtype=float), np.asarray(geometry["center"][k], dtype=float)
-        ),
-    )
-
-
-def peer_fcl(geo_e: dict[str, np.ndarray], geo_q: dict[str, np.ndarray], which: Sequence[int]) -> np.ndarray:
-    """Solid overlap of two ellipsoids by python-fcl's GJK (libccd), pair by pair."""
-    import fcl
-
-    out = np.empty(len(which), dtype=np.int8)
-    for t, k in enumerate(which):
-        request, result = fcl.CollisionRequest(), fcl.CollisionResult()
-        out[t] = fcl.collide(_fcl_objects(geo_e, k), _fcl_objects(geo_q, k), request, result) > 0
-    return out
-
-
-def exact_overlap(E: np.ndarray, Q: np.ndarray, contact: np.ndarray) -> np.ndarray:
-    """Do the solid ellipsoids overlap, exactly: transversal contact, or the centre of
-    one inside the other (without contact one is then inside the other)."""
-    from quadric_contact.model.quadric import Quadric
-
-    out = np.empty(len(E), dtype=np.int8)
-    for k in range(len(E)):
-        if contact[k]:
-            out[k] = 1
-            continue
-        e, q = Quadric.from_matrix(E[k]), Quadric.from_matrix(Q[k])
-        ce, cq = e.center(), q.center()
-        assert ce is not None and cq is not None
-        out[k] = int(q.value_at(ce) * q[0, 0] < 0 or e.value_at(cq) * e[0, 0] < 0)
-    return out
 
 
 # -- measurements -------------------------------------------------------------------------------
@@ -649,7 +553,7 @@ def _measure_peers(
 
 def _measure_fcl(rng: np.random.Generator, cfg: dict[str, Any], report: Report) -> None:
     try:
-        import fcl  # noqa: F401
+        import fcl  # noqa: F401  (optional, the bench extra: is python-fcl installed?)
     except ImportError:
         report.missing.append("python-fcl")
         return
@@ -690,9 +594,6 @@ def _measure_fcl(rng: np.random.Generator, cfg: dict[str, Any], report: Report) 
 
 
 def _hard(report: Report, cfg: dict[str, Any]) -> None:
-    from quadric_contact.modes import ContactCode
-    from quadric_contact.testing.hardcases import FAMILIES, hard_cases
-
     cases = [c for c in hard_cases(cfg.get("hard_families", FAMILIES)) if not c.exact_input]
     E = np.stack([c.matrices()[0] for c in cases])
     Q = np.stack([c.matrices()[1] for c in cases])
@@ -716,7 +617,7 @@ def _hard(report: Report, cfg: dict[str, Any]) -> None:
         }
     # fcl on the ellipsoid rungs (solid overlap: contact, or E inside Q on the R- side)
     with contextlib.suppress(ImportError):
-        import fcl  # noqa: F401
+        import fcl  # noqa: F401  (optional, the bench extra: is python-fcl installed?)
 
         rungs = [k for k in ladder if cases[k].kind == "ellipsoid"]
         geometry = [cases[k].geometry or {} for k in rungs]
@@ -751,8 +652,6 @@ def _hard(report: Report, cfg: dict[str, Any]) -> None:
 def read_bandwidth(E: np.ndarray, Q: np.ndarray, repeat: int = 15) -> dict[str, float]:
     """The time to read every byte of ``E`` and ``Q`` once (a compiled, threaded sum):
     no kernel that reads its inputs can be faster."""
-    from quadric_contact.modes.numbers.binary64 import read_all
-
     read_all(E[:10], Q[:10])
     seconds, _ = _best_of(lambda: read_all(E, Q), repeat)
     nbytes = E.nbytes + Q.nbytes
@@ -817,36 +716,12 @@ def _stage_fractions(counts: Any) -> str:
     return ", ".join(parts)
 
 
-def complete_populations(n: int, rng: np.random.Generator) -> dict[str, tuple[np.ndarray, np.ndarray, Any]]:
-    """The populations of the complete-decision measurement, ``n`` pairs each:
-
-    * ``environment``: small ellipsoids (semi-axes 0.05-0.2, centres in [-4, 4]^3) against one
-      ellipsoid of semi-axes 3-5 at the origin (the paper's use case, nearly every pair small);
-    * ``similar sizes``: ellipsoids of semi-axes 0.5-2 (centres in [-3, 3]^3) against ellipsoids
-      of semi-axes 2-5 at the origin, random rotations (about three quarters in contact, many
-      pairs not small), with the geometry for peers that take shapes;
-    * ``every type``: :func:`~quadric_contact.testing.samples.random_pairs`, a quadric of every
-      type of :data:`~quadric_contact.testing.samples.SAMPLE_KINDS` against small ellipsoids.
-    """
-    from quadric_contact.testing.samples import random_ellipsoids
-
-    small, _ = random_ellipsoids(n, rng, axes=(0.05, 0.2), box=4.0)
-    env, _ = random_ellipsoids(1, rng, axes=(3.0, 5.0), box=0.0)
-    E, geo_e = random_ellipsoids(n, rng, axes=(0.5, 2.0), box=3.0)
-    Q, geo_q = random_ellipsoids(n, rng, axes=(2.0, 5.0), box=0.0)
-    Er, Qr, _ = random_pairs(n, rng)
-    return {
-        "environment": (small, env[0], None),
-        "similar sizes": (E, Q, (geo_e, geo_q)),
-        "every type": (Er, Qr, None),
-    }
-
-
 NATIVE_AGAINST_JIT_CODE = """
 import functools, json, sys
 import numpy as np
-from quadric_contact.interfaces.benchmark import _best_of, complete_populations, criterion_stack
+from quadric_contact.interfaces.benchmark import _best_of, criterion_stack
 from quadric_contact.modes.predicates import overlap, relative_position, transversal_contact
+from quadric_contact.testing.samples import complete_populations
 n, seed = int(sys.argv[1]), int(sys.argv[2])
 out = {}
 for population, (E, Q, _) in complete_populations(n, np.random.default_rng(seed)).items():
@@ -861,15 +736,12 @@ print(json.dumps(out))
 
 def native_against_run_time_compile(n: int, rounds: int = 3, seed: int = 0) -> dict[str, dict[str, float]]:
     """The certified criterion kernel and the complete certified decision on the populations of
-    :func:`complete_populations`, with the native kernels and with numba's run-time compile of
-    the same kernels (loaded from its cache): fresh processes, the two alternated ``rounds``
-    times (this host's speed drifts by tens of percent within a minute), the best time of each.
+    :func:`~quadric_contact.testing.samples.complete_populations`, with the native kernels and
+    with numba's run-time compile of the same kernels (loaded from its cache): fresh processes,
+    the two alternated ``rounds`` times (this host's speed drifts by tens of percent within a
+    minute), the best time of each.
     Returns ``{"population|question": {"native": s, "numba": s}}``; empty without native
     kernels."""
-    import json
-
-    from quadric_contact.modes.kernels import native
-
     lib = native.library() if native.enabled() else None
     if lib is None or not lib.usable:
         return {}
@@ -908,8 +780,6 @@ def _complete(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> 
     of each question (certified, and float) on the same pairs, as a fraction of the kernel's
     throughput; which stage settled how many pairs; the float mode's and the peers' errors
     against the certified answer."""
-    from quadric_contact.modes.predicates import overlap, relative_position, transversal_contact
-
     n = cfg["complete_pairs"]
     for population, (E, Q, geometry) in complete_populations(n, rng).items():
         head = (E[:100], Q if Q.ndim == 2 else Q[:100])
@@ -973,7 +843,7 @@ def _complete(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> 
             }
         )
         try:
-            import fcl  # noqa: F401
+            import fcl  # noqa: F401  (optional, the bench extra: is python-fcl installed?)
         except ImportError:
             continue
         k = min(n, cfg["fcl_complete_pairs"])
@@ -1010,8 +880,6 @@ def _exact_scalar(report: Report, cfg: dict[str, Any], rng: np.random.Generator)
     ``SCALAR_ROUNDS`` rounds over the populations, ``SCALAR_PAUSE`` apart (as :mod:`timeit`
     takes the least of its repeats): a shared host's speed drifts by tens of percent for seconds
     at a time, and a single pass reads the drift as much as the code."""
-    from quadric_contact.modes.predicates import transversal_contact
-
     n = cfg["exact_scalar_pairs"]
     populations = {k: v for k, v in complete_populations(n, rng).items() if k != "environment"}
     times = {k: [math.inf] * n for k in populations}
@@ -1045,10 +913,6 @@ def _exact_scalar(report: Report, cfg: dict[str, Any], rng: np.random.Generator)
 def _float_families(report: Report) -> None:
     """The float mode against the exact decision on the symmetric placements and on the
     hard-case ladders down to 1e-12 from tangency (the rounded matrices' exact answer)."""
-    from quadric_contact.modes.predicates import corollary_10, transversal_contact
-    from quadric_contact.testing.hardcases import hard_cases
-    from quadric_contact.testing.symmetric import axis_family, stable
-
     family = axis_family()
     keep = stable(family, lambda E, Q: transversal_contact(E, Q, mode="exact"))
     family = [p for p, k in zip(family, keep, strict=True) if k]
@@ -1072,24 +936,11 @@ def _float_families(report: Report) -> None:
         )
 
 
-def kernel_population(n: int, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
-    """The population of the kernel measurements: ``n`` small ellipsoids (semi-axes 0.5-2, random
-    rotations, centres in [-3, 3]^3) against ``n`` ellipsoids of semi-axes 2-5 (centres likewise)."""
-    from quadric_contact.testing.samples import random_ellipsoids
-
-    E, _ = random_ellipsoids(n, rng, axes=(0.5, 2.0), box=3.0)
-    Q, _ = random_ellipsoids(n, rng, axes=(2.0, 5.0), box=3.0)
-    return E, Q
-
-
 def _kernels(report: Report, cfg: dict[str, Any], rng: np.random.Generator) -> None:
     """The criterion alone (float, filter, certified; float64 and packed input) and the complete
     decision on distinct pairs and on one matrix against the stack (broadcasting), each against
     the time it takes to read its inputs once, and numpy's batch eigenvalues on the same pairs
     (distinct, and one matrix against the stack) against the certified codes."""
-    from quadric_contact.modes.predicates import transversal_contact
-    from quadric_contact.modes.stacks.packing import Packed, pack
-
     n = cfg["kernel_pairs"]
     E, Q = kernel_population(n, rng)
     repeat = 7  # best of 7: each run is tens of milliseconds, and a shared machine is noisy
@@ -1148,7 +999,7 @@ import time
 t0 = time.perf_counter()
 import numpy as np
 import quadric_contact as qc
-from quadric_contact.interfaces.benchmark import kernel_population
+from quadric_contact.testing.samples import kernel_population
 t1 = time.perf_counter()
 E, Q = kernel_population(1000, np.random.default_rng(0))
 qc.transversal_contact(E, Q)
@@ -1174,11 +1025,6 @@ def cold_start() -> dict[str, Any]:
 
     For each: the import time, the two calls' times, the wall time of the process, and whether
     it printed the twins' or the compiler's notice."""
-    import tempfile
-
-    from quadric_contact.modes.kernels import native
-    from quadric_contact.modes.kernels._jit import COMPILE_NOTICE, TWINS_NOTICE
-
     src = str(Path(__file__).resolve().parents[2])
     out: dict[str, Any] = {}
     lib = native.library() if native.enabled() else None
@@ -1439,7 +1285,7 @@ def peak_rss() -> int:
 def huge_run(pairs: int = 10**8, chunk: int = 250_000, seed: int = 0) -> dict[str, Any]:
     """Process ``pairs`` pairs in dask chunks (generated chunk by chunk, never all in
     memory) and return the time, the counts and the peak RSS of this process."""
-    import dask.array as da
+    import dask.array as da  # optional (the dask extra)
 
     nchunks = -(-pairs // chunk)
 

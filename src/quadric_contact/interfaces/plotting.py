@@ -14,11 +14,14 @@ from collections.abc import Sequence
 from fractions import Fraction
 from typing import Any
 
+import numpy as np
+
 from quadric_contact.exact.errors import ShapeError
 from quadric_contact.exact.optional import pyplot
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import Quadric
 from quadric_contact.scenes.composite import Composite, Piece, Split
+from quadric_contact.theory.pencil import as_quadric
 
 __all__ = [
     "STATE_COLOURS",
@@ -42,7 +45,7 @@ STATE_COLOURS: dict[str, str] = {
     "zone 2": "#1f77b4",
     "free": "#1f77b4",
 }
-"""Colour of each state category (:meth:`~quadric_contact.scenes.simulate.ObjectState.category`)."""
+"""Colour of each state category (:meth:`~quadric_contact.scenes.simulation_reports.ObjectState.category`)."""
 
 
 def _colour(category: str) -> str:
@@ -72,8 +75,6 @@ def _constraints(obj: Composite) -> dict[str, list[tuple[Quadric, int]]]:
 
 def _surface_points(q: Quadric, box: Sequence[tuple[float, float]], n: int = 70) -> Any:
     """Points of the surface ``X^T Q X = 0`` in the box, found along grid lines in x, y and z."""
-    import numpy as np
-
     M = q.to_numpy(float)
     pts = []
     for axis in range(3):
@@ -113,8 +114,6 @@ def _surface_points(q: Quadric, box: Sequence[tuple[float, float]], n: int = 70)
 
 def _ellipsoid_mesh(E: Quadric, n: int = 14) -> tuple[Any, Any, Any]:
     """A (float) mesh of the surface of the ellipsoid ``E``."""
-    import numpy as np
-
     M = E.to_numpy(float)
     A, b, c = M[:3, :3], M[:3, 3], M[3, 3]
     centre = -np.linalg.solve(A, b)
@@ -127,15 +126,11 @@ def _ellipsoid_mesh(E: Quadric, n: int = 14) -> tuple[Any, Any, Any]:
 
 
 def _plane_value(plane: Quadric, P: Any) -> Any:
-    import numpy as np
-
     M = plane.to_numpy(float)
     return 2 * P @ M[:3, 3] + M[3, 3] + np.zeros(len(P))
 
 
 def _draw_pair(fig: Any, spec: Any, result: Any, pair: Any, samples: int) -> None:
-    import numpy as np
-
     scene = result.scene
     t0, t1 = scene.span
     ell = next(e for e in scene.ellipsoids if e.name == pair.ellipsoid)
@@ -272,7 +267,7 @@ def merge_close_labels(points: list[list[float]], radius: float) -> list[tuple[l
 
 
 def plot_result(result: Any, *, max_pairs: int = 6, samples: int = 240) -> Any:
-    """A matplotlib figure of a :class:`~quadric_contact.scenes.simulate.SimulationResult`.
+    """A matplotlib figure of a :class:`~quadric_contact.scenes.simulation_reports.SimulationResult`.
 
     One column per (ellipsoid, object) pair, up to ``max_pairs``: a 3D view
     above a timeline strip.
@@ -367,8 +362,6 @@ Mesh = tuple[Any, Any, Any]
 
 
 def _as_box(box: Any) -> Any:
-    import numpy as np
-
     if box is None:
         return None
     try:
@@ -381,16 +374,12 @@ def _as_box(box: Any) -> Any:
 
 
 def _grid(a: tuple[float, float], b: tuple[float, float], n: int) -> tuple[Any, Any]:
-    import numpy as np
-
     return np.meshgrid(np.linspace(*a, n), np.linspace(*b, n))
 
 
 def _parametric(kind: QuadricKind, w: Any, bt: Any, c: float, yB: Any, h: float, n: int) -> list[Any]:
     """Patches ``(3, n, m)`` in the eigenframe ``y`` of the quadratic part, where the
     equation reads ``sum w_i y_i^2 + 2 bt . y + c = 0`` (``w[:nz] = 0``)."""
-    import numpy as np
-
     nz = _ZERO_EIGENVALUES[kind]
     s = np.zeros(3)  # centre along the non-null directions
     k = -c
@@ -518,8 +507,6 @@ def _parametric(kind: QuadricKind, w: Any, bt: Any, c: float, yB: Any, h: float,
 def _graph(kind: QuadricKind, w: Any, bt: Any, c: float, yB: Any, h: float, n: int) -> list[Any]:
     """Patches as graphs along one eigen-direction ``g``: on a grid of the other two
     coordinates, the (stable) roots of the quadratic ``w_g s^2 + 2 bt_g s + G = 0``."""
-    import numpy as np
-
     if kind is K.PLANE:
         g = int(np.argmax(np.abs(bt)))
     elif kind in _CYLINDERS:
@@ -594,10 +581,6 @@ def quadric_mesh(q: Any, box: Any = None, *, n: int = 40, method: str = "paramet
     >>> len(quadric_mesh("x**2 + y**2 - z**2 + 1", box=[(-3, 3)] * 3))   # two sheets
     2
     """
-    import numpy as np
-
-    from quadric_contact.theory.pencil import as_quadric
-
     if method not in ("parametric", "graph"):
         raise ValueError(f"method must be 'parametric' or 'graph', got {method!r}")
     q = as_quadric(q, "q")

@@ -23,10 +23,20 @@ Who runs it:
 
 from __future__ import annotations
 
+import contextlib
 import functools
+import os
+import sys
 import time
 from collections.abc import Callable
 from typing import Any
+
+import numpy as np
+
+import quadric_contact as qc
+from quadric_contact.modes.kernels import _jit
+from quadric_contact.modes.kernels.support_drivers import read_all
+from quadric_contact.testing.samples import random_ellipsoids, random_pairs
 
 WARM_PAIRS = 64
 
@@ -34,11 +44,6 @@ WARM_PAIRS = 64
 def calls() -> list[tuple[str, Callable[[], Any]]]:
     """The warm-up's calls, each with a line that says what it asks (also the list whose
     certified calls the native kernels are built from: :mod:`quadric_contact.codegen.native`)."""
-    import numpy as np
-
-    import quadric_contact as qc
-    from quadric_contact.testing.samples import random_ellipsoids, random_pairs
-
     rng = np.random.default_rng(0)
     E, Q, _ = random_pairs(WARM_PAIRS, rng)
     Es, _ = random_ellipsoids(WARM_PAIRS, rng, axes=(0.5, 2.0))
@@ -101,7 +106,6 @@ def calls() -> list[tuple[str, Callable[[], Any]]]:
     calls.append(("distance(ellipsoids apart)", functools.partial(qc.distance, far, near)))
     crossing = np.stack([_ellipsoid((0.5, 0.7, 0.9), (0.5 + 0.2 * k, 0.0, 0.0)) for k in range(4)])
     calls.append(("distance(ellipsoids crossing)", functools.partial(qc.distance, crossing, near)))
-    from quadric_contact.modes.numbers.binary64 import read_all
 
     calls.append(("read_all (the bench's read-bandwidth limit)", functools.partial(read_all, Es, Qs)))
     return first + calls
@@ -111,8 +115,6 @@ def _near_touching() -> tuple[Any, Any]:
     """Pairs of spheres and ellipsoids touching from outside, moved apart by ``1e-12`` to
     ``1e-16`` of their size, equal sizes among them: the float stages cannot decide them, so the
     later stages (tighter enclosures, the exact pencil) are compiled too."""
-    import numpy as np
-
     pairs = []
     for a, b in (((1.0, 1.0, 1.0), (1.0, 1.0, 1.0)), ((0.5, 0.7, 0.9), (2.0, 3.0, 4.0))):
         for d in (1e-12, 1e-14, 1e-15, 1e-16, -1e-15):
@@ -123,8 +125,6 @@ def _near_touching() -> tuple[Any, Any]:
 
 def _ellipsoid(axes: tuple[float, float, float], center: tuple[float, float, float]) -> Any:
     """``sum ((x_i - c_i) / a_i)^2 - 1`` as a 4 x 4 matrix (homogeneous coordinate last)."""
-    import numpy as np
-
     M = np.zeros((4, 4))
     for i, (a, c) in enumerate(zip(axes, center, strict=True)):
         M[i, i] = 1 / a**2
@@ -146,9 +146,7 @@ def warm_kernels(
     the opposite order (a second process, started alongside, compiles the kernels of the other
     end of the list first; where the two meet, each loads what the other has cached).  ``only``:
     the calls whose description it accepts (all if None)."""
-    from numba.core import event
-
-    from quadric_contact.modes.kernels import _jit
+    from numba.core import event  # numba is optional: only the warm-up's listener imports it
 
     missed = []
 
@@ -201,8 +199,6 @@ def warm_kernels(
 def run(*, reverse: bool = False, log: Callable[[str], None] = print) -> int:
     """Warm the kernels in this process, every call waiting for its kernel (no twins); say on
     ``log`` how long it took; return how many kernels were compiled."""
-    from quadric_contact.modes.kernels import _jit
-
     _jit.set_kernel_policy("wait")
     seconds, compiled = warm_kernels(log=log, reverse=reverse)
     how = f"{compiled} compiled" if compiled else "loaded from numba's on-disk cache"
@@ -215,11 +211,6 @@ def background() -> None:
     """The background warm-up the package starts (see the module's docstring): at once if
     another one holds the lock; else at the lowest priority, logging to a file next to the
     cache, and leaving the marker that says the cache holds every kernel of these sources."""
-    import contextlib
-    import os
-
-    from quadric_contact.modes.kernels import _jit
-
     with _jit.warmup_lock() as held:
         if not held:
             return
@@ -239,8 +230,6 @@ def main() -> None:
     test run's first process calls (in processes of their own, whose memory, several GB while
     numba compiles, is returned when they end), one line with the time it took; or the
     package's background warm-up."""
-    import sys
-
     if "--background" in sys.argv[1:]:
         background()
         return

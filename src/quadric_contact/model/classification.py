@@ -36,6 +36,7 @@ from dataclasses import dataclass
 from enum import StrEnum
 from typing import Any
 
+from quadric_contact._generated.formulas import pencil_coefficients
 from quadric_contact.exact.descartes import sign_variations
 
 __all__ = [
@@ -246,8 +247,6 @@ def principal_minor_sums_4(m: Sequence[Any]) -> tuple[Any, Any, Any, Any]:
     tuple
         ``(E1, E2, E3, E4)``; ``E4 = det M``.
     """
-    from quadric_contact._generated.formulas import pencil_coefficients
-
     one = m[0] * 0 + 1
     zero = m[0] * 0
     c0, c1, c2, c3, _ = pencil_coefficients(one, zero, zero, zero, one, zero, zero, one, zero, one, *m)

@@ -5,11 +5,10 @@
 (:mod:`quadric_contact.exact.reading`: a tokenizer and a recursive-descent parser,
 never ``eval``; its grammar, error messages and bounds are documented there)
 and returns the ten upper entries of the symmetric matrix (eq. (6)) in the
-order of :data:`~quadric_contact.exact.entries.ENTRY_INDICES`.
-
-Every public name of :mod:`quadric_contact.exact.reading` (:func:`parse_number`,
-:func:`parse_polynomial`, :data:`MAX_DIGITS`, ...) is re-exported here, so the
-readers of numbers and polynomials are also found under this module's name.
+order of :data:`~quadric_contact.exact.entries.ENTRY_INDICES`.  The readers of numbers
+and polynomials (:func:`~quadric_contact.exact.reading.parse_number`,
+:func:`~quadric_contact.exact.reading.parse_polynomial`, ...) are in
+:mod:`quadric_contact.exact.reading`.
 """
 
 from __future__ import annotations
@@ -17,58 +16,9 @@ from __future__ import annotations
 from fractions import Fraction
 
 from quadric_contact.exact.entries import ENTRY_INDICES
-from quadric_contact.exact.reading import (
-    MAX_DEGREE,
-    MAX_DEPTH,
-    MAX_DIGITS,
-    MAX_EXPONENT,
-    MAX_LENGTH,
-    MAX_WORK,
-    Algebra,
-    Equation,
-    Expr,
-    Name,
-    Neg,
-    Number,
-    Polynomial,
-    PolynomialAlgebra,
-    Power,
-    Product,
-    Refusal,
-    Sum,
-    evaluate,
-    parse_expression,
-    parse_number,
-    parse_polynomial,
-    parse_univariate,
-)
+from quadric_contact.exact.reading import Polynomial, parse_polynomial
 
-__all__ = [
-    "MAX_DEGREE",
-    "MAX_DEPTH",
-    "MAX_DIGITS",
-    "MAX_EXPONENT",
-    "MAX_LENGTH",
-    "MAX_WORK",
-    "Algebra",
-    "Equation",
-    "Expr",
-    "Name",
-    "Neg",
-    "Number",
-    "PolynomialAlgebra",
-    "Power",
-    "Product",
-    "Refusal",
-    "Sum",
-    "evaluate",
-    "parse_expression",
-    "parse_number",
-    "parse_polynomial",
-    "parse_quadric_equation",
-    "parse_univariate",
-    "quadric_entries",
-]
+__all__ = ["parse_quadric_equation", "quadric_entries"]
 
 
 def _quadric_monomials() -> tuple[tuple[tuple[int, ...], Fraction], ...]:

@@ -23,6 +23,8 @@ from collections.abc import Iterable, Sequence
 from fractions import Fraction
 from typing import Any
 
+import numpy as np
+
 from quadric_contact._generated.formulas import det_symmetric_4
 from quadric_contact.exact.entries import ENTRY_INDICES
 from quadric_contact.exact.errors import (
@@ -39,6 +41,7 @@ from quadric_contact.exact.errors import (
 from quadric_contact.exact.rational import as_square_matrix, common_denominator, to_fraction
 from quadric_contact.model.classification import QuadricKind, classify, principal_minor_sums_3
 from quadric_contact.model.motions import RigidMotion, rotation_from_quaternion
+from quadric_contact.model.parsing import parse_quadric_equation, quadric_entries
 
 __all__ = ["Quadric", "as_quadric"]
 
@@ -55,7 +58,7 @@ def _inverse_square(value: Any, name: str) -> Fraction:
     ``sqrt(20/3)`` whose square is rational."""
     mod = type(value).__module__ or ""
     if mod.startswith("sympy"):
-        import sympy
+        import sympy  # sympy is heavy: only for sympy input
 
         square = to_fraction(sympy.nsimplify(sympy.expand(value**2)))
         if not getattr(value, "is_positive", False):
@@ -191,7 +194,7 @@ class Quadric:
         with ``*``) or a sympy expression / equality built by the caller.
         Strings are read by the package's own parser
         (:func:`~quadric_contact.model.parsing.parse_quadric_equation`, grammar and
-        bounds in :mod:`quadric_contact.model.parsing`), never evaluated.  Decimal
+        bounds in :mod:`quadric_contact.exact.reading`), never evaluated.  Decimal
         literals are read as exact decimals.
 
         Returns
@@ -211,8 +214,6 @@ class Quadric:
         >>> Quadric.from_equation("x**2 + y**2 - 0.25*(z-3)**2 = 1").kind
         <QuadricKind.HYPERBOLOID_ONE_SHEET: 'hyperboloid of one sheet'>
         """
-        from quadric_contact.model.parsing import parse_quadric_equation
-
         if isinstance(equation, str):
             return cls._from_upper(parse_quadric_equation(equation))
         return cls._from_upper(_sympy_equation_entries(equation))
@@ -529,14 +530,12 @@ class Quadric:
 
     def to_sympy(self) -> Any:
         """The matrix as a ``sympy.Matrix`` of exact rationals."""
-        import sympy
+        import sympy  # sympy is heavy: only for sympy output
 
         return sympy.Matrix(4, 4, lambda i, j: sympy.Rational(self[i, j].numerator, self[i, j].denominator))
 
     def to_numpy(self, dtype: Any = float) -> Any:
         """As a numpy array (``dtype=object`` keeps the Fractions; ``float`` rounds)."""
-        import numpy as np
-
         return np.array([[self[i, j] for j in range(4)] for i in range(4)], dtype=dtype)
 
     def value_at(self, point: Sequence[Any]) -> Fraction:
@@ -558,7 +557,7 @@ class Quadric:
 
     def equation(self, variables: str = "xyz") -> str:
         """The equation ``X^T Q X`` as a sympy-readable string."""
-        import sympy
+        import sympy  # sympy is heavy: only for sympy output
 
         v = sympy.symbols(" ".join(variables))
         X = sympy.Matrix([*v, 1])
@@ -786,9 +785,7 @@ def _rotation(rotation: Any) -> Any:
 def _sympy_equation_entries(equation: Any) -> tuple[Fraction, ...]:
     """The upper entries of a quadric given as a sympy expression or equality
     (a Python object built by the caller, not text: nothing is parsed)."""
-    import sympy
-
-    from quadric_contact.model.parsing import quadric_entries
+    import sympy  # sympy is heavy: only for sympy input
 
     if isinstance(equation, sympy.Equality):
         expr = equation.lhs - equation.rhs

@@ -46,6 +46,7 @@ from fractions import Fraction
 from typing import Any
 
 import flint
+import numpy as np
 
 from quadric_contact.exact.rational import fmpq_of, fraction_of
 from quadric_contact.model.quadric import Quadric
@@ -133,7 +134,6 @@ def ellipsoid_extents(E: Quadric) -> tuple[tuple[Fraction, Fraction, Fraction], 
         A[0][0] * A[1][1] - A[0][1] * A[1][0],
     )
     half = tuple(_sqrt_up(m * cof[i] / det) for i in range(3))
-    import numpy as np
 
     lam = float(np.linalg.eigvalsh(np.array([[float(v) for v in row] for row in A]))[0])
     L = Fraction(lam) * (1 - Fraction(1, 1 << 30)) if lam > 0 else Fraction(0)
@@ -361,7 +361,7 @@ def cover(
     plane is certified (Zone 2), the crown is out of reach, the trunk is certified
     outside (``R+``): no pencil in time is needed at all.
 
-    >>> from quadric_contact.scenes.scene import builtin_scene
+    >>> from quadric_contact.scenes.scene_toml import builtin_scene
     >>> from quadric_contact.scenes.trajectory import Stationary
     >>> scene = builtin_scene()
     >>> (tree,), bee = scene.objects, scene.ellipsoids[0]

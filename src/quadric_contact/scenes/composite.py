@@ -42,6 +42,7 @@ from quadric_contact.theory.results import (
     Region,
     RegionResult,
 )
+from quadric_contact.theory.smallness import smallness
 
 __all__ = [
     "Composite",
@@ -253,7 +254,7 @@ def algorithm_1(E: Any, composite: Composite, *, ledger: Ledger | None = None) -
     --------
     Example 17: the bee is in Zone 2 (``c3 = -3/2 < 0``), where the trunk is.
 
-    >>> from quadric_contact.scenes.scene import builtin_scene
+    >>> from quadric_contact.scenes.scene_toml import builtin_scene
     >>> tree = builtin_scene("bee_and_tree").objects[0]
     >>> r = algorithm_1("(x-3)^2 + (y-3)^2 + 3*(z-5.5)^2 - 0.1", tree)
     >>> r.zones, [p.name for p in r.pieces]
@@ -366,7 +367,7 @@ def algorithm_2(
     Example 17: in Zone 2 only the trunk's pencil is formed, ``Delta_4 > 0``:
     no contact, and the bee is outside the trunk (``R+``).
 
-    >>> from quadric_contact.scenes.scene import builtin_scene
+    >>> from quadric_contact.scenes.scene_toml import builtin_scene
     >>> tree = builtin_scene("bee_and_tree").objects[0]
     >>> led = Ledger()
     >>> r = algorithm_2("(x-3)^2 + (y-3)^2 + 3*(z-5.5)^2 - 0.1", tree, small=True, region=True, ledger=led)
@@ -393,8 +394,6 @@ def algorithm_2(
             continue
         given = small.get(piece.name) if isinstance(small, Mapping) else small
         if given is None:
-            from quadric_contact.theory.smallness import smallness
-
             given = smallness(e, piece.quadric)
             if ledger is not None:
                 ledger.add("smallness_checks", target=piece.name)

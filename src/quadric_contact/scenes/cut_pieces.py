@@ -38,7 +38,7 @@ import flint
 
 from quadric_contact._generated.formulas import paper_deltas, pencil_coefficients
 from quadric_contact.exact.algebraic import RealAlgebraic, sign_at
-from quadric_contact.exact.rational import fmpq_of
+from quadric_contact.exact.rational import fmpq_of, fraction_of
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import Quadric
 from quadric_contact.scenes.events import PieceValue, _Track, reduce_positive
@@ -121,8 +121,6 @@ class SectionTrack(_Track):
         return 0 if self.D4.is_zero() else sign_at(self.D4, t, self.ledger)
 
     def section_at(self, t: Fraction) -> list[list[Fraction]]:
-        from quadric_contact.exact.rational import fraction_of
-
         return [[fraction_of(p(fmpq_of(t))) for p in row] for row in self.A]
 
     def meets(self, t: Fraction) -> bool:

@@ -61,7 +61,14 @@ import flint
 import numpy as np
 
 from quadric_contact._generated.formulas import paper_deltas, pencil_coefficients
-from quadric_contact.exact.algebraic import RealAlgebraic, rational_between, real_roots, sign_at, sort_roots
+from quadric_contact.exact.algebraic import (
+    RealAlgebraic,
+    compile_expression,
+    rational_between,
+    real_roots,
+    sign_at,
+    sort_roots,
+)
 from quadric_contact.exact.rational import fmpq_of, fraction_of
 from quadric_contact.model.quadric import Quadric
 from quadric_contact.scenes.broadphase import _swept_box_q, ellipsoid_extents
@@ -79,9 +86,7 @@ SEPARATE, TOUCHING, OVERLAPPING, UNDECIDED = "apart", "touching", "overlapping",
 def _subresultant_1() -> tuple[Any, Any]:
     """``(s1, s0)``: the first subresultant of a quartic and its derivative, as
     functions of ``c0..c4`` (derived with sympy once)."""
-    import sympy as sp
-
-    from quadric_contact.exact.algebraic import compile_expression
+    import sympy as sp  # sympy is heavy: only for this one derivation
 
     c = sp.symbols("c0:5")
     lam = sp.Symbol("lam")
@@ -147,7 +152,7 @@ class MutualResult:
 
         Examples
         --------
-        >>> from quadric_contact.scenes.scene import builtin_scene
+        >>> from quadric_contact.scenes.scene_toml import builtin_scene
         >>> from quadric_contact.scenes.simulate import simulate
         >>> pair = simulate(builtin_scene("bees_meeting")).mutual[0]
         >>> pair.a, pair.b, pair.state_at(0), pair.state_at(2)
@@ -285,7 +290,7 @@ def _factor_meetings(c: Sequence[Any]) -> list[tuple[Any, Any, Any]]:
     subresultant, whose root ``-s0 / s1`` is the common root where ``R`` vanishes and
     ``s1`` does not (``s1 = s0 = 0`` when the pair has no subresultant of degree 1).
     Exact, with sympy: the path of a rare structural case."""
-    import sympy as sp
+    import sympy as sp  # sympy is heavy: only in this rare case
 
     lam, t = sp.symbols("lam t")
 

@@ -21,6 +21,7 @@ from quadric_contact.model.quadric import Quadric
 from quadric_contact.scenes.composite import Composite
 from quadric_contact.scenes.ledger import Ledger
 from quadric_contact.scenes.trajectory import Trajectory
+from quadric_contact.theory.smallness import smallness
 
 __all__ = [
     "DISTANCE_EVALUATIONS",
@@ -242,8 +243,6 @@ class Scene:
         scene's policy (None: the scene's own; anything but :data:`ON_NOT_SMALL`
         is a :class:`ChoiceError`).
         """
-        from quadric_contact.theory.smallness import smallness
-
         check_on_not_small(on_not_small)
         policy = on_not_small or self.on_not_small
         # smallness depends on the ellipsoid's shape and size, not on where it is

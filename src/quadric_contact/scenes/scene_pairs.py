@@ -389,7 +389,7 @@ def _progress(total: int, enabled: bool | None) -> Any:
         enabled = total >= 20 and sys.stderr.isatty()
     if not enabled:
         return None
-    from tqdm import tqdm
+    from tqdm import tqdm  # tqdm takes tens of ms to import: only when a progress bar is shown
 
     return tqdm(total=total, desc="simulating", unit="segment", file=sys.stderr, leave=False)
 

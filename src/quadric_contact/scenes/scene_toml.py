@@ -3,7 +3,7 @@
 A scene file (TOML; numbers are read *exactly*: ``5.5`` is ``11/2``, and a
 string such as ``"1/3"`` or ``"8.36291"`` is accepted wherever a number is;
 every number and every equation is read by the package's own parser,
-:mod:`quadric_contact.model.parsing`, never evaluated)::
+:mod:`quadric_contact.exact.reading`, never evaluated)::
 
     [scene]
     name = "The bee and the tree (Example 17)"
@@ -37,7 +37,7 @@ every number and every equation is read by the package's own parser,
 Quadrics (pieces and ellipsoids) are given by exactly one of
 ``equation = "..."`` (in ``x, y, z``; ``"lhs = rhs"`` allowed, ``^`` is a
 power, products are written with ``*``: the grammar is in
-:mod:`quadric_contact.model.parsing`),
+:mod:`quadric_contact.exact.reading`),
 ``matrix = [[...], ...]`` (symmetric 4x4), ``standard = "<type>"`` with
 ``a``, ``b``, ``c`` (the forms of Table 1, e.g. ``"hyperboloid of one
 sheet"``), ``standard = "ellipsoid"`` with ``semi_axes = [a, b, c]``,
@@ -141,12 +141,8 @@ from quadric_contact.exact.bounds import MAX_MOTION_DEGREE, MAX_PLACES, MAX_SCEN
 from quadric_contact.exact.errors import QuadricContactError, SceneError
 from quadric_contact.exact.printing import safe_text, unsafe_characters
 from quadric_contact.exact.rational import to_fraction
+from quadric_contact.exact.reading import MAX_DIGITS, parse_number, parse_univariate
 from quadric_contact.model.classification import QuadricKind
-from quadric_contact.model.parsing import (
-    MAX_DIGITS,
-    parse_number,
-    parse_univariate,
-)
 from quadric_contact.model.quadric import Quadric
 from quadric_contact.scenes.composite import Composite, Piece, Split
 from quadric_contact.scenes.scene_model import (

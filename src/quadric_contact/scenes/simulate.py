@@ -39,6 +39,7 @@ from dataclasses import replace
 from quadric_contact.scenes.composite import Composite, Piece
 from quadric_contact.scenes.ledger import Ledger
 from quadric_contact.scenes.manybody import run_pairs
+from quadric_contact.scenes.mutual import mutual_contacts
 from quadric_contact.scenes.scene_distance import PieceDistance, piece_distances
 from quadric_contact.scenes.scene_model import (
     READINGS,
@@ -48,24 +49,9 @@ from quadric_contact.scenes.scene_model import (
     check_on_not_small,
 )
 from quadric_contact.scenes.scene_pairs import _progress, _simulate_pair
-from quadric_contact.scenes.simulation_reports import (
-    Episode,
-    Event,
-    ObjectState,
-    PairResult,
-    Plan,
-    SimulationResult,
-)
+from quadric_contact.scenes.simulation_reports import Plan, SimulationResult
 
-__all__ = [
-    "Episode",
-    "Event",
-    "ObjectState",
-    "PairResult",
-    "Plan",
-    "SimulationResult",
-    "simulate",
-]
+__all__ = ["simulate"]
 
 
 def simulate(
@@ -85,7 +71,7 @@ def simulate(
     ----------
     scene : Scene
     effects : sequence of str, optional
-        Override the scene's effects (a subset of :data:`~quadric_contact.scenes.scene.EFFECTS`).
+        Override the scene's effects (a subset of :data:`~quadric_contact.scenes.scene_model.EFFECTS`).
     full : bool
         Evaluate every effect for every piece on every segment instead of
         only what the effects need (to measure what the plan saves).
@@ -125,7 +111,7 @@ def simulate(
 
     Examples
     --------
-    >>> from quadric_contact.scenes.scene import builtin_scene
+    >>> from quadric_contact.scenes.scene_toml import builtin_scene
     >>> result = simulate(builtin_scene(), effects=["zone"])
     >>> result.ledger.cost("tree/crown"), result.ledger.cost("tree/trunk")
     (0, 0)
@@ -182,8 +168,6 @@ def simulate(
             pair.distances = _distances(scene, plan, ells[pair.ellipsoid], pair.object, ledger)
     mutual = None
     if len(scene.mutual) >= 2:
-        from quadric_contact.scenes.mutual import mutual_contacts
-
         mutual = mutual_contacts(scene, scene.mutual, ledger=ledger, workers=workers)
     return SimulationResult(
         scene, plan, pairs, ledger, time.perf_counter() - started, list(scene.warnings), mutual=mutual

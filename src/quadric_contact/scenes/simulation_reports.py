@@ -61,7 +61,7 @@ class Plan:
 
     @classmethod
     def from_effects(cls, effects: Iterable[str], *, full: bool = False) -> Plan:
-        """The plan for a set of effects (:data:`~quadric_contact.scenes.scene.EFFECTS`).
+        """The plan for a set of effects (:data:`~quadric_contact.scenes.scene_model.EFFECTS`).
 
         Raises
         ------
@@ -320,7 +320,7 @@ class PairResult:
         --------
         Example 17's bee, inside the crown at ``t = 6``:
 
-        >>> from quadric_contact.scenes.scene import builtin_scene
+        >>> from quadric_contact.scenes.scene_toml import builtin_scene
         >>> from quadric_contact.scenes.simulate import simulate
         >>> pair = simulate(builtin_scene()).pair("bee", "tree")
         >>> pair.state_at(6).summary(pair.object)

@@ -22,6 +22,7 @@ import re
 import statistics
 import sys
 import time
+import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from fractions import Fraction
@@ -62,7 +63,7 @@ def perturbed(scene: Scene, index: int, *, seed: int = 0, amplitude: Fraction = 
 
     Examples
     --------
-    >>> from quadric_contact.scenes.scene import builtin_scene
+    >>> from quadric_contact.scenes.scene_toml import builtin_scene
     >>> bee = builtin_scene()
     >>> perturbed(bee, 0) is bee
     True
@@ -120,8 +121,6 @@ def _run_chunk(
     effects: Sequence[str] | None,
     places: int,
 ) -> list[tuple[int, list[dict[str, Any]]]]:
-    import warnings
-
     base = _scene(text, source)
     out = []
     with warnings.catch_warnings():
@@ -338,7 +337,7 @@ def _run_on_dask(
     processes: bool,
 ) -> str:
     try:
-        from dask.distributed import Client, LocalCluster, as_completed
+        from dask.distributed import Client, LocalCluster, as_completed  # dask is optional (the dask extra)
     except ImportError as exc:  # pragma: no cover - depends on the environment
         raise MissingDependencyError(
             'a sweep on a cluster needs dask.distributed: pip install ".[dask]" from a checkout '
@@ -387,6 +386,6 @@ def _bar(total: int, enabled: bool | None) -> Any:
         enabled = sys.stderr.isatty()
     if not enabled:
         return None
-    from tqdm import tqdm
+    from tqdm import tqdm  # tqdm takes tens of ms to import: only when a progress bar is shown
 
     return tqdm(total=total, desc="sweep", unit="run", file=sys.stderr)

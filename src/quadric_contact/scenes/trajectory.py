@@ -46,6 +46,7 @@ from quadric_contact.exact.algebraic import real_roots
 from quadric_contact.exact.bounds import MAX_MOTION_DEGREE
 from quadric_contact.exact.errors import SceneError, ShapeError
 from quadric_contact.exact.rational import fmpq_of, fmpq_poly_of, to_fraction
+from quadric_contact.exact.reading import parse_univariate
 from quadric_contact.model.motions import RigidMotion, rotation_from_quaternion
 from quadric_contact.model.quadric import Quadric
 
@@ -231,8 +232,6 @@ def _coefficients(component: Any, what: str) -> tuple[Fraction, ...]:
     :data:`~quadric_contact.exact.bounds.MAX_MOTION_DEGREE`: a list is cut
     after one entry too many, before any entry is read."""
     if isinstance(component, str):
-        from quadric_contact.model.parsing import parse_univariate
-
         return parse_univariate(component, "t", max_degree=MAX_MOTION_DEGREE, what=what)
     try:
         items = list(itertools.islice(iter(component), MAX_MOTION_DEGREE + 2))
@@ -256,7 +255,7 @@ class PolynomialMotion(Trajectory):
         ``d_x, d_y, d_z``: coefficients (ascending powers of ``t``) of the
         displacement of the centre from its initial position: ``p(t) = c0 + d(t)``;
         a component may be text such as ``"2*t - 5*t^2"`` (read by
-        :func:`~quadric_contact.model.parsing.parse_polynomial`).  Each
+        :func:`~quadric_contact.exact.reading.parse_polynomial`).  Each
         component has degree at most
         :data:`~quadric_contact.exact.bounds.MAX_MOTION_DEGREE` (a list at most
         one entry more).

@@ -294,7 +294,7 @@ def _dyadic_affine(variant: int = 0) -> Affine:
 
 def _affine_image(q: Quadric, affine: Affine) -> Quadric:
     """``H^-T Q H^-1`` for the affine map ``H: x -> L x + t`` (exact): the image of the quadric."""
-    import sympy
+    import sympy  # sympy is heavy: only to build these cases
 
     L, t = affine
     Lm = sympy.Matrix(3, 3, lambda i, j: sympy.Rational(F(L[i][j]).numerator, F(L[i][j]).denominator))

@@ -37,6 +37,7 @@ import numpy as np
 from quadric_contact.scenes.broadphase import ellipsoid_extents
 from quadric_contact.scenes.mutual import OVERLAPPING, SEPARATE, TOUCHING, MutualResult
 from quadric_contact.scenes.scene_model import Scene
+from quadric_contact.theory.overlap import overlap_exact
 
 __all__ = ["DenseCheck", "dense_check", "near_pairs"]
 
@@ -130,8 +131,6 @@ _JOB: dict[str, Any] = {}
 
 
 def _check_pairs(pairs: Sequence[tuple[str, str]]) -> DenseCheck:
-    from quadric_contact.theory.overlap import overlap_exact
-
     scene: Scene = _JOB["scene"]
     by_pair: dict[tuple[str, str], MutualResult] = _JOB["by_pair"]
     samples: int = _JOB["samples"]

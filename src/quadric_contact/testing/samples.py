@@ -2,7 +2,10 @@
 
 The matrices are built in floating point (their rounding errors are part of
 the input: a float matrix is the exact dyadic rational it stores, and every
-answer is measured against the exact answer for it).
+answer is measured against the exact answer for it).  Besides the building blocks
+(:func:`random_ellipsoids`, :func:`random_pairs`), the populations the benchmark
+measures are built here (:func:`complete_populations`, :func:`kernel_population`), so
+that tests draw the same pairs.
 
 >>> import numpy as np
 >>> E, Q, kinds = random_pairs(4, np.random.default_rng(0))
@@ -19,9 +22,12 @@ import numpy as np
 from quadric_contact.model.classification import TABLE_1_KINDS, QuadricKind
 
 __all__ = [
+    "GENERIC_KINDS",
     "SAMPLE_KINDS",
+    "complete_populations",
     "ellipsoid_matrix",
     "float_depth",
+    "kernel_population",
     "random_ellipsoids",
     "random_pairs",
     "random_rotations",
@@ -29,6 +35,17 @@ __all__ = [
 
 SAMPLE_KINDS: tuple[QuadricKind, ...] = (*TABLE_1_KINDS, QuadricKind.PLANE)
 """The types of ``Q`` that :func:`random_pairs` draws from (Table 1 and the plane)."""
+
+GENERIC_KINDS: tuple[QuadricKind, ...] = (
+    QuadricKind.ELLIPSOID,
+    QuadricKind.HYPERBOLOID_ONE_SHEET,
+    QuadricKind.HYPERBOLOID_TWO_SHEETS,
+    QuadricKind.ELLIPTIC_PARABOLOID,
+    QuadricKind.HYPERBOLIC_PARABOLOID,
+    QuadricKind.PLANE,
+)
+"""The types of :data:`SAMPLE_KINDS` that rounding to binary64 does not make nearly degenerate
+for the contact question (the rotated cylinders and parallel planes it does)."""
 
 
 def random_rotations(n: int, rng: np.random.Generator) -> np.ndarray:
@@ -133,6 +150,38 @@ def random_pairs(
         geo_q = {"axes": p, "rotation": R, "center": t, "sign": sign}
         return E, Q, kind, geo_e, geo_q
     return E, Q, kind
+
+
+def complete_populations(n: int, rng: np.random.Generator) -> dict[str, tuple[np.ndarray, np.ndarray, Any]]:
+    """The populations of the benchmark's complete-decision measurement, ``n`` pairs each:
+
+    * ``environment``: small ellipsoids (semi-axes 0.05-0.2, centres in [-4, 4]^3) against one
+      ellipsoid of semi-axes 3-5 at the origin (the paper's use case, nearly every pair small);
+    * ``similar sizes``: ellipsoids of semi-axes 0.5-2 (centres in [-3, 3]^3) against ellipsoids
+      of semi-axes 2-5 at the origin, random rotations (about three quarters in contact, many
+      pairs not small), with the geometry for peers that take shapes;
+    * ``every type``: :func:`random_pairs`, a quadric of every type of :data:`SAMPLE_KINDS`
+      against small ellipsoids.
+    """
+    small, _ = random_ellipsoids(n, rng, axes=(0.05, 0.2), box=4.0)
+    env, _ = random_ellipsoids(1, rng, axes=(3.0, 5.0), box=0.0)
+    E, geo_e = random_ellipsoids(n, rng, axes=(0.5, 2.0), box=3.0)
+    Q, geo_q = random_ellipsoids(n, rng, axes=(2.0, 5.0), box=0.0)
+    Er, Qr, _ = random_pairs(n, rng)
+    return {
+        "environment": (small, env[0], None),
+        "similar sizes": (E, Q, (geo_e, geo_q)),
+        "every type": (Er, Qr, None),
+    }
+
+
+def kernel_population(n: int, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+    """The population of the benchmark's kernel measurements: ``n`` small ellipsoids (semi-axes
+    0.5-2, random rotations, centres in [-3, 3]^3) against ``n`` ellipsoids of semi-axes 2-5
+    (centres likewise)."""
+    E, _ = random_ellipsoids(n, rng, axes=(0.5, 2.0), box=3.0)
+    Q, _ = random_ellipsoids(n, rng, axes=(2.0, 5.0), box=3.0)
+    return E, Q
 
 
 def ellipsoid_matrix(axes: Any, R: np.ndarray, centre: Any) -> np.ndarray:

@@ -35,8 +35,10 @@ from quadric_contact.model.classification import NO_REAL_POINTS, REFUSED_KINDS, 
 from quadric_contact.model.quadric import Quadric
 from quadric_contact.theory.certificate import separation_certificate
 from quadric_contact.theory.decision import PencilDecision, Rule, decide_pencil
+from quadric_contact.theory.geometric import decide_geometrically
 from quadric_contact.theory.pencil import CharacteristicPolynomial, characteristic_polynomial
 from quadric_contact.theory.results import ContactResult, Region
+from quadric_contact.theory.smallness import smallness
 
 __all__ = ["decide_pencil_checked", "decide_transversal", "refuse", "transversal_contact_exact"]
 
@@ -60,16 +62,12 @@ def _corollary_10_reading(P: CharacteristicPolynomial) -> str:
 
 def _known_smallness(E: Any, Q: Any) -> tuple[bool | None, Any]:
     """Exact smallness of ``E`` w.r.t. ``Q`` when the smallness module can decide it."""
-    from quadric_contact.theory.smallness import smallness
-
     report = smallness(E, Q)
     return report.small, report
 
 
 def _geometric(E: Any, Q: Any) -> Any:
     """The exact geometric decision (:mod:`quadric_contact.theory.geometric`)."""
-    from quadric_contact.theory.geometric import decide_geometrically
-
     return decide_geometrically(E, Q)
 
 

@@ -37,6 +37,7 @@ from quadric_contact.exact.algebraic import QuadraticNumber
 from quadric_contact.exact.linalg import nullspace
 from quadric_contact.exact.rational import fmpq_poly_of, fraction_of, monic
 from quadric_contact.model.classification import NO_REAL_POINTS, QuadricKind
+from quadric_contact.theory.contact import decide_transversal, refuse
 from quadric_contact.theory.pencil import CharacteristicPolynomial, characteristic_polynomial
 from quadric_contact.theory.segre import SegreSymbol, segre_symbol
 
@@ -318,8 +319,6 @@ def analyze_contact(E: Any, Q: Any, *, small: bool | None = None) -> ContactAnal
     >>> [[str(c.to_sympy()) for c in p] for m in a.members for p in m.points]
     [['1', '0', '0'], ['-1', '0', '0']]
     """
-    from quadric_contact.theory.contact import decide_transversal, refuse
-
     P = characteristic_polynomial(E, Q)
     e, q = P.E, P.Q
     refuse(q)

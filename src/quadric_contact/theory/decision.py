@@ -53,7 +53,7 @@ from quadric_contact._generated.kernels import leading_minors_3, leading_minors_
 from quadric_contact.exact.algebraic import rational_between, real_roots
 from quadric_contact.exact.linalg import nullspace
 from quadric_contact.model.classification import NO_REAL_POINTS, QuadricKind
-from quadric_contact.theory.pencil import CharacteristicPolynomial
+from quadric_contact.theory.pencil import CharacteristicPolynomial, characteristic_polynomial
 from quadric_contact.theory.results import Region
 
 __all__ = [
@@ -635,6 +635,4 @@ def decide_exact(E: Any, Q: Any) -> PencilDecision:
     >>> decide_exact("x**2 + y**2 + z**2 - 1", "x**2 + y**2 - 1").rule
     <Rule.ESCALATE: 7>
     """
-    from quadric_contact.theory.pencil import characteristic_polynomial
-
     return decide_pencil(characteristic_polynomial(E, Q))

@@ -56,7 +56,13 @@ from typing import Any
 
 import flint
 
-from quadric_contact.exact.algebraic import RealAlgebraic, algebraic_sqrt, algebraic_value, real_roots
+from quadric_contact.exact.algebraic import (
+    RealAlgebraic,
+    algebraic_sqrt,
+    algebraic_value,
+    real_roots,
+    sign_at,
+)
 from quadric_contact.exact.errors import UndecidedError
 from quadric_contact.exact.isolating import root_among
 from quadric_contact.exact.precision import working_precision
@@ -336,8 +342,6 @@ def _eval(p: Any, x: Any) -> Any:
 
 
 def _sign_poly_at(p: Any, x: RealAlgebraic) -> int:
-    from quadric_contact.exact.algebraic import sign_at
-
     return sign_at(p, x)
 
 

@@ -71,6 +71,7 @@ import numpy as np
 from quadric_contact.exact.errors import UndecidedError
 from quadric_contact.exact.precision import working_precision
 from quadric_contact.model.quadric import Quadric
+from quadric_contact.theory.contact_scale import centred_form
 from quadric_contact.theory.overlap import overlap_exact
 from quadric_contact.theory.results import OverlapCode
 
@@ -329,8 +330,6 @@ def ldl_frame(
     >>> r, d
     (Fraction(1, 1), [Fraction(1, 4), Fraction(1, 1), Fraction(1, 1)])
     """
-    from quadric_contact.theory.contact_scale import centred_form
-
     A, c, r = centred_form(E)
     n = 3
     U = [[Fraction(int(i == j)) for j in range(n)] for i in range(n)]

@@ -82,7 +82,7 @@ Computer Aided Geometric Design 18 (2001) 531-539.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -92,7 +92,9 @@ from quadric_contact.exact.errors import ExcludedQuadricError, QuadricContactErr
 from quadric_contact.model.classification import REFUSED_KINDS, TABLE_1_KINDS, QuadricKind
 from quadric_contact.model.quadric import Quadric
 from quadric_contact.theory.certificate import SeparationCertificate, separation_certificate
+from quadric_contact.theory.contact_kind import _member, _multiple_roots
 from quadric_contact.theory.pencil import CharacteristicPolynomial, as_quadric, characteristic_polynomial
+from quadric_contact.theory.regions import relative_position_exact
 from quadric_contact.theory.results import OverlapCode, Region
 
 if TYPE_CHECKING:
@@ -317,8 +319,6 @@ def _plain(c: QuadraticNumber) -> Any:
 def _touching_members(P: CharacteristicPolynomial) -> tuple[SingularMember, ...]:
     """The singular members at the multiple roots of ``P`` with a point of tangency on ``E``
     (or a curve): where the surfaces touch."""
-    from quadric_contact.theory.contact_kind import _member, _multiple_roots
-
     members = []
     for lam in _multiple_roots(P):
         m, coincident = _member(lam, P.E, P.Q)
@@ -374,12 +374,8 @@ def overlap_exact(E: Any, Q: Any, *, touching: str | None = None) -> OverlapResu
     P = characteristic_polynomial(e, q)
     result = _two_ellipsoids(P) if q.kind is QuadricKind.ELLIPSOID else _other(P, e, q)
     if result.touching and convention is not None:
-        from dataclasses import replace
-
         result = replace(result, code=convention, convention=touching)
     elif touching is not None:
-        from dataclasses import replace
-
         result = replace(result, convention=touching)
     return result
 
@@ -445,7 +441,6 @@ def _other(P: CharacteristicPolynomial, e: Quadric, q: Quadric) -> OverlapResult
         return OverlapResult(
             OverlapCode.OVERLAPPING, False, by, f"{cert}: the surfaces cross", P, cert.region, cert
         )
-    from quadric_contact.theory.regions import relative_position_exact
 
     region = relative_position_exact(e, q)
     if region.region is Region.CONTACT:

@@ -25,6 +25,8 @@ from fractions import Fraction
 from functools import cached_property
 from typing import Any
 
+import flint
+
 from quadric_contact._generated.formulas import pencil_coefficients
 from quadric_contact.exact.descartes import RootSigns, root_signs
 from quadric_contact.exact.discriminants import RootStructure, paper_deltas, root_structure
@@ -153,8 +155,6 @@ class CharacteristicPolynomial:
     def roots(self, digits: int = 17) -> list[tuple[Any, int]]:
         """Certified root enclosures ``(acb ball, multiplicity)`` (python-flint),
         real roots first in increasing order with exactly zero imaginary part."""
-        import flint
-
         old = flint.ctx.dps
         try:
             flint.ctx.dps = digits
@@ -167,7 +167,7 @@ class CharacteristicPolynomial:
 
     def as_sympy(self, symbol: str = "lambda") -> Any:
         """``P`` as a sympy expression in ``symbol`` (exact rational coefficients)."""
-        import sympy
+        import sympy  # sympy is heavy: only for sympy output
 
         lam = sympy.Symbol(symbol)
         return sum(

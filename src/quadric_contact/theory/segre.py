@@ -28,6 +28,7 @@ from typing import Any
 import flint
 
 from quadric_contact.exact.algebraic import RealAlgebraic, real_roots
+from quadric_contact.exact.errors import DegeneratePencilError
 from quadric_contact.exact.rational import fmpq_of, monic
 from quadric_contact.theory.pencil import as_quadric
 
@@ -186,8 +187,6 @@ def segre_symbol(E: Any, Q: Any) -> SegreSymbol:
         D.append(_gcd_minors(M, k))
     det = _det(M)
     if det.is_zero():
-        from quadric_contact.exact.errors import DegeneratePencilError
-
         raise DegeneratePencilError("det(lambda*E + Q) vanishes identically: the pencil is singular", (e, q))
     D.append(monic(det))
     inv = [D[k] / D[k - 1] for k in range(1, 5)]

@@ -23,8 +23,8 @@ algebraic numbers (:mod:`quadric_contact.exact.algebraic`) and compared exactly
 (equal exactly when their minimal polynomials and root indices agree).
 There is no tolerance anywhere.
 
-Where the printed tables are wrong (see :data:`quadric_contact.paper.ERRATA`)
------------------------------------------------------------------------------
+Where the printed tables are wrong (see :data:`quadric_contact.paper.errata.ERRATA`)
+------------------------------------------------------------------------------------
 * Hyperboloid of one sheet (Tables 1, 2): the curvature condition must use
   the largest principal curvature ``max(a/b^2, a/c^2)``; the table keeps
   only ``a/c^2``.  A flat ellipsoid pressed against the inside of the
@@ -55,7 +55,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
-from quadric_contact.exact.algebraic import RealAlgebraic, algebraic_value
+from quadric_contact.exact.algebraic import RealAlgebraic, algebraic_sqrt, algebraic_value
 from quadric_contact.exact.errors import (
     ExcludedQuadricError,
     NotANumberError,
@@ -110,7 +110,7 @@ class Condition:
         ``"Table 1"`` (as printed), ``"corrected"`` (added or changed, see
         ``erratum``) or ``"enclosing"`` (the roles of E and Q exchanged).
     erratum : str or None
-        Key of the :data:`~quadric_contact.paper.ERRATA` entry when the
+        Key of the :data:`~quadric_contact.paper.errata.ERRATA` entry when the
         condition differs from the printed tables.
     """
 
@@ -126,29 +126,25 @@ class Condition:
     @property
     def lhs(self) -> Any:
         """The left side as an exact sympy expression."""
-        import sympy
+        import sympy  # sympy is heavy: only for sympy output
 
         return sympy.sqrt(self.lhs_squared.sympy())
 
     @property
     def rhs(self) -> Any:
         """The right side as an exact sympy expression."""
-        import sympy
+        import sympy  # sympy is heavy: only for sympy output
 
         return sympy.sqrt(self.rhs_squared.sympy())
 
     @property
     def lhs_exact(self) -> RealAlgebraic:
         """The left side as an exact real algebraic number."""
-        from quadric_contact.exact.algebraic import algebraic_sqrt
-
         return algebraic_sqrt(self.lhs_squared.exact())
 
     @property
     def rhs_exact(self) -> RealAlgebraic:
         """The right side as an exact real algebraic number."""
-        from quadric_contact.exact.algebraic import algebraic_sqrt
-
         return algebraic_sqrt(self.rhs_squared.exact())
 
     def decimal(self, side: str, digits: int = 15) -> str:
@@ -471,7 +467,7 @@ def _square(value: Any, name: str) -> Quantity:
         return Quantity.of(algebraic_value(lambda x: x * x, [value]))
     mod = type(value).__module__ or ""
     if mod.startswith("sympy"):
-        import sympy
+        import sympy  # sympy is heavy: only for sympy input
 
         sq = sympy.nsimplify(sympy.expand(value**2))
         if not (sq.is_Rational and value.is_positive):

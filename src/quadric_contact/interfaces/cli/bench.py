@@ -58,7 +58,7 @@ def missing_extras() -> list[str]:
 
 
 def run(args: argparse.Namespace) -> int:
-    from quadric_contact.interfaces import benchmark
+    from quadric_contact.interfaces import benchmark  # the bench command loads its harness only when it runs
 
     missing = missing_extras()
     if missing:

@@ -9,6 +9,11 @@ from typing import Any
 
 from quadric_contact.exact.printing import fraction_text, int_text
 from quadric_contact.interfaces.cli.exits import EXIT_OK, EXIT_UNDECIDED
+from quadric_contact.model.classification import QuadricKind
+from quadric_contact.theory.contact_kind import ContactKind, analyze_contact
+from quadric_contact.theory.pencil import as_quadric, characteristic_polynomial
+from quadric_contact.theory.plane import plane_side_exact as plane_side
+from quadric_contact.theory.regions import decide_region
 
 DEFAULT_E = "(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1"
 DEFAULT_Q = "x**2 + y**2 - 0.25*(z-3)**2 - 1"
@@ -58,8 +63,6 @@ def _fmt(x: Fraction) -> str:
 
 def _touching(analysis: Any) -> str:
     """One line for the kind of contact (Table 3) with the tangent points, for every type of Q."""
-    from quadric_contact.theory.contact_kind import ContactKind
-
     kind = analysis.kind
     where = ", ".join("(" + ", ".join(str(c) for c in point) + ")" for point in _points(analysis))
     text = {
@@ -85,12 +88,6 @@ def _points(analysis: Any) -> list[tuple[str, ...]]:
 
 
 def run(args: argparse.Namespace) -> int:
-    from quadric_contact.model.classification import QuadricKind
-    from quadric_contact.theory.contact_kind import analyze_contact
-    from quadric_contact.theory.pencil import as_quadric, characteristic_polynomial
-    from quadric_contact.theory.plane import plane_side_exact as plane_side
-    from quadric_contact.theory.regions import decide_region
-
     E = as_quadric(args.E, "E")
     Q = as_quadric(args.Q, "Q")
     small = {"auto": None, "yes": True, "no": False}[args.small]

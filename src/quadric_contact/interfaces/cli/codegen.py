@@ -13,6 +13,6 @@ def register(sub: Any) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from quadric_contact import codegen
+    from quadric_contact import codegen  # the codegen command loads the generator only when it runs
 
     return codegen.main(["--check"] if args.check else [])

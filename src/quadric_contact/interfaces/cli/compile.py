@@ -10,6 +10,7 @@ import argparse
 from typing import Any
 
 from quadric_contact.interfaces.cli.exits import EXIT_OK
+from quadric_contact.modes.kernels import _jit
 
 
 def register(sub: Any) -> None:
@@ -21,8 +22,7 @@ def register(sub: Any) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from quadric_contact.interfaces import warmup
-    from quadric_contact.modes.kernels import _jit
+    from quadric_contact.interfaces import warmup  # the compile command loads the warm-up only when it runs
 
     print(f"quadric-contact compile: the cache is {_jit._cache_root()}", flush=True)
     with _jit.warmup_lock() as held:

@@ -77,7 +77,7 @@ def hypothesis_files_in_the_user_cache() -> Iterator[None]:
     ``HYPOTHESIS_STORAGE_DIRECTORY``, when set, is left to choose.  The folder hypothesis used
     before is restored afterwards (for a caller that runs ``prove`` in its own process)."""
     try:
-        from hypothesis import configuration
+        from hypothesis import configuration  # hypothesis is heavy and optional here
     except ImportError:  # the checks that need hypothesis say so and do not run
         yield
         return
@@ -98,6 +98,7 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _run(args: argparse.Namespace) -> int:
+    # the prove command loads the proof runner only when it runs
     from quadric_contact.paper.proving import (
         REPORT_NAME,
         CheckRecord,

@@ -8,6 +8,7 @@ import os
 import sys
 import tempfile
 import warnings
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -18,8 +19,17 @@ from quadric_contact.exact.bounds import (
     MAX_FRAMES,
     MAX_PLACES,
 )
+from quadric_contact.exact.errors import SceneError
+from quadric_contact.exact.optional import pyplot
+from quadric_contact.interfaces.animation import render_gif
 from quadric_contact.interfaces.cli.arguments import check_output_path, integer
 from quadric_contact.interfaces.cli.exits import EXIT_BAD_INPUT, EXIT_OK
+from quadric_contact.interfaces.plotting import render_png
+from quadric_contact.scenes.manybody import GENERATED_SCENES, many_body_scene
+from quadric_contact.scenes.scene_model import EFFECTS
+from quadric_contact.scenes.scene_toml import builtin_scene, builtin_scene_names, load_scene
+from quadric_contact.scenes.simulate import simulate
+from quadric_contact.scenes.simulation_reports import Plan
 
 
 def register(sub: Any) -> None:
@@ -140,14 +150,7 @@ def _write_atomically(path: str, data: bytes) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from quadric_contact.exact.errors import SceneError
-    from quadric_contact.scenes.scene import EFFECTS, builtin_scene_names, load_scene
-    from quadric_contact.scenes.simulate import Plan, simulate
-
     if args.list:
-        from quadric_contact.scenes.manybody import GENERATED_SCENES
-        from quadric_contact.scenes.scene import builtin_scene
-
         for name in builtin_scene_names():
             s = builtin_scene(name, check_smallness=False)
             print(f"{name:24s} {s.name}")
@@ -165,7 +168,6 @@ def run(args: argparse.Namespace) -> int:
     for option, out in (("--output", args.output), ("--plot", args.plot), ("--animate", args.animate)):
         if out is not None:
             check_output_path(option, out)  # before the run, not after it
-    from quadric_contact.scenes.manybody import GENERATED_SCENES, many_body_scene
 
     broad_phase = args.broad_phase
     if args.scene in GENERATED_SCENES and not Path(args.scene).exists():
@@ -181,14 +183,10 @@ def run(args: argparse.Namespace) -> int:
         # load without checking smallness; the run checks it only if its effects need it
         scene = load_scene(args.scene, check_smallness=False)
         if args.mutual:
-            from dataclasses import replace
-
             scene = replace(scene, mutual=tuple(e.name for e in scene.ellipsoids))
     plan_effects = effects if effects is not None else list(scene.effects)
     Plan.from_effects(plan_effects)  # validate before any work
     if args.plot or args.animate:
-        from quadric_contact.exact.optional import pyplot
-
         pyplot()  # fail early when matplotlib is missing
     with warnings.catch_warnings():  # the report prints the scene's warnings itself
         warnings.simplefilter("ignore")
@@ -206,13 +204,9 @@ def run(args: argparse.Namespace) -> int:
     payload = json.dumps(result.to_dict(places), indent=2) + "\n" if args.json or args.output else ""
     png = None
     if args.plot:
-        from quadric_contact.interfaces.plotting import render_png
-
         png = render_png(result)
     gif = None
     if args.animate:
-        from quadric_contact.interfaces.animation import render_gif
-
         gif = render_gif(result, frames=args.frames, progress=args.progress)
     # everything succeeded: now write (each file appears whole or not at all)
     if args.output:

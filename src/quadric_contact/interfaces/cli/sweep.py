@@ -6,6 +6,7 @@ import argparse
 import json
 import sys
 from fractions import Fraction
+from importlib import resources
 from pathlib import Path
 from typing import Any
 
@@ -16,7 +17,12 @@ from quadric_contact.exact.bounds import (
     MAX_CLI_PROCESSES,
     MAX_PLACES,
 )
+from quadric_contact.exact.errors import SceneError
 from quadric_contact.interfaces.cli.arguments import check_output_path, integer, rational
+from quadric_contact.interfaces.cli.simulate import _write_atomically
+from quadric_contact.scenes.scene_model import EFFECTS
+from quadric_contact.scenes.scene_toml import builtin_scene_names, read_scene_file
+from quadric_contact.scenes.sweep import check_scheduler_address, run_sweep
 
 
 def register(sub: Any) -> None:
@@ -87,12 +93,6 @@ def register(sub: Any) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from quadric_contact.exact.errors import SceneError
-    from quadric_contact.interfaces.cli.simulate import _write_atomically
-    from quadric_contact.scenes.scene import EFFECTS, builtin_scene_names
-    from quadric_contact.scenes.scene_toml import read_scene_file
-    from quadric_contact.scenes.sweep import check_scheduler_address, run_sweep
-
     if args.scheduler is not None:
         check_scheduler_address(args.scheduler)  # before the scene is read
 
@@ -108,8 +108,6 @@ def run(args: argparse.Namespace) -> int:
     if path.exists():
         text, source = read_scene_file(path), str(path)
     elif args.scene in builtin_scene_names():
-        from importlib import resources
-
         res = resources.files("quadric_contact").joinpath("scenes", f"{args.scene}.toml")
         text, source = res.read_text(encoding="utf-8"), f"<built-in scene {args.scene}>"
     else:
