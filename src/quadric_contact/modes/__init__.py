@@ -29,23 +29,23 @@ its :attr:`~NumberMode.counts` afterwards)::
 
 from __future__ import annotations
 
-from typing import Any
-
-from quadric_contact.exact.errors import ChoiceError
 from quadric_contact.modes.codes import (
     ContactCode,
     ContactKindCode,
     CriterionCode,
     OverlapCode,
+    Provenance,
     RegionCode,
     Sign,
     SmallnessCode,
     StageCounts,
+    Step,
 )
 from quadric_contact.modes.numbers.binary64 import FilterMode, FloatMode
 from quadric_contact.modes.numbers.certified import CertifiedMode
 from quadric_contact.modes.numbers.number_mode import NumberMode
 from quadric_contact.modes.numbers.objects import BallMode, ExactMode, MpmathMode
+from quadric_contact.modes.numbers.registry import MODES, get_mode
 from quadric_contact.modes.stacks.pairs import MatrixStack, Pairs
 
 __all__ = [
@@ -63,40 +63,11 @@ __all__ = [
     "NumberMode",
     "OverlapCode",
     "Pairs",
+    "Provenance",
     "RegionCode",
     "Sign",
     "SmallnessCode",
     "StageCounts",
+    "Step",
     "get_mode",
 ]
-
-MODES: dict[str, type[NumberMode]] = {
-    "certified": CertifiedMode,
-    "filter": FilterMode,
-    "float": FloatMode,
-    "ball": BallMode,
-    "mpmath": MpmathMode,
-    "exact": ExactMode,
-}
-"""Mode names and their classes."""
-
-
-def get_mode(mode: str | NumberMode = "certified", **options: Any) -> NumberMode:
-    """A mode instance from a name (with ``options`` for its constructor) or an instance.
-
-    Raises
-    ------
-    ValueError
-        For an unknown name.
-    """
-    if isinstance(mode, NumberMode):
-        if options:
-            raise ValueError("options are only accepted with a mode name")
-        return mode
-    if not isinstance(mode, str) or mode not in MODES:
-        raise ChoiceError(
-            f"mode must be one of {', '.join(MODES)} or a NumberMode, got {mode!r}",
-            mode,
-            choices=tuple(MODES),
-        )
-    return MODES[mode](**options)

@@ -1,7 +1,8 @@
 """The codes of the array predicates, in one place (the integers the decision table reads are
 :mod:`quadric_contact.theory.decision`'s, the layer below): the three-valued :class:`Sign`, the
-result codes of each question, ``UNCERTAIN`` and ``INVALID``, and the counts of which stage
-decided how many entries.
+result codes of each question, ``UNCERTAIN`` and ``INVALID``, the counts of which stage
+decided how many entries, and the :class:`Provenance` (a :class:`Step` and its numbers) that
+names a stage.
 
 Every kernel, number mode and table of the package reads these names from here: the integer
 constants (``UNCERTAIN``, ``INVALID``, ``EXCLUDED``) are what compiled code compares with, the
@@ -11,11 +12,12 @@ enums what callers read.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from enum import IntEnum
+from enum import Enum, IntEnum
 from typing import Any
 
 from quadric_contact.exact.errors import UndecidedError
 from quadric_contact.theory import decision as _table
+from quadric_contact.theory.contact_kind import ContactKind
 from quadric_contact.theory.results import OverlapCode, Region
 
 __all__ = [
@@ -26,10 +28,12 @@ __all__ = [
     "ContactKindCode",
     "CriterionCode",
     "OverlapCode",
+    "Provenance",
     "RegionCode",
     "Sign",
     "SmallnessCode",
     "StageCounts",
+    "Step",
 ]
 
 UNCERTAIN = _table.UNCERTAIN
@@ -119,8 +123,6 @@ class ContactKindCode(IntEnum):
 
     def to_kind(self) -> Any:
         """The :class:`~quadric_contact.theory.contact_kind.ContactKind` of the code."""
-        from quadric_contact.theory.contact_kind import ContactKind
-
         return ContactKind[self.name]
 
 
@@ -205,17 +207,66 @@ INVALID = 5
 predicates diagnose it and raise the matching error)."""
 
 
+class Step(Enum):
+    """A step of the decision (:mod:`~quadric_contact.modes.decision.pipeline`), or of a mode's
+    own questions, that can settle an entry; its value is how the stage counts name it."""
+
+    CRITERION = "criterion"
+    """The paper's criterion: the nature (and for a side, the signs) of the roots of ``P``."""
+    SMALLNESS = "smallness"
+    """Definition 1 through Tables 1-2 (the smallness question)."""
+    SEPARATION = "separation"
+    """The pencil's signature sequence, read through the decision table."""
+    NO_REAL_POINTS = "no real points"
+    """``Q`` has no real surface: it is never crossed, and ``X^T Q X`` has one sign."""
+    EXACT_PAIR = "exact pair"
+    """The exact scalar predicates, pair by pair."""
+
+
+@dataclass(frozen=True)
+class Provenance:
+    """Which step settled an entry, and in what numbers: the data behind a stage count's name.
+
+    ``str()`` gives the name the counts are keyed by: ``"<step> (<arithmetic>)"``, or the step
+    alone when ``arithmetic`` is None.
+
+    Attributes
+    ----------
+    step : Step
+    arithmetic : str or None
+        The numbers the step ran in, as the mode's stage names them (``"filter"``, ``"ball"``,
+        ``"exact"``, ``"float"``, ``"mpmath"``, ...); for the steps that ran in no mode's numbers,
+        what settled the entry instead: ``"type"`` (the type of ``Q``) or ``"outside binary64's
+        range"`` (a plain mode's pairs that binary64 cannot hold, decided exactly).
+
+    Examples
+    --------
+    >>> str(Provenance(Step.CRITERION, "filter")), str(Provenance(Step.EXACT_PAIR))
+    ('criterion (filter)', 'exact pair')
+    """
+
+    step: Step
+    arithmetic: str | None = None
+
+    def __str__(self) -> str:
+        if self.arithmetic is None:
+            return self.step.value
+        return f"{self.step.value} ({self.arithmetic})"
+
+
 @dataclass
 class StageCounts:
     """How many entries each stage of a mode decided, and how many stayed undecided.
 
-    ``decided`` maps a stage name (``"float"``, ``"filter"``, ``"ball"``,
-    ``"mpmath"``, ``"exact"``) to a count; ``undecided`` counts entries returned
-    ``UNCERTAIN``.
+    ``decided`` maps a stage name to a count: ``str()`` of the stage's :class:`Provenance`
+    (``"criterion (filter)"``, ``"separation (exact)"``, ``"exact pair"``, ...), or a name given
+    as a string; ``undecided`` counts entries returned ``UNCERTAIN``.  ``provenance`` holds the
+    :class:`Provenance` behind each name that was added as one.
     """
 
     decided: dict[str, int] = field(default_factory=dict)
     undecided: int = 0
+    provenance: dict[str, Provenance] = field(default_factory=dict, repr=False, compare=False)
 
     @property
     def total(self) -> int:
@@ -227,13 +278,33 @@ class StageCounts:
         first = next(iter(self.decided.values()), 0)
         return self.total - first
 
-    def add(self, stage: str, count: int) -> None:
-        self.decided[stage] = self.decided.get(stage, 0) + int(count)
+    def add(self, stage: Provenance | str, count: int) -> None:
+        """Count ``count`` entries (negative: take them back) as decided by ``stage``."""
+        name = str(stage)
+        self.decided[name] = self.decided.get(name, 0) + int(count)
+        if isinstance(stage, Provenance):
+            self.provenance.setdefault(name, stage)
 
     def merge(self, other: StageCounts) -> None:
         for stage, count in other.decided.items():
-            self.add(stage, count)
+            self.add(other.provenance.get(stage, stage), count)
         self.undecided += other.undecided
+
+    def deciding(self) -> Provenance | None:
+        """The :class:`Provenance` of the first stage that decided an entry (for a stack of one:
+        the stage that decided it); None when no stage decided one (or it was named by a
+        string only).
+
+        Examples
+        --------
+        >>> counts = StageCounts()
+        >>> counts.add(Provenance(Step.CRITERION, "filter"), 0)
+        >>> counts.add(Provenance(Step.SEPARATION, "filter"), 1)
+        >>> counts.deciding()
+        Provenance(step=<Step.SEPARATION: 'separation'>, arithmetic='filter')
+        """
+        name = next((stage for stage, count in self.decided.items() if count), None)
+        return None if name is None else self.provenance.get(name)
 
     def __str__(self) -> str:
         parts = [f"{stage} {count}" for stage, count in self.decided.items() if count]

@@ -2,8 +2,11 @@
 
 Every predicate here answers the geometric question for every pair, small or not
 (:mod:`quadric_contact.modes.decision.pipeline` says how); the number mode chooses the
-arithmetic of each stage, never the question.  One dispatcher decides scalar or
-stack by the *type of the input*, never by the mode:
+arithmetic of each stage, never the question.  Each predicate is a
+:class:`~quadric_contact.modes.dispatch.Question` (its exact scalar function, how its result
+is built from a code and the :class:`~quadric_contact.modes.codes.Provenance` of the stage that
+decided it) handed to one dispatcher, :func:`~quadric_contact.modes.dispatch.ask`, which
+decides scalar or stack by the *type of the input*, never by the mode:
 
 * a single pair (a :class:`~quadric_contact.Quadric`, an equation, a sympy
   expression, a ``(4, 4)`` array or nested list, a ``(4, 4)`` object array of
@@ -23,10 +26,16 @@ stack by the *type of the input*, never by the mode:
 
 :func:`corollary_10` is the one function that answers the paper's criterion rather
 than the geometry (for teaching, and for callers who know their pairs are small).
+
+Which stages decided is counted in the mode instance a caller passes (``mode.last``, the last
+call to finish; ``mode.counts``, all calls): a convenience of the caller's own instance.  The
+predicates read nothing back from it (one instance may serve several threads): each call of a
+mode, :meth:`~quadric_contact.modes.NumberMode.decide`, returns its counts with its codes.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any, overload
 
 import numpy as np
@@ -34,23 +43,18 @@ import numpy as np
 from quadric_contact.exact.errors import NotAPlaneError
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import Quadric
-from quadric_contact.modes import (
+from quadric_contact.modes.codes import (
     ContactCode,
     ContactKindCode,
     CriterionCode,
-    NumberMode,
     OverlapCode,
+    Provenance,
     RegionCode,
     SmallnessCode,
-    StageCounts,
-    get_mode,
+    Step,
 )
-from quadric_contact.modes.stacks.batch import (
-    as_stack,
-    is_stack,
-    make_pairs,
-    run_stack,
-)
+from quadric_contact.modes.dispatch import Question, Single, ask, replace
+from quadric_contact.modes.numbers.number_mode import NumberMode
 from quadric_contact.theory.contact import transversal_contact_exact
 from quadric_contact.theory.contact_kind import ContactKind, contact_kind_exact
 from quadric_contact.theory.overlap import (
@@ -85,63 +89,44 @@ __all__ = [
 
 ScalarInput = Quadric | str
 
-
-_COMPLETE: dict[str, NumberMode] = {}
-
-
-def _mode(mode: str | NumberMode) -> NumberMode:
-    """The mode of a call.  A complete mode named by a string (``certified``, ``exact``) decides
-    a single pair by the exact scalar path, where its instance only counts: one instance per
-    name serves every such call (nobody holds it to read the counts)."""
-    if isinstance(mode, str):
-        m = _COMPLETE.get(mode)
-        if m is not None:
-            return m
-        m = get_mode(mode)
-        if m.complete:
-            _COMPLETE[mode] = m
-        return m
-    return get_mode(mode)
+_BY_STEP = {Step.SEPARATION: "separation certificate", Step.NO_REAL_POINTS: "no real points"}
 
 
-def _no_options(kind: str, **options: Any) -> None:
-    given = [k for k, v in options.items() if v not in (None, "auto")]
-    if given:
-        raise ValueError(
-            f"{', '.join(given)} apply to a single pair in the certified or exact mode only ({kind}); "
-            "for pairs known to be small use corollary_10"
-        )
-
-
-def _single(question: str, E: Any, Q: Any, m: NumberMode) -> tuple[int, str]:
-    """The code of one pair in mode ``m`` (a stack of one) and the stage that settled it."""
-    pairs, _ = make_pairs(as_stack(E, "E"), as_stack(Q, "Q"))
-    code = int(getattr(m, question)(pairs)[0])
-    stage = next((k for k, v in m.last.decided.items() if v), "undecided")
-    return code, stage
-
-
-def _record_exact(m: NumberMode) -> None:
-    """Count the exact scalar decision in ``m`` when the caller holds it (an instance passed as
-    ``mode``): the shared instance of a mode named by a string is read by nobody."""
-    if _COMPLETE.get(m.name) is not m:
-        m._record(StageCounts({"exact pair": 1}))
-
-
-def _stage_name(stage: str, code_name: str) -> str:
-    """The result of the paper (or of the package) a pipeline stage stands for."""
-    if stage.startswith("criterion"):
-        return "Remark 9" if code_name == "contact" else "Theorem 14"
-    if stage.startswith("smallness"):
-        return "Corollary 10"
-    if stage.startswith("separation"):
-        return "separation certificate"
-    if stage.startswith("no real points"):
-        return "no real points"
-    return stage
+def _decided_by(
+    provenance: Provenance | None, criterion: Callable[[], str], smallness: str = "Corollary 10"
+) -> str:
+    """The result of the paper (or of the package) the deciding stage stands for: ``criterion()``
+    for the criterion step (which result depends on the question and the answer),
+    ``smallness`` for the smallness step, and for the others what they are (an exact pair: its
+    stage's name)."""
+    if provenance is None:
+        return "undecided"
+    if provenance.step is Step.CRITERION:
+        return criterion()
+    if provenance.step is Step.SMALLNESS:
+        return smallness
+    return _BY_STEP.get(provenance.step, str(provenance))
 
 
 # -- transversal contact ------------------------------------------------------------------------
+
+
+def _contact(s: Single) -> ContactResult:
+    """One pair's :class:`ContactResult` from the code of a mode's stages."""
+    P = characteristic_polynomial(s.E, s.Q)
+    c = ContactCode(s.code)
+    if c is ContactCode.UNCERTAIN:
+        return ContactResult(None, None, s.cannot_tell, P, mode=s.mode)
+    # the criterion: non-real roots (Remark 9), or all roots real against a plane (Theorem 14)
+    by = _decided_by(
+        s.provenance,
+        lambda: "Remark 9" if c.transversal or P.Q.kind is not QuadricKind.PLANE else "Theorem 14",
+    )
+    what = "transversal contact" if c.transversal else "no transversal contact"
+    return ContactResult(c.transversal, by, f"{what}, {s.decided_in}", P, mode=s.mode)
+
+
+_CONTACT = Question("contact", _contact, exact=transversal_contact_exact, exact_only=("small", "method"))
 
 
 @overload
@@ -202,7 +187,11 @@ def transversal_contact(
     mode : str or NumberMode
         ``"certified"`` (default, never wrong), ``"exact"``, ``"filter"``, ``"ball"``
         (may answer ``UNCERTAIN``), ``"float"``, ``"mpmath"`` (always answer; may be
-        wrong near tangency), or an instance (to set options or read its stage counts).
+        wrong near tangency), or an instance (to set options or read its stage counts:
+        ``mode.last`` and ``mode.counts``, a convenience of the caller's own instance; when
+        threads share one, ``last`` is whichever call finished last, and
+        :meth:`NumberMode.decide <quadric_contact.modes.NumberMode.decide>` returns each
+        call's counts with its codes).
     client, compute
         For dask input: the ``dask.distributed`` client, and whether to compute.
 
@@ -238,42 +227,27 @@ def transversal_contact(
     >>> transversal_contact([disc, disc], throat)
     array([1, 1], dtype=int8)
     """
-    if is_stack(E) or is_stack(Q):
-        _no_options("stacks", small=small, method=method)
-        return run_stack("contact", E, Q, mode, client, compute)
-    m = _mode(mode)
-    if m.complete:
-        result = transversal_contact_exact(E, Q, small=small, method=method)
-        _record_exact(m)
-        return result if m.name == "exact" else _with_mode(result, m.name)
-    _no_options(f"mode {m.name!r}", small=small, method=method)
-    code, stage = _single("contact", E, Q, m)
-    P = characteristic_polynomial(E, Q)
-    c = ContactCode(code)
-    by = None if c is ContactCode.UNCERTAIN else _stage_name(stage, "contact" if c.transversal else "no")
-    if by == "Theorem 14" and P.Q.kind is not QuadricKind.PLANE:
-        by = "Remark 9"
-    reason = (
-        f"{m.name} mode cannot tell ({stage})"
-        if c is ContactCode.UNCERTAIN
-        else f"{'transversal contact' if c.transversal else 'no transversal contact'}, decided in {m.name} "
-        f"mode by {stage}"
-    )
-    return ContactResult(c.transversal, by, reason, P, mode=m.name)
-
-
-def _with_mode(result: Any, name: str) -> Any:
-    """The result as decided by mode ``name`` (a copy; results are frozen)."""
-    if result.mode == name:
-        return result
-    # copy.copy, without its pickling protocol (a third of the time on the exact scalar path)
-    new = object.__new__(type(result))
-    new.__dict__.update(result.__dict__)
-    object.__setattr__(new, "mode", name)
-    return new
+    return ask(_CONTACT, E, Q, mode, client, compute, small=small, method=method)
 
 
 # -- relative position ---------------------------------------------------------------------------
+
+
+def _region(s: Single) -> RegionResult:
+    """One pair's :class:`RegionResult` from the code of a mode's stages."""
+    P = characteristic_polynomial(s.E, s.Q)
+    region = RegionCode(s.code).region
+    if region is None:
+        return RegionResult(None, None, s.cannot_tell, P, None, mode=s.mode)
+    by = _decided_by(
+        s.provenance,
+        lambda: "Remark 9" if region is Region.CONTACT else "Theorem 14",
+        smallness="Theorem 13 / Table 4",
+    )
+    return RegionResult(region, by, f"{region.value}, {s.decided_in}", P, None, mode=s.mode)
+
+
+_REGION = Question("region", _region, exact=relative_position_exact, exact_only=("small", "method"))
 
 
 @overload
@@ -355,32 +329,42 @@ def relative_position(
     >>> relative_position(bee, S2, mode="float").region, relative_position([bee], S2)
     (<Region.R_PLUS: 'R+'>, array([1], dtype=int8))
     """
-    if is_stack(E) or is_stack(Q):
-        _no_options("stacks", small=small, method=method)
-        return run_stack("region", E, Q, mode, client, compute)
-    m = _mode(mode)
-    if m.complete:
-        result = relative_position_exact(E, Q, small=small, method=method)
-        _record_exact(m)
-        return result if m.name == "exact" else _with_mode(result, m.name)
-    _no_options(f"mode {m.name!r}", small=small, method=method)
-    code, stage = _single("region", E, Q, m)
-    P = characteristic_polynomial(E, Q)
-    rc = RegionCode(code)
-    region = rc.region
-    if region is None:
-        return RegionResult(None, None, f"{m.name} mode cannot tell ({stage})", P, None, mode=m.name)
-    by = _stage_name(stage, "region")
-    if stage.startswith("criterion"):
-        by = "Remark 9" if region is Region.CONTACT else "Theorem 14"
-    elif stage.startswith("smallness"):
-        by = "Theorem 13 / Table 4"
-    return RegionResult(
-        region, by, f"{region.value}, decided in {m.name} mode by {stage}", P, None, mode=m.name
-    )
+    return ask(_REGION, E, Q, mode, client, compute, small=small, method=method)
 
 
 # -- a plane -------------------------------------------------------------------------------------
+
+
+def _a_plane(E: Any, P: Any) -> tuple[Any, Any, Any]:
+    """``E`` and the plane ``P`` (:class:`NotAPlaneError` if it is not one)."""
+    plane = as_quadric(P, "P")
+    if plane.kind is not QuadricKind.PLANE:
+        raise NotAPlaneError(f"expected a plane, got {plane.kind.value}", plane, kind=plane.kind)
+    return E, plane, None
+
+
+def _plane_side(s: Single) -> PlaneSideResult:
+    """One pair's :class:`PlaneSideResult` from the region code of a mode's stages."""
+    poly = characteristic_polynomial(s.E, s.Q)
+    c0, c1, c2, c3, c4 = poly.coefficients
+    center = poly.E.center()
+    assert center is not None
+    zone = RegionCode(s.code).region
+    return PlaneSideResult(
+        zone,
+        None,
+        None if zone is None else "Corollary 15",
+        s.cannot_tell if zone is None else s.decided_in,
+        poly,
+        c2,
+        c3,
+        c4,
+        s.Q.value_at(center),
+        mode=s.mode,
+    )
+
+
+_PLANE = Question("plane", _plane_side, exact=plane_side_exact, prepare=_a_plane)
 
 
 def plane_side(
@@ -424,40 +408,19 @@ def plane_side(
     >>> plane_side(["(x-3)**2 + (y-3)**2 + 3*(z-5.5)**2 - 0.1"], ["z - 6", "z - 5.5", "z - 5"])
     array([-1,  0,  1], dtype=int8)
     """
-    if is_stack(E) or is_stack(P):
-        return run_stack("plane", E, P, mode, client, compute)
-    m = _mode(mode)
-    if m.complete:
-        result = plane_side_exact(E, P)
-        _record_exact(m)
-        return result if m.name == "exact" else _with_mode(result, m.name)
-    plane = as_quadric(P, "P")
-    if plane.kind is not QuadricKind.PLANE:
-        raise NotAPlaneError(f"expected a plane, got {plane.kind.value}", plane, kind=plane.kind)
-    code, stage = _single("region", E, plane, m)
-    poly = characteristic_polynomial(E, plane)
-    c0, c1, c2, c3, c4 = poly.coefficients
-    center = poly.E.center()
-    assert center is not None
-    zone = RegionCode(code).region
-    reason = (
-        f"{m.name} mode cannot tell ({stage})" if zone is None else f"decided in {m.name} mode by {stage}"
-    )
-    return PlaneSideResult(
-        zone,
-        None,
-        None if zone is None else "Corollary 15",
-        reason,
-        poly,
-        c2,
-        c3,
-        c4,
-        plane.value_at(center),
-        mode=m.name,
-    )
+    return ask(_PLANE, E, P, mode, client, compute)
 
 
 # -- the kind of contact -------------------------------------------------------------------------
+
+
+_KIND = Question(
+    "kind",
+    lambda s: ContactKindCode(s.code).to_kind(),
+    exact=contact_kind_exact,
+    exact_only=("small",),
+    relabel=False,  # a ContactKind names no mode
+)
 
 
 @overload
@@ -522,20 +485,53 @@ def contact_kind(
     >>> contact_kind(["2*x**2 + 2*y**2 + 3*z**2 - 1"], "x**2 + y**2 + 8*z")
     array([1], dtype=int8)
     """
-    if is_stack(E) or is_stack(Q):
-        _no_options("stacks", small=small)
-        return run_stack("kind", E, Q, mode, client, compute)
-    m = _mode(mode)
-    if m.complete:
-        kind = contact_kind_exact(E, Q, small=small)
-        _record_exact(m)
-        return kind
-    _no_options(f"mode {m.name!r}", small=small)
-    code, _ = _single("kind", E, Q, m)
-    return ContactKindCode(code).to_kind()
+    return ask(_KIND, E, Q, mode, client, compute, small=small)
 
 
 # -- do the solids overlap? ----------------------------------------------------------------------
+
+
+def _with_solid(E: Any, Q: Any) -> tuple[Any, Any, Any]:
+    """The pair as given, and ``Q`` with the sign of its solid (refusing a type without one)."""
+    return E, Q, solid_of(Q)
+
+
+def _overlap(s: Single) -> OverlapResult:
+    """One pair's :class:`OverlapResult` from the code of a mode's stages, read by the
+    ``touching`` convention."""
+    q = s.held
+    P = characteristic_polynomial(s.E, q)
+    raw = OverlapCode(s.code)
+    if raw is OverlapCode.UNCERTAIN:
+        return OverlapResult(raw, None, None, s.cannot_tell, P, mode=s.mode)
+    # the criterion: non-real roots (Remark 9), a plane's side (Theorem 14), two ellipsoids'
+    # positive roots (Wang-Wang-Kim)
+    by = _decided_by(
+        s.provenance,
+        lambda: (
+            "Remark 9"
+            if not P.structure.all_real
+            else ("Theorem 14" if q.kind is QuadricKind.PLANE else "Wang-Wang-Kim")
+        ),
+    )
+    result = OverlapResult(
+        raw, raw is OverlapCode.TOUCHING, by, f"{raw.name.lower()}, {s.decided_in}", P, mode=s.mode
+    )
+    touching = s.options["touching"]
+    target = check_touching(touching)
+    if result.touching and target is not None:
+        return replace(result, code=target, convention=touching)
+    return result if touching is None else replace(result, convention=touching)
+
+
+_OVERLAP = Question(
+    "overlap",
+    _overlap,
+    exact=overlap_exact,
+    prepare=_with_solid,
+    validate=check_touching,
+    stack=apply_touching,
+)
 
 
 @overload
@@ -629,48 +625,28 @@ def overlap(
     >>> r.code, r.decided_by, r.tangent_points
     (<OverlapCode.TOUCHING: 3>, 'Wang-Wang-Kim', ((3, 0, 0),))
     """
-    check_touching(touching)
-    if is_stack(E) or is_stack(Q):
-        return apply_touching(run_stack("overlap", E, Q, mode, client, compute), touching)
-    m = _mode(mode)
-    if m.complete:
-        result = overlap_exact(E, Q, touching=touching)
-        _record_exact(m)
-        return result if m.name == "exact" else _with_mode(result, m.name)
-    q = solid_of(Q)
-    code, stage = _single("overlap", E, Q, m)
-    P = characteristic_polynomial(E, q)
-    raw = OverlapCode(code)
-    if raw is OverlapCode.UNCERTAIN:
-        return OverlapResult(raw, None, None, f"{m.name} mode cannot tell ({stage})", P, mode=m.name)
-    by = _stage_name(stage, "overlap")
-    if stage.startswith("criterion"):
-        by = (
-            "Remark 9"
-            if not P.structure.all_real
-            else ("Theorem 14" if q.kind is QuadricKind.PLANE else "Wang-Wang-Kim")
-        )
-    result = OverlapResult(
-        raw,
-        raw is OverlapCode.TOUCHING,
-        by,
-        f"{raw.name.lower()}, decided in {m.name} mode by {stage}",
-        P,
-        mode=m.name,
-    )
-    target = check_touching(touching)
-    if result.touching and target is not None:
-        return _replace(result, code=target, convention=touching)
-    return result if touching is None else _replace(result, convention=touching)
-
-
-def _replace(result: Any, **changes: Any) -> Any:
-    from dataclasses import replace
-
-    return replace(result, **changes)
+    return ask(_OVERLAP, E, Q, mode, client, compute, touching=touching)
 
 
 # -- smallness -----------------------------------------------------------------------------------
+
+
+def _ellipsoid_and_table_1(E: Any, Q: Any) -> tuple[Any, Any, Any]:
+    """``E`` as an ellipsoid and ``Q`` of a type of Table 1 (refused otherwise, with the reason)."""
+    q = as_quadric(Q, "Q")
+    e = as_quadric(E, "E").as_ellipsoid()
+    if not q.kind.in_table_1:
+        smallness_exact(e, q)  # raises ExcludedQuadricError with the reason
+    return e, q, None
+
+
+def _smallness(s: Single) -> SmallnessReport:
+    """One pair's :class:`SmallnessReport` from the code of a mode's stages (no conditions)."""
+    sc = SmallnessCode(s.code)
+    return SmallnessReport(sc.small, s.Q.kind, (), (), None, sc is SmallnessCode.SMALL, {}, mode=s.mode)
+
+
+_SMALLNESS = Question("smallness", _smallness, exact=smallness_exact, prepare=_ellipsoid_and_table_1)
 
 
 @overload
@@ -720,20 +696,7 @@ def smallness(
     >>> smallness(bee, "x**2 + y**2 - 0.25*(z-3)**2 - 1").small
     True
     """
-    if is_stack(E) or is_stack(Q):
-        return run_stack("smallness", E, Q, mode, client, compute)
-    m = _mode(mode)
-    if m.complete:
-        report = smallness_exact(E, Q)
-        _record_exact(m)
-        return report if m.name == "exact" else _with_mode(report, m.name)
-    q = as_quadric(Q, "Q")
-    e = as_quadric(E, "E").as_ellipsoid()
-    if not q.kind.in_table_1:
-        smallness_exact(e, q)  # raises ExcludedQuadricError with the reason
-    code, _ = _single("public_smallness", e, q, m)
-    sc = SmallnessCode(code)
-    return SmallnessReport(sc.small, q.kind, (), (), None, sc is SmallnessCode.SMALL, {}, mode=m.name)
+    return ask(_SMALLNESS, E, Q, mode, client, compute)
 
 
 # -- the raw criterion ---------------------------------------------------------------------------
@@ -769,6 +732,12 @@ class CriterionResult:
 
     def __repr__(self) -> str:
         return f"CriterionResult({self.code.name}, mode={self.mode!r})"
+
+
+_CRITERION = Question(  # no exact path: the criterion is the mode's, in every mode
+    "criterion",
+    lambda s: CriterionResult(CriterionCode(s.code), characteristic_polynomial(s.E, s.Q), s.mode),
+)
 
 
 def corollary_10(
@@ -809,8 +778,4 @@ def corollary_10(
     >>> corollary_10(disc, throat).code, bool(transversal_contact(disc, throat))
     (<CriterionCode.ALL_REAL: 0>, True)
     """
-    if is_stack(E) or is_stack(Q):
-        return run_stack("criterion", E, Q, mode, client, compute)
-    m = _mode(mode)
-    code, _ = _single("criterion", E, Q, m)
-    return CriterionResult(CriterionCode(code), characteristic_polynomial(E, Q), m.name)
+    return ask(_CRITERION, E, Q, mode, client, compute)

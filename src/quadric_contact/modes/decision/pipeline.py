@@ -43,8 +43,11 @@ criterion (non-real roots: the surfaces cross; a plane's side by Theorem 14; for
 ellipsoids the Wang-Wang-Kim reading of the root signs, valid for every pair), the
 separation certificate, and the exact pair (:func:`quadric_contact.theory.overlap.overlap_exact`).
 
-Every step is counted in the mode's :class:`~quadric_contact.modes.codes.StageCounts`
-under ``"<step> (<numbers>)"``, e.g. ``"criterion (filter)"``, ``"separation (exact)"``,
+Every step is counted in a :class:`~quadric_contact.modes.codes.StageCounts` that
+:func:`decide` and :func:`decide_overlap` return with the codes, under the
+:class:`~quadric_contact.modes.codes.Provenance` of the step (a
+:class:`~quadric_contact.modes.codes.Step` and the numbers it ran in), named
+``"<step> (<numbers>)"``, e.g. ``"criterion (filter)"``, ``"separation (exact)"``,
 ``"exact pair"``.
 """
 
@@ -66,8 +69,10 @@ from quadric_contact.modes.codes import (
     ContactCode,
     ContactKindCode,
     OverlapCode,
+    Provenance,
     RegionCode,
     StageCounts,
+    Step,
 )
 from quadric_contact.modes.decision.answers import KINDS, UNCERTAIN_ROW, rows_from_masks
 from quadric_contact.modes.decision.separation import CROSSING, SEP_MINUS, SEP_PLUS
@@ -76,6 +81,11 @@ from quadric_contact.modes.kernels.range import rows_in_range
 from quadric_contact.modes.stacks.integers import integer_rows
 from quadric_contact.modes.stacks.pairs import Pairs
 from quadric_contact.modes.stacks.rows import unique_rows
+from quadric_contact.modes.stacks.validation import exact_matrix
+from quadric_contact.theory.contact import transversal_contact_exact
+from quadric_contact.theory.contact_kind import analyze_contact
+from quadric_contact.theory.overlap import overlap_exact, solid_of
+from quadric_contact.theory.regions import relative_position_exact
 
 if TYPE_CHECKING:
     from quadric_contact.modes.numbers.number_mode import NumberMode
@@ -123,10 +133,9 @@ def _classes(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, np.ndarray, np
     for k in suspect:
         # Refusing input is not the mode's business: where the mode cannot rule a refused
         # type out, the exact type decides (once per quadric).
-        from quadric_contact.modes.stacks.validation import exact_matrix
 
         q = exact_matrix(pairs.Q, int(used[k]))
-        kind = q.kind  # type: ignore[attr-defined]
+        kind = q.kind
         if kind not in REFUSED_KINDS:
             continue  # leave it as the mode says (uncertain)
         raise ExcludedQuadricError(
@@ -198,11 +207,11 @@ def _remember(mode: NumberMode, start: bool) -> None:
             method()
 
 
-def decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
+def decide(mode: NumberMode, pairs: Pairs, question: str) -> tuple[np.ndarray, StageCounts]:
     """Codes answering ``question`` (``"contact"``, ``"region"`` or ``"kind"``) for every pair.
 
     Returns :class:`ContactCode`, :class:`RegionCode` or :class:`ContactKindCode`
-    values (int8); records the stage counts in ``mode``."""
+    values (int8), and the counts of the steps that settled them."""
     _remember(mode, True)
     try:
         return _decide(mode, pairs, question)
@@ -210,15 +219,14 @@ def decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
         _remember(mode, False)
 
 
-def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
+def _decide(mode: NumberMode, pairs: Pairs, question: str) -> tuple[np.ndarray, StageCounts]:
     """:func:`decide`: the pairs of two ellipsoids in one pass (:func:`_lane`), the others, and
     what the lane leaves, step by step (:func:`_decide_steps`)."""
     if question not in QUESTIONS:
         raise ValueError(f"question must be one of {QUESTIONS}, got {question!r}")
     counts = StageCounts()
     if pairs.n == 0:
-        mode._record(counts)
-        return np.full(0, UNCERTAIN, dtype=np.int8)
+        return np.full(0, UNCERTAIN, dtype=np.int8), counts
     lane = _lane(mode, pairs, question, counts)
     if lane is None:
         out = _decide_steps(mode, pairs, question, counts)
@@ -226,11 +234,12 @@ def _decide(mode: NumberMode, pairs: Pairs, question: str) -> np.ndarray:
         out, rest = lane
         if rest.size:
             out[rest] = _decide_steps(mode, pairs.take(rest), question, counts)
-    mode._record(counts)
-    return out
+    return out, counts
 
 
-_OUTSIDE = "exact pair (outside binary64's range)"
+_OUTSIDE = Provenance(Step.EXACT_PAIR, "outside binary64's range")
+_NO_REAL_POINTS = Provenance(Step.NO_REAL_POINTS, "type")
+_EXACT_PAIR = Provenance(Step.EXACT_PAIR)
 
 
 def _outside_range(mode: NumberMode, pairs: Pairs) -> np.ndarray:
@@ -271,8 +280,8 @@ def _lane(
         return None
     _, _, _, out, left, by_step = facts
     name = str(getattr(first, "stage", first.name))
-    counts.add(f"criterion ({name})", int(by_step[0]))
-    counts.add(f"separation ({name})", int(by_step[1]))
+    counts.add(Provenance(Step.CRITERION, name), int(by_step[0]))
+    counts.add(Provenance(Step.SEPARATION, name), int(by_step[1]))
     return out, left
 
 
@@ -366,7 +375,7 @@ def _decide_steps(mode: NumberMode, pairs: Pairs, question: str, counts: StageCo
     out = np.full(n, UNCERTAIN, dtype=np.int8)
     todo = np.ones(n, dtype=bool)
 
-    def settle(which: np.ndarray | bool, values: Any, label: str) -> None:
+    def settle(which: np.ndarray | bool, values: Any, label: Provenance) -> None:
         if which is False:  # a class no pair has
             counts.add(label, 0)
             return
@@ -377,7 +386,7 @@ def _decide_steps(mode: NumberMode, pairs: Pairs, question: str, counts: StageCo
             np.logical_and(todo, np.logical_not(which), out=todo)
         counts.add(label, k)
 
-    def settle_at(at: np.ndarray, values: Any, label: str) -> None:
+    def settle_at(at: np.ndarray, values: Any, label: Provenance) -> None:
         """Settle the pairs ``at`` (indices of pairs still to do) with ``values`` (one per entry
         of ``at``, or a scalar)."""
         if at.size:
@@ -401,13 +410,13 @@ def _decide_steps(mode: NumberMode, pairs: Pairs, question: str, counts: StageCo
         crit, names, which, signs_first, deciding = _contact_with_signs(mode, pairs)
     else:
         crit, names, which = _staged(mode, "criterion_contact", pairs)
-    labels = [f"criterion ({name})" for name in names]
+    labels = [Provenance(Step.CRITERION, name) for name in names]
     surfaceless = _is(klass, _CLASS_NO_SURFACE)
     if question == "region":
-        settle(surfaceless, np.where(qsign > 0, 1, -1).astype(np.int8), "no real points (type)")
+        settle(surfaceless, np.where(qsign > 0, 1, -1).astype(np.int8), _NO_REAL_POINTS)
     else:
         none = ContactCode.NO_CONTACT if question == "contact" else ContactKindCode.NONE
-        settle(surfaceless, none, "no real points (type)")
+        settle(surfaceless, none, _NO_REAL_POINTS)
     plane = _is(klass, _CLASS_PLANE)
     if signs_first is None:
         deciding = _deciding_stages(which, len(labels))
@@ -459,12 +468,12 @@ def _decide_steps(mode: NumberMode, pairs: Pairs, question: str, counts: StageCo
         values = _from_separation(sep, question)
         for k, name in enumerate(names):
             hit = np.flatnonzero((which == k) & (values != UNCERTAIN))
-            settle_at(rest[hit], values[hit], f"separation ({name})")
+            settle_at(rest[hit], values[hit], Provenance(Step.SEPARATION, name))
 
     # 4. the exact scalar predicates, pair by pair.
     rest = np.flatnonzero(todo)
     if rest.size and getattr(mode, "complete", False):
-        settle_at(rest, _exact_pairs(pairs, rest, question), "exact pair")
+        settle_at(rest, _exact_pairs(pairs, rest, question), _EXACT_PAIR)
     counts.undecided += int(np.count_nonzero(todo))
     return out
 
@@ -476,7 +485,7 @@ def _confirm_crossings(
     out: np.ndarray,
     todo: np.ndarray,
     counts: StageCounts,
-    label: str,
+    label: Provenance,
 ) -> None:
     """Plain modes: the pairs ``said`` were settled because the criterion read non-real roots of
     ``P``.  Those the mode's certified guard (:attr:`NumberMode.guard`) does not confirm are
@@ -491,7 +500,7 @@ def _confirm_crossings(
     if reopen.size:
         out[reopen] = UNCERTAIN
         todo[reopen] = True
-        counts.decided[label] -= int(reopen.size)
+        counts.add(label, -int(reopen.size))
 
 
 def _confirm_outside(mode: NumberMode, pairs: Pairs, outside: Any, signs: np.ndarray) -> Any:
@@ -575,10 +584,6 @@ def _from_separation(sep: np.ndarray, question: str) -> np.ndarray:
 
 def _exact_pairs(pairs: Pairs, rows: np.ndarray, question: str) -> np.ndarray:
     """The exact scalar answer for the pairs ``rows`` (cached per pair of matrices)."""
-    from quadric_contact.modes.stacks.validation import exact_matrix
-    from quadric_contact.theory.contact import transversal_contact_exact
-    from quadric_contact.theory.contact_kind import analyze_contact
-    from quadric_contact.theory.regions import relative_position_exact
 
     e_rows, q_rows = pairs.e_rows_at(rows), pairs.q_rows_at(rows)
     cache: dict[tuple[int, int], int] = {}
@@ -606,8 +611,6 @@ def _solids(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, np.ndarray, np.
     solid (its canonical sign).  The type is part of the question (which solid), so where the
     mode cannot tell it the exact type decides (once per quadric); a type without a solid is
     refused."""
-    from quadric_contact.modes.stacks.validation import exact_matrix
-    from quadric_contact.theory.overlap import solid_of
 
     used, where = unique_rows(pairs.q_rows(), len(pairs.Q), return_inverse=True)
     rows = rows_from_masks(mode.classify(pairs.Q, used)).astype(np.intp)
@@ -620,7 +623,7 @@ def _solids(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, np.ndarray, np.
         row = int(rows[k])
         if row == UNCERTAIN_ROW:
             q = exact_matrix(pairs.Q, int(used[k]))
-            kind, s = q.kind, q.canonical_sign  # type: ignore[attr-defined]
+            kind, s = q.kind, q.canonical_sign
         else:
             kind, s = KINDS[row // 2], (-1 if row % 2 else 1)
         if kind not in TABLE_1_KINDS and kind is not QuadricKind.PLANE:
@@ -637,9 +640,10 @@ def _solids(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, np.ndarray, np.
     return plane[where], ellipsoid[where], sign[where]
 
 
-def decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
+def decide_overlap(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, StageCounts]:
     """:class:`~quadric_contact.modes.OverlapCode` of every pair: do the solids overlap?
-    (:func:`_decide_overlap`; the mode forgets this call's stacks afterwards.)"""
+    (:func:`_decide_overlap`, with the counts of the steps that settled them; the mode forgets
+    this call's stacks afterwards.)"""
     _remember(mode, True)
     try:
         return _decide_overlap(mode, pairs)
@@ -647,7 +651,7 @@ def decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
         _remember(mode, False)
 
 
-def _decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
+def _decide_overlap(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, StageCounts]:
     """:class:`~quadric_contact.modes.OverlapCode` of every pair: do the solids overlap?
 
     The solid of ``E`` is its inside, that of ``Q`` its region ``R-`` for the sign of its
@@ -668,14 +672,13 @@ def _decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
 
     The abstaining modes answer ``UNCERTAIN`` where 1-2 leave a pair; the plain modes answer
     everything at step 2 (never ``TOUCHING``: a touch is a tangency, which binary64 cannot
-    see).  Records the stage counts in ``mode``.
+    see).  Returns the codes and the counts of the steps that settled them.
 
     The pairs of two ellipsoids take steps 1 and 2 in one pass (:func:`_lane`); the
     others, and what it leaves, take them here."""
     counts = StageCounts()
     if pairs.n == 0:
-        mode._record(counts)
-        return np.full(0, UNCERTAIN, dtype=np.int8)
+        return np.full(0, UNCERTAIN, dtype=np.int8), counts
     lane = _lane(mode, pairs, "overlap", counts)
     if lane is None:
         out = _overlap_steps(mode, pairs, counts)
@@ -683,8 +686,7 @@ def _decide_overlap(mode: NumberMode, pairs: Pairs) -> np.ndarray:
         out, rest = lane
         if rest.size:
             out[rest] = _overlap_steps(mode, pairs.take(rest), counts)
-    mode._record(counts)
-    return out
+    return out, counts
 
 
 def _overlap_steps(mode: NumberMode, pairs: Pairs, counts: StageCounts) -> np.ndarray:
@@ -693,7 +695,7 @@ def _overlap_steps(mode: NumberMode, pairs: Pairs, counts: StageCounts) -> np.nd
     out = np.full(n, UNCERTAIN, dtype=np.int8)
     todo = np.ones(n, dtype=bool)
 
-    def settle(which: np.ndarray, values: Any, label: str) -> None:
+    def settle(which: np.ndarray, values: Any, label: Provenance) -> None:
         which = which & todo
         k = int(np.count_nonzero(which))
         if k:
@@ -722,9 +724,9 @@ def _overlap_steps(mode: NumberMode, pairs: Pairs, counts: StageCounts) -> np.nd
     said = _overlap_from_criterion(crit, side, plane | ellipsoid)
     for k, name in enumerate(names):
         here = which == k
-        settle(here & (said != UNCERTAIN), said, f"criterion ({name})")
+        settle(here & (said != UNCERTAIN), said, Provenance(Step.CRITERION, name))
     said = np.flatnonzero(~todo & (crit == int(RegionCode.CONTACT)))
-    _confirm_crossings(mode, pairs, said, out, todo, counts, f"criterion ({names[0]})")
+    _confirm_crossings(mode, pairs, said, out, todo, counts, Provenance(Step.CRITERION, names[0]))
 
     # 2. separation: definite members, or four simple real roots without one.
     rest = np.flatnonzero(todo)
@@ -744,7 +746,7 @@ def _overlap_steps(mode: NumberMode, pairs: Pairs, counts: StageCounts) -> np.nd
             here[rest[which == k]] = True
             full = np.full(n, UNCERTAIN, dtype=np.int8)
             full[rest] = values
-            settle(here & (full != UNCERTAIN), full, f"separation ({name})")
+            settle(here & (full != UNCERTAIN), full, Provenance(Step.SEPARATION, name))
 
     # 2b. an ellipsoid or a plane whose side the first stage could not read (a tangency of exact
     # input): the side read by the whole cascade, where step 1's rules use it (E in the solid
@@ -758,7 +760,7 @@ def _overlap_steps(mode: NumberMode, pairs: Pairs, counts: StageCounts) -> np.nd
             here[rest[(which == k) & (values != UNCERTAIN)]] = True
             full = np.full(n, UNCERTAIN, dtype=np.int8)
             full[rest] = values
-            settle(here, full, f"criterion ({name})")
+            settle(here, full, Provenance(Step.CRITERION, name))
 
     # 3. the exact decision, pair by pair.
     rest = np.flatnonzero(todo)
@@ -767,7 +769,7 @@ def _overlap_steps(mode: NumberMode, pairs: Pairs, counts: StageCounts) -> np.nd
         full[rest] = _exact_overlaps(pairs, rest)
         here = np.zeros(n, dtype=bool)
         here[rest] = True
-        settle(here, full, "exact pair")
+        settle(here, full, _EXACT_PAIR)
     counts.undecided += int(np.count_nonzero(todo))
     return out
 
@@ -847,8 +849,6 @@ def centre_value(e: Any, q: Any) -> Any:
 
 def _exact_overlaps(pairs: Pairs, rows: np.ndarray) -> np.ndarray:
     """:func:`~quadric_contact.theory.overlap.overlap_exact` for the pairs ``rows`` (cached per pair)."""
-    from quadric_contact.modes.stacks.validation import exact_matrix
-    from quadric_contact.theory.overlap import overlap_exact
 
     e_rows, q_rows = pairs.e_rows_at(rows), pairs.q_rows_at(rows)
     cache: dict[tuple[int, int], int] = {}

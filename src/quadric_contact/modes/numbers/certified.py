@@ -8,7 +8,9 @@ criterion, smallness, the separation certificate) runs down the cascade: ``filte
 by the exact scalar predicates.  Every stage is certified, so the answer is the exact
 answer for the matrices as given.  This is CGAL's filtered predicate
 (``Filtered_predicate.h``), with the escalations counted so that the caller can read
-who decided what (:attr:`CertifiedMode.last`, :attr:`CertifiedMode.counts`).
+who decided what: each call of :meth:`~NumberMode.decide` returns its counts with its codes,
+and a caller's own instance keeps them in :attr:`CertifiedMode.last` and
+:attr:`CertifiedMode.counts`.
 """
 
 from __future__ import annotations
@@ -46,7 +48,9 @@ class CertifiedMode(NumberMode):
     Attributes
     ----------
     last, counts : StageCounts
-        Entries decided by each stage in the last call and in all calls so far.
+        Entries decided by each stage in the last call to finish and in all calls so far (a
+        convenience of a caller's own instance; each call's counts come with its codes, from
+        :meth:`~NumberMode.decide`).
     """
 
     name = "certified"

@@ -1,9 +1,10 @@
-"""The base class of the number modes: the four questions, answered by one pipeline.
+"""The base class of the number modes: the questions, answered by one pipeline.
 
 :class:`NumberMode` declares the stages a mode implements with its numbers and
-answers the public questions (:meth:`~NumberMode.contact`, :meth:`~NumberMode.region`,
-:meth:`~NumberMode.kind`, :meth:`~NumberMode.overlap`) by handing itself to
-:mod:`quadric_contact.modes.decision.pipeline`.  It is apart from
+answers the public questions (:meth:`~NumberMode.decide`, by the question's name: the contact,
+the region, the kind of contact, the overlap, by handing itself to
+:mod:`quadric_contact.modes.decision.pipeline`; the raw criterion and smallness, by its own
+stages), returning the codes with the counts of the stages that settled them.  It is apart from
 :mod:`quadric_contact.modes.codes` (the codes and inputs every mode shares, which the
 pipeline itself imports), so the pipeline is imported here at module level without
 a cycle.
@@ -13,25 +14,36 @@ from __future__ import annotations
 
 import threading
 from abc import ABC, abstractmethod
-from typing import Any
+from collections.abc import Callable
+from typing import Any, NamedTuple
 
 import numpy as np
 
-from quadric_contact.modes.codes import StageCounts
+from quadric_contact.exact.errors import ChoiceError
+from quadric_contact.modes.codes import Provenance, StageCounts, Step
 from quadric_contact.modes.decision.pipeline import decide, decide_overlap
 from quadric_contact.modes.stacks.pairs import MatrixStack, Pairs
 
-__all__ = ["NumberMode"]
+__all__ = ["QUESTIONS", "Decided", "NumberMode"]
+
+
+class Decided(NamedTuple):
+    """What one call of :meth:`NumberMode.decide` settled: the codes (int8, one per pair) and
+    the counts of the stages that settled them, this call's alone."""
+
+    codes: np.ndarray
+    counts: StageCounts
 
 
 class NumberMode(ABC):
     """A way of evaluating the closed forms (one formula, many number types).
 
-    The public array predicates ask a mode four questions, :meth:`contact`,
-    :meth:`region`, :meth:`kind` and :meth:`overlap`, and always mean the geometry (do the
-    surfaces cross, where is ``E``, how do they touch, do the solids overlap), for every
-    pair.  They are answered by one pipeline (:mod:`quadric_contact.modes.decision.pipeline`)
-    from the *stages* a mode
+    The public predicates ask a mode a question by its name, :meth:`decide` (``"contact"``,
+    ``"region"``, ``"kind"``, ``"overlap"``, and ``"criterion"``, ``"smallness"``; the
+    shorthands :meth:`contact`, :meth:`region`, :meth:`kind`, :meth:`overlap` give the codes
+    alone), and always mean the geometry (do the surfaces cross, where is ``E``, how do they
+    touch, do the solids overlap), for every pair.  They are answered by one pipeline
+    (:mod:`quadric_contact.modes.decision.pipeline`) from the *stages* a mode
     implements with its numbers:
 
     * :meth:`criterion_contact`, :meth:`criterion_region`: the paper's criterion (the
@@ -43,8 +55,11 @@ class NumberMode(ABC):
     * :meth:`separation`: the pencil's signature sequence, looked up in the decision table
       (:mod:`quadric_contact.modes.decision.separation`, :mod:`quadric_contact.theory.decision`).
 
-    Every public call records which stage settled how many entries in :attr:`last`
-    and adds it to :attr:`counts` (thread-safe).
+    Every call of :meth:`decide` returns which stage settled how many entries with the codes
+    (:class:`Decided`), and, for a caller who holds the instance, records them in :attr:`last`
+    and adds them to :attr:`counts` (under a lock).  :attr:`last` is a convenience of a
+    caller's own instance: when one instance serves several threads it is whichever call
+    finished last; the counts of a call come with the call.
 
     Attributes
     ----------
@@ -67,13 +82,15 @@ class NumberMode(ABC):
     guard: NumberMode | None = None
 
     def __init__(self) -> None:
-        #: What every call so far settled, stage by stage (added up; thread-safe).
+        #: What every call so far settled, stage by stage (added up under a lock).
         self.counts = StageCounts()
-        #: What the last call settled, stage by stage.
+        #: What the last call to finish settled, stage by stage (a convenience of a caller's own
+        #: instance; :meth:`decide` returns each call's counts with its codes).
         self.last = StageCounts()
         self._lock = threading.Lock()
 
     def _record(self, counts: StageCounts) -> None:
+        """Make ``counts`` the :attr:`last` call's and add them to :attr:`counts`."""
         with self._lock:
             self.last = counts
             self.counts.merge(counts)
@@ -94,33 +111,55 @@ class NumberMode(ABC):
 
     # -- the questions (one pipeline for every mode) -------------------------------------
 
+    def decide(self, question: str, pairs: Pairs) -> Decided:
+        """The codes answering ``question`` for every pair, with the counts of the stages that
+        settled them (this call's: nothing else reads them), also recorded in :attr:`last` and
+        :attr:`counts`.
+
+        ``question`` is a key of :data:`QUESTIONS`: ``"contact"`` (:class:`ContactCode`),
+        ``"region"`` (:class:`RegionCode`), ``"kind"`` (:class:`ContactKindCode`),
+        ``"overlap"`` (:class:`OverlapCode`), ``"criterion"`` (:class:`CriterionCode`, the raw
+        criterion) or ``"smallness"`` (:class:`SmallnessCode`).
+
+        Raises
+        ------
+        ChoiceError
+            For another question.
+        """
+        answer = QUESTIONS.get(question)
+        if answer is None:
+            raise ChoiceError(
+                f"question must be one of {', '.join(QUESTIONS)}, got {question!r}",
+                question,
+                choices=tuple(QUESTIONS),
+            )
+        codes, counts = answer(self, pairs)
+        self._record(counts)
+        return Decided(codes, counts)
+
     def contact(self, pairs: Pairs) -> np.ndarray:
         """:class:`ContactCode` of every pair: do the surfaces cross (int8, ``(pairs.n,)``)."""
-        return decide(self, pairs, "contact")
+        return self.decide("contact", pairs).codes
 
     def region(self, pairs: Pairs) -> np.ndarray:
         """:class:`RegionCode` of every pair: the side of ``Q`` the surface of ``E`` is on."""
-        return decide(self, pairs, "region")
+        return self.decide("region", pairs).codes
 
     def kind(self, pairs: Pairs) -> np.ndarray:
         """:class:`ContactKindCode` of every pair (Table 3)."""
-        return decide(self, pairs, "kind")
+        return self.decide("kind", pairs).codes
 
     def overlap(self, pairs: Pairs) -> np.ndarray:
         """:class:`OverlapCode` of every pair: do the solids of ``E`` and ``Q`` overlap?"""
-        return decide_overlap(self, pairs)
+        return self.decide("overlap", pairs).codes
 
     def criterion(self, pairs: Pairs) -> np.ndarray:
-        """:class:`CriterionCode` of every pair (the raw criterion), recording its counts."""
-        codes, names, which, later = self.staged_rows("criterion_contact", pairs)
-        self._record(_stage_counts("criterion", names, which, later))
-        return codes
+        """:class:`CriterionCode` of every pair (the raw criterion)."""
+        return self.decide("criterion", pairs).codes
 
     def public_smallness(self, pairs: Pairs) -> np.ndarray:
-        """:class:`SmallnessCode` of every pair, recording its counts."""
-        codes, names, which, later = self.staged_rows("smallness", pairs)
-        self._record(_stage_counts("smallness", names, which, later))
-        return codes
+        """:class:`SmallnessCode` of every pair (the smallness question)."""
+        return self.decide("smallness", pairs).codes
 
     # -- the stages -------------------------------------------------------------------------
 
@@ -171,7 +210,7 @@ class NumberMode(ABC):
 
 
 def _stage_counts(
-    step: str, names: list[str], which: np.ndarray, rows: np.ndarray | None = None
+    step: Step, names: list[str], which: np.ndarray, rows: np.ndarray | None = None
 ) -> StageCounts:
     """The counts of ``step`` from the deciding stage of every entry (``which``: stage index, or
     -1 undecided): nearly every entry is the first stage's (0).  ``rows``: a superset of the
@@ -185,6 +224,28 @@ def _stage_counts(
     counts = StageCounts()
     for k, name in enumerate(names):
         k_count = which.size - later.size if k == 0 else np.count_nonzero(later == k)
-        counts.add(f"{step} ({name})", int(k_count))
+        counts.add(Provenance(step, name), int(k_count))
     counts.undecided = int(np.count_nonzero(later < 0))
     return counts
+
+
+def _by_stages(step: Step, method: str) -> Callable[[NumberMode, Pairs], tuple[np.ndarray, StageCounts]]:
+    """A question a mode answers by its stage ``method`` alone (down its cascade), counted as
+    ``step``."""
+
+    def answer(mode: NumberMode, pairs: Pairs) -> tuple[np.ndarray, StageCounts]:
+        codes, names, which, later = mode.staged_rows(method, pairs)
+        return codes, _stage_counts(step, names, which, later)
+
+    return answer
+
+
+QUESTIONS: dict[str, Callable[[NumberMode, Pairs], tuple[np.ndarray, StageCounts]]] = {
+    "contact": lambda mode, pairs: decide(mode, pairs, "contact"),
+    "region": lambda mode, pairs: decide(mode, pairs, "region"),
+    "kind": lambda mode, pairs: decide(mode, pairs, "kind"),
+    "overlap": decide_overlap,
+    "criterion": _by_stages(Step.CRITERION, "criterion_contact"),
+    "smallness": _by_stages(Step.SMALLNESS, "smallness"),
+}
+"""The questions of :meth:`NumberMode.decide`: how each is answered (the codes and their counts)."""

@@ -37,16 +37,17 @@ from quadric_contact.exact.errors import (
 from quadric_contact.exact.rational import as_square_matrix
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import Quadric
-from quadric_contact.modes import (
-    MatrixStack,
-    NumberMode,
-    Pairs,
-    get_mode,
-)
+from quadric_contact.modes.decision.answers import KINDS, UNCERTAIN_ROW, rows_from_masks
+from quadric_contact.modes.kernels.threads import single_threaded
+from quadric_contact.modes.numbers.number_mode import NumberMode
+from quadric_contact.modes.numbers.registry import get_mode
 from quadric_contact.modes.stacks.packing import Packed, unpack
+from quadric_contact.modes.stacks.pairs import MatrixStack, Pairs
+from quadric_contact.modes.stacks.validation import exact_matrix
 from quadric_contact.theory.pencil import as_quadric
 
 __all__ = [
+    "MODE_QUESTIONS",
     "as_stack",
     "is_stack",
     "make_pairs",
@@ -290,15 +291,18 @@ def make_pairs(E: MatrixStack, Q: MatrixStack) -> tuple[Pairs, tuple[int, ...]]:
 
 # -- asking a mode about every pair ----------------------------------------------------------
 
-_QUESTIONS = {
+MODE_QUESTIONS = {
     "contact": "contact",
     "region": "region",
     "kind": "kind",
     "overlap": "overlap",
     "plane": "region",
-    "smallness": "public_smallness",
+    "smallness": "smallness",
     "criterion": "criterion",
 }
+"""The questions of :func:`run_stack` and the question of
+:meth:`~quadric_contact.modes.NumberMode.decide` each asks (``"plane"``: the region, with every
+``Q`` a plane)."""
 
 
 def run_stack(
@@ -310,11 +314,11 @@ def run_stack(
     (``region`` with every ``Q`` required to be a plane), ``"smallness"`` or ``"criterion"``.  Returns an int8
     array shaped like the broadcast batch (dask input: chunk by chunk, computed unless
     ``compute=False``)."""
-    if question not in _QUESTIONS:
+    if question not in MODE_QUESTIONS:
         raise ChoiceError(
-            f"question must be one of {', '.join(_QUESTIONS)}, got {question!r}",
+            f"question must be one of {', '.join(MODE_QUESTIONS)}, got {question!r}",
             question,
-            choices=tuple(_QUESTIONS),
+            choices=tuple(MODE_QUESTIONS),
         )
     if _is_dask(E) or _is_dask(Q):
         return _run_dask(question, E, Q, mode, client, compute)
@@ -322,13 +326,11 @@ def run_stack(
     pairs, shape = make_pairs(as_stack(E, "E"), as_stack(Q, "Q"))
     if question == "plane":
         _require_planes(m, pairs)
-    codes = getattr(m, _QUESTIONS[question])(pairs)
+    codes = m.decide(MODE_QUESTIONS[question], pairs).codes
     return np.asarray(codes, dtype=np.int8).reshape(shape)
 
 
 def _require_planes(mode: NumberMode, pairs: Pairs) -> None:
-    from quadric_contact.modes.decision.answers import KINDS, UNCERTAIN_ROW, rows_from_masks
-    from quadric_contact.modes.stacks.validation import exact_matrix
 
     used = np.unique(pairs.q_rows())
     rows = rows_from_masks(mode.classify(pairs.Q, used))
@@ -336,7 +338,7 @@ def _require_planes(mode: NumberMode, pairs: Pairs) -> None:
         kind = None if row == UNCERTAIN_ROW else KINDS[int(row) // 2]
         if kind is not QuadricKind.PLANE:
             q = exact_matrix(pairs.Q, int(used[k]))
-            kind = q.kind  # type: ignore[attr-defined]
+            kind = q.kind
             if kind is not QuadricKind.PLANE:
                 raise NotAPlaneError(
                     f"{pairs.Q.where(int(used[k]))} is not a plane: it is {kind.value}", q, kind=kind
@@ -347,8 +349,8 @@ def _require_planes(mode: NumberMode, pairs: Pairs) -> None:
 
 
 def _run_dask(what: str, E: Any, Q: Any, mode: Any, client: Any, compute: bool) -> Any:
-    import dask
-    import dask.array as da
+    import dask  # optional: dask
+    import dask.array as da  # optional: dask
 
     m = get_mode(mode)
     arrays = []
@@ -368,8 +370,6 @@ def _run_dask(what: str, E: Any, Q: Any, mode: Any, client: Any, compute: bool) 
     Eb, Qb = da.core.unify_chunks(Eb, tuple(range(Eb.ndim)), Qb, tuple(range(Qb.ndim)))[1]
 
     def block(e: np.ndarray, q: np.ndarray) -> np.ndarray:
-        from quadric_contact.modes.kernels.threads import single_threaded
-
         with single_threaded():
             return np.asarray(run_stack(what, e, q, m), dtype=np.int8).reshape(e.shape[:-2])
 
