@@ -21,7 +21,7 @@ from quadric_contact.modes.distance.depth_kernel import (
     crossing_ellipsoids,
     crossing_ellipsoids_cells,
 )
-from quadric_contact.modes.kernels._jit import python_twin
+from quadric_contact.modes.kernels._jit import plain
 from quadric_contact.modes.kernels.threads import single_threaded
 from quadric_contact.testing.samples import ellipsoid_matrix as _ellipsoid
 from quadric_contact.testing.samples import float_depth as _float_depth
@@ -246,7 +246,7 @@ def test_the_compiled_kernel_and_its_python_twin_give_the_same_bits():
     n = len(Es)
     got = [(np.empty((n, 2)), np.empty(n, dtype=np.uint8), np.empty(n, dtype=np.int64)) for _ in range(2)]
     _kernel(Es, Ks, 1e-12, *got[0], 0, n)
-    python_twin(_kernel)(Es, Ks, 1e-12, *got[1], 0, n)
+    plain(_kernel)(Es, Ks, 1e-12, *got[1], 0, n)
     for compiled, twin in zip(*got, strict=True):
         assert np.array_equal(compiled, twin)
     assert not got[0][1][:-1].any() and got[0][1][-1]

@@ -14,11 +14,11 @@ import pytest
 from quadric_contact import codegen
 from quadric_contact._generated import dd_programs, kernels
 from quadric_contact.exact.entries import ENTRY_INDICES
+from quadric_contact.modes.facts import exact_facts, float_invariant_signs
 from quadric_contact.modes.kernels import double_double as dd
 from quadric_contact.modes.kernels import errorbounds as eb
 from quadric_contact.modes.kernels._jit import HAVE_NUMBA, njit
 from quadric_contact.modes.kernels.numpy_backend import dd_invariant_quantities
-from quadric_contact.modes.numbers.binary64 import exact_facts, float_invariant_signs
 from quadric_contact.modes.numbers.objects import ExactMode
 from quadric_contact.modes.stacks.batch import as_stack
 from quadric_contact.testing.hardcases import hard_cases
@@ -365,21 +365,21 @@ def test_only_exact_zeros_are_left_to_the_integers():
 
 
 def test_exact_facts_ask_the_integers_only_about_exact_zeros(monkeypatch):
+    from quadric_contact.modes import facts
     from quadric_contact.modes.decision.answers import masks_from_invariant_signs
-    from quadric_contact.modes.numbers import objects
 
     asked = []
-    exact = objects.ObjectMode.invariant_signs
+    exact = facts.integer_invariant_signs
 
-    def count(self, Q, rows):
+    def count(Q, rows):
         asked.append(len(rows))
-        return exact(self, Q, rows)
+        return exact(Q, rows)
 
     M = np.concatenate([_every_type(400, 71)[:800], _integer_structural_zeros(30, 72)])
     stack = as_stack(M, "Q")
     rows = np.arange(M.shape[0])
     reference = ExactMode().invariant_signs(as_stack(M, "Q"), rows)
-    monkeypatch.setattr(objects.ObjectMode, "invariant_signs", count)
+    monkeypatch.setattr(facts, "integer_invariant_signs", count)
     flags, masks = exact_facts(stack, rows)
     assert sum(asked) == len(_true_zeros(M))
     det_zero = reference[:, 6] == 0

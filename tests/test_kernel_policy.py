@@ -20,9 +20,9 @@ import pytest
 from tests.compile_events import RECORD_COMPILES
 
 import quadric_contact as qc
-from quadric_contact.interfaces.benchmark import complete_populations
 from quadric_contact.modes.kernels import _jit
 from quadric_contact.modes.kernels._jit import COMPILE_NOTICE, HAVE_NUMBA, TWINS_NOTICE
+from quadric_contact.testing.samples import complete_populations
 
 pytestmark = pytest.mark.skipif(not HAVE_NUMBA, reason="numba not installed")
 
@@ -34,7 +34,7 @@ ANSWERS = (
 import json, sys
 import numpy as np
 import quadric_contact as qc
-from quadric_contact.interfaces.benchmark import complete_populations
+from quadric_contact.testing.samples import complete_populations
 out = {}
 for pop, (E, Q, _) in complete_populations(int(sys.argv[1]), np.random.default_rng(3)).items():
     for name in ("transversal_contact", "relative_position", "overlap"):
@@ -217,20 +217,37 @@ def test_a_kernel_another_process_compiles_is_waited_for_or_put_off(tmp_path, mo
 def test_the_kernels_helpers_are_inlined_by_llvm_not_retyped_at_every_call_site():
     """Every helper the kernels inline is ``forceinline`` (LLVM's ``alwaysinline``: typed once
     per signature), never numba's ``inline="always"`` (typed again at every call site: six
-    times the compile time of the warm-up's kernels, at the same throughput)."""
+    times the compile time of the warm-up's kernels, at the same throughput), whichever side of
+    its pair the module binds: the compiled one (``njit(inline=True)``) or the plain one
+    (``jitable(inline=True)``, the smallness helpers and the signs)."""
     import importlib
+    import types
 
     import numba
 
     helpers = []
-    for name in ("kernels_criterion", "kernels_filter", "kernels_signature", "kernels_support",
-                 "kernels_decision", "separation", "decisions", "scale_kernel", "scale_blocks",
-                 "scale_both", "distance_kernel", "depth_kernel"):  # fmt: skip
+    for name in ("kernels.criterion", "kernels.filter", "kernels.signature", "kernels.support",
+                 "kernels.decision", "kernels.signs", "decision.separation", "decision.answers",
+                 "distance.scale_kernel", "distance.scale_blocks", "distance.scale_both",
+                 "distance.apart_kernel", "distance.depth_kernel", "smallness.binary64"):  # fmt: skip
         module = importlib.import_module(f"quadric_contact.modes.{name}")
         for value in vars(module).values():
-            if isinstance(value, numba.core.registry.CPUDispatcher) and value.__module__ == module.__name__:
+            if isinstance(value, types.FunctionType) and value.__module__ == module.__name__:
+                try:
+                    value = _jit.compiled(value)  # the compiled side of a plain helper
+                except TypeError:
+                    continue  # Python only
+            if (
+                isinstance(value, numba.core.registry.CPUDispatcher)
+                and value.py_func.__module__ == module.__name__
+            ):
                 options = value.targetoptions
                 assert options.get("inline", "never") == "never", (name, value.__name__)
                 if options.get("forceinline"):
                     helpers.append((name, value.__name__))
-    assert len(helpers) > 100, len(helpers)
+    assert len(helpers) > 130, len(helpers)
+    assert {("kernels.signs", "sign_within"), ("smallness.binary64", "_e_row")} <= set(helpers)
+    # the pairs made so far: a plain side that numba types as its compiled side
+    for plain_side, compiled_side, inline in _jit.pairs():
+        assert compiled_side.py_func is plain_side or plain_side is _jit.select
+        assert bool(compiled_side.targetoptions.get("forceinline")) == inline, plain_side

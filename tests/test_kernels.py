@@ -12,11 +12,10 @@ import pytest
 from tests.oracles import criterion_contact, criterion_region
 
 import quadric_contact as qc
-from quadric_contact.interfaces.benchmark import kernel_population
 from quadric_contact.modes import CertifiedMode, FilterMode, FloatMode
 from quadric_contact.modes.kernels._jit import HAVE_NUMBA
 from quadric_contact.testing.hardcases import hard_cases
-from quadric_contact.testing.samples import random_pairs
+from quadric_contact.testing.samples import kernel_population, random_pairs
 
 PREDICATES = [criterion_contact, criterion_region]
 
@@ -249,7 +248,7 @@ def test_certified_ellipsoids_are_ellipsoids():
     from quadric_contact.model.classification import QuadricKind
     from quadric_contact.model.quadric import Quadric
     from quadric_contact.modes.decision.answers import UNCERTAIN_ROW, row_of, rows_from_invariant_signs
-    from quadric_contact.modes.numbers.binary64 import certified_ellipsoid_signs, float_invariant_signs
+    from quadric_contact.modes.facts import certified_ellipsoid_signs, float_invariant_signs
 
     rng = np.random.default_rng(11)
     E, Q, _ = random_pairs(400, rng)
@@ -272,7 +271,7 @@ def test_exact_facts_agree_with_the_integers():
 
     from quadric_contact.exact.linalg import nullspace
     from quadric_contact.modes.decision.answers import masks_from_invariant_signs
-    from quadric_contact.modes.numbers.binary64 import exact_facts
+    from quadric_contact.modes.facts import exact_facts
     from quadric_contact.modes.numbers.objects import ExactMode
     from quadric_contact.modes.stacks.batch import as_stack
 
@@ -293,7 +292,6 @@ def test_cached_kernels_are_keyed_on_every_source_they_inline(tmp_path):
     """numba keys a cached kernel on its own file; a kernel whose generated programs or inlined
     helpers changed must not load stale machine code (old formulas with new error bounds)."""
     import shutil
-    from pathlib import Path
 
     from quadric_contact.modes.kernels import _jit
     from quadric_contact.modes.kernels.criterion import kernel
@@ -302,7 +300,7 @@ def test_cached_kernels_are_keyed_on_every_source_they_inline(tmp_path):
     holder = getattr(k._cache, "_cache_file", k._cache)
     module = k.py_func.__module__
     assert holder._source_stamp[1] == _jit._sources_digest(module=module)
-    package = Path(_jit.__file__).resolve().parents[1]
+    package = _jit.PACKAGE_ROOT
     shutil.copytree(package, tmp_path, dirs_exist_ok=True, ignore=shutil.ignore_patterns("__pycache__"))
     decision_kernel = "quadric_contact.modes.kernels.decision"
     before = _jit._sources_digest(tmp_path, module)
@@ -319,7 +317,7 @@ def test_cached_kernels_are_keyed_on_every_source_they_inline(tmp_path):
     # the Python around the kernels is not their source, nor is another kernel's module:
     # editing them compiles nothing again
     before = _jit._sources_digest(tmp_path, decision_kernel)
-    for other in ("pipeline.py", "scale_kernel.py"):
+    for other in ("decision/pipeline.py", "distance/scale_kernel.py"):
         path = tmp_path / "modes" / other
         path.write_text(path.read_text() + "\n")
     assert _jit._sources_digest(tmp_path, decision_kernel) == before
@@ -328,16 +326,18 @@ def test_cached_kernels_are_keyed_on_every_source_they_inline(tmp_path):
 def test_kernel_sources_are_the_compiled_modules_and_what_they_import():
     """Every module that compiles code is among the kernels' sources, with the tables it
     imports; the cascade, the predicates and the modes' classes are not."""
-    from pathlib import Path
 
     from quadric_contact.modes.kernels import _jit
 
     sources = set(_jit.kernel_sources())
-    package = Path(_jit.__file__).resolve().parents[1]
-    for path in (package / "modes").glob("*.py"):
+    package = _jit.PACKAGE_ROOT
+    compiled = 0
+    for path in (package / "modes").rglob("*.py"):
         text = path.read_text()
         if "@njit" in text or "@_njit" in text or "jitable(" in text:
-            assert f"modes/{path.name}" in sources, path.name
+            compiled += 1
+            assert path.relative_to(package).as_posix() in sources, path
+    assert compiled >= 10
     assert {
         "theory/decision.py",
         "theory/regions.py",
@@ -354,8 +354,8 @@ def test_kernel_sources_are_the_compiled_modules_and_what_they_import():
     )
     # a kernel's sources are its module and what it imports, followed through compiled modules
     assert _jit.kernel_sources(module="quadric_contact.modes.distance.scale_kernel") == [
-        "modes/kernels/_jit.py",
         "modes/distance/scale_kernel.py",
+        "modes/kernels/_jit.py",
     ]
     decision = set(_jit.kernel_sources(module="quadric_contact.modes.kernels.decision"))
     assert {"modes/kernels/criterion.py", "modes/kernels/signature.py", "_generated/blocks.py"} <= decision

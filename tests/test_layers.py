@@ -60,6 +60,11 @@ CODEGEN_IMPORTERS = {f"{PACKAGE}.interfaces.cli.codegen"}
 """The only module allowed to import the generator: the ``quadric-contact codegen`` command."""
 
 
+def is_codegen(module: str) -> bool:
+    """The generator's package or one of its modules."""
+    return module == CODEGEN or module.startswith(CODEGEN + ".")
+
+
 @dataclass(frozen=True)
 class Import:
     importer: str
@@ -211,7 +216,7 @@ def test_the_scan_sees_the_imports() -> None:
         and not i.in_function
         for i in IMPORTS
     )
-    assert any(i.importer in CODEGEN_IMPORTERS and i.target == CODEGEN and i.in_function for i in IMPORTS)
+    assert any(i.importer in CODEGEN_IMPORTERS and is_codegen(i.target) and i.in_function for i in IMPORTS)
     assert any(i.in_function for i in IMPORTS) and any(not i.in_function for i in IMPORTS)
     assert _reaches(f"{PACKAGE}.families.family", f"{PACKAGE}.families.rational_functions")
     assert not _reaches(f"{PACKAGE}.families.rational_functions", f"{PACKAGE}.families.family")
@@ -221,7 +226,7 @@ def test_nothing_imports_the_code_generator_at_run_time() -> None:
     offenders = [
         f"{i.importer}:{i.line}"
         for i in IMPORTS
-        if i.target == CODEGEN and i.importer not in CODEGEN_IMPORTERS
+        if is_codegen(i.target) and not is_codegen(i.importer) and i.importer not in CODEGEN_IMPORTERS
     ]
     assert offenders == [], f"the code generator is development time only; imported by {offenders}"
 
@@ -250,10 +255,166 @@ def test_no_function_level_import_dodges_a_cycle() -> None:
         "quadric_contact.families.family_numeric, quadric_contact.modes.smallness.binary64, "
         "quadric_contact.modes.stacks.batch, quadric_contact.testing.hardcases, "
         "quadric_contact.interfaces.benchmark, quadric_contact.modes.numbers.binary64",
+        # what the tests import instead of the benchmark, and the command line
+        "quadric_contact.testing.samples, quadric_contact.testing.peers, "
+        "quadric_contact.testing.references, quadric_contact.interfaces.cli",
     ],
 )
 def test_importing_the_package_does_not_load_the_generator(modules: str) -> None:
-    code = f"import sys, quadric_contact, {modules}; print({CODEGEN!r} in sys.modules)"
+    """Neither the generator's package nor any of its modules is loaded."""
+    code = (
+        f"import sys, quadric_contact, {modules}; "
+        f"print(any(m == {CODEGEN!r} or m.startswith({CODEGEN + '.'!r}) for m in sys.modules))"
+    )
     env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(SRC), os.environ.get("PYTHONPATH", "")])}
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env)
     assert out.stdout.strip() == "False", out.stderr
+
+
+def _all_imports_graph() -> dict[str, set[str]]:
+    graph: dict[str, set[str]] = {m: set() for m in MODULES}
+    for imp in IMPORTS:
+        graph[imp.importer].add(imp.target)
+    return graph
+
+
+def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """The strongly connected components of more than one module (Tarjan, iteratively)."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on: set[str] = set()
+    found: list[list[str]] = []
+    counter = 0
+    for root in sorted(graph):
+        if root in index:
+            continue
+        work = [(root, iter(sorted(graph[root])))]
+        index[root] = low[root] = counter
+        counter += 1
+        stack.append(root)
+        on.add(root)
+        while work:
+            node, children = work[-1]
+            child = next(children, None)
+            if child is not None:
+                if child not in index:
+                    index[child] = low[child] = counter
+                    counter += 1
+                    stack.append(child)
+                    on.add(child)
+                    work.append((child, iter(sorted(graph[child]))))
+                elif child in on:
+                    low[node] = min(low[node], index[child])
+                continue
+            work.pop()
+            if work:
+                low[work[-1][0]] = min(low[work[-1][0]], low[node])
+            if low[node] == index[node]:
+                component = []
+                while True:
+                    top = stack.pop()
+                    on.discard(top)
+                    component.append(top)
+                    if top == node:
+                        break
+                if len(component) > 1:
+                    found.append(sorted(component))
+    return found
+
+
+def test_no_cycle_even_through_imports_inside_functions() -> None:
+    """Within a folder (and so in the whole package: the layers order the folders), the graph of
+    *every* import, at module level and inside functions, has no cycle: an import inside a
+    function never closes a circle of modules that need one another."""
+    cycles = _cycles(_all_imports_graph())
+    assert cycles == [], "modules on an import cycle (imports inside functions counted):\n" + "\n".join(
+        " -> ".join(c) for c in cycles
+    )
+
+
+def test_the_cycle_finder_finds_cycles() -> None:
+    graph = {"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}, "e": set()}
+    assert _cycles(graph) == [["a", "b", "c"]]
+    assert _cycles({"a": {"b"}, "b": set()}) == []
+
+
+OPTIONAL = {
+    "numba", "llvmlite", "sympy", "matplotlib", "PIL", "dask", "distributed", "flint", "mpmath",
+    "coal", "fcl", "hppfcl", "nbformat", "nbclient", "playwright", "tqdm", "hypothesis", "fcntl",
+    "resource", "IPython", "pytest", "scipy", "cProfile", "pstats", "tomllib",
+}  # fmt: skip
+"""Heavy or optional dependencies (or not on every platform) that a module may import where it
+needs them, so that importing the package does not load them."""
+
+
+def _function_level_imports() -> list[tuple[str, int, str, str]]:
+    """``(module, line, imported module, the comment that says why)`` for every import inside a
+    function of the package (an ``if TYPE_CHECKING:`` block aside)."""
+    found = []
+    for module, path in MODULES.items():
+        text = path.read_text(encoding="utf-8")
+        lines = text.splitlines()
+
+        def walk(node: ast.AST, in_function: bool, module: str = module, lines: list[str] = lines) -> None:
+            for child in ast.iter_child_nodes(node):
+                if _is_type_checking(child):
+                    continue
+                if in_function and isinstance(child, ast.Import | ast.ImportFrom):
+                    name = child.module or "" if isinstance(child, ast.ImportFrom) else child.names[0].name
+                    if isinstance(child, ast.ImportFrom) and child.level:
+                        name = PACKAGE
+                    # the comment: on the line itself, or on the lines just above the group
+                    why = lines[child.lineno - 1].partition("#")[2].strip()
+                    k = child.lineno - 2
+                    while not why and k >= 0 and lines[k].strip().startswith(("import ", "from ", "#")):
+                        if lines[k].strip().startswith("#"):
+                            why = lines[k].strip().lstrip("#").strip()
+                        k -= 1
+                    found.append((module, child.lineno, name, why))
+                walk(
+                    child,
+                    in_function or isinstance(child, ast.FunctionDef | ast.AsyncFunctionDef | ast.Lambda),
+                )
+
+        walk(ast.parse(text), False)
+    return found
+
+
+FUNCTION_IMPORTS = _function_level_imports()
+
+
+def test_imports_inside_functions_are_optional_dependencies_or_commands() -> None:
+    """An import inside a function is an optional or heavy dependency (:data:`OPTIONAL`) or, in
+    the command line, a subcommand loaded when it runs; each says why in a comment."""
+    wrong = []
+    for module, line, name, why in FUNCTION_IMPORTS:
+        top = name.split(".")[0]
+        command = module.startswith(f"{PACKAGE}.interfaces.cli") or module == f"{PACKAGE}.__main__"
+        allowed = top in OPTIONAL or (command and name.startswith(PACKAGE))
+        if not allowed:
+            wrong.append(f"{module}:{line} imports {name} inside a function")
+        elif not why:
+            wrong.append(f"{module}:{line} imports {name} inside a function without a comment saying why")
+    assert wrong == [], "\n".join(wrong)
+
+
+def test_the_function_import_scan_sees_them() -> None:
+    assert any(name.startswith("numba") for _, _, name, _ in FUNCTION_IMPORTS)
+
+
+def test_no_module_imports_names_from_a_package_that_encloses_it() -> None:
+    """``from quadric_contact.modes import get_mode`` inside ``modes/`` would run the folder's
+    ``__init__``, which imports the folder's modules: a circle the scans above leave out (they
+    skip a module's enclosing packages).  Submodules may be named that way; other names not."""
+    found = []
+    for module, path in MODULES.items():
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if not isinstance(node, ast.ImportFrom) or node.level or not node.module:
+                continue
+            if node.module == PACKAGE or not module.startswith(node.module + "."):
+                continue
+            names = [a.name for a in node.names if f"{node.module}.{a.name}" not in MODULES]
+            if names:
+                found.append(f"{module}:{node.lineno} imports {names} from {node.module}")
+    assert found == [], found

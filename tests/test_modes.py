@@ -310,6 +310,7 @@ def test_binary64_types_go_from_the_filter_to_the_exact_stage(monkeypatch):
     worth from 0, is certified by the filter's double-double reading and never asks the exact
     stage; the types are the exact ones, and the exact invariants are computed once per
     quadric and stack."""
+    from quadric_contact.modes import facts
     from quadric_contact.modes.decision.answers import rows_from_masks
     from quadric_contact.modes.numbers import objects
     from quadric_contact.modes.stacks.batch import as_stack
@@ -317,18 +318,18 @@ def test_binary64_types_go_from_the_filter_to_the_exact_stage(monkeypatch):
     asked = []
     ball = objects.BallMode.classify
     computed = []
-    exact = objects.ObjectMode.invariant_signs
+    exact = facts.integer_invariant_signs
 
     def spy(self, Q, rows=None):
         asked.append(len(rows))
         return ball(self, Q, rows)
 
-    def count(self, Q, rows):
+    def count(Q, rows):
         computed.append(len(rows))
-        return exact(self, Q, rows)
+        return exact(Q, rows)
 
     monkeypatch.setattr(objects.BallMode, "classify", spy)
-    monkeypatch.setattr(objects.ObjectMode, "invariant_signs", count)
+    monkeypatch.setattr(facts, "integer_invariant_signs", count)
     _, Q, _ = random_pairs(60, np.random.default_rng(43))
     CertifiedMode().classify(as_stack(Q, "Q"))
     assert computed == []  # rotated cylinders, cones, paraboloids ... : all certified in floats

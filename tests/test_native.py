@@ -40,7 +40,7 @@ CALLS = (
 import json, sys
 import numpy as np
 import quadric_contact as qc
-from quadric_contact.interfaces.benchmark import kernel_population
+from quadric_contact.testing.samples import kernel_population
 from quadric_contact.interfaces.warmup import calls
 from quadric_contact.modes.kernels import native
 
@@ -86,7 +86,7 @@ def test_the_default_path_never_invokes_a_jit_and_answers_as_the_run_time_compil
     numba compiling anything; its answers are those of numba's run-time compile of the same
     kernels, here (the tests' cache)."""
     import quadric_contact as qc
-    from quadric_contact.interfaces.benchmark import kernel_population
+    from quadric_contact.testing.samples import kernel_population
 
     _library()
     got = _run(tmp_path)
@@ -94,7 +94,7 @@ def test_the_default_path_never_invokes_a_jit_and_answers_as_the_run_time_compil
     assert len(got["calls"]) > 40
     assert got["compiled"] == [], f"{BUILD_HINT} (numba compiled {got['compiled']})"
     E, Q = kernel_population(1000, np.random.default_rng(0))
-    with native.turned_off():
+    with _jit.turned_off():
         compiled = {
             "contact": qc.transversal_contact(E, Q).tolist(),
             "region": qc.relative_position(E, Q).tolist(),
@@ -113,7 +113,7 @@ def test_read_only_inputs_run_natively_too(tmp_path):
 import json
 import numpy as np
 import quadric_contact as qc
-from quadric_contact.interfaces.benchmark import kernel_population
+from quadric_contact.testing.samples import kernel_population
 E, Q = kernel_population(500, np.random.default_rng(1))
 before = (E.copy(), Q.copy())
 E.setflags(write=False)
@@ -132,7 +132,7 @@ print(json.dumps({"compiled": compiled, "out": out, "same": same}))
     got = json.loads(proc.stdout)
     assert got["compiled"] == [] and got["same"]
     import quadric_contact as qc
-    from quadric_contact.interfaces.benchmark import kernel_population
+    from quadric_contact.testing.samples import kernel_population
 
     E, Q = kernel_population(500, np.random.default_rng(1))
     want = [

@@ -27,6 +27,7 @@ from quadric_contact.modes import (
     get_mode,
 )
 from quadric_contact.modes.codes import SmallnessCode
+from quadric_contact.modes.facts import table_kinds
 from quadric_contact.modes.smallness import binary64 as sf
 from quadric_contact.modes.smallness.tables import (
     E_SIDES,
@@ -104,7 +105,7 @@ def check_modes(Es, Qs) -> np.ndarray:
 
 def sees_type(mode, q) -> bool:
     """Does the (plain) mode classify ``q`` as its exact type?"""
-    kinds, _ = sf.table_kinds(get_mode(mode).classify(as_stack(q, "Q"), np.zeros(1, dtype=np.intp)))
+    kinds, _ = table_kinds(get_mode(mode).classify(as_stack(q, "Q"), np.zeros(1, dtype=np.intp)))
     exact = TABLE_1_KINDS.index(q.kind) if q.kind in TABLE_1_KINDS else -1
     return int(kinds[0]) == exact
 
@@ -506,7 +507,7 @@ def test_quadric_sides_enclose_the_exact_values(kind):
     """Binary64 input of each type (axis-aligned, a dyadic translation and a signed permutation:
     the type survives) and exact input (a rational rotation, rounded for the filter: the
     enclosures of the rounded matrix widened by Weyl's inequality)."""
-    from quadric_contact.modes.numbers.binary64 import exact_facts
+    from quadric_contact.modes.facts import exact_facts
 
     params = dict(zip("abc", (Fraction(5, 2), Fraction(7, 4), Fraction(3, 4)), strict=False))
     std = Quadric.standard(kind, **{k: params[k] for k in Quadric.standard_parameters(kind)})
@@ -517,7 +518,7 @@ def test_quadric_sides_enclose_the_exact_values(kind):
     ]
     for stack in (as_stack([std.moved(flip), -std.moved(flip)], "Q"), as_stack([exact[0], -exact[1]], "Q")):
         rows = np.arange(2)
-        kinds, signs = sf.table_kinds(exact_facts(stack, rows)[1])
+        kinds, signs = table_kinds(exact_facts(stack, rows)[1])
         assert (kinds == TABLE_1_KINDS.index(kind)).all()
         status, values = sf.q_row_quantities(stack, rows, kinds, signs, certify=True)
         assert (status == 0).all(), status

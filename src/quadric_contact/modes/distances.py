@@ -60,7 +60,11 @@ from quadric_contact.exact.errors import (
 from quadric_contact.exact.precision import working_precision
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import as_quadric
+from quadric_contact.modes.distance.apart_kernel import separated_ellipsoids
 from quadric_contact.modes.distance.certified import DistanceEnclosure, apart_ellipsoids, distance_certified
+from quadric_contact.modes.distance.depth_kernel import crossing_ellipsoids
+from quadric_contact.modes.distance.scale_blocks import scale_stack
+from quadric_contact.modes.distance.scale_both import scale_both_stack
 from quadric_contact.modes.stacks.batch import _is_dask, _is_single, _quadric_array, is_stack, matrix_array
 from quadric_contact.modes.stacks.packing import Packed, unpack
 from quadric_contact.theory.contact_scale import contact_scale_exact
@@ -300,8 +304,6 @@ def _distance_kernel(E: np.ndarray, Q: np.ndarray, mode: str, digits: int) -> np
     (:mod:`quadric_contact.modes.distance.apart_kernel`), crossing ellipsoid pairs by the compiled
     depth certificate (:mod:`quadric_contact.modes.distance.depth_kernel`), enclosures at most
     ``max(10^-digits, 1e-12)`` relative wide; the other pairs by the scalar path."""
-    from quadric_contact.modes.distance.apart_kernel import separated_ellipsoids
-    from quadric_contact.modes.distance.depth_kernel import crossing_ellipsoids
 
     shape = _batch_shape(E.shape[:-2], Q.shape[:-2])
     Es = _validated(np.broadcast_to(E, (*shape, 4, 4)), "E")
@@ -335,8 +337,6 @@ def _scale_kernel(E: np.ndarray, Q: np.ndarray, scale: str = "E") -> np.ndarray:
     ``scale="E"``, :mod:`quadric_contact.modes.distance.scale_both` for ``scale="both"``); the pairs they
     leave go to the exact scalar path (which raises for a pair that is not one of two real
     ellipsoids with ``scale="both"``)."""
-    from quadric_contact.modes.distance.scale_blocks import scale_stack
-    from quadric_contact.modes.distance.scale_both import scale_both_stack
 
     shape = _batch_shape(E.shape[:-2], Q.shape[:-2])
     Es = _validated(np.broadcast_to(E, (*shape, 4, 4)), "E")
@@ -369,8 +369,6 @@ def _kernel_pair(e: Any, K: Any) -> FloatDistance | None:
     runs (the duality certificate of :mod:`quadric_contact.modes.distance.apart_kernel` for a
     separated pair, the depth certificate of :mod:`quadric_contact.modes.distance.depth_kernel` for a
     crossing one), the same enclosure as the stack's; or None (not certified there)."""
-    from quadric_contact.modes.distance.apart_kernel import separated_ellipsoids
-    from quadric_contact.modes.distance.depth_kernel import crossing_ellipsoids
 
     mats = []
     for q in (e, K):

@@ -37,6 +37,7 @@ from quadric_contact.model.classification import (
     kind_from_inertia,
 )
 from quadric_contact.modes.codes import UNCERTAIN, ContactCode, RegionCode
+from quadric_contact.modes.kernels import signs
 from quadric_contact.modes.kernels._jit import njit
 from quadric_contact.theory.regions import ROOT_SIGN_TABLE
 from quadric_contact.theory.results import Region
@@ -62,9 +63,9 @@ __all__ = [
 _CONCRETE = (-1, 0, 1)
 
 
-def sign_index(s: int) -> int:
-    """``-1, 0, 1, UNCERTAIN`` -> ``0, 1, 2, 3`` (the index into the tables)."""
-    return 3 if s == UNCERTAIN else s + 1
+sign_index = signs.sign_index
+"""``-1, 0, 1, UNCERTAIN`` -> ``0, 1, 2, 3`` (the index into the tables): the kernels' own
+(:func:`~quadric_contact.modes.kernels.signs.sign_index`), on scalars and on columns."""
 
 
 def _completions(signs: tuple[int, ...]) -> list[tuple[int, ...]]:
@@ -99,13 +100,13 @@ CONTACT_TABLE = _build_contact_table()
 
 def contact_from_signs(s2: Any, s3: Any, s4: Any) -> np.ndarray:
     """Vectorised :data:`CONTACT_TABLE` lookup (int8 sign arrays in, int8 codes out)."""
-    idx = _index_array(s2) + 4 * _index_array(s3) + 16 * _index_array(s4)
+    idx = sign_index(_column(s2)) + 4 * sign_index(_column(s3)) + 16 * sign_index(_column(s4))
     return CONTACT_TABLE[idx]
 
 
-def _index_array(s: Any) -> np.ndarray:
-    s = np.asarray(s, dtype=np.int8)
-    return np.where(s == UNCERTAIN, 3, s + 1).astype(np.intp)
+def _column(s: Any) -> np.ndarray:
+    """Signs as an array of indices' type (:func:`sign_index` of it indexes the tables)."""
+    return np.asarray(s, dtype=np.intp)
 
 
 # -- is E an ellipsoid (Sylvester) -----------------------------------------------------
@@ -147,7 +148,8 @@ ELLIPSOID_TABLE = _build_ellipsoid_table()
 def ellipsoid_from_signs(s_a00: Any, s_m2: Any, s_m3: Any, s_det: Any) -> np.ndarray:
     """Vectorised :data:`ELLIPSOID_TABLE` lookup."""
     sa = np.asarray(s_a00, dtype=np.intp) + 1
-    return ELLIPSOID_TABLE[sa, _index_array(s_m2), _index_array(s_m3), _index_array(s_det)]
+    m2, m3, det = sign_index(_column(s_m2)), sign_index(_column(s_m3)), sign_index(_column(s_det))
+    return ELLIPSOID_TABLE[sa, m2, m3, det]
 
 
 # -- quadric types and their Table 4 rows -----------------------------------------------

@@ -66,9 +66,14 @@ from quadric_contact._generated import formulas, kernels
 from quadric_contact.modes.codes import UNCERTAIN
 from quadric_contact.modes.kernels import errorbounds as eb
 from quadric_contact.modes.kernels._jit import njit as _njit
-from quadric_contact.modes.kernels._jit import python_twin
+from quadric_contact.modes.kernels._jit import plain
+from quadric_contact.modes.kernels.signs import plain_sign, sign_within
 from quadric_contact.modes.stacks.pairs import Pairs
+from quadric_contact.modes.stacks.validation import exact_matrix
 from quadric_contact.theory import decision
+from quadric_contact.theory.certificate import separation_certificate
+from quadric_contact.theory.pencil import characteristic_polynomial
+from quadric_contact.theory.results import Region
 
 __all__ = [
     "CROSSING",
@@ -202,19 +207,6 @@ def quartic_roots(
 
 
 @_njit(inline=True)
-def _sign(v: float, err: float, certified: bool) -> int:
-    if not certified:
-        return 1 if v > 0.0 else (-1 if v < 0.0 else 0)
-    if v > err:
-        return 1
-    if v < -err:
-        return -1
-    if err == 0.0:
-        return 0
-    return UNCERTAIN
-
-
-@_njit(inline=True)
 def _variations(a: int, b: int, c: int, d: int) -> int:
     """Sign variations of ``(1, -a, b, -c, d)``: the positive eigenvalues of a symmetric
     matrix whose principal-minor sums have the signs ``a, b, c, d`` (Descartes)."""
@@ -286,19 +278,19 @@ def _member_count(s: float, e: Any, q: Any, K: Any, certified: bool) -> int:
     inv = _invariants(m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8], m[9])
     if not certified:
         return positive_count(
-            _sign(inv[3], 0.0, False),
-            _sign(inv[4], 0.0, False),
-            _sign(inv[5], 0.0, False),
-            _sign(inv[6], 0.0, False),
+            plain_sign(inv[3]),
+            plain_sign(inv[4]),
+            plain_sign(inv[5]),
+            plain_sign(inv[6]),
         )
     if not ok:
         return -1
     mag = _invariants_mag(w[0], w[1], w[2], w[3], w[4], w[5], w[6], w[7], w[8], w[9])
     return positive_count(
-        _sign(inv[3], K[0] * mag[3], True),
-        _sign(inv[4], K[1] * mag[4], True),
-        _sign(inv[5], K[2] * mag[5], True),
-        _sign(inv[6], K[3] * mag[6], True),
+        sign_within(inv[3], K[0] * mag[3]),
+        sign_within(inv[4], K[1] * mag[4]),
+        sign_within(inv[5], K[2] * mag[5]),
+        sign_within(inv[6], K[3] * mag[6]),
     )
 
 
@@ -365,17 +357,15 @@ def _member_definite(s: float, e: Any, q: Any, KD: Any, certified: bool) -> int:
     m, w, ok = _member(s, e, q)
     d = _minors4(m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8], m[9])
     if not certified:
-        return _definite_from_signs(
-            _sign(d[0], 0.0, False), _sign(d[1], 0.0, False), _sign(d[2], 0.0, False), _sign(d[3], 0.0, False)
-        )
+        return _definite_from_signs(plain_sign(d[0]), plain_sign(d[1]), plain_sign(d[2]), plain_sign(d[3]))
     if not ok:
         return _DEF_UNKNOWN
     mag = _minors4_mag(w[0], w[1], w[2], w[3], w[4], w[5], w[6], w[7], w[8], w[9])
     return _definite_from_signs(
-        _sign(d[0], KD[0] * mag[0], True),
-        _sign(d[1], KD[1] * mag[1], True),
-        _sign(d[2], KD[2] * mag[2], True),
-        _sign(d[3], KD[3] * mag[3], True),
+        sign_within(d[0], KD[0] * mag[0]),
+        sign_within(d[1], KD[1] * mag[1]),
+        sign_within(d[2], KD[2] * mag[2]),
+        sign_within(d[3], KD[3] * mag[3]),
     )
 
 
@@ -477,19 +467,10 @@ def separation_float(pairs: Pairs, *, certified: bool) -> np.ndarray:
     K = np.array(eb.MEMBER_ERRBOUND[rounded])
     KD = np.array(eb.MEMBER_MINORS_ERRBOUND[rounded])
     eidx, qidx, es, qs = pairs.kernel_indices()
-    _reference()(pairs.E.floats, pairs.Q.floats, eidx, qidx, es, qs, 0, n, K, KD, certified, out)
+    # run by Python all the way down: called from Python, the inline certificate would be
+    # compiled on its own, uncached, in every process
+    plain(_separation_impl)(pairs.E.floats, pairs.Q.floats, eidx, qidx, es, qs, 0, n, K, KD, certified, out)
     return out
-
-
-_REFERENCE: list[Any] = []
-
-
-def _reference() -> Any:
-    """:func:`_separation_impl` run by Python all the way down (``python_twin``): called from
-    Python, the inline certificate would be compiled on its own, uncached, in every process."""
-    if not _REFERENCE:
-        _REFERENCE.append(python_twin(_separation_impl))
-    return _REFERENCE[0]
 
 
 # -- object modes: the same certificate in other numbers ------------------------------------------
@@ -510,18 +491,6 @@ def _approx(values: np.ndarray) -> np.ndarray:
     return np.frompyfunc(one, 1, 1)(values).astype(np.float64)
 
 
-_PLAIN: dict[str, Any] = {}
-
-
-def _plain(name: str) -> Any:
-    """The Python twin of the compiled helper ``name`` of this module, for the object stages
-    (Python numbers, pair by pair): called from Python, the compiled helper would be compiled in
-    every process that calls it (it is inlined into the kernels, not cached)."""
-    if name not in _PLAIN:
-        _PLAIN[name] = python_twin(globals()[name])
-    return _PLAIN[name]
-
-
 def sample_points(coefficients: list[np.ndarray]) -> np.ndarray:
     """``(n, 3)`` float sample points ``s12, s23, s34`` between the approximate roots of each
     quartic (``coefficients``: ``c0 .. c4`` as float arrays); NaN where they cannot be had."""
@@ -529,7 +498,8 @@ def sample_points(coefficients: list[np.ndarray]) -> np.ndarray:
     n = c[0].shape[0]
     out = np.full((n, 3), np.nan)
     # the helper's Python twin: a compiled helper called from Python is compiled in every process
-    roots = np.vectorize(_plain("quartic_roots"), otypes=[float] * 4 + [bool])
+    # (it is inlined into the kernels, not cached)
+    roots = np.vectorize(plain(quartic_roots), otypes=[float] * 4 + [bool])
     with np.errstate(all="ignore"):
         good = np.isfinite(np.stack(c)).all(axis=0) & (c[4] != 0.0)
         if good.any():
@@ -570,7 +540,7 @@ def separation_objects(mode: Any, pairs: Pairs, *, certified: bool) -> np.ndarra
             finite[found] = True
         counts = np.full((n, 3), -1, dtype=np.int64)
         number = mode.number
-        count_positive = _plain("positive_count")
+        count_positive = plain(positive_count)
         for k in range(3):
             s = samples[:, k]
             ok = finite[:, k]
@@ -585,7 +555,7 @@ def separation_objects(mode: Any, pairs: Pairs, *, certified: bool) -> np.ndarra
                 counts[i, k] = count_positive(
                     int(signs[0][t]), int(signs[1][t]), int(signs[2][t]), int(signs[3][t])
                 )
-    decide_counts = _plain("decide_from_counts")
+    decide_counts = plain(decide_from_counts)
     for p in range(n):
         out[p] = decide_counts(int(counts[p, 0]), int(counts[p, 1]), int(counts[p, 2]), certified)
     return out
@@ -597,10 +567,6 @@ def separation_isolated(pairs: Pairs) -> np.ndarray:
     ``R_MINUS``/``R_PLUS``; four simple real roots and none definite ``CONTACT``; otherwise
     (a multiple root without a definite member: a tangency or a degenerate pencil)
     ``UNCERTAIN``."""
-    from quadric_contact.modes.stacks.validation import exact_matrix
-    from quadric_contact.theory.certificate import separation_certificate
-    from quadric_contact.theory.pencil import characteristic_polynomial
-    from quadric_contact.theory.results import Region
 
     codes = {Region.R_MINUS: SEP_MINUS, Region.CONTACT: CROSSING, Region.R_PLUS: SEP_PLUS, None: UNCERTAIN}
     n = pairs.n

@@ -33,13 +33,14 @@ from fractions import Fraction
 from typing import Any
 
 import flint
+import numpy as np
 
 from quadric_contact.exact.errors import UndecidedError
 from quadric_contact.exact.precision import working_precision
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import Quadric, as_quadric
 from quadric_contact.theory.contact_scale import centred_form
-from quadric_contact.theory.distance import CONVEX_SOLIDS, is_sphere
+from quadric_contact.theory.distance import CONVEX_SOLIDS, _solve3, is_sphere
 from quadric_contact.theory.distance_critical import critical_distance
 from quadric_contact.theory.overlap import overlap_exact, solid_of
 from quadric_contact.theory.results import OverlapCode
@@ -106,7 +107,6 @@ def _plane(E: Quadric, K: Quadric, digits: int) -> DistanceEnclosure:
     A, c, r = centred_form(E)
     n = [2 * K[i, 3] for i in range(3)]
     d = -K[3, 3]
-    from quadric_contact.theory.distance import _solve3
 
     Ainv_n = _solve3(A, n)
     k = sum(n[i] * Ainv_n[i] for i in range(3))
@@ -307,8 +307,6 @@ def apart_ellipsoids(E: Quadric, K: Quadric, digits: int) -> DistanceEnclosure |
     ``K`` there is ``-u``.  Newton's method in binary64 then in balls finds the root; the
     Krawczyk operator on a box around it proves it unique there and encloses it.  None where
     the search fails or the test does not pass (the general route then answers)."""
-    import numpy as np
-
     forms = [centred_form(E), centred_form(K)]
     Bs = [_inverse3(A) for A, _, _ in forms]
     # binary64 start: Newton's method from the direction of the centres

@@ -2,13 +2,27 @@
 
 from __future__ import annotations
 
+import ast
+import hashlib
 import os
 import re
+import subprocess
+import sys
 import threading
+import types
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
+
+import numpy as np
+
+from quadric_contact.modes.kernels import native
+
+PACKAGE_ROOT = Path(__file__).resolve().parents[2]
+"""The directory of this copy of the package (a checkout's ``src/quadric_contact``, or an
+installed one)."""
+
 
 try:  # pragma: no cover - depends on the environment
     import numba
@@ -23,16 +37,20 @@ __all__ = [
     "HAVE_NUMBA",
     "PACKAGE_ROOT",
     "compile_on_a_fresh_stack",
+    "compiled",
     "forget_native",
     "jitable",
     "kernel_cache_dir",
     "kernel_sources",
     "native_kernel",
     "njit",
-    "python_twin",
+    "pairs",
+    "plain",
     "route_native",
+    "select",
     "sources_digest",
     "stamp_with_sources",
+    "turned_off",
 ]
 
 
@@ -53,7 +71,6 @@ def _read(path: Any) -> tuple[tuple[str, int, int], bytes]:
 def _package_imports(root: Any, rel: str) -> set[str]:
     """The package modules ``rel`` imports (at module level or in a function), as paths
     relative to the package root ``root``."""
-    import ast
 
     key, text = _read(root / rel)
     known = _READ[key][1]
@@ -92,13 +109,12 @@ def kernel_sources(root: Any = None, module: str | None = None) -> list[str]:
     predicates, the modes' classes, the lookup of native kernels) is no kernel's source, and a
     kernel's own module and what it inlines are: editing the scale kernel does not recompile the
     decision kernel.  This module is a source of every kernel; what it imports is not."""
-    from pathlib import Path
 
-    root = Path(__file__).resolve().parents[1] if root is None else Path(root)
+    root = PACKAGE_ROOT if root is None else Path(root)
     compiled = {f"_generated/{p.name}" for p in (root / "_generated").glob("*.py")}
     compiled |= {
-        f"modes/{p.name}"
-        for p in (root / "modes").glob("*.py")
+        p.relative_to(root).as_posix()
+        for p in (root / "modes").rglob("*.py")
         if re.search(rb"\b(njit|jitable)\b", _read(p)[1])
     }
     start = set(compiled)
@@ -125,10 +141,8 @@ are not (the library of native kernels it looks kernels up in is no kernel's cod
 
 def _sources_digest(root: Any = None, module: str | None = None) -> str:
     """A digest of :func:`kernel_sources` (of ``module``): their names and bytes."""
-    import hashlib
-    from pathlib import Path
 
-    root = Path(__file__).resolve().parents[1] if root is None else Path(root)
+    root = PACKAGE_ROOT if root is None else Path(root)
     digest = hashlib.sha256()
     for rel in kernel_sources(root, module):
         digest.update(rel.encode())
@@ -165,7 +179,7 @@ def stamp_with_sources(dispatcher: Any) -> None:
 
 TWIN_ELEMENTS = 1 << 20
 """A call whose array arguments hold at most this many elements in all, and whose kernel is not
-compiled yet, runs the kernel's Python twin (:func:`python_twin`) instead of waiting for the
+compiled yet, runs the kernel's Python twin (:func:`plain`) instead of waiting for the
 compile: for the complete decision that is about 27 000 pairs, which its twin answers in about
 a second, where the compile takes about 40 s.  A larger call compiles what it needs."""
 
@@ -245,7 +259,7 @@ class _Compiles:
     def twin_of(self) -> Callable[..., Any]:
         with self.lock:
             if self.twin is None:
-                self.twin = python_twin(self.dispatcher)
+                self.twin = plain(self.dispatcher)
             return self.twin
 
     def load(self, sig: Any) -> Any:
@@ -253,7 +267,7 @@ class _Compiles:
         as numba's own ``compile`` adds it), else None; nothing is compiled.  None too while
         a compile holds numba's compiler lock in this process: waiting for it to load a
         kernel would wait for the whole compile."""
-        from numba.core.compiler_lock import global_compiler_lock
+        from numba.core.compiler_lock import global_compiler_lock  # numba only
 
         lock = getattr(global_compiler_lock, "_lock", None)
         if lock is None or not lock.acquire(blocking=False):
@@ -276,7 +290,6 @@ class _Compiles:
 
 
 def _elements(args: Any) -> int:
-    import numpy as np
 
     return sum(int(a.size) for a in args if isinstance(a, np.ndarray))
 
@@ -296,7 +309,6 @@ the arguments again (``typeof_pyval``, about 5 us an argument) cost more than th
 def _fingerprint(args: tuple[Any, ...]) -> tuple[Any, ...]:
     """What numba's type of each argument depends on: an array's class, dtype, dimensions,
     layout, whether it is writable and aligned; a scalar's class."""
-    import numpy as np
 
     out: list[Any] = []
     for a in args:
@@ -341,16 +353,15 @@ def native_kernel(dispatcher: Any, sig: Any) -> Any:
     has none that matches the running sources."""
     key = (id(dispatcher), sig)
     if key not in _NATIVE:
-        from quadric_contact.modes.kernels.native import lookup
-
-        _NATIVE[key] = lookup(dispatcher, sig, sources_digest)
+        _NATIVE[key] = native.lookup(dispatcher, sig, sources_digest)
     return _NATIVE[key]
 
 
 def route_native(dispatcher: Any) -> None:
-    """Let a kernel that is compiled in the calling thread (no twin, no thread of its own: the
-    compiled twins of :mod:`~quadric_contact.modes.smallness.binary64`) run its native version
-    where the library has one (:func:`native_kernel`), telling :data:`CALL_OBSERVERS` first."""
+    """Let a kernel that is compiled in the calling thread (no twin, no thread of its own:
+    ``njit(twin=False)``, the loops of :mod:`~quadric_contact.modes.smallness.binary64`) run its
+    native version where the library has one (:func:`native_kernel`), telling
+    :data:`CALL_OBSERVERS` first."""
     compile_for_args = dispatcher._compile_for_args
 
     def native_first(*args: Any, **kws: Any) -> Any:
@@ -460,7 +471,7 @@ def _compile_lock(dispatcher: Any) -> Iterator[None]:
     cache before it compiles), instead of compiling it again at the same time; or, deferring,
     raises :class:`KernelBusy`.  Where no lock can be had, nothing is held."""
     try:
-        import fcntl
+        import fcntl  # POSIX only
 
         f = getattr(dispatcher, "py_func", None)
         name = f"{getattr(f, '__module__', '?')}.{getattr(f, '__qualname__', '?')}"
@@ -486,10 +497,6 @@ def _compile_lock(dispatcher: Any) -> Iterator[None]:
 
 
 # -- one cache for every copy of the package ---------------------------------------------------
-
-PACKAGE_ROOT = Path(__file__).resolve().parents[1]
-"""The directory of this copy of the package (a checkout's ``src/quadric_contact``, or an
-installed one)."""
 
 
 def kernel_cache_dir() -> str:
@@ -552,11 +559,11 @@ if HAVE_NUMBA:  # pragma: no branch
 
 def _cache_root() -> str:
     """The directory numba keeps this package's kernels in (that of the decision kernel's
-    module, :mod:`quadric_contact.modes`; :func:`kernel_cache_dir` where it can be written):
+    module, :mod:`quadric_contact.modes.kernels.decision`; :func:`kernel_cache_dir` where it can be written):
     the warm-up's lock, log and marker, and the compile locks, live there."""
-    from numba.core.caching import CacheImpl
+    from numba.core.caching import CacheImpl  # numba only
 
-    source = str(Path(__file__).with_name("kernels_decision.py"))
+    source = str(Path(__file__).with_name("decision.py"))
     for locator in CacheImpl._locator_classes:  # numba's order, this package's locator first
         found = locator.from_function(_cache_root, source)
         if found is not None:
@@ -574,7 +581,7 @@ def warmup_lock(*, wait: bool = False) -> Iterator[bool]:
     """Hold the warm-up's lock while the block runs (yields False, holding nothing, where
     another process holds it; ``wait``: wait for it instead)."""
     try:
-        import fcntl
+        import fcntl  # POSIX only
     except ImportError as exc:  # pragma: no cover - not a POSIX system: no lock, no warm-up
         raise OSError("no file locks here") from exc
 
@@ -638,10 +645,8 @@ def start_background_warmup() -> bool:
     if _started:
         return False
     _started = True
-    import subprocess
-    import sys
 
-    here = str(Path(__file__).resolve().parents[2])  # the directory the package is in
+    here = str(PACKAGE_ROOT.parent)  # the directory the package is in
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, [here, os.environ.get("PYTHONPATH")])))
     env["QUADRIC_CONTACT_KERNELS"] = "wait"
     try:
@@ -664,66 +669,177 @@ def njit(
     inline: bool = False,
     cache: bool = True,
     twin_elements: int = TWIN_ELEMENTS,
+    twin: bool = True,
 ) -> Any:
-    """``numba.njit`` (``forceinline`` for the helpers the kernels inline; ``nogil`` and cached
-    for the kernels themselves), or the function unchanged.
+    """The compiled side of a function (:func:`compiled`): ``numba.njit`` (``forceinline`` for
+    the helpers the kernels inline; ``nogil`` and cached for the kernels themselves), or the
+    function unchanged without numba.
 
     ``forceinline`` marks a helper ``alwaysinline`` for LLVM: numba types and lowers it once
     per signature and LLVM inlines it into every caller, the same code in the end as numba's
     own ``inline="always"``, which typed the helper again at every call site and through every
     level of helpers (all 42 kernels of the warm-up: 629 s of CPU that way, 99 s this way, at
     the same throughput).  Without either, LLVM's inliner leaves the large generated programs
-    as calls, and the kernels run three times slower.
+    as calls, and the kernels run three times slower.  A helper is one of the pairs of
+    :func:`jitable` (the name bound to its compiled side): one compiled helper per function,
+    whichever module asks for it.
 
     ``error_model="numpy"``: division follows IEEE 754 (no zero check raising
     ``ZeroDivisionError``, whose branch would keep the loops from vectorising); the
     kernels guard every quotient they use.  A cached kernel is keyed on every source it is
     made of (:func:`stamp_with_sources`), not only its own file.  ``twin_elements``: the
     largest call (array elements in all) that the kernel's Python twin answers while the
-    kernel is not compiled (:func:`compile_on_a_fresh_stack`)."""
+    kernel is not compiled (:func:`compile_on_a_fresh_stack`).  ``twin=False``: a kernel
+    without a Python twin, compiled in the calling thread where the library of native kernels
+    has no version of it (:func:`route_native`; the loops of
+    :mod:`~quadric_contact.modes.smallness.binary64`, whose Python twins would run row by row)."""
 
     def wrap(f: Callable[..., Any]) -> Any:
         if not HAVE_NUMBA:
             return f
         if inline:
-            return numba.njit(forceinline=True, error_model="numpy")(f)
+            pair = _pair(f, inline=True)
+            # a function registered without forceinline (jitable) gets a helper of its own here
+            return pair.compiled if pair.inline else _compile_helper(f, True)
         dispatcher = numba.njit(nogil=True, cache=cache, error_model="numpy")(f)
         if cache:
             stamp_with_sources(dispatcher)
-        compile_on_a_fresh_stack(dispatcher, twin_elements)
+        if twin:
+            compile_on_a_fresh_stack(dispatcher, twin_elements)
+        else:
+            route_native(dispatcher)
         return dispatcher
 
     return wrap(fn) if fn is not None else wrap
 
 
-def jitable(fn: Callable[..., Any]) -> Callable[..., Any]:
-    """Make a plain function callable from compiled kernels and return it unchanged.
+# -- one source, two backends -----------------------------------------------------------------
+#
+# A formula of the kernels is written once, as a Python function of numbers, and run two ways:
+# compiled by numba into the kernels, and by Python, on scalars (the kernels' Python twins) or
+# element by element on whole numpy columns (the numpy backend).  Such a function is a *pair*:
+# its plain side (the function itself) and its compiled side (a numba dispatcher made from it).
+# A module binds the name to one side, :func:`jitable` to the plain one and ``njit(inline=True)``
+# to the compiled one, and :func:`plain` and :func:`compiled` give the other:
+#
+# * compiled code may name either side: numba types the plain side of a pair as its compiled
+#   side, so a kernel calling a plain helper inlines the compiled helper, which calls its own
+#   helpers the same way (numba compiles each once per signature, under its compiler lock);
+# * Python code runs the plain side, and :func:`plain` makes the Python twin of a compiled
+#   kernel or helper: its source, with every compiled function it reaches read as the plain
+#   side of its pair, so nothing is compiled.
+#
+# :func:`select` is the one choice both sides make without a branch: ``numpy.where`` on columns,
+# an LLVM ``select`` compiled.
 
-    For small building blocks that call one another (the double-double primitives of
-    :mod:`~quadric_contact.modes.kernels.double_double`): unlike :func:`njit`, which returns a numba
-    dispatcher, the name stays bound to the Python function, so the same function runs on
-    Python floats and on numpy arrays (the ``numpy`` backend) and the calls inside it resolve
-    to Python functions there; numba compiles it (``numba.extending.register_jitable``, with
-    the kernels' ``error_model="numpy"``) where a compiled function calls it, once per
-    signature, and LLVM inlines it into the caller.  Without numba, nothing is registered."""
-    if HAVE_NUMBA:
-        from numba.extending import register_jitable
 
-        register_jitable(error_model="numpy")(fn)
-    return fn
+class _Pair:
+    """The two sides of a function: ``plain`` (Python) and ``compiled`` (numba)."""
+
+    __slots__ = ("compiled", "inline", "plain")
+
+    def __init__(self, plain: Callable[..., Any], compiled: Any, inline: bool) -> None:
+        self.plain = plain
+        self.compiled = compiled
+        self.inline = inline
 
 
-def python_twin(fn: Callable[..., Any]) -> Callable[..., Any]:
-    """``fn`` (a kernel's Python source) run by Python all the way down.
+_PAIRS: dict[Any, _Pair] = {}
+"""The pairs, by plain function (which the dictionary keeps alive, and with it the compiled side
+numba's type of the plain side refers to weakly)."""
+_PAIRS_LOCK = threading.RLock()
+
+
+def _compile_helper(fn: Callable[..., Any], inline: bool) -> Any:
+    """``numba.njit`` of a helper: IEEE division, ``forceinline`` if ``inline``."""
+    if inline:
+        return numba.njit(forceinline=True, error_model="numpy")(fn)
+    return numba.njit(error_model="numpy")(fn)
+
+
+def _pair(fn: Callable[..., Any], *, inline: bool, compiled_side: Any = None) -> _Pair:
+    """The pair of the plain function ``fn`` (a dispatcher: its function), made the first time:
+    its compiled side is ``compiled_side`` or :func:`_compile_helper` of ``fn``, and numba types
+    ``fn`` in compiled code as that side (once: numba's typing of a value cannot change).  A
+    pair made with another ``inline`` is returned as it is; the caller decides."""
+    fn = getattr(fn, "py_func", fn)
+    with _PAIRS_LOCK:
+        pair = _PAIRS.get(fn)
+        if pair is not None:
+            return pair
+        if not HAVE_NUMBA:
+            pair = _Pair(fn, fn, inline)
+        else:
+            from numba.core import types as nbtypes  # numba only
+            from numba.core.typing.templates import infer_global  # numba only
+
+            side = _compile_helper(fn, inline) if compiled_side is None else compiled_side
+            infer_global(fn, nbtypes.Dispatcher(side))
+            pair = _Pair(fn, side, inline)
+        _PAIRS[fn] = pair
+        return pair
+
+
+def jitable(fn: Callable[..., Any] | None = None, *, inline: bool = False) -> Any:
+    """One source for both backends: register the plain function ``fn`` as a pair and return it
+    unchanged.
+
+    The name stays bound to the Python function, so it runs on Python numbers and element by
+    element on numpy columns (the ``numpy`` backend), and the calls inside it resolve to Python
+    functions there; compiled code that calls it calls its compiled side (:func:`compiled`),
+    numba's with the kernels' ``error_model="numpy"``, compiled once per signature.  With
+    ``inline`` the compiled side is ``forceinline`` (as :func:`njit` makes the kernels' helpers:
+    the straight-line helpers of :mod:`~quadric_contact.modes.smallness.binary64`, the signs of
+    :mod:`~quadric_contact.modes.kernels.signs`); without it LLVM decides (the double-double
+    primitives of :mod:`~quadric_contact.modes.kernels.double_double`).  A generated program is
+    registered as it is (``jitable(program, inline=True)`` returns the program).  Without numba,
+    nothing is registered.  Usable as ``@jitable`` and ``@jitable(inline=True)``."""
+
+    def wrap(f: Callable[..., Any]) -> Any:
+        pair = _pair(f, inline=inline)
+        if pair.inline != inline:
+            raise ValueError(f"{f.__qualname__} already has a compiled side with inline={pair.inline}")
+        return pair.plain
+
+    return wrap(fn) if fn is not None else wrap
+
+
+def compiled(fn: Callable[..., Any]) -> Any:
+    """The compiled side of ``fn``: a numba dispatcher as it is, the compiled side of a plain
+    function registered by :func:`jitable`; without numba, ``fn`` itself."""
+    if not HAVE_NUMBA or isinstance(fn, numba.core.dispatcher.Dispatcher):
+        return fn
+    pair = _PAIRS.get(fn)
+    if pair is None:
+        raise TypeError(
+            f"{getattr(fn, '__qualname__', fn)!r} has no compiled side (not made by jitable or njit)"
+        )
+    return pair.compiled
+
+
+_PLAIN: dict[Any, Callable[..., Any]] = {}
+"""The Python twins made, by the function they were made for (kept alive with them)."""
+
+
+def plain(fn: Callable[..., Any]) -> Callable[..., Any]:
+    """``fn`` (a kernel, a helper of either side, a plain function) run by Python all the way
+    down: the Python twin of a compiled kernel, and the plain side of a pair.
 
     A kernel's Python variant (the ``numpy`` backend, the oracle of equal bits) calls its
-    helpers by the names its module binds to numba dispatchers.  A dispatcher called from
+    helpers by the names its module binds, some to numba dispatchers.  A dispatcher called from
     Python is compiled on its own, and an inline helper is not cached: every process that ran
     the Python variant compiled its helpers again (38 s for the signature kernel's).  The twin
-    reads every such name, in ``fn`` and in the helpers it reaches, as a twin of the plain
-    function the dispatcher was made from, so nothing is compiled; the compiled kernel is
-    untouched."""
-    import types
+    reads every such name, in ``fn`` and in the helpers it reaches (dispatchers, and plain
+    sides of pairs, whose own helpers may be dispatchers), as a twin of the plain function, so
+    nothing is compiled; the compiled kernel is untouched.  It runs with the kernels' IEEE 754
+    (``error_model="numpy"``): an overflow or a division by zero of numpy numbers gives inf or
+    NaN, which the guards read, and says nothing.  Made once per function (thread-safe)."""
+
+    key = getattr(fn, "py_func", fn)
+    with _PAIRS_LOCK:
+        done = _PLAIN.get(key)
+        if done is not None:
+            return done
 
     made: dict[int, Callable[..., Any]] = {}
 
@@ -734,33 +850,84 @@ def python_twin(fn: Callable[..., Any]) -> Callable[..., Any]:
                 found |= names(const)
         return found
 
+    def source(value: Any) -> types.FunctionType | None:
+        """The function to twin for a value a function reads: a dispatcher's, a plain side's."""
+        found = getattr(value, "py_func", None)
+        if found is None and isinstance(value, types.FunctionType) and value in _PAIRS:
+            found = value
+        return found if isinstance(found, types.FunctionType) else None
+
     def twin(f: types.FunctionType) -> Callable[..., Any]:
         done = made.get(id(f))
         if done is not None:
             return done
         scope = dict(f.__globals__)
-        new = types.FunctionType(f.__code__, scope, f.__name__, f.__defaults__, f.__closure__)
+        closure = None if f.__closure__ is None else tuple(types.CellType() for _ in f.__closure__)
+        new = types.FunctionType(f.__code__, scope, f.__name__, f.__defaults__, closure)
         new.__kwdefaults__ = f.__kwdefaults__
         made[id(f)] = new
         for name in names(f.__code__):
-            plain = getattr(scope.get(name), "py_func", None)
-            if isinstance(plain, types.FunctionType):
-                scope[name] = twin(plain)
+            found = source(scope.get(name))
+            if found is not None:
+                scope[name] = twin(found)
+        # a kernel made by a factory holds its helpers (and its settings) in its cells
+        for old, cell in zip(f.__closure__ or (), closure or (), strict=True):
+            try:
+                value = old.cell_contents
+            except ValueError:  # an empty cell stays empty
+                continue
+            found = source(value)
+            cell.cell_contents = value if found is None else twin(found)
         return new
 
-    plain = getattr(fn, "py_func", fn)
-    assert isinstance(plain, types.FunctionType)
-    body = twin(plain)
+    assert isinstance(key, types.FunctionType)
+    body = twin(key)
 
-    def run(*args: Any) -> Any:
-        import numpy as np
-
-        # IEEE 754 as the compiled kernels have it (error_model="numpy"): an overflow or a
-        # division by zero gives inf or NaN, which the guards read, and says nothing
+    def run(*args: Any, **kws: Any) -> Any:
         with np.errstate(all="ignore"):
-            return body(*args)
+            return body(*args, **kws)
 
-    return run
+    run.__name__ = key.__name__
+    run.__qualname__ = key.__qualname__
+    run.__doc__ = key.__doc__
+    with _PAIRS_LOCK:
+        return _PLAIN.setdefault(key, run)
+
+
+def pairs() -> list[tuple[Callable[..., Any], Any, bool]]:
+    """Every pair registered so far: ``(plain side, compiled side, inline)``."""
+    with _PAIRS_LOCK:
+        return [(p.plain, p.compiled, p.inline) for p in _PAIRS.values()]
+
+
+def select(c: Any, a: Any, b: Any) -> Any:
+    """``a`` where ``c``, else ``b``, without a branch: ``numpy.where`` on columns (and on
+    scalars, as a 0-d array), an LLVM ``select`` in compiled code (which keeps a straight-line
+    loop vectorisable)."""
+    return np.where(c, a, b)
+
+
+if HAVE_NUMBA:  # pragma: no branch
+    from numba.core import types as _nbtypes
+
+    @numba.extending.intrinsic  # type: ignore[untyped-decorator,unused-ignore]
+    def _select_intrinsic(typingctx: Any, c: Any, a: Any, b: Any) -> Any:
+        rt = typingctx.unify_types(a, b)
+
+        def codegen(context: Any, builder: Any, signature: Any, args: Any) -> Any:  # pragma: no cover
+            cv = context.cast(builder, args[0], c, _nbtypes.boolean)
+            av = context.cast(builder, args[1], a, rt)
+            bv = context.cast(builder, args[2], b, rt)
+            return builder.select(cv, av, bv)
+
+        return rt(c, a, b), codegen
+
+    def _select_compiled(c: Any, a: Any, b: Any) -> Any:  # pragma: no cover - compiled
+        return _select_intrinsic(c, a, b)
+
+    _pair(select, inline=True, compiled_side=numba.njit(forceinline=True)(_select_compiled))
+else:  # pragma: no cover
+    _pair(select, inline=True)
 
 
 # -- first use: one line when a kernel is not in the cache ------------------------------------
@@ -806,7 +973,6 @@ def _say_twins() -> None:
     if _notice_printed:
         return
     _notice_printed = True
-    import sys
 
     try:
         where = f" ({_cache_root()})"
@@ -816,8 +982,6 @@ def _say_twins() -> None:
 
 
 if HAVE_NUMBA:  # pragma: no branch
-    import sys
-
     from numba.core import event as _event
 
     class _CompileNotice(_event.Listener):  # type: ignore[misc,unused-ignore]
@@ -842,3 +1006,22 @@ if HAVE_NUMBA:  # pragma: no branch
             pass
 
     _event.register("numba:compile", _CompileNotice())
+
+
+@contextmanager
+def turned_off() -> Iterator[None]:
+    """Within the block, kernel calls compile (or load from numba's cache) at run time instead of
+    running the native kernels: the benchmark's and the tests' comparison of the two.  A kernel
+    that compiled there stays compiled in its dispatcher, which then runs it, not the native
+    one, for the rest of the process."""
+    before = os.environ.get("QUADRIC_CONTACT_NATIVE")
+    os.environ["QUADRIC_CONTACT_NATIVE"] = "0"
+    forget_native()
+    try:
+        yield
+    finally:
+        if before is None:
+            del os.environ["QUADRIC_CONTACT_NATIVE"]
+        else:
+            os.environ["QUADRIC_CONTACT_NATIVE"] = before
+        forget_native()

@@ -39,6 +39,7 @@ from quadric_contact.modes.codes import INVALID, UNCERTAIN
 from quadric_contact.modes.decision.answers import CONTACT_TABLE, ROWS, region_code_masked
 from quadric_contact.modes.kernels import errorbounds as eb
 from quadric_contact.modes.kernels._jit import njit
+from quadric_contact.modes.kernels.signs import plain_sign, sign_index, sign_within
 from quadric_contact.modes.kernels.support import certified_ellipsoid
 
 __all__ = [
@@ -115,29 +116,6 @@ def _smallest5(a0: float, a1: float, a2: float, a3: float, a4: float) -> float:
 
 
 @njit(inline=True)
-def _sidx(d: float, b: float, k: float) -> float:
-    """``k`` times the table index ``0, 1, 2, 3`` of the sign of ``d`` known to within ``b``
-    (3: uncertain); ``k`` a power of two (the place of this Delta in the index), folded into
-    the constants rather than multiplied.  Branch-free."""
-    pos = d > b
-    neg = d < -b
-    unc = (not pos) & (not neg) & (b != 0.0)
-    return k + (k if pos else 0.0) - (k if neg else 0.0) + (2.0 * k if unc else 0.0)
-
-
-@njit(inline=True)
-def _psidx(d: float, k: float) -> float:
-    """``k`` times the table index of the plain sign of ``d`` (a NaN reads as zero, as ``_psgn``
-    does)."""
-    return k + (k if d > 0.0 else 0.0) - (k if d < 0.0 else 0.0)
-
-
-@njit(inline=True)
-def _sgnf(x: float) -> float:
-    return (1.0 if x > 0.0 else 0.0) - (1.0 if x < 0.0 else 0.0)
-
-
-@njit(inline=True)
 def _screen_core(e: Any, R: Any, c: Any, W: Any, plane: bool, guard: bool) -> Any:
     """The screen on one pair: ``(ok, table index, signs of c0 .. c4, E certainly an ellipsoid
     and the guard holds)`` (floats but the flags).  ``e``,
@@ -170,11 +148,12 @@ def _screen_core(e: Any, R: Any, c: Any, W: Any, plane: bool, guard: bool) -> An
     d4 = 0.0 if plane else d4
     A4 = 0.0 if plane else A4
     idx = (
-        _sidx(d2, (_SR2 * rho + _SG2) * A2, 1.0)
-        + _sidx(d3, (_SR3 * rho + _SG3) * A3, 4.0)
-        + _sidx(d4, (_SR4 * rho + _SG4) * A4, 16.0)
+        1.0 * sign_index(sign_within(d2, (_SR2 * rho + _SG2) * A2))
+        + 4.0 * sign_index(sign_within(d3, (_SR3 * rho + _SG3) * A3))
+        + 16.0 * sign_index(sign_within(d4, (_SR4 * rho + _SG4) * A4))
     )
-    return ok, idx, _sgnf(c0), _sgnf(x1), _sgnf(c2), _sgnf(x3), _sgnf(c4), ell & guard
+    s0, s1, s2, s3, s4 = plain_sign(c0), plain_sign(x1), plain_sign(c2), plain_sign(x3), plain_sign(c4)
+    return ok, idx, 1.0 * s0, 1.0 * s1, 1.0 * s2, 1.0 * s3, 1.0 * s4, ell & guard
 
 
 @njit(inline=True)
@@ -214,8 +193,8 @@ def _float_core(e: Any, q: Any, c: Any, r0: float, plane: bool, guard: bool) -> 
     c0, c1, c2, c3, c4 = c
     m2, m3 = _minors(e[0], e[1], e[2], e[4], e[5], e[7])
     e00 = e[0]
-    sa = _sgnf(e00)
-    valid = (sa != 0.0) & (m2 > 0.0) & (_sgnf(m3) == sa) & (c4 < 0.0)
+    sa = plain_sign(e00)
+    valid = (sa != 0) & (m2 > 0.0) & (plain_sign(m3) == sa) & (c4 < 0.0)
     facts = (abs(c0) <= r0) & (not plane)
     prop = (
         (q[1] * e00 == q[0] * e[1]) & (q[2] * e00 == q[0] * e[2]) & (q[4] * e00 == q[0] * e[4])
@@ -231,8 +210,13 @@ def _float_core(e: Any, q: Any, c: Any, r0: float, plane: bool, guard: bool) -> 
     x3 = -c3 if e00 < 0.0 else c3
     d2, d3, d4 = _deltas(c0, x1, c2, x3, c4)
     d4 = 0.0 if plane else d4
-    idx = _psidx(d2, 1.0) + _psidx(d3, 4.0) + _psidx(d4, 16.0)
-    return fallback, valid, idx, _sgnf(c0), _sgnf(x1), _sgnf(c2), _sgnf(x3), _sgnf(c4)
+    idx = (
+        1.0 * sign_index(plain_sign(d2))
+        + 4.0 * sign_index(plain_sign(d3))
+        + 16.0 * sign_index(plain_sign(d4))
+    )
+    s0, s1, s2, s3, s4 = plain_sign(c0), plain_sign(x1), plain_sign(c2), plain_sign(x3), plain_sign(c4)
+    return fallback, valid, idx, 1.0 * s0, 1.0 * s1, 1.0 * s2, 1.0 * s3, 1.0 * s4
 
 
 _TABLE = np.concatenate(

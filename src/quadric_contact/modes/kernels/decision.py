@@ -53,7 +53,7 @@ from quadric_contact.model.classification import QuadricKind
 from quadric_contact.modes.codes import UNCERTAIN, ContactCode, RegionCode
 from quadric_contact.modes.decision.answers import ROWS, region_code_masked, row_of
 from quadric_contact.modes.kernels import errorbounds as eb
-from quadric_contact.modes.kernels._jit import HAVE_NUMBA, python_twin
+from quadric_contact.modes.kernels._jit import HAVE_NUMBA, plain
 from quadric_contact.modes.kernels._jit import njit as _njit
 from quadric_contact.modes.kernels.criterion import (
     CONTACT_CODES,
@@ -71,7 +71,9 @@ from quadric_contact.modes.kernels.signature import (
     signature_first_called,
     witness,
 )
+from quadric_contact.modes.kernels.signs import plain_sign
 from quadric_contact.modes.kernels.support import certified_ellipsoid
+from quadric_contact.modes.kernels.threads import run_parallel
 from quadric_contact.modes.stacks.pairs import Pairs
 
 __all__ = ["CODE_RANGES", "NOT_RUN", "OUT", "decide_ellipsoids", "read_codes", "read_one"]
@@ -120,7 +122,7 @@ def ellipsoid_regions() -> np.ndarray:
     :func:`~quadric_contact.modes.decision.answers.region_code_masked`, the one rule, tabulated
     (``FALLBACK`` where it is uncertain, as the region kernel reads it), so that the kernel
     looks it up instead of branching through it for every pair."""
-    f = python_twin(region_code_masked)  # at import: nothing is compiled
+    f = plain(region_code_masked)  # at import: nothing is compiled
     table = np.empty((2, 243), dtype=np.int8)
     for k, row in enumerate((_ROW_PLUS, _ROW_MINUS)):
         for key in range(243):
@@ -278,7 +280,7 @@ def _decide_block_kernel(
             crossing = code == _CROSSING
             r = _REGIONS[0 if o > 0.0 else 1, int(key_row[i])]
             r = _CONTACT if crossing else (r if code == _NO_CONTACT else FALLBACK)
-            qs_ = (1 if o > 0.0 else 0) - (1 if o < 0.0 else 0)
+            qs_ = plain_sign(o)
             outside = ((r == 1) | (r == -1)) & (r * qs_ == _R_PLUS)
             # Delta_4 certainly positive (its digit of the table index): with all roots real,
             # four simple roots, so the two positive ones are distinct and the ellipsoids are
@@ -352,7 +354,7 @@ def _kernel(compiled: bool) -> Any:
             k = _KERNEL.get(compiled)
             if k is None:
                 k = _KERNEL[compiled] = (
-                    _njit(_decide_block_kernel) if compiled else python_twin(_decide_block_kernel)
+                    _njit(_decide_block_kernel) if compiled else plain(_decide_block_kernel)
                 )
     return k
 
@@ -384,8 +386,6 @@ def decide_ellipsoids(
     cost a tenth of the decision): ``out`` the answers, ``left`` the pairs whose step is 2 (in
     order), ``by_step`` how many pairs each step took.  Without a table they read an all-zero
     one."""
-    from quadric_contact.modes.kernels.threads import run_parallel
-
     n = pairs.n
     crit = np.empty(n, dtype=np.int8)
     sep = np.empty(n, dtype=np.int8)

@@ -45,6 +45,10 @@ import math
 from fractions import Fraction
 from typing import Any, cast
 
+import numpy as np
+
+from quadric_contact._generated import blocks, kernels
+from quadric_contact._generated.blocks import BLOCK_COUNTS
 from quadric_contact._generated.dd_programs import DD_COUNTS
 from quadric_contact._generated.kernels import ROUNDING_COUNTS
 
@@ -72,6 +76,7 @@ __all__ = [
     "SEMI_PENCIL",
     "UNIT_ROUNDOFF",
     "dd_program_errbound",
+    "filter_constants",
     "gamma",
     "program_errbound",
     "round_up",
@@ -157,7 +162,6 @@ def _check_input_guard() -> None:
     assert 4 * q >= -1022 and 4 * q + math.log2(min(PENCIL_ERRBOUND[False])) >= -1022
     # Upper guard: |intermediate| <= magnitude <= (number of paths) * 2^(4*180); the
     # number of paths is the magnitude program at all ones (exact integers).
-    from quadric_contact._generated import kernels
 
     paths = max(kernels.pencil_coefficients_magnitude(*([1] * 20)))
     assert math.log2(paths) + 4 * INPUT_MAX_EXPONENT + 1 < 1023
@@ -303,8 +307,6 @@ the absolute high words of the double-double cofactors (the same input)."""
 
 
 def _check_dd_guard() -> None:
-    from quadric_contact._generated import kernels
-
     # every quantity a multiple of 2^(4 (INPUT_MIN_EXPONENT - 52)): normal when non-zero
     assert 4 * (INPUT_MIN_EXPONENT - 52) >= -1022
     # the bound of a non-zero magnitude (static: a product of four entries; cofactor: two
@@ -496,7 +498,6 @@ def _check_member_guard() -> None:
     # entries are guarded like the inputs, so _check_input_guard's argument applies.
     assert math.log2(SAMPLE_MIN) + INPUT_MIN_EXPONENT >= -1022
     assert math.log2(SAMPLE_MAX) + INPUT_MAX_EXPONENT <= 1000
-    from quadric_contact._generated import kernels
 
     paths = max(kernels.quadric_invariants_magnitude(*([1] * 10)))
     assert math.log2(paths) + 4 * INPUT_MAX_EXPONENT + 1 < 1023
@@ -543,8 +544,6 @@ SEMI_COEFFICIENT_MAX = 2.0**160
 
 
 def _semi_pencil() -> tuple[float, ...]:
-    from quadric_contact._generated.blocks import BLOCK_COUNTS
-
     pencil = _counts("pencil_coefficients")["value"]
     rows: tuple[int, ...] = BLOCK_COUNTS["row_bound"]["value"]  # type: ignore[index]
     return tuple(round_up(24 * gamma(n) / (1 - _U) ** (w + 1)) for n, w in zip(pencil, rows, strict=True))
@@ -580,8 +579,6 @@ def _relative_form(d: int, n: int, nm: int) -> tuple[float, float]:
 
 
 def _semi_delta() -> tuple[tuple[float, float], ...]:
-    from quadric_contact._generated.blocks import BLOCK_COUNTS
-
     rc: dict[str, tuple[int, ...]] = BLOCK_COUNTS["paper_deltas_compact"]  # type: ignore[assignment]
     return tuple(
         _relative_form(d, n, nm) for d, n, nm in zip(rc["degree"], rc["value"], rc["magnitude"], strict=True)
@@ -593,8 +590,6 @@ SEMI_DELTA = _semi_delta()
 
 
 def _check_semi_guard() -> None:
-    from quadric_contact._generated import blocks
-
     # the compact programs at |c_k| <= 2^160: every value and magnitude is at most the number
     # of paths (the magnitude program at all ones) times 2^(160 d), d <= 6
     paths = max(blocks.paper_deltas_compact_magnitude(*([1] * 5)))
@@ -605,3 +600,15 @@ def _check_semi_guard() -> None:
 
 
 _check_semi_guard()
+
+
+def filter_constants(rounded: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The dynamic filter's bounds as the kernels read them: ``(KP, KL, DR, DA)``, the pencil's
+    (:data:`PENCIL_ERRBOUND`) and the minors' (:data:`MINORS_ERRBOUND`) for binary64 input or
+    input ``rounded`` to it, and the Deltas' relative and absolute terms
+    (:data:`DELTA_RELATIVE`, :data:`DELTA_ABSOLUTE`)."""
+    KP = np.array(PENCIL_ERRBOUND[rounded])
+    KL = np.array(MINORS_ERRBOUND[rounded])
+    DR = np.array(DELTA_RELATIVE)
+    DA = np.array(DELTA_ABSOLUTE)
+    return KP, KL, DR, DA

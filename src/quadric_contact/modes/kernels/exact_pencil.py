@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from quadric_contact._generated.formulas import pencil_coefficients
 from quadric_contact.exact.errors import ShapeError
 from quadric_contact.modes.kernels._jit import HAVE_NUMBA, njit
 
@@ -291,7 +292,6 @@ def _run(
             me, se, mq, sq = dyadic
             eo = me.astype(object) << se.astype(object)
             qo = mq.astype(object) << sq.astype(object)
-        from quadric_contact._generated.formulas import pencil_coefficients
 
         idx = np.flatnonzero(slow) if HAVE_KERNEL else np.arange(n)
         vals = pencil_coefficients(*(eo[idx, k] for k in range(10)), *(qo[idx, k] for k in range(10)))

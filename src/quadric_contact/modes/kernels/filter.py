@@ -38,6 +38,7 @@ from quadric_contact.modes.decision.answers import (
 )
 from quadric_contact.modes.kernels import errorbounds as eb
 from quadric_contact.modes.kernels._jit import njit as _njit
+from quadric_contact.modes.kernels.signs import plain_sign, sign_index, sign_within
 
 __all__ = ["NB", "filter_kernel", "float_kernel"]
 
@@ -66,33 +67,6 @@ _INPUT_MAX = eb.INPUT_MAX
 _COEF_MIN = eb.COEFFICIENT_MIN
 _RHO_MAX = eb.RHO_MAX
 _ROUND_UP = eb.ROUND_UP
-
-
-@_njit(inline=True)
-def _sgn(v: float, err: float) -> int:
-    """Three-valued sign of a value known to within ``err``."""
-    if v > err:
-        return 1
-    if v < -err:
-        return -1
-    if err == 0.0:
-        return 0
-    return UNCERTAIN
-
-
-@_njit(inline=True)
-def _psgn(v: float) -> int:
-    """Plain sign of a float."""
-    if v > 0.0:
-        return 1
-    if v < 0.0:
-        return -1
-    return 0
-
-
-@_njit(inline=True)
-def _sidx(s: int) -> int:
-    return 3 if s == UNCERTAIN else s + 1
 
 
 @_njit(inline=True)
@@ -450,12 +424,12 @@ def _filter_decide(ra: Any, rc: Any, i: int, DR: Any, DA: Any, want_region: bool
     if ra[_BAD * _NB + i] != 0.0:
         return INVALID
     e00 = ra[_E00 * _NB + i]
-    sa = 1 if e00 > 0.0 else (-1 if e00 < 0.0 else 0)
+    sa = plain_sign(e00)
     ell = _ellipsoid_status(
         sa,
-        _sgn(ra[_M2 * _NB + i], ra[_M2E * _NB + i]),
-        _sgn(ra[_M3 * _NB + i], ra[_M3E * _NB + i]),
-        _sgn(ra[(_C + 4) * _NB + i], ra[(_R + 4) * _NB + i]),
+        sign_within(ra[_M2 * _NB + i], ra[_M2E * _NB + i]),
+        sign_within(ra[_M3 * _NB + i], ra[_M3E * _NB + i]),
+        sign_within(ra[(_C + 4) * _NB + i], ra[(_R + 4) * _NB + i]),
     )
     if ell == ELLIPSOID_NOT:
         return INVALID
@@ -477,10 +451,10 @@ def _filter_decide(ra: Any, rc: Any, i: int, DR: Any, DA: Any, want_region: bool
         _denominator(abs(rc[(_X + 4) * _NB + i]), y4),
     )
     if rho <= _RHO_MAX:
-        g2 = _sgn(rc[_D * _NB + i], (DR[0, 0] * rho + DR[0, 1]) * rc[_DE * _NB + i])
-        g3 = _sgn(rc[(_D + 1) * _NB + i], (DR[1, 0] * rho + DR[1, 1]) * rc[(_DE + 1) * _NB + i])
-        g4 = _sgn(rc[(_D + 2) * _NB + i], (DR[2, 0] * rho + DR[2, 1]) * rc[(_DE + 2) * _NB + i])
-        contact = CONTACT_TABLE[_sidx(g2) + 4 * _sidx(g3) + 16 * _sidx(g4)]
+        g2 = sign_within(rc[_D * _NB + i], (DR[0, 0] * rho + DR[0, 1]) * rc[_DE * _NB + i])
+        g3 = sign_within(rc[(_D + 1) * _NB + i], (DR[1, 0] * rho + DR[1, 1]) * rc[(_DE + 1) * _NB + i])
+        g4 = sign_within(rc[(_D + 2) * _NB + i], (DR[2, 0] * rho + DR[2, 1]) * rc[(_DE + 2) * _NB + i])
+        contact = CONTACT_TABLE[sign_index(g2) + 4 * sign_index(g3) + 16 * sign_index(g4)]
     if contact == UNCERTAIN:
         # The absolute form: magnitudes at a and at b >= a + e (two programs).
         a0 = abs(rc[_X * _NB + i])
@@ -495,23 +469,23 @@ def _filter_decide(ra: Any, rc: Any, i: int, DR: Any, DA: Any, want_region: bool
         b4 = (a4 + rc[(_Y + 4) * _NB + i]) * _ROUND_UP
         A2, A3, A4 = _deltas_mag(a0, a1, a2, a3, a4)
         B2, B3, B4 = _deltas_mag(b0, b1, b2, b3, b4)
-        g2 = _sgn(rc[_D * _NB + i], DA[0, 0] * (B2 - A2) + DA[0, 1] * A2)
-        g3 = _sgn(rc[(_D + 1) * _NB + i], DA[1, 0] * (B3 - A3) + DA[1, 1] * A3)
+        g2 = sign_within(rc[_D * _NB + i], DA[0, 0] * (B2 - A2) + DA[0, 1] * A2)
+        g3 = sign_within(rc[(_D + 1) * _NB + i], DA[1, 0] * (B3 - A3) + DA[1, 1] * A3)
         g4 = (
             0
             if ra[_SAME * _NB + i] != 0.0
-            else _sgn(rc[(_D + 2) * _NB + i], DA[2, 0] * (B4 - A4) + DA[2, 1] * A4)
+            else sign_within(rc[(_D + 2) * _NB + i], DA[2, 0] * (B4 - A4) + DA[2, 1] * A4)
         )
-        contact = CONTACT_TABLE[_sidx(g2) + 4 * _sidx(g3) + 16 * _sidx(g4)]
+        contact = CONTACT_TABLE[sign_index(g2) + 4 * sign_index(g3) + 16 * sign_index(g4)]
     if not want_region:
         return contact
     return _region_code_masked(
         contact,
-        _sgn(rc[_X * _NB + i], rc[_Y * _NB + i]),
-        _sgn(rc[(_X + 1) * _NB + i], rc[(_Y + 1) * _NB + i]),
-        _sgn(rc[(_X + 2) * _NB + i], rc[(_Y + 2) * _NB + i]),
-        _sgn(rc[(_X + 3) * _NB + i], rc[(_Y + 3) * _NB + i]),
-        _sgn(rc[(_X + 4) * _NB + i], rc[(_Y + 4) * _NB + i]),
+        sign_within(rc[_X * _NB + i], rc[_Y * _NB + i]),
+        sign_within(rc[(_X + 1) * _NB + i], rc[(_Y + 1) * _NB + i]),
+        sign_within(rc[(_X + 2) * _NB + i], rc[(_Y + 2) * _NB + i]),
+        sign_within(rc[(_X + 3) * _NB + i], rc[(_Y + 3) * _NB + i]),
+        sign_within(rc[(_X + 4) * _NB + i], rc[(_Y + 4) * _NB + i]),
         row,
         mask,
         ROWS,
@@ -596,17 +570,17 @@ def _float_kernel_impl(
         for i in range(m):
             p = blo + i
             e00 = st[1 * _NB + i]
-            sa = 1 if e00 > 0.0 else (-1 if e00 < 0.0 else 0)
+            sa = plain_sign(e00)
             ell = _ellipsoid_status(
-                sa, _psgn(mv[0 * _NB + i]), _psgn(mv[1 * _NB + i]), _psgn(cv[4 * _NB + i])
+                sa, plain_sign(mv[0 * _NB + i]), plain_sign(mv[1 * _NB + i]), plain_sign(cv[4 * _NB + i])
             )
             if st[0 * _NB + i] != 0.0 or ell != ELLIPSOID_YES:
                 out[p] = INVALID
                 continue
             contact = CONTACT_TABLE[
-                _sidx(_psgn(dv[0 * _NB + i]))
-                + 4 * _sidx(_psgn(dv[1 * _NB + i]))
-                + 16 * _sidx(_psgn(dv[2 * _NB + i]))
+                sign_index(plain_sign(dv[0 * _NB + i]))
+                + 4 * sign_index(plain_sign(dv[1 * _NB + i]))
+                + 16 * sign_index(plain_sign(dv[2 * _NB + i]))
             ]
             if not want_region:
                 out[p] = contact
@@ -614,11 +588,11 @@ def _float_kernel_impl(
             iq = qi[i]
             out[p] = _region_code_masked(
                 contact,
-                _psgn(cv[0 * _NB + i]),
-                _psgn(cv[1 * _NB + i]),
-                _psgn(cv[2 * _NB + i]),
-                _psgn(cv[3 * _NB + i]),
-                _psgn(cv[4 * _NB + i]),
+                plain_sign(cv[0 * _NB + i]),
+                plain_sign(cv[1 * _NB + i]),
+                plain_sign(cv[2 * _NB + i]),
+                plain_sign(cv[3 * _NB + i]),
+                plain_sign(cv[4 * _NB + i]),
                 qrows[iq],
                 qmasks[iq],
                 ROWS,

@@ -23,12 +23,12 @@ they do with numba's ``nogil`` kernels.
 from __future__ import annotations
 
 import ctypes
+import hashlib
 import json
 import os
 import sys
 import threading
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from collections.abc import Callable
 from importlib import metadata
 from pathlib import Path
 from typing import Any
@@ -43,7 +43,6 @@ __all__ = [
     "library",
     "lookup",
     "manifest_digest",
-    "turned_off",
 ]
 
 MANIFEST_NAME = "_native_manifest.json"
@@ -70,8 +69,6 @@ def kernel_identity(fn: Any) -> str:
 
 def manifest_digest(text: bytes) -> str:
     """The digest a library carries of the manifest it was linked with."""
-    import hashlib
-
     return hashlib.sha256(text).hexdigest()
 
 
@@ -129,7 +126,7 @@ class NativeLibrary:
 
 def _same_machine(manifest: dict[str, Any]) -> bool:
     try:
-        import llvmlite.binding as ll
+        import llvmlite.binding as ll  # numba only
     except ImportError:  # pragma: no cover - numba (and llvmlite) are dependencies
         return False
     features = ll.get_host_cpu_features().flatten()
@@ -140,7 +137,7 @@ def _candidates() -> list[Path]:
     """Directories that may hold the library: this package's, then those of the installed copies
     of the distribution (every one on the path: a checkout's ``src/`` may hold the metadata a
     build left there, which shadows the installed copy's)."""
-    here = Path(__file__).resolve().parents[1]
+    here = Path(__file__).resolve().parents[2]  # the package's directory
     found = [here]
     for dist in metadata.distributions(name="quadric-contact"):
         for f in dist.files or ():
@@ -197,27 +194,6 @@ def _say_missing(lib: NativeLibrary | None) -> None:
         file=sys.stderr,
         flush=True,
     )
-
-
-@contextmanager
-def turned_off() -> Iterator[None]:
-    """Within the block, kernel calls compile (or load from numba's cache) at run time instead of
-    running the native kernels: the benchmark's and the tests' comparison of the two.  A kernel
-    that compiled there stays compiled in its dispatcher, which then runs it, not the native
-    one, for the rest of the process."""
-    from quadric_contact.modes.kernels import _jit
-
-    before = os.environ.get("QUADRIC_CONTACT_NATIVE")
-    os.environ["QUADRIC_CONTACT_NATIVE"] = "0"
-    _jit.forget_native()
-    try:
-        yield
-    finally:
-        if before is None:
-            del os.environ["QUADRIC_CONTACT_NATIVE"]
-        else:
-            os.environ["QUADRIC_CONTACT_NATIVE"] = before
-        _jit.forget_native()
 
 
 def lookup(dispatcher: Any, sig: Any, digest: Callable[[str], str]) -> Callable[..., Any] | None:

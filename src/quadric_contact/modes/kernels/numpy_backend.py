@@ -1,9 +1,20 @@
-"""The numpy variant of the binary64 stages: the same generated functions on whole columns.
+"""The numpy variant of the binary64 stages: the same functions on whole columns.
 
 The fallback when numba is missing (``backend="numpy"``) and the reference the compiled
 kernels are tested against: every quantity is computed with the same programs, in the same
 order, on columns of pairs, so the codes are identical (tested).  ``filter_quantities`` and
 ``screen_quantities`` expose what the filter and its semi-static screen compute.
+
+What runs here is the kernels' own source wherever that source runs on columns (one source, two
+backends: :mod:`~quadric_contact.modes.kernels._jit`): the generated programs
+(:mod:`quadric_contact._generated`), the three-valued signs and the index of the decision tables
+(:mod:`~quadric_contact.modes.kernels.signs`), Dekker's product of
+:mod:`~quadric_contact.modes.kernels.double_double` and the double-double programs.  The rest
+mirrors, operation for operation, what the kernels write per pair with Python conditionals and
+``min``/``max`` of scalars, which numpy cannot apply to columns: the input guard, the exact
+test of proportional quadratic parts, the power-of-two scaling (bit work in the kernels,
+``frexp``/``ldexp`` here), the filter's and the screen's guards and bounds, and the certified
+ellipsoid test.
 """
 
 from __future__ import annotations
@@ -23,7 +34,8 @@ from quadric_contact.modes.decision.answers import (
     ellipsoid_from_signs,
 )
 from quadric_contact.modes.kernels import errorbounds as eb
-from quadric_contact.modes.kernels.double_double import OPERATIONS
+from quadric_contact.modes.kernels.double_double import OPERATIONS, two_prod
+from quadric_contact.modes.kernels.signs import columns, dd_sign_within, plain_sign, sign_index, sign_within
 from quadric_contact.modes.kernels.support_drivers import region_codes_from_signs
 
 __all__ = [
@@ -34,60 +46,51 @@ __all__ = [
     "numpy_pairs",
     "proportional_quadratic_parts",
     "screen_quantities",
+    "table_index",
 ]
 
 _QUADRATIC_PART = (0, 1, 2, 4, 5, 7)
 """Positions of ``q00, q01, q02, q11, q12, q22`` among the ten upper entries."""
 _NO_EXPONENT = -100000
-_FLOAT_MAX = float(np.finfo(np.float64).max)
-
-
-def _constants(rounded: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    KP = np.array(eb.PENCIL_ERRBOUND[rounded])
-    KL = np.array(eb.MINORS_ERRBOUND[rounded])
-    DR = np.array(eb.DELTA_RELATIVE)
-    DA = np.array(eb.DELTA_ABSOLUTE)
-    return KP, KL, DR, DA
 
 
 _NUMPY_CHUNK = 1 << 16
 
 
-def _numpy_sign(v: np.ndarray, err: np.ndarray | None) -> np.ndarray:
-    if err is None:
-        return np.sign(v).astype(np.int8)
-    s = np.where(v > err, 1, np.where(v < -err, -1, np.where(err == 0.0, 0, UNCERTAIN)))
-    return s.astype(np.int8)
+_sign_columns = columns(sign_within)
+_plain_columns = columns(plain_sign)
+_dd_sign_columns = columns(dd_sign_within)
 
 
-def _table_index(signs: list[np.ndarray]) -> np.ndarray:
-    return sum(m * np.where(x == UNCERTAIN, 3, x + 1) for m, x in zip((1, 4, 16), signs, strict=True))  # type: ignore[return-value]
+def table_index(signs: list[np.ndarray]) -> np.ndarray:
+    """The index into :data:`~quadric_contact.modes.decision.answers.CONTACT_TABLE` of the signs of
+    ``Delta_2, Delta_3, Delta_4`` (columns), as the kernels make it with
+    :func:`~quadric_contact.modes.kernels.signs.sign_index`."""
+    s2, s3, s4 = (sign_index(np.asarray(s, dtype=np.intp)) for s in signs)
+    index: np.ndarray = s2 + 4 * s3 + 16 * s4
+    return index
 
 
-def _split_np(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    c = 134217729.0 * a
-    hi = c - (c - a)
-    return hi, a - hi
+def _outside(entries: list[np.ndarray]) -> np.ndarray:
+    """The input guard of the kernels (``outside_count`` of the generated blocks), per column:
+    an entry is above INPUT_MAX, not finite, or non-zero below INPUT_MIN."""
+    absx = np.abs(np.stack(entries))
+    return ((absx > eb.INPUT_MAX) | ~np.isfinite(absx) | ((absx < eb.INPUT_MIN) & (absx != 0))).any(axis=0)
 
 
 def proportional_quadratic_parts(A_e: np.ndarray, A_q: np.ndarray) -> np.ndarray:
     """numpy variant of the kernels' exact test that ``A_q = k A_e`` (``(6, k)`` arrays of the
     quadratic parts' upper entries ``00, 01, 02, 11, 12, 22``): ``q_ij e00 == q00 e_ij``
-    exactly, by Dekker's TwoProduct, for entries that are zero or in ``[2^-400, 2^400]``."""
+    exactly, by Dekker's TwoProduct (:func:`~quadric_contact.modes.kernels.double_double.two_prod`,
+    the kernels' product and error term), for entries that are zero or in ``[2^-400, 2^400]``."""
     with np.errstate(all="ignore"):
         absv = np.abs(np.concatenate([A_e, A_q]))
         tame = ((absv == 0) | ((absv >= 2.0**-400) & (absv <= 2.0**400))).all(axis=0) & (A_e[0] != 0)
         e00, q00 = A_e[0], A_q[0]
         ok = tame.copy()
         for t in range(1, 6):
-            a, b, c, d = A_q[t], e00, q00, A_e[t]
-            p, q = a * b, c * d
-            ah, al = _split_np(a)
-            bh, bl = _split_np(b)
-            ch, cl = _split_np(c)
-            dh, dl = _split_np(d)
-            e1 = ((ah * bh - p) + ah * bl + al * bh) + al * bl
-            e2 = ((ch * dh - q) + ch * dl + cl * dh) + cl * dl
+            p, e1 = two_prod(A_q[t], e00)
+            q, e2 = two_prod(q00, A_e[t])
             ok &= (p == q) & (e1 == e2)
     return ok
 
@@ -109,7 +112,7 @@ def filter_quantities(
     (equal quadratic parts), ``outside`` (a guard failed), ``ell`` (ellipsoid status),
     ``signs`` (the signs the filter reports for c0..c4 and Delta_2..4).
     """
-    KP, KL, DR, DA = _constants(rounded)
+    KP, KL, DR, DA = eb.filter_constants(rounded)
     k = Em.shape[0]
     z = np.zeros(k, dtype=np.int8) if zflags is None else zflags
     e = [Em[:, i, j] for i, j in ENTRY_INDICES]
@@ -127,13 +130,10 @@ def filter_quantities(
         r = [KP[t] * mc[t] for t in range(5)]
         r[0] = np.where(z & 1, 0.0, r[0])
         r[1] = np.where(z & 2, 0.0, r[1])
-        sm = [_numpy_sign(mi[t], KL[t] * mm[t]) for t in range(2)]
-        absx = np.abs(np.stack(e + q))
-        outside = ((absx > eb.INPUT_MAX) | ~np.isfinite(absx) | ((absx < eb.INPUT_MIN) & (absx != 0))).any(
-            axis=0
-        )
-        sa = np.sign(e[0]).astype(np.int8)
-        ell = ellipsoid_from_signs(sa, sm[0], sm[1], _numpy_sign(c[4], r[4]))
+        sm = [_sign_columns(mi[t], KL[t] * mm[t]) for t in range(2)]
+        outside = _outside(e + q)
+        sa = _plain_columns(e[0])
+        ell = ellipsoid_from_signs(sa, sm[0], sm[1], _sign_columns(c[4], r[4]))
         o = np.where(e[0] < 0, -1.0, 1.0)
         c[1] = o * c[1]
         c[3] = o * c[3]
@@ -163,12 +163,12 @@ def filter_quantities(
         bound_rel = [(DR[j, 0] * rho + DR[j, 1]) * A[j] for j in range(3)]
         bound_abs = [DA[j, 0] * (Bm[j] - A[j]) + DA[j, 1] * A[j] for j in range(3)]
         bound_abs[2] = np.where(same, 0.0, bound_abs[2])
-        rel = [_numpy_sign(d[j], bound_rel[j]) for j in range(3)]
-        absolute = [_numpy_sign(d[j], bound_abs[j]) for j in range(3)]
-        tier_a = CONTACT_TABLE[_table_index(rel)]
+        rel = [_sign_columns(d[j], bound_rel[j]) for j in range(3)]
+        absolute = [_sign_columns(d[j], bound_abs[j]) for j in range(3)]
+        tier_a = CONTACT_TABLE[table_index(rel)]
         use_b = (rho > eb.RHO_MAX) | (tier_a == UNCERTAIN)
         ds = [np.where(use_b, absolute[j], rel[j]).astype(np.int8) for j in range(3)]
-        cs = [_numpy_sign(x[t], y[t]) for t in range(5)]
+        cs = [_sign_columns(x[t], y[t]) for t in range(5)]
     return {
         "c": c,
         "r": r,
@@ -235,7 +235,7 @@ def screen_quantities(Em: np.ndarray, Qm: np.ndarray) -> dict[str, Any]:
         d[2] = np.where(plane, 0.0, d[2])
         A[2] = np.where(plane, 0.0, A[2])
         bound = [(SD[j][0] * rho + SD[j][1]) * A[j] for j in range(3)]
-    signs = [np.sign(v).astype(np.int8) for v in c] + [_numpy_sign(d[j], bound[j]) for j in range(3)]
+    signs = [_plain_columns(v) for v in c] + [_sign_columns(d[j], bound[j]) for j in range(3)]
     return {"c": c, "r": r, "rho": rho, "d": d, "bound": bound, "ok": ok, "signs": signs}
 
 
@@ -321,10 +321,10 @@ def numpy_pairs(
                 c[1] = np.where(z & 2, 0.0, c[1])
                 mi = kernels.leading_minors_3(e[0], e[1], e[2], e[4], e[5], e[7])
                 ell = ellipsoid_from_signs(
-                    np.sign(e[0]).astype(np.int8),
-                    _numpy_sign(mi[0], None),
-                    _numpy_sign(mi[1], None),
-                    _numpy_sign(c[4], None),
+                    _plain_columns(e[0]),
+                    _plain_columns(mi[0]),
+                    _plain_columns(mi[1]),
+                    _plain_columns(c[4]),
                 )
                 o = np.where(e[0] < 0, -1.0, 1.0)
                 c[1] = o * c[1]
@@ -336,8 +336,8 @@ def numpy_pairs(
                     A_e = np.stack([e[t] for t in (0, 1, 2, 4, 5, 7)])
                     A_q = np.stack([q[t] for t in (0, 1, 2, 4, 5, 7)])
                     d[2] = np.where(proportional_quadratic_parts(A_e, A_q), 0.0, d[2])
-                signs = [_numpy_sign(v, None) for v in c] + [_numpy_sign(v, None) for v in d]
-        contact = CONTACT_TABLE[_table_index(signs[5:])]
+                signs = [_plain_columns(v) for v in c] + [_plain_columns(v) for v in d]
+        contact = CONTACT_TABLE[table_index(signs[5:])]
         if want_region:
             code = region_codes_from_signs(
                 contact.astype(np.int8), np.stack(signs[:5], axis=1), rows[iq], masks[iq]
@@ -349,7 +349,7 @@ def numpy_pairs(
             invalid = bad | (ell == ELLIPSOID_NOT)
             if sq is not None:
                 # the screen first: where it is sure, its answer (the filter agrees where both are)
-                s_contact = CONTACT_TABLE[_table_index(sq["signs"][5:])]
+                s_contact = CONTACT_TABLE[table_index(sq["signs"][5:])]
                 if want_region:
                     s_code = region_codes_from_signs(
                         s_contact.astype(np.int8), np.stack(sq["signs"][:5], axis=1), rows[iq], masks[iq]
@@ -362,14 +362,6 @@ def numpy_pairs(
             invalid = bad | (ell != ELLIPSOID_YES)
         out[lo:hi] = np.where(invalid, INVALID, code)
     return out
-
-
-def _numpy_dd_sign(v: tuple[np.ndarray, np.ndarray], err: np.ndarray) -> np.ndarray:
-    """As the kernels' ``_dd_sgn``: the sign of the double-double ``v`` where ``|v| > err``."""
-    hi, lo = v
-    pos = (hi > err) | ((hi == err) & (lo > 0))
-    neg = (hi < -err) | ((hi == -err) & (lo < 0))
-    return np.where(pos, 1, np.where(neg, -1, np.where(err == 0, 0, UNCERTAIN))).astype(np.int8)
 
 
 def _dd_read(
@@ -399,14 +391,11 @@ def dd_invariant_quantities(Qm: np.ndarray) -> dict[str, Any]:
     q = [np.asarray(Qm[:, i, j], dtype=np.float64) for i, j in ENTRY_INDICES]
     with np.errstate(all="ignore"):
         mags = kernels.quadric_invariants_magnitude(*(np.abs(x) for x in q))
-        absx = np.abs(np.stack(q))
-        outside = ((absx > eb.INPUT_MAX) | ~np.isfinite(absx) | ((absx < eb.INPUT_MIN) & (absx != 0))).any(
-            axis=0
-        )
+        outside = _outside(q)
         w, bounds = _dd_read(
             q, list(mags), np.array(eb.INVARIANTS_DD_ERRBOUND), np.array(eb.INVARIANTS_DD_COFACTOR_ERRBOUND)
         )
-        signs = np.stack([_numpy_dd_sign(w[k], bounds[k]) for k in range(7)], axis=1)
+        signs = np.stack([_dd_sign_columns(w[k], bounds[k]) for k in range(7)], axis=1)
     return {
         "hi": [v[0] for v in w],
         "lo": [v[1] for v in w],
@@ -428,21 +417,18 @@ def numpy_invariant_signs(
         v = kernels.quadric_invariants(*q)
         if filtered:
             mags = kernels.quadric_invariants_magnitude(*(np.abs(x) for x in q))
-            absx = np.abs(np.stack(q))
-            outside = (
-                (absx > eb.INPUT_MAX) | ~np.isfinite(absx) | ((absx < eb.INPUT_MIN) & (absx != 0))
-            ).any(axis=0)
+            outside = _outside(q)
         for k in range(7):
             if filtered:
-                out[:, k] = np.where(outside, UNCERTAIN, _numpy_sign(v[k], K[k] * mags[k]))
+                out[:, k] = np.where(outside, UNCERTAIN, _sign_columns(v[k], K[k] * mags[k]))
             else:
-                out[:, k] = _numpy_sign(v[k], None)
+                out[:, k] = _plain_columns(v[k])
         if filtered and KD is not None:
             todo = np.flatnonzero(~outside & (out[:, :7] == UNCERTAIN).any(axis=1))
             if todo.size:
                 w, bounds = _dd_read([x[todo] for x in q], [m[todo] for m in mags], *KD)
                 for k in range(7):
-                    s = _numpy_dd_sign(w[k], bounds[k])
+                    s = _dd_sign_columns(w[k], bounds[k])
                     out[todo, k] = np.where(out[todo, k] == UNCERTAIN, s, out[todo, k])
-    out[:, 7] = np.sign(q[9]).astype(np.int8)
+    out[:, 7] = _plain_columns(q[9])
     return out

@@ -47,8 +47,10 @@ from quadric_contact._generated import blocks, kernels
 from quadric_contact.modes.codes import UNCERTAIN
 from quadric_contact.modes.decision.separation import _separation_one
 from quadric_contact.modes.kernels import errorbounds as eb
-from quadric_contact.modes.kernels._jit import HAVE_NUMBA, python_twin
+from quadric_contact.modes.kernels._jit import HAVE_NUMBA, plain
 from quadric_contact.modes.kernels._jit import njit as _njit
+from quadric_contact.modes.kernels.signs import plain_sign, sign_within
+from quadric_contact.modes.kernels.threads import run_parallel
 from quadric_contact.modes.stacks.pairs import Pairs
 from quadric_contact.theory import decision
 
@@ -161,14 +163,10 @@ def _g(x: float) -> bool:
 
 
 @_njit(inline=True)
-def _sgn(d: float, bound: float, ok: bool) -> float:
-    """Three-valued sign of ``d`` known to within ``bound`` (1, -1, 0 for an exact zero, 2
-    uncertain); uncertain whenever the guard failed.  Branch-free."""
-    pos = d > bound
-    neg = d < -bound
-    unc = ((not pos) & (not neg) & (bound != 0.0)) | (not ok)
-    v = (1.0 if pos else 0.0) - (1.0 if neg else 0.0)
-    return _UNC if unc else v
+def _guarded_sign(d: float, bound: float, ok: bool) -> float:
+    """:func:`~quadric_contact.modes.kernels.signs.sign_within` of ``d`` and its ``bound``, as a
+    double (the straight-line loop works in doubles); ``UNCERTAIN`` whenever the guard failed."""
+    return 1.0 * sign_within(d, bound) if ok else _UNC
 
 
 @_njit(inline=True)
@@ -252,15 +250,15 @@ def _member(
     (``certified``), or the computed signs as they are."""
     d1, d2, d3, d4, b1, b2, b3, b4, ok = member_minors_bounded(s, e, q, SK, inputs_ok)
     if certified:
-        g1 = _sgn(d1, b1, ok)
-        g2 = _sgn(d2, b2, ok)
-        g3 = _sgn(d3, b3, ok)
-        g4 = _sgn(d4, b4, ok)
+        g1 = _guarded_sign(d1, b1, ok)
+        g2 = _guarded_sign(d2, b2, ok)
+        g3 = _guarded_sign(d3, b3, ok)
+        g4 = _guarded_sign(d4, b4, ok)
     else:
-        g1 = _sgn(d1, 0.0, True)
-        g2 = _sgn(d2, 0.0, True)
-        g3 = _sgn(d3, 0.0, True)
-        g4 = _sgn(d4, 0.0, True)
+        g1 = 1.0 * plain_sign(d1)
+        g2 = 1.0 * plain_sign(d2)
+        g3 = 1.0 * plain_sign(d3)
+        g4 = 1.0 * plain_sign(d4)
     return _definite(g1, g2, g3, g4), g4
 
 
@@ -366,7 +364,7 @@ def _witness_code(last: bool) -> int:
     at the last critical point, ``last``; negative definite at the first): what
     :func:`decide_signature` says whatever the other members and the signs of ``P`` (unknown
     here).  Read by the function's Python twin: at import, nothing is compiled."""
-    f = python_twin(decide_signature)
+    f = plain(decide_signature)
     if last:
         return int(f(False, _DEF_UNKNOWN, _DEF_UNKNOWN, _POSITIVE, _UNC, _UNC, _UNC, True))
     return int(f(False, _NEGATIVE, _DEF_UNKNOWN, _DEF_UNKNOWN, _UNC, _UNC, _UNC, True))
@@ -511,7 +509,7 @@ def _kernel(compiled: bool) -> Any:
             if k is None:
                 f = _make_signature()
                 # the Python variant runs the two straight-line loops by Python as well
-                k = _KERNELS[compiled] = _njit(f) if compiled else python_twin(f)
+                k = _KERNELS[compiled] = _njit(f) if compiled else plain(f)
     return k
 
 
@@ -522,8 +520,6 @@ def signature_float(
     :func:`~quadric_contact.modes.decision.separation.separation_float`, the same facts and the same
     table): certified (``UNCERTAIN`` where neither reading is sure) or plain (always an answer).
     Inputs are assumed validated (finite, symmetric, ``E`` an ellipsoid)."""
-    from quadric_contact.modes.kernels.threads import run_parallel
-
     n = pairs.n
     out = np.empty(n, dtype=np.int8)
     if n == 0:

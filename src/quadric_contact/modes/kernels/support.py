@@ -15,6 +15,7 @@ from quadric_contact.modes.kernels import double_double as dd
 from quadric_contact.modes.kernels import errorbounds as eb
 from quadric_contact.modes.kernels._jit import HAVE_NUMBA, numba
 from quadric_contact.modes.kernels._jit import njit as _njit
+from quadric_contact.modes.kernels.signs import dd_sign_within, plain_sign, sign_within
 
 __all__ = [
     "certified_ellipsoid",
@@ -47,41 +48,6 @@ _SM2, _SM3 = eb.SEMI_MINORS
 _SP4 = eb.SEMI_PENCIL[4]
 
 
-@_njit(inline=True)
-def _sgn(v: float, err: float) -> int:
-    if v > err:
-        return 1
-    if v < -err:
-        return -1
-    if err == 0.0:
-        return 0
-    return UNCERTAIN
-
-
-@_njit(inline=True)
-def _psgn(v: float) -> int:
-    if v > 0.0:
-        return 1
-    if v < 0.0:
-        return -1
-    return 0
-
-
-@_njit(inline=True)
-def _dd_sgn(v: Any, err: float) -> int:
-    """The sign of the double-double ``v = (hi, lo)`` (``hi = RN(hi + lo)``) where ``|hi + lo| >
-    err``, read exactly: ``hi > err`` implies ``hi + lo > err`` (rounding is monotonic and
-    ``err`` is a binary64 number), and so does ``hi = err`` with ``lo > 0``."""
-    hi, lo = v
-    if (hi > err) | ((hi == err) & (lo > 0.0)):
-        return 1
-    if (hi < -err) | ((hi == -err) & (lo < 0.0)):
-        return -1
-    if err == 0.0:
-        return 0
-    return UNCERTAIN
-
-
 def _invariant_signs_impl(
     Q: Any, lo: int, hi: int, K: Any, KD: Any, KC: Any, filtered: bool, dd: bool, out: Any
 ) -> None:
@@ -97,17 +63,17 @@ def _invariant_signs_impl(
         q = _upper_full(Q, p)
         q00, q01, q02, q03, q11, q12, q13, q22, q23, q33 = q
         v = _invariants(q00, q01, q02, q03, q11, q12, q13, q22, q23, q33)
-        out[p, 7] = _psgn(q33)
+        out[p, 7] = plain_sign(q33)
         if not filtered:
             for k in range(7):
-                out[p, k] = _psgn(v[k])
+                out[p, k] = plain_sign(v[k])
             continue
         a = _abs10(q)
         g = _outside(a, _INPUT_MIN, _INPUT_MAX)
         mags = _invariants_mag(a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8], a[9])
         unsure = g != 0
         for k in range(7):
-            s = UNCERTAIN if g != 0 else _sgn(v[k], K[k] * mags[k])
+            s = UNCERTAIN if g != 0 else sign_within(v[k], K[k] * mags[k])
             out[p, k] = s
             unsure |= s == UNCERTAIN
         if dd and unsure and g == 0:
@@ -128,7 +94,7 @@ def _invariant_signs_impl(
                     for j in range(3):
                         if eb.COFACTOR_AT[j] == k:
                             b = min(b, KC[j] * mc[j])
-                    out[p, k] = _dd_sgn(w[k], b)
+                    out[p, k] = dd_sign_within(w[k], b)
 
 
 @_njit(inline=True)

@@ -16,17 +16,16 @@ import numpy as np
 
 from quadric_contact.modes.decision.answers import ROWS, region_code_masked, rows_from_masks
 from quadric_contact.modes.kernels._jit import HAVE_NUMBA
+from quadric_contact.modes.kernels.support import check_stack_kernel, read_all_kernel, region_codes_kernel
 from quadric_contact.modes.kernels.threads import run_parallel
 
-__all__ = ["check_stack", "region_codes_from_signs", "region_from_signs"]
+__all__ = ["check_stack", "read_all", "region_codes_from_signs", "region_from_signs"]
 
 
 def check_stack(M: np.ndarray) -> np.ndarray:
     """Per matrix: 0 fine, 1 a non-finite entry, 2 not symmetric."""
     out = np.empty(M.shape[0], dtype=np.int8)
     if HAVE_NUMBA:
-        from quadric_contact.modes.kernels.support import check_stack_kernel
-
         run_parallel(lambda lo, hi: check_stack_kernel(M, lo, hi, out), M.shape[0])
         return out
     finite = np.isfinite(M).all(axis=(1, 2))
@@ -41,8 +40,6 @@ def region_codes_from_signs(
     """Region codes from contact codes, c-signs and the rows/masks of the quadrics (per pair)."""
     out = np.empty(contact.shape[0], dtype=np.int8)
     if HAVE_NUMBA:
-        from quadric_contact.modes.kernels.support import region_codes_kernel
-
         region_codes_kernel(contact, csigns, rows.astype(np.int16), masks.astype(np.int64), out)
         return out
     for p in range(contact.shape[0]):
@@ -63,3 +60,15 @@ def region_from_signs(contact: np.ndarray, csigns: np.ndarray, masks: np.ndarray
         rows_from_masks(masks),
         masks,
     )
+
+
+def read_all(*arrays: np.ndarray, threads: int | None = None) -> float:
+    """Read every byte of the arrays once (a compiled, threaded streaming sum): the
+    memory-bandwidth floor of any kernel that reads them."""
+
+    def one(flat: np.ndarray) -> float:
+        parts: list[float] = []
+        run_parallel(lambda lo, hi: parts.append(read_all_kernel(flat, lo, hi)), flat.shape[0], threads)
+        return float(sum(parts))
+
+    return sum(one(np.ascontiguousarray(a).reshape(-1)) for a in arrays)

@@ -27,25 +27,42 @@ from typing import Any
 import numpy as np
 
 from quadric_contact.exact.errors import ChoiceError
-from quadric_contact.model.classification import QuadricKind
 from quadric_contact.modes.codes import INVALID, UNCERTAIN
 from quadric_contact.modes.decision.answers import (
+    CONTACT_TABLE,
+    ELLIPSOID_NOT,
+    ELLIPSOID_UNCERTAIN,
     UNCERTAIN_ROW,
     masks_from_invariant_signs,
-    row_of,
     rows_from_masks,
+)
+from quadric_contact.modes.facts import (
+    certified_ellipsoid_signs,
+    ellipsoid_masks,
+    exact_facts,
+    float_invariant_signs,
+    proportional_exact,
+    used_rows,
 )
 from quadric_contact.modes.kernels import errorbounds as eb
 from quadric_contact.modes.kernels._jit import HAVE_NUMBA
 from quadric_contact.modes.kernels.criterion import FALLBACK, NB, fast_codes
-from quadric_contact.modes.kernels.support_drivers import check_stack, region_codes_from_signs
+from quadric_contact.modes.kernels.decision import decide_ellipsoids
+from quadric_contact.modes.kernels.filter import filter_kernel, float_kernel
+from quadric_contact.modes.kernels.numpy_backend import (
+    filter_quantities,
+    numpy_pairs,
+    screen_quantities,
+    table_index,
+)
+from quadric_contact.modes.kernels.signature import signature_float
 from quadric_contact.modes.kernels.threads import run_parallel
 from quadric_contact.modes.numbers.number_mode import NumberMode
+from quadric_contact.modes.smallness import binary64 as smallness_float
 from quadric_contact.modes.stacks.pairs import MatrixStack, Pairs
 from quadric_contact.modes.stacks.rows import set_rows, unique_rows
 from quadric_contact.modes.stacks.validation import (
-    exact_matrix,
-    raise_not_ellipsoid,
+    diagnose,
     rows_view,
     validate_rows,
 )
@@ -56,12 +73,7 @@ __all__ = [
     "HAVE_NUMBA",
     "FilterMode",
     "FloatMode",
-    "check_stack",
-    "exact_facts",
-    "float_invariant_signs",
     "float_pairs",
-    "read_all",
-    "region_codes_from_signs",
     "stage_codes",
 ]
 
@@ -71,14 +83,6 @@ BLOCK = NB
 
 
 # -- the general path -----------------------------------------------------------------------
-
-
-def _constants(rounded: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    KP = np.array(eb.PENCIL_ERRBOUND[rounded])
-    KL = np.array(eb.MINORS_ERRBOUND[rounded])
-    DR = np.array(eb.DELTA_RELATIVE)
-    DA = np.array(eb.DELTA_ABSOLUTE)
-    return KP, KL, DR, DA
 
 
 def float_pairs(
@@ -122,8 +126,6 @@ def float_pairs(
     if n == 0:
         return out
     if backend == "numpy" or not HAVE_NUMBA:
-        from quadric_contact.modes.kernels.numpy_backend import numpy_pairs
-
         return numpy_pairs(
             E,
             Q,
@@ -146,12 +148,11 @@ def float_pairs(
         raise ChoiceError(
             f"backend must be one of {', '.join(BACKENDS)}, got {backend!r}", backend, choices=tuple(BACKENDS)
         )
-    from quadric_contact.modes.kernels.filter import filter_kernel, float_kernel
 
     E2 = np.ascontiguousarray(E).reshape(-1, 16)
     Q2 = np.ascontiguousarray(Q).reshape(-1, 16)
     if filtered:
-        KP, KL, DR, DA = _constants(rounded)
+        KP, KL, DR, DA = eb.filter_constants(rounded)
         run_parallel(
             lambda lo, hi: filter_kernel(
                 E2,
@@ -199,8 +200,6 @@ def stage_codes(E: np.ndarray, Q: np.ndarray, stage: str, *, backend: str = "num
     the dynamic filter) for the pairs ``(E[k], Q[k])`` of two ``(n, 4, 4)`` binary64 stacks:
     ``UNCERTAIN`` where the stage is not sure (for the screen also where it would not look: an
     input outside its guards); for tests and measurements."""
-    from quadric_contact.modes.decision.answers import CONTACT_TABLE, ELLIPSOID_NOT, ELLIPSOID_UNCERTAIN
-    from quadric_contact.modes.kernels.numpy_backend import _table_index, filter_quantities, screen_quantities
 
     n = E.shape[0]
     e0 = np.zeros(0, dtype=np.intp)
@@ -212,14 +211,12 @@ def stage_codes(E: np.ndarray, Q: np.ndarray, stage: str, *, backend: str = "num
             )  # fmt: skip
             return np.where(out == FALLBACK, UNCERTAIN, out).astype(np.int8)
         sq = screen_quantities(E, Q)
-        code = CONTACT_TABLE[_table_index(sq["signs"][5:])]
+        code = CONTACT_TABLE[table_index(sq["signs"][5:])]
         return np.where(sq["ok"], code, UNCERTAIN).astype(np.int8)
     if backend == "numba" and HAVE_NUMBA:
-        from quadric_contact.modes.kernels.filter import filter_kernel
-
         out = np.empty(n, dtype=np.int8)
         rows, masks = np.zeros(1, dtype=np.int16), np.zeros(1, dtype=np.int64)
-        KP, KL, DR, DA = _constants(False)
+        KP, KL, DR, DA = eb.filter_constants(False)
         flags = np.zeros(Q.shape[0], dtype=np.int8)
         filter_kernel(
             E.reshape(-1, 16), Q.reshape(-1, 16), e0, e0, 1, 1, 0, n, KP, KL, DR, DA, flags, True, rows,
@@ -227,80 +224,11 @@ def stage_codes(E: np.ndarray, Q: np.ndarray, stage: str, *, backend: str = "num
         )  # fmt: skip
         return out
     q = filter_quantities(E, Q)
-    code = CONTACT_TABLE[_table_index(q["signs"][5:])]
+    code = CONTACT_TABLE[table_index(q["signs"][5:])]
     code = np.where(q["outside"] | (q["ell"] == ELLIPSOID_UNCERTAIN), UNCERTAIN, code)
     bad = ~(np.isfinite(E).all(axis=(1, 2)) & np.isfinite(Q).all(axis=(1, 2)))
     bad |= ~((np.swapaxes(E, 1, 2) == E).all(axis=(1, 2)) & (np.swapaxes(Q, 1, 2) == Q).all(axis=(1, 2)))
     return np.where(bad | (q["ell"] == ELLIPSOID_NOT), INVALID, code).astype(np.int8)
-
-
-_ELLIPSOID_PLUS = np.int64(1) << row_of(QuadricKind.ELLIPSOID, 1)
-_ELLIPSOID_MINUS = np.int64(1) << row_of(QuadricKind.ELLIPSOID, -1)
-
-
-def _ellipsoid_masks(ell: np.ndarray) -> np.ndarray:
-    """Table 4 candidate masks from :func:`certified_ellipsoid_signs` (0 where it cannot tell)."""
-    return np.where(ell > 0, _ELLIPSOID_PLUS, np.where(ell < 0, _ELLIPSOID_MINUS, np.int64(0)))
-
-
-def float_invariant_signs(
-    Q: np.ndarray, *, filtered: bool, rounded: bool = False, backend: str = "numba"
-) -> np.ndarray:
-    """``(m, 8)`` int8 signs of ``(trA, J, detA, E1, E2, E3, E4, q33)`` for every quadric.
-
-    ``filtered``: certain signs, ``UNCERTAIN`` elsewhere: binary64 with the bounds
-    :data:`~quadric_contact.modes.kernels.errorbounds.INVARIANTS_ERRBOUND` and, for binary64 input (not
-    ``rounded`` from exact input), the quadrics with a sign binary64 cannot tell read again in
-    double-double (:data:`~quadric_contact.modes.kernels.errorbounds.INVARIANTS_DD_ERRBOUND` and, for
-    ``JA``, ``detA``, ``E4``,
-    :data:`~quadric_contact.modes.kernels.errorbounds.INVARIANTS_DD_COFACTOR_ERRBOUND`):
-    what it leaves is a value within about 1e-30 of its magnitude (in practice, an exact zero),
-    or input outside the guard."""
-    out = np.empty((Q.shape[0], 8), dtype=np.int8)
-    K = np.array(eb.INVARIANTS_ERRBOUND[rounded])
-    KD = np.array(eb.INVARIANTS_DD_ERRBOUND)
-    KC = np.array(eb.INVARIANTS_DD_COFACTOR_ERRBOUND)
-    dd = filtered and not rounded
-    if backend == "numpy" or not HAVE_NUMBA:
-        from quadric_contact.modes.kernels.numpy_backend import numpy_invariant_signs
-
-        return numpy_invariant_signs(Q, filtered, K, (KD, KC) if dd else None)
-    from quadric_contact.modes.kernels.support import invariant_signs_kernel
-
-    flat = np.ascontiguousarray(Q).reshape(-1, 16)
-    run_parallel(
-        lambda lo, hi: invariant_signs_kernel(flat, lo, hi, K, KD, KC, filtered, dd, out), Q.shape[0]
-    )
-    return out
-
-
-def certified_ellipsoid_signs(Q: np.ndarray, *, backend: str = "numba") -> np.ndarray:
-    """``(m,)`` int8: +1/-1 where the binary64 quadric ``Q[k]`` (not rounded from exact input) is
-    certainly an ellipsoid of that canonical sign, 0 where this short test cannot tell (the
-    invariant signs decide those)."""
-    if backend == "numpy" or not HAVE_NUMBA:
-        from quadric_contact.modes.kernels.numpy_backend import numpy_ellipsoid_signs
-
-        return numpy_ellipsoid_signs(np.asarray(Q, dtype=np.float64))
-    from quadric_contact.modes.kernels.support import ellipsoid_signs_kernel
-
-    out = np.empty(Q.shape[0], dtype=np.int8)
-    flat = np.ascontiguousarray(Q).reshape(-1, 16)
-    run_parallel(lambda lo, hi: ellipsoid_signs_kernel(flat, lo, hi, out), Q.shape[0])
-    return out
-
-
-def read_all(*arrays: np.ndarray, threads: int | None = None) -> float:
-    """Read every byte of the arrays once (a compiled, threaded streaming sum): the
-    memory-bandwidth floor of any kernel that reads them."""
-    from quadric_contact.modes.kernels.support import read_all_kernel
-
-    def one(flat: np.ndarray) -> float:
-        parts: list[float] = []
-        run_parallel(lambda lo, hi: parts.append(read_all_kernel(flat, lo, hi)), flat.shape[0], threads)
-        return float(sum(parts))
-
-    return sum(one(np.ascontiguousarray(a).reshape(-1)) for a in arrays)
 
 
 # -- the modes -------------------------------------------------------------------------------
@@ -374,9 +302,7 @@ class FloatMode(NumberMode):
             qflags = self._structural_flags(pairs.Q, np.unique(pairs.q_rows()))
         prop = None
         if rounded and not self.filtered:
-            from quadric_contact.modes.numbers.objects import _proportional_exact
-
-            prop = _proportional_exact(pairs, pairs.e_rows(), pairs.q_rows()).astype(np.int8)
+            prop = proportional_exact(pairs, pairs.e_rows(), pairs.q_rows()).astype(np.int8)
         if pairs.e_index is None and pairs.q_index is None:
             E, Q, indices = pairs.E.floats, pairs.Q.floats, pairs.kernel_indices()
             flags, rows, masks = qflags, qrows, qmasks
@@ -406,7 +332,8 @@ class FloatMode(NumberMode):
 
     def _structural_flags(self, Q: MatrixStack, used: np.ndarray) -> np.ndarray:
         """Per quadric (length ``len(Q)``): the exact facts ``det Q = 0`` (bit 0) and
-        ``rank Q <= 2`` (bit 1), computed exactly (:func:`exact_facts`) for the quadrics whose
+        ``rank Q <= 2`` (bit 1), computed exactly (:func:`~quadric_contact.modes.facts.exact_facts`)
+        for the quadrics whose
         determinant binary64 cannot tell from zero, so that plain float reads the structural
         zeros of cylinders, planes and parallel planes as the filter does."""
         flags = np.zeros(len(Q), dtype=np.int8)
@@ -429,7 +356,7 @@ class FloatMode(NumberMode):
 
         invalid = where(INVALID)
         if invalid.size:
-            codes[invalid] = _diagnose(pairs, invalid)
+            codes[invalid] = diagnose(pairs, invalid)
         if self.filtered:
             todo = where(UNCERTAIN)
             if todo.size:
@@ -456,7 +383,7 @@ class FloatMode(NumberMode):
         return self._codes(pairs, self._region_types(pairs))[0]
 
     def _region_types(self, pairs: Pairs) -> tuple[np.ndarray, np.ndarray]:
-        used = _used_rows(pairs.q_index, len(pairs.Q), pairs.n)
+        used = used_rows(pairs.q_index, len(pairs.Q), pairs.n)
         masks = np.zeros(len(pairs.Q), dtype=np.int64)
         masks[used] = self.classify(pairs.Q, used)
         if used.size == len(pairs.Q):
@@ -482,18 +409,13 @@ class FloatMode(NumberMode):
         or None where it does not apply (input rounded from exact numbers, the numpy backend)."""
         if not self._fast(pairs):
             return None
-        from quadric_contact.modes.kernels.decision import decide_ellipsoids
 
         return decide_ellipsoids(pairs, outside_too=outside_too, table=table, threads=self.threads)
 
     def separation(self, pairs: Pairs) -> np.ndarray:
-        from quadric_contact.modes.kernels.signature import signature_float
-
         return signature_float(pairs, certified=self.filtered, backend=self.backend, threads=self.threads)
 
     def smallness(self, pairs: Pairs) -> np.ndarray:
-        from quadric_contact.modes.smallness import binary64 as smallness_float
-
         return smallness_float.run(self, pairs)
 
     def classify(self, Q: MatrixStack, rows: np.ndarray | None = None) -> np.ndarray:
@@ -517,7 +439,7 @@ class FloatMode(NumberMode):
             # Most quadrics of a stack of pairs are ellipsoids: a short certified test settles
             # them (a third of the invariants' work); the invariant signs decide the others.
             ell = certified_ellipsoid_signs(sub, backend=self.backend)
-            masks = _ellipsoid_masks(ell)
+            masks = ellipsoid_masks(ell)
             rest = np.flatnonzero(ell == 0)
             if rest.size:
                 masks[rest] = masks_from_invariant_signs(
@@ -559,70 +481,10 @@ class FilterMode(FloatMode):
     an exact zero entry gives an exact zero bound (a plane's ``c0 = c1 = 0``); equal quadratic
     parts (compared exactly) give ``Delta_4 = 0``; and the pairs still undecided after the first
     pass are run again with exact facts about their quadrics, computed once per quadric in
-    integer arithmetic (:func:`exact_facts`: ``det Q = 0``, ``rank Q <= 2``, the type)."""
+    integer arithmetic (:func:`~quadric_contact.modes.facts.exact_facts`: ``det Q = 0``,
+    ``rank Q <= 2``, the type)."""
 
     name = "filter"
     stage = "filter"
     certified = True
     filtered = True
-
-
-def _used_rows(index: np.ndarray | None, m: int, n: int) -> np.ndarray:
-    """The distinct rows of a stack that ``n`` pairs use (no sorting when they use them all)."""
-    if index is None:
-        return np.arange(m, dtype=np.intp) if m == n else np.zeros(1, dtype=np.intp)
-    return unique_rows(index, m)
-
-
-def exact_facts(Q: MatrixStack, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Exact facts about the quadrics ``rows``, from their exact invariant signs, once per
-    quadric: ``(flags, masks)`` with bit 0 of ``flags`` set when ``det Q = 0`` (then ``c0 = 0``
-    for every ``E``) and bit 1 when ``rank Q <= 2`` (then ``c1 = 0`` too; for a symmetric matrix
-    the rank is 4 minus the number of trailing zeros of ``E1 .. E4``), and ``masks`` their
-    Table 4 rows.
-
-    For binary64 input the signs are certified before any integer is formed: a quadric the
-    short test finds an ellipsoid needs none (``det Q != 0``, rank 4, its type known), and the
-    others get the filtered signs of :func:`float_invariant_signs` (binary64, then
-    double-double); only a quadric with a sign neither can tell (in practice an exact zero of
-    an invariant that is not a product of zeros) goes to integer arithmetic."""
-    from quadric_contact.modes.numbers.objects import ExactMode
-
-    rows = np.asarray(rows, dtype=np.intp)
-    flags = np.zeros(rows.size, dtype=np.int8)
-    masks = np.zeros(rows.size, dtype=np.int64)
-    todo = np.arange(rows.size)
-    if not Q.rounded and rows.size:
-        # (the environment of a simulation is asked about on every call)
-        ell = certified_ellipsoid_signs(Q.rows_floats(rows))
-        masks = _ellipsoid_masks(ell)
-        todo = np.flatnonzero(ell == 0)
-        if todo.size:
-            signs = float_invariant_signs(Q.rows_floats(rows[todo]), filtered=True)
-            sure = (signs[:, :7] != UNCERTAIN).all(axis=1)
-            flags[todo[sure]] = _structural_bits(signs[sure])
-            masks[todo[sure]] = masks_from_invariant_signs(signs[sure])
-            todo = todo[~sure]
-    if todo.size:
-        signs = ExactMode().invariant_signs(Q, rows[todo])
-        flags[todo] = _structural_bits(signs)
-        masks[todo] = masks_from_invariant_signs(signs)
-    return flags, masks
-
-
-def _structural_bits(signs: np.ndarray) -> np.ndarray:
-    """Bit 0: ``det Q = 0``; bit 1: ``rank Q <= 2`` (``E4 = E3 = 0``), from certain signs."""
-    det_zero = signs[:, 6] == 0
-    return (det_zero.astype(np.int8) | ((det_zero & (signs[:, 5] == 0)).astype(np.int8) << 1)).astype(np.int8)
-
-
-def _diagnose(pairs: Pairs, which: np.ndarray) -> np.ndarray:
-    """Raise for the first really invalid pair among ``which``; return ``UNCERTAIN`` for
-    pairs flagged only because a plain float test could not see ``E`` as an ellipsoid."""
-    e_rows, q_rows = pairs.e_rows_at(which), pairs.q_rows_at(which)
-    validate_rows(pairs.E, np.unique(e_rows))
-    validate_rows(pairs.Q, np.unique(q_rows))
-    for row in np.unique(e_rows):
-        if exact_matrix(pairs.E, int(row))._ellipsoid_sign() == 0:  # type: ignore[attr-defined]
-            raise_not_ellipsoid(pairs.E, int(row))
-    return np.full(which.size, UNCERTAIN, dtype=np.int8)

@@ -32,9 +32,24 @@ from quadric_contact.modes.decision.answers import (
     ellipsoid_from_signs,
     masks_from_invariant_signs,
 )
+from quadric_contact.modes.decision.separation import separation_isolated, separation_objects
+from quadric_contact.modes.facts import (
+    exact_invariant_signs,
+    exact_signs,
+    proportional_exact,
+    structural_facts,
+)
 from quadric_contact.modes.kernels import errorbounds as eb
+from quadric_contact.modes.kernels import exact_pencil
+from quadric_contact.modes.kernels.signs import sign_within
 from quadric_contact.modes.kernels.support_drivers import region_from_signs
 from quadric_contact.modes.numbers.number_mode import NumberMode
+from quadric_contact.modes.smallness.objects import (
+    BallNumbers,
+    MpmathNumbers,
+    exact_smallness,
+    object_smallness,
+)
 from quadric_contact.modes.stacks.integers import dyadic_integers, dyadic_rows, integer_rows
 from quadric_contact.modes.stacks.pairs import MatrixStack, Pairs
 from quadric_contact.modes.stacks.validation import raise_not_ellipsoid, validate_rows
@@ -89,12 +104,12 @@ class ObjectMode(NumberMode):
             if self.structural:
                 # The exact structural zeros the filter reads: c0 = 0 (det Q = 0), c1 = 0
                 # (rank Q <= 2), and Delta_4 = 0 for proportional quadratic parts.
-                facts = _structural_facts(pairs.Q, uq)[iq]
+                facts = structural_facts(pairs.Q, uq)[iq]
                 zero = self.number(0.0)
                 c[0] = np.where(facts & 1, zero, c[0])
                 c[1] = np.where(facts & 2, zero, c[1])
             m2, m3 = kernels.leading_minors_3(*(e_cols[k] for k in (0, 1, 2, 4, 5, 7)))
-            sa = _exact_sign(e_cols[0])
+            sa = exact_signs(e_cols[0])
             sc = np.stack([self.signs(x) for x in c], axis=1)
             ell = ellipsoid_from_signs(sa, self.signs(m2), self.signs(m3), sc[:, 4])
             # The paper's sign of E: for -E the odd coefficients (and their signs) flip.
@@ -103,7 +118,7 @@ class ObjectMode(NumberMode):
             sc[flip, 3] = _neg(sc[flip, 3])
             sd = self.delta_signs(c)
             if self.structural:
-                sd[_proportional_exact(pairs, e_rows, q_rows), 2] = 0
+                sd[proportional_exact(pairs, e_rows, q_rows), 2] = 0
         return ell, sc, sd, e_rows
 
     def pencil(
@@ -126,8 +141,6 @@ class ObjectMode(NumberMode):
         raise NotImplementedError
 
     def separation(self, pairs: Pairs) -> np.ndarray:
-        from quadric_contact.modes.decision.separation import separation_objects
-
         return separation_objects(self, pairs, certified=self.certified)
 
     def criterion_contact(self, pairs: Pairs) -> np.ndarray:
@@ -153,37 +166,12 @@ class ObjectMode(NumberMode):
         with self.context():
             cols = self.convert(Q, rows)
             v = kernels.quadric_invariants(*cols)
-            out = np.stack([self.signs(x) for x in v] + [_exact_sign(cols[9])], axis=1)
+            out = np.stack([self.signs(x) for x in v] + [exact_signs(cols[9])], axis=1)
         return out.astype(np.int8)
 
     def classify(self, Q: MatrixStack, rows: np.ndarray | None = None) -> np.ndarray:
         index = np.arange(len(Q)) if rows is None else np.asarray(rows)
         return masks_from_invariant_signs(self.invariant_signs(Q, index))
-
-
-def _structural_facts(Q: MatrixStack, rows: np.ndarray) -> np.ndarray:
-    """Bit 0: ``det Q = 0``; bit 1: ``rank Q <= 2`` (exact, once per quadric)."""
-    signs = ExactMode().invariant_signs(Q, np.asarray(rows, dtype=np.intp))
-    det_zero = signs[:, 6] == 0
-    return (det_zero.astype(np.int8) | ((det_zero & (signs[:, 5] == 0)).astype(np.int8) << 1)).astype(np.int8)
-
-
-def _proportional_exact(pairs: Pairs, e_rows: np.ndarray, q_rows: np.ndarray) -> np.ndarray:
-    """Per pair: the quadratic part of ``Q`` is a multiple of that of ``E``, exactly."""
-    quad = (0, 1, 2, 4, 5, 7)
-    ue, ie = np.unique(e_rows, return_inverse=True)
-    uq, iq = np.unique(q_rows, return_inverse=True)
-    # as Fractions: a binary64 entry times a Fraction would be taken in binary64 (and overflow
-    # for an exact entry beyond its range)
-    exact = np.frompyfunc(Fraction, 1, 1)
-    ecols = [exact(c) for c in pairs.E.upper_exact(ue)]
-    qcols = [exact(c) for c in pairs.Q.upper_exact(uq)]
-    out = np.ones(len(e_rows), dtype=bool)
-    e00, q00 = ecols[0][ie], qcols[0][iq]
-    for t in quad[1:]:
-        a = (qcols[t][iq] * e00 - q00 * ecols[t][ie]).astype(object)
-        out &= np.array([Fraction(v) == 0 for v in a], dtype=bool)
-    return out
 
 
 def _neg(s: np.ndarray) -> np.ndarray:
@@ -233,7 +221,7 @@ def filtered_delta_signs(c: list[np.ndarray]) -> np.ndarray:
         d, A = both[:3], both[3:]
         for j, ((R, G), dj, Aj) in enumerate(zip(eb.SEMI_DELTA, d, A, strict=True)):
             bound = (R * _RHO_EXACT + G) * Aj
-            sign = np.where(dj > bound, 1, np.where(dj < -bound, -1, np.where(bound == 0, 0, UNCERTAIN)))
+            sign = sign_within(dj, bound)
             out[:, j] = np.where(ok, sign, UNCERTAIN)
     return out
 
@@ -247,10 +235,6 @@ def _float_or_inf(x: np.ndarray) -> np.ndarray:
         return float(v) if -big < v < big else float("inf")
 
     return np.frompyfunc(one, 1, 1)(x).astype(np.float64)
-
-
-def _exact_sign(x: np.ndarray) -> np.ndarray:
-    return (np.asarray(x > 0, dtype=np.int8) - np.asarray(x < 0, dtype=np.int8)).astype(np.int8)
 
 
 # -- exact ---------------------------------------------------------------------------------
@@ -285,22 +269,14 @@ class ExactMode(ObjectMode):
         self.backend = backend
 
     def invariant_signs(self, Q: MatrixStack, rows: np.ndarray) -> np.ndarray:
-        """As :meth:`ObjectMode.invariant_signs`, once per quadric of the stack: the exact signs
-        are facts about the matrices, kept with the stack (which lives for one call) so that
-        the stages of a decision that need them (the cascade's types, the structural zeros of
-        the criterion) share one computation."""
-        rows = np.asarray(rows, dtype=np.intp)
-        known, signs = Q.exact_signs_memo()
-        need = np.unique(rows[~known[rows]])
-        if need.size:
-            signs[need] = super().invariant_signs(Q, need)
-            known[need] = True
-        return signs[rows]
+        """The exact signs are facts about the matrices, whatever the backend: read once per
+        quadric of the stack (:func:`~quadric_contact.modes.facts.exact_invariant_signs`)."""
+        return exact_invariant_signs(Q, rows)
 
     def convert(self, stack: MatrixStack, rows: np.ndarray) -> list[np.ndarray]:
         cols = integer_rows(stack, rows)
         if self.backend == "fmpz":
-            import flint
+            import flint  # import cost
 
             to = np.frompyfunc(flint.fmpz, 1, 1)
             cols = [to(c) for c in cols]
@@ -313,8 +289,6 @@ class ExactMode(ObjectMode):
         (:mod:`quadric_contact.modes.kernels.exact_pencil`, the same expansion, equal values),
         read from the binary64 entries as ``m * 2^shift``; backend ``"fmpz"``: the
         generated expansion on ``fmpz``."""
-        from quadric_contact.modes.kernels import exact_pencil
-
         if self.backend != "int" or not exact_pencil.HAVE_KERNEL:
             return super().pencil(pairs, ue, ie, uq, iq)
         if pairs.E.exact is None and pairs.Q.exact is None:
@@ -329,7 +303,7 @@ class ExactMode(ObjectMode):
         return e_cols, c
 
     def signs(self, values: np.ndarray) -> np.ndarray:
-        return _exact_sign(values)
+        return exact_signs(values)
 
     def deltas(self, c: list[np.ndarray]) -> tuple[np.ndarray, ...]:
         # Exact arithmetic may use the short form (27 Delta_4 = 4 I^3 - J^2): same signs.
@@ -353,8 +327,6 @@ class ExactMode(ObjectMode):
     def separation(self, pairs: Pairs) -> np.ndarray:
         """Float sample points first (cheap); where they do not separate the roots, exact
         sample points between the exactly isolated roots."""
-        from quadric_contact.modes.decision.separation import separation_isolated
-
         codes = super().separation(pairs)
         todo = np.flatnonzero(codes == UNCERTAIN)
         if todo.size:
@@ -362,8 +334,6 @@ class ExactMode(ObjectMode):
         return codes
 
     def smallness(self, pairs: Pairs) -> np.ndarray:
-        from quadric_contact.modes.smallness.objects import exact_smallness
-
         return exact_smallness(self, pairs)
 
     def __repr__(self) -> str:
@@ -403,12 +373,12 @@ class BallMode(ObjectMode):
         return working_precision(self.prec)
 
     def number(self, value: float) -> Any:
-        import flint
+        import flint  # import cost
 
         return flint.arb(value)
 
     def convert(self, stack: MatrixStack, rows: np.ndarray) -> list[np.ndarray]:
-        import flint
+        import flint  # import cost
 
         def ball(v: Any) -> Any:
             if isinstance(v, Fraction):
@@ -425,8 +395,6 @@ class BallMode(ObjectMode):
         return np.where(pos, 1, np.where(neg, -1, np.where(zero, 0, UNCERTAIN))).astype(np.int8)
 
     def smallness(self, pairs: Pairs) -> np.ndarray:
-        from quadric_contact.modes.smallness.objects import BallNumbers, object_smallness
-
         return object_smallness(self, pairs, BallNumbers(self.prec))
 
     def __repr__(self) -> str:
@@ -474,7 +442,7 @@ class MpmathMode(ObjectMode):
         cannot place a point in a gap narrower than their error, where a definite member may
         lie alone (a spheroid deep in a cone: two roots ``1e-17`` apart), and the plain
         reading then calls the pair a crossing."""
-        import mpmath
+        import mpmath  # import cost
 
         n = len(c[0])
         out = np.full((n, 3), math.nan, dtype=object)
@@ -494,12 +462,12 @@ class MpmathMode(ObjectMode):
         return out
 
     def number(self, value: float) -> Any:
-        import mpmath
+        import mpmath  # import cost
 
         return mpmath.mpf(value)
 
     def convert(self, stack: MatrixStack, rows: np.ndarray) -> list[np.ndarray]:
-        import mpmath
+        import mpmath  # import cost
 
         def number(v: Any) -> Any:
             if isinstance(v, Fraction):
@@ -510,11 +478,9 @@ class MpmathMode(ObjectMode):
         return [to(c) for c in stack.upper_exact(rows)]
 
     def signs(self, values: np.ndarray) -> np.ndarray:
-        return _exact_sign(values)
+        return exact_signs(values)
 
     def smallness(self, pairs: Pairs) -> np.ndarray:
-        from quadric_contact.modes.smallness.objects import MpmathNumbers, object_smallness
-
         return object_smallness(self, pairs, MpmathNumbers(self.dps))
 
     def __repr__(self) -> str:

@@ -52,7 +52,7 @@ guard.
 *Per matrix, once.*  The type of a quadric comes from the mode's
 :meth:`~quadric_contact.modes.numbers.number_mode.NumberMode.classify`, and where that is uncertain
 (or the row is not trusted) from exact integer arithmetic
-(:func:`~quadric_contact.modes.numbers.binary64.exact_facts`); a quadric whose sides the float
+(:func:`~quadric_contact.modes.facts.exact_facts`); a quadric whose sides the float
 code cannot certify (a degenerate type rounded off its exact zero eigenvalue, or close
 to it) gets them from ball arithmetic, rounded outward (:func:`_refine`).  Pairs still
 uncertain get a second try with Newton-polished approximations and much narrower
@@ -73,13 +73,13 @@ the filter's escalation rate depends on their accuracy, never its answers.
 
 One source, two backends
 ------------------------
-The row and pair arithmetic is written once as plain functions of scalars or numpy
-arrays (``select`` is ``numpy.where``; no Python branch depends on the data).  The
-numpy backend calls them on whole columns; the numba kernels are *compiled twins*
-(:func:`_compiled`) of the same functions, whose helper names resolve to compiled
-twins of the helpers (``select`` to an LLVM ``select``), inlined into loops over
-blocks of rows that LLVM vectorises.  The first call compiles them (about a minute;
-numba caches the result on disk).
+The row and pair arithmetic is written once as plain functions of scalars or numpy arrays
+(``select`` is ``numpy.where``; no Python branch depends on the data), each registered as a
+pair (:func:`~quadric_contact.modes.kernels._jit.jitable` with ``inline``).  The numpy backend
+calls them on whole columns; the compiled loops over blocks of rows call their compiled sides
+(``forceinline``, and ``select`` an LLVM ``select``), which LLVM inlines and vectorises.  The
+first call compiles the loops (about a minute; numba caches them on disk), unless the library
+of native kernels has them.
 """
 
 from __future__ import annotations
@@ -87,18 +87,24 @@ from __future__ import annotations
 import ast
 import inspect
 import math
-import threading
-import types
 from fractions import Fraction
 from typing import Any
 
 import numpy as np
+from numpy.polynomial import chebyshev as C
 
 from quadric_contact._generated import kernels
+from quadric_contact.exact.entries import ENTRY_INDICES
 from quadric_contact.exact.errors import ChoiceError
+from quadric_contact.exact.straight_line import rounding_counts
+from quadric_contact.model.classification import TABLE_1_KINDS
 from quadric_contact.modes.codes import EXCLUDED, INVALID, UNCERTAIN
+from quadric_contact.modes.facts import exact_facts, table_kinds
 from quadric_contact.modes.kernels import errorbounds as eb
-from quadric_contact.modes.kernels._jit import HAVE_NUMBA, numba, route_native, stamp_with_sources
+from quadric_contact.modes.kernels._jit import HAVE_NUMBA, jitable, njit, select
+from quadric_contact.modes.kernels.signs import sign_within
+from quadric_contact.modes.kernels.threads import run_parallel
+from quadric_contact.modes.smallness.numbers import ball_sides
 from quadric_contact.modes.smallness.tables import (
     E_SIDES,
     MAX_ALTERNATIVE,
@@ -109,6 +115,7 @@ from quadric_contact.modes.smallness.tables import (
 )
 from quadric_contact.modes.stacks.pairs import MatrixStack, Pairs
 from quadric_contact.modes.stacks.rows import unique_rows
+from quadric_contact.modes.stacks.validation import diagnose
 
 __all__ = [
     "APPROX_DEGREE",
@@ -125,7 +132,6 @@ __all__ = [
     "pair_codes",
     "q_row_quantities",
     "shift_invariants",
-    "table_kinds",
 ]
 
 _U = eb.UNIT_ROUNDOFF
@@ -183,8 +189,6 @@ APPROX_DEGREE = 12
 def _fit(f: Any) -> tuple[float, ...]:
     """Power coefficients in ``t = 4x - 1`` of the Chebyshev interpolant of ``f`` on
     ``x in [0, 1/2]`` (lowest first)."""
-    from numpy.polynomial import chebyshev as C
-
     c = C.chebinterpolate(lambda t: f((np.asarray(t) + 1) / 4), APPROX_DEGREE)
     return tuple(float(v) for v in C.cheb2poly(c))
 
@@ -205,11 +209,7 @@ _SQRT3 = math.sqrt(3.0)
 _HALF_SQRT3 = _SQRT3 / 2
 
 
-def select(c: Any, a: Any, b: Any) -> Any:
-    """``a`` where ``c``, else ``b`` (an LLVM ``select`` in the compiled twins: no branch)."""
-    return np.where(c, a, b)
-
-
+@jitable(inline=True)
 def _horner(c: Any, t: Any) -> Any:
     """``sum c[k] t^k`` for the 13 coefficients of an approximation (unrolled, so that the
     compiled loops around it vectorise)."""
@@ -230,6 +230,7 @@ def _horner(c: Any, t: Any) -> Any:
 assert APPROX_DEGREE == 12
 
 
+@jitable(inline=True)
 def eigen_approx(a00: Any, a01: Any, a02: Any, a11: Any, a12: Any, a22: Any) -> Any:
     """Approximate eigenvalues ``l1 <= l2 <= l3`` of the symmetric 3x3 matrix (closed form,
     no trigonometric calls; see the module docstring).  Never trusted by the filter."""
@@ -259,6 +260,7 @@ def eigen_approx(a00: Any, a01: Any, a02: Any, a11: Any, a12: Any, a22: Any) -> 
 # -- the eigenvalue counts -------------------------------------------------------------------------
 
 
+@jitable(inline=True)
 def shift_invariants(b00, b01, b02, b11, b12, b22):  # type: ignore[no-untyped-def]
     """(tr, J, det) of the symmetric 3x3 matrix with upper entries bij (straight-line)."""
     tr = b00 + b11 + b22
@@ -267,6 +269,7 @@ def shift_invariants(b00, b01, b02, b11, b12, b22):  # type: ignore[no-untyped-d
     return (tr, J, det)
 
 
+@jitable(inline=True)
 def shift_invariants_magnitude(b00, b01, b02, b11, b12, b22):  # type: ignore[no-untyped-def]
     """Magnitude companion of ``shift_invariants``: call it with the absolute values of the
     arguments; same operations in the same order, with every minus turned into a plus."""
@@ -287,8 +290,6 @@ def _shift_errbound() -> tuple[float, ...]:
     diagonal ``fl(a_ii - t)`` is a rounded input (the off-diagonal entries are exact, and
     counting them as rounded only enlarges the bound); the counts are read off the program
     text as :mod:`quadric_contact.codegen` reads the generated ones."""
-    from quadric_contact.exact.straight_line import rounding_counts
-
     value = rounding_counts(_function_ast(shift_invariants), 1)
     magnitude = rounding_counts(_function_ast(shift_invariants_magnitude), 0)
     return tuple(
@@ -319,15 +320,11 @@ _NCOND = _TABLES["ncond"]
 _ALT = _TABLES["alt"]
 _NALT = _TABLES["nalt"]
 
-_inv = kernels.quadric_invariants
-_inv_mag = kernels.quadric_invariants_magnitude
+_inv = jitable(kernels.quadric_invariants, inline=True)
+_inv_mag = jitable(kernels.quadric_invariants_magnitude, inline=True)
 
 
-def _sign(v: Any, e: Any) -> Any:
-    """Three-valued sign of a value known to within ``e`` (``e == 0``: exact)."""
-    return select(v > e, 1, select(v < -e, -1, select(e == 0.0, 0, UNCERTAIN)))
-
-
+@jitable(inline=True)
 def _shift_signs(a00: Any, a01: Any, a02: Any, a11: Any, a12: Any, a22: Any, t: Any) -> Any:
     """Signs of ``(tr B, J(B), det B)`` for ``B = A - t I``, certified (see the module docstring)."""
     b00 = a00 - t
@@ -338,20 +335,23 @@ def _shift_signs(a00: Any, a01: Any, a02: Any, a11: Any, a12: Any, a22: Any, t: 
         np.abs(b00), np.abs(a01), np.abs(a02), np.abs(b11), np.abs(a12), np.abs(b22)
     )
     return (
-        _sign(v[0], _KB[0] * m[0]), _sign(v[1], _KB[1] * m[1]), _sign(v[2], _KB[2] * m[2])
+        sign_within(v[0], _KB[0] * m[0]), sign_within(v[1], _KB[1] * m[1]), sign_within(v[2], _KB[2] * m[2])
     )  # fmt: skip
 
 
+@jitable(inline=True)
 def _in_range(x: Any) -> Any:
     a = np.abs(x)
     return (a >= INPUT_MIN) & (a <= INPUT_MAX)
 
 
+@jitable(inline=True)
 def _entry_ok(x: Any) -> Any:
     a = np.abs(x)
     return (a == 0.0) | ((a >= INPUT_MIN) & (a <= INPUT_MAX))
 
 
+@jitable(inline=True)
 def _entries_ok(a00: Any, a01: Any, a02: Any, a03: Any, a11: Any, a12: Any, a13: Any, a22: Any, a23: Any,
                 a33: Any) -> Any:  # fmt: skip
     """Every entry zero or in ``[INPUT_MIN, INPUT_MAX]`` (the guard of the invariant bounds)."""
@@ -361,6 +361,7 @@ def _entries_ok(a00: Any, a01: Any, a02: Any, a03: Any, a11: Any, a12: Any, a13:
     )  # fmt: skip
 
 
+@jitable(inline=True)
 def _below_at_most(s1: Any, s2: Any, s3: Any, j: int) -> Any:
     """Certainly at most ``j`` eigenvalues below ``t``, from the three-valued signs of
     ``(tr, J, det)`` of ``B = A - t I``.
@@ -383,6 +384,7 @@ def _below_at_most(s1: Any, s2: Any, s3: Any, j: int) -> Any:
     return ~(n1 & p2 & n3)
 
 
+@jitable(inline=True)
 def _below_at_least(s1: Any, s2: Any, s3: Any, j: int) -> Any:
     """Certainly at least ``j`` eigenvalues below ``t``: the certain signs alone have ``j``
     variations (an adversary sets every uncertain sign to 0, which removes it)."""
@@ -395,6 +397,7 @@ def _below_at_least(s1: Any, s2: Any, s3: Any, j: int) -> Any:
     return n1 & p2 & n3
 
 
+@jitable(inline=True)
 def _enclose(a00: Any, a01: Any, a02: Any, a11: Any, a12: Any, a22: Any, lam: Any, i: int, width: Any) -> Any:
     """``(lo, hi, ok)``: the ``i``-th eigenvalue (1-based, increasing) lies in ``[lo, hi]`` where
     ``ok``: at most ``i - 1`` eigenvalues below ``lo``, at least ``i`` below ``hi``.  (Below
@@ -409,16 +412,19 @@ def _enclose(a00: Any, a01: Any, a02: Any, a11: Any, a12: Any, a22: Any, lam: An
     return lo, hi, ok & _in_range(lo) & _in_range(hi)
 
 
+@jitable(inline=True)
 def _weyl(a00: Any, a01: Any, a02: Any, a11: Any, a12: Any, a22: Any) -> Any:
     """A bound of ``||A - A^||_2`` for the correctly rounded ``A^`` of an exact ``A``."""
     s = np.abs(a00) + np.abs(a11) + np.abs(a22) + 2.0 * np.abs(a01) + 2.0 * np.abs(a02) + 2.0 * np.abs(a12)
     return WEYL * s
 
 
+@jitable(inline=True)
 def _factor_ok(lo: Any, hi: Any) -> Any:
     return (lo >= FACTOR_MIN) & (hi <= FACTOR_MAX)
 
 
+@jitable(inline=True)
 def _bad(m: Any) -> Any:
     """True where an entry is not finite (``x * 0`` is NaN for inf and NaN) or the matrix
     (16 entries, row-major) is not symmetric.  Branch-free."""
@@ -435,6 +441,7 @@ def _bad(m: Any) -> Any:
 # -- per matrix ------------------------------------------------------------------------------------
 
 
+@jitable(inline=True)
 def _newton(v: Any, t: Any) -> Any:
     """One Newton step towards an eigenvalue on ``t^3 - tr t^2 + J t - det`` (``v``: the
     invariants ``(tr, J, det, ...)``); ``t`` unchanged where the derivative vanishes."""
@@ -443,6 +450,7 @@ def _newton(v: Any, t: Any) -> Any:
     return select(dp != 0.0, t - p / select(dp != 0.0, dp, 1.0), t)
 
 
+@jitable(inline=True)
 def _e_row(m: Any, certify: bool, rounded: bool, guard: Any, width: Any, polish: bool) -> Any:
     """The four squared sides of ``E`` (:data:`~quadric_contact.modes.smallness.tables.E_SIDES`:
     ``alpha^2``, ``(gamma/alpha^2)^2``, ``gamma^2``, ``(alpha/gamma^2)^2``) as intervals
@@ -524,12 +532,14 @@ _MAX_POWER = 3
 assert max(abs(e) for m in (*E_SIDES, *(m for v in Q_SIDES.values() for m in v)) for e in m) <= _MAX_POWER
 
 
+@jitable(inline=True)
 def _power(x: Any, e: Any) -> Any:
     """``x^e`` for ``e`` in ``0 .. 3`` by repeated multiplication (``e - 1`` roundings; 1 exactly for 0)."""
     x2 = x * x
     return select(e == 1, x, select(e == 2, x2, select(e == 3, x2 * x, 1.0)))
 
 
+@jitable(inline=True)
 def _monomial(lo: Any, hi: Any, kind: Any, slot: int) -> Any:
     """``(lo, hi, k)`` of the monomial of ``Q_SIDES`` for ``kind`` and ``slot`` over the
     primitive intervals ``lo``, ``hi`` (9-tuples), before the final widening; ``k`` its number of
@@ -567,6 +577,7 @@ def _monomial(lo: Any, hi: Any, kind: Any, slot: int) -> Any:
     return num_lo / den_hi, num_hi / den_lo, k
 
 
+@jitable(inline=True)
 def _invariant_primitive(v: Any, mg: Any, j: int, kind: Any, certify: bool, rounded: bool) -> Any:
     """``(lo, hi, ok)``: primitive ``j`` (``P .. T``) of ``kind``, the signed invariant with its
     bound (1 for a primitive the kind does not use)."""
@@ -581,6 +592,7 @@ def _invariant_primitive(v: Any, mg: Any, j: int, kind: Any, certify: bool, roun
     return select(need, lo, 1.0), select(need, hi, 1.0), ok
 
 
+@jitable(inline=True)
 def _eigen_primitive(
     a00: Any, a01: Any, a02: Any, a11: Any, a12: Any, a22: Any, lam: Any, i: int, kind: Any, certify: bool,
     eps: Any, bad: Any, width: Any,
@@ -602,6 +614,7 @@ def _eigen_primitive(
     return select(need, alo, 1.0), select(need, ahi, 1.0), ok
 
 
+@jitable(inline=True)
 def _q_row(
     m: Any, kind: Any, sign: Any, certify: bool, rounded: bool, guard: Any, width: Any, polish: bool
 ) -> Any:  # fmt: skip
@@ -662,6 +675,7 @@ _INVARIANT_OF_PRIMITIVE = (6, 2, 1, 5, 4, 0)
 # -- per pair --------------------------------------------------------------------------------------
 
 
+@jitable(inline=True)
 def _compare(qlo: Any, qhi: Any, elo: Any, ehi: Any, rel: Any) -> Any:
     """Three-valued ``Q >= E`` (``rel == 0``) or ``Q <= E`` (``rel == 1``) on intervals:
     1 holds, 0 fails, 2 uncertain."""
@@ -670,10 +684,12 @@ def _compare(qlo: Any, qhi: Any, elo: Any, ehi: Any, rel: Any) -> Any:
     return select(rel == 0, ge, le)
 
 
+@jitable(inline=True)
 def _and3(a: Any, b: Any) -> Any:
     return select((a == 0) | (b == 0), 0, select((a == 1) & (b == 1), 1, UNCERTAIN))
 
 
+@jitable(inline=True)
 def _pick(values: Any, k: Any) -> Any:
     """``values[k]`` for an 8-tuple and ``k`` a scalar or one index per pair (a select chain)."""
     out = values[7]
@@ -682,6 +698,7 @@ def _pick(values: Any, k: Any) -> Any:
     return out
 
 
+@jitable(inline=True)
 def _conjunction(qv: Any, ev: Any, conds: Any, n: Any, kind: Any, width: int) -> Any:
     """All of the first ``n`` conditions ``conds[kind, c] = (q_slot, e_slot, relation)``, ``c <
     width`` (a constant, so that the compiled loop unrolls), three-valued.  ``qv``, ``ev``: the
@@ -696,6 +713,7 @@ def _conjunction(qv: Any, ev: Any, conds: Any, n: Any, kind: Any, width: int) ->
     return acc
 
 
+@jitable(inline=True)
 def _verdict(inner: Any, outer: Any) -> Any:
     """The code from the three-valued direct conditions and enclosing alternative."""
     return select(
@@ -703,6 +721,7 @@ def _verdict(inner: Any, outer: Any) -> Any:
     )
 
 
+@jitable(inline=True)
 def _pair_code(est: Any, ev: Any, qst: Any, qv: Any, qkind: Any) -> Any:
     """:class:`~quadric_contact.modes.codes.SmallnessCode` of a pair from its rows' statuses and
     sides (8-tuples; ``qkind``: index into TABLE_1_KINDS, -1 excluded, -2 uncertain); INVALID
@@ -746,11 +765,13 @@ def fixed_conditions(qst: int, qkind: int, qv: np.ndarray) -> tuple[np.ndarray, 
     return np.array([code], dtype=np.int64), offsets, q, relations, groups
 
 
+@jitable(inline=True)
 def _only(r: Any, group: Any, wanted: int) -> Any:
     """A condition's value within its group; true (neutral for the conjunction) outside it."""
     return select(group == wanted, r, 1)
 
 
+@jitable(inline=True)
 def _fixed_code(est: Any, e: Any, code: Any, q: Any, relations: Any, groups: Any) -> Any:
     """:func:`_pair_code` against the one quadric of :func:`fixed_conditions`: ``e`` the
     ellipsoid's side ``(lo, hi)`` of each condition, ``q`` the quadric's (flat tuples)."""
@@ -770,12 +791,17 @@ def _fixed_code(est: Any, e: Any, code: Any, q: Any, relations: Any, groups: Any
     return select(est == INVALID, INVALID, out)
 
 
-# -- loops (run compiled: see _compiled) -----------------------------------------------------------
+# -- loops (run compiled) --------------------------------------------------------------------------
+#
+# The loops are kernels without a Python twin (``njit(twin=False)``: a twin would run them row by
+# row): cached, keyed on every source they inline, and run natively where the library of native
+# kernels has them.  Every helper above they call by name is inlined as its compiled side.
 
 _NB = 256
 """Rows per block of the compiled loops (row ``k`` of a block buffer at ``k * _NB``)."""
 
 
+@njit(twin=False)
 def _e_rows_loop(
     M: Any, rows: Any, lo: int, hi: int, certify: bool, rounded: bool, guard: Any, width: float, polish: bool,
     out_s: Any, out_v: Any,
@@ -801,6 +827,7 @@ def _e_rows_loop(
                 out_v[k, blo + t] = ob[(k + 1) * _NB + t]
 
 
+@njit(twin=False)
 def _e_block(
     eb_: Any, gb: Any, m: int, certify: bool, rounded: bool, width: float, polish: bool, ob: Any
 ) -> None:  # fmt: skip
@@ -823,6 +850,7 @@ def _e_block(
         ob[8 * _NB + i] = v7
 
 
+@njit(twin=False)
 def _q_rows_loop(
     M: Any, rows: Any, kinds: Any, signs_: Any, lo: int, hi: int, certify: bool, rounded: bool, guard: Any,
     width: float, polish: bool, out_s: Any, out_v: Any,
@@ -867,6 +895,7 @@ def _q_rows_loop(
                 out_v[k, blo + t] = ob[(k + 1) * _NB + t]
 
 
+@njit(twin=False)
 def _pairs_loop(
     eidx: Any, qidx: Any, es: int, qs: int, lo: int, hi: int, est: Any, ev: Any, qst: Any, qkind: Any,
     qv: Any, out: Any,
@@ -879,6 +908,7 @@ def _pairs_loop(
         out[p] = _pair_code(est[ie], e, qst[iq], q, qkind[iq])
 
 
+@njit(twin=False)
 def _fused_loop(
     E: Any, eidx: Any, lo: int, hi: int, certify: bool, rounded: bool, guard: Any, qidx: Any, qs: int,
     qst: Any, qkind: Any, qv: Any, fixed_code: Any, offsets: Any, fq: Any, relations: Any, groups: Any,
@@ -925,76 +955,6 @@ def _fused_loop(
                 out[p] = _pair_code(ob[t], e, qst[iq], q, qkind[iq])
 
 
-# -- the compiled twins ----------------------------------------------------------------------------
-
-_INLINED = (
-    "_inv", "_inv_mag", "_horner", "eigen_approx", "shift_invariants", "shift_invariants_magnitude",
-    "_sign", "_shift_signs", "_in_range", "_entry_ok", "_entries_ok", "_weyl", "_factor_ok", "_bad",
-    "_e_row", "_compare", "_and3", "_pick", "_conjunction", "_pair_code",
-    "_below_at_most", "_below_at_least", "_enclose", "_power", "_monomial", "_invariant_primitive",
-    "_eigen_primitive", "_q_row", "_verdict", "_only", "_fixed_code", "_newton",
-)  # fmt: skip
-"""Inlined into the compiled loops (``forceinline``: LLVM's ``alwaysinline``, as
-:func:`~quadric_contact.modes.kernels._jit.njit` does for the kernels' helpers), which LLVM then
-vectorises (every helper is straight-line: the loops over blocks of rows carry no branch and no
-call)."""
-_CALLED: tuple[str, ...] = ()
-_LOOPS = ("_e_rows_loop", "_e_block", "_q_rows_loop", "_pairs_loop", "_fused_loop")
-
-_twins: dict[str, Any] = {}
-_twins_lock = threading.Lock()
-
-
-def _compiled(name: str) -> Any:
-    """The compiled twin of the function ``name`` of this module: the same code, with the
-    names of the helpers bound to their compiled twins (``select`` to an LLVM ``select``)."""
-    if not _twins:
-        with _twins_lock:
-            if not _twins:
-                _make_twins()
-    return _twins[name]
-
-
-def _make_twins() -> None:
-    from numba.core import types as nbtypes
-
-    @numba.extending.intrinsic
-    def select_intrinsic(typingctx: Any, c: Any, a: Any, b: Any) -> Any:
-        rt = typingctx.unify_types(a, b)
-
-        def codegen(context: Any, builder: Any, signature: Any, args: Any) -> Any:  # pragma: no cover
-            cv = context.cast(builder, args[0], c, nbtypes.boolean)
-            av = context.cast(builder, args[1], a, rt)
-            bv = context.cast(builder, args[2], b, rt)
-            return builder.select(cv, av, bv)
-
-        return rt(c, a, b), codegen
-
-    scope = dict(globals())
-    options = {"nogil": True, "error_model": "numpy", "cache": True}
-
-    def twin(fn: Any, **extra: Any) -> Any:
-        code = types.FunctionType(fn.__code__, scope, fn.__name__, fn.__defaults__, fn.__closure__)
-        code.__qualname__ = fn.__qualname__
-        code.__module__ = fn.__module__
-        dispatcher = numba.njit(**options, **extra)(code)
-        stamp_with_sources(dispatcher)  # keyed on every source it inlines, as _jit.njit does
-        return dispatcher
-
-    def select_compiled(c: Any, a: Any, b: Any) -> Any:  # pragma: no cover - compiled
-        return select_intrinsic(c, a, b)
-
-    scope["select_intrinsic"] = select_intrinsic
-    scope["select"] = numba.njit(forceinline=True)(select_compiled)
-    for name in _INLINED:
-        scope[name] = twin(globals()[name], forceinline=True)
-    for name in (*_CALLED, *_LOOPS):
-        scope[name] = twin(globals()[name])
-    for name in _LOOPS:  # called from Python: the native library may have them
-        route_native(scope[name])
-    _twins.update({name: scope[name] for name in (*_INLINED, *_CALLED, *_LOOPS)})
-
-
 # -- drivers ---------------------------------------------------------------------------------------
 
 
@@ -1015,7 +975,6 @@ def _guard(stack: MatrixStack, rows: np.ndarray | None) -> np.ndarray:
     n = len(stack) if rows is None else rows.size
     if stack.exact is None:
         return np.zeros(n, dtype=np.bool_)
-    from quadric_contact.exact.entries import ENTRY_INDICES
 
     idx = slice(None) if rows is None else rows
     exact = stack.exact[idx]
@@ -1032,8 +991,6 @@ def e_row_quantities(
     certain, 1 uncertain, INVALID; values ``(8, k)``: ``[lo, hi]`` of the four squared sides of
     :data:`~quadric_contact.modes.smallness.tables.E_SIDES`.  ``width``, ``polish``: see
     :data:`TIGHT_WIDTH`."""
-    from quadric_contact.modes.kernels.threads import run_parallel
-
     M = _flat(stack)
     n = len(stack) if rows is None else rows.size
     ridx = np.zeros(0, dtype=np.intp) if rows is None else np.ascontiguousarray(rows, dtype=np.intp)
@@ -1041,9 +998,10 @@ def e_row_quantities(
     out_s = np.empty(n, dtype=np.int8)
     out_v = np.empty((8, n))
     if _use_numba(backend):
-        loop = _compiled("_e_rows_loop")
         run_parallel(
-            lambda lo, hi: loop(M, ridx, lo, hi, certify, stack.rounded, guard, width, polish, out_s, out_v),
+            lambda lo, hi: _e_rows_loop(
+                M, ridx, lo, hi, certify, stack.rounded, guard, width, polish, out_s, out_v
+            ),
             n,
             threads,
         )
@@ -1073,11 +1031,8 @@ def q_row_quantities(
     out_s = np.empty(n, dtype=np.int8)
     out_v = np.empty((8, n))
     if _use_numba(backend):
-        from quadric_contact.modes.kernels.threads import run_parallel
-
-        loop = _compiled("_q_rows_loop")
         run_parallel(
-            lambda lo, hi: loop(
+            lambda lo, hi: _q_rows_loop(
                 M, ridx, kinds, signs, lo, hi, certify, stack.rounded, guard, width, polish, out_s, out_v
             ),
             n,
@@ -1090,28 +1045,6 @@ def q_row_quantities(
     out_s[:] = st
     out_v[:] = np.stack(vals)
     return out_s, out_v
-
-
-def table_kinds(masks: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``(kinds, signs)`` from candidate-row bit masks (:meth:`NumberMode.classify`): the index of
-    the type in TABLE_1_KINDS and its canonical sign; ``-1`` where the type is certainly without
-    a row in Table 1 (every candidate is), ``-2`` where it is uncertain."""
-    from quadric_contact.model.classification import TABLE_1_KINDS
-    from quadric_contact.modes.decision.answers import KINDS, UNCERTAIN_ROW, rows_from_masks
-
-    masks = np.asarray(masks, dtype=np.int64)
-    rows = rows_from_masks(masks).astype(np.intp)
-    lookup = np.array(
-        [TABLE_1_KINDS.index(k) if k in TABLE_1_KINDS else -1 for k in KINDS for _ in (1, -1)] + [-2]
-    )
-    kinds = lookup[rows].astype(np.int64)
-    signs = np.where(rows % 2 == 1, -1, 1).astype(np.int64)
-    unsure = np.flatnonzero(rows == UNCERTAIN_ROW)
-    for mask in np.unique(masks[unsure]):
-        candidates = [r for r in range(UNCERTAIN_ROW) if (int(mask) >> r) & 1]
-        if candidates and all(lookup[r] == -1 for r in candidates):
-            kinds[unsure[masks[unsure] == mask]] = -1
-    return kinds, signs
 
 
 def _row_map(index: np.ndarray | None, m: int, n: int) -> tuple[np.ndarray | None, np.ndarray, int]:
@@ -1132,16 +1065,13 @@ def pair_codes(
     qidx: np.ndarray, es: int, qs: int, n: int, *, backend: str = "numba", threads: int | None = None,
 ) -> np.ndarray:  # fmt: skip
     """Codes of ``n`` pairs from the rows' quantities (INVALID where a row is)."""
-    from quadric_contact.modes.kernels.threads import run_parallel
-
     out = np.empty(n, dtype=np.int8)
     if n == 0:
         return out
     qkind = np.ascontiguousarray(qkind, dtype=np.int64)
     if _use_numba(backend):
-        loop = _compiled("_pairs_loop")
         run_parallel(
-            lambda lo, hi: loop(eidx, qidx, es, qs, lo, hi, est, ev, qst, qkind, qv, out), n, threads
+            lambda lo, hi: _pairs_loop(eidx, qidx, es, qs, lo, hi, est, ev, qst, qkind, qv, out), n, threads
         )
         return out
     p = np.arange(n)
@@ -1157,16 +1087,13 @@ def _fused_codes(
 ) -> np.ndarray:  # fmt: skip
     """Codes of ``n`` pairs whose ellipsoids are distinct rows of ``E`` (``eidx``, or all rows
     in order when empty), with their sides computed in the pair loop (:func:`_fused_loop`)."""
-    from quadric_contact.modes.kernels.threads import run_parallel
-
     guard = _guard(E, eidx if eidx.size else None) if E.rounded else np.zeros(0, dtype=np.bool_)
     M = _flat(E)
     qkind = np.ascontiguousarray(qkind, dtype=np.int64)
     out = np.empty(n, dtype=np.int8)
-    loop = _compiled("_fused_loop")
     fixed = fixed_conditions(int(qst[0]), int(qkind[0]), qv[:, 0])
     run_parallel(
-        lambda lo, hi: loop(
+        lambda lo, hi: _fused_loop(
             M, eidx, lo, hi, certify, E.rounded, guard, qidx, qs, qst, qkind, qv, *fixed, out
         ),
         n,
@@ -1200,8 +1127,6 @@ def float_smallness(
         # uncertain or untrustworthy (an exact entry rounded to zero looks like an exact zero).
         unsure = np.flatnonzero((kinds == -2) | _guard(pairs.Q, rows_q))
         if unsure.size:
-            from quadric_contact.modes.numbers.binary64 import exact_facts
-
             kinds[unsure], signs[unsure] = table_kinds(exact_facts(pairs.Q, rows_q[unsure])[1])
     qst, qv = q_row_quantities(pairs.Q, rows_q, kinds, signs, certify=certify, backend=backend)
     if certify:
@@ -1272,8 +1197,6 @@ def _refine(
     on the other pairs of its call (a stack of one and a long stack answer it alike).  The work
     is one refinement per distinct matrix, under a millisecond each, never more than the exact
     stage would spend on its pairs."""
-    from quadric_contact.model.classification import TABLE_1_KINDS
-    from quadric_contact.modes.smallness.numbers import ball_sides
 
     todo = np.flatnonzero(status == 1)
     if kinds is not None:
@@ -1293,12 +1216,10 @@ def run(mode: Any, pairs: Pairs) -> np.ndarray:
     """:meth:`FloatMode.smallness` and :meth:`FilterMode.smallness`: the codes, invalid input
     diagnosed (the package's errors are raised; an ellipsoid the stage could not certify
     becomes ``UNCERTAIN``), the counts recorded."""
-    from quadric_contact.modes.numbers.binary64 import _diagnose
-
     codes = float_smallness(
         pairs, certify=mode.filtered, classify=mode.classify, backend=mode.backend, threads=mode.threads
     )
     invalid = codes == INVALID
     if invalid.any():
-        codes[invalid] = _diagnose(pairs, np.flatnonzero(invalid))
+        codes[invalid] = diagnose(pairs, np.flatnonzero(invalid))
     return codes

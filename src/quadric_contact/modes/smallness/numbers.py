@@ -15,6 +15,7 @@ would race with it under dask's threads).
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 from typing import Any
 
@@ -53,7 +54,7 @@ class BallNumbers:
     def primitives(self, upper: tuple[Any, ...], sign: int, signs: tuple[int, ...]) -> list[Any] | None:
         """The primitives (None where not used) of the matrix ``sign * upper``, or None when a
         required sign is not certain."""
-        import flint
+        import flint  # import cost
 
         q = [flint.fmpq(v.numerator, v.denominator) * sign for v in map(Fraction, upper)]
         inv = kernels.quadric_invariants(*q)
@@ -109,7 +110,7 @@ class MpmathNumbers:
         return working_precision(dps=self.dps)
 
     def primitives(self, upper: tuple[Any, ...], sign: int, signs: tuple[int, ...]) -> list[Any] | None:
-        import mpmath
+        import mpmath  # import cost
 
         q = [mpmath.mpf(v.numerator) / v.denominator * sign for v in map(Fraction, upper)]
         inv = kernels.quadric_invariants(*q)
@@ -128,7 +129,7 @@ class MpmathNumbers:
     @staticmethod
     def sides(prim: list[Any], monomials: Any) -> list[Any]:
         """The monomials; a zero denominator (an eigenvalue that came out as 0) gives infinity."""
-        import mpmath
+        import mpmath  # import cost
 
         out = []
         for m in monomials:
@@ -173,9 +174,7 @@ def ball_sides(upper: tuple[Any, ...], sign: int, kind: Any | None, prec: int = 
 
 def _outward(ball: Any) -> tuple[float, float]:
     """Binary64 numbers ``lo <= ball <= hi`` (rounded outward)."""
-    import math
-
-    import flint
+    import flint  # import cost
 
     lo, hi = ball.lower(), ball.upper()
     f, g = float(lo.mid()), float(hi.mid())

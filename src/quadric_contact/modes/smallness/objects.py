@@ -30,13 +30,15 @@ from typing import Any
 import numpy as np
 
 from quadric_contact.model.classification import TABLE_1_KINDS
+from quadric_contact.model.invariants import invariants
 from quadric_contact.modes.codes import EXCLUDED, UNCERTAIN
+from quadric_contact.modes.facts import table_kinds
 from quadric_contact.modes.numbers.number_mode import NumberMode
-from quadric_contact.modes.smallness.binary64 import table_kinds
 from quadric_contact.modes.smallness.numbers import BallNumbers, MpmathNumbers, used_signs
 from quadric_contact.modes.smallness.tables import E_SIDES, Q_SIDES, TABLE_CONDITIONS
 from quadric_contact.modes.stacks.pairs import Pairs
 from quadric_contact.modes.stacks.validation import exact_matrix, raise_not_ellipsoid, validate_rows
+from quadric_contact.theory.smallness import ellipsoid_axes_squared, smallness_report, table_2_parameters
 
 __all__ = ["BallNumbers", "MpmathNumbers", "exact_smallness", "object_smallness"]
 
@@ -51,7 +53,7 @@ def _check_ellipsoids(pairs: Pairs, rows: np.ndarray) -> list[Any]:
     out = []
     for r in rows:
         e = exact_matrix(pairs.E, int(r))
-        if e._ellipsoid_sign() == 0:  # type: ignore[attr-defined]
+        if e._ellipsoid_sign() == 0:
             raise_not_ellipsoid(pairs.E, int(r))
         out.append(e)
     return out
@@ -123,8 +125,6 @@ def object_smallness(mode: NumberMode, pairs: Pairs, numbers: Any) -> np.ndarray
 def exact_smallness(mode: NumberMode, pairs: Pairs) -> np.ndarray:
     """Codes of every pair by the exact scalar decision (Tables 1-2 corrected), with the
     parameters of every distinct matrix computed once."""
-    from quadric_contact.model.invariants import invariants
-    from quadric_contact.theory.smallness import ellipsoid_axes_squared, smallness_report, table_2_parameters
 
     n = pairs.n
     out = np.empty(n, dtype=np.int8)
@@ -138,11 +138,11 @@ def exact_smallness(mode: NumberMode, pairs: Pairs) -> np.ndarray:
     params: list[Any] = []
     for r in uq:
         q = exact_matrix(pairs.Q, int(r))
-        kind = q.kind  # type: ignore[attr-defined]
+        kind = q.kind
         if kind not in TABLE_1_KINDS:
             params.append(None)
             continue
-        q = q if q.canonical_sign > 0 else -q  # type: ignore[attr-defined,operator]
+        q = q if q.canonical_sign > 0 else -q
         params.append((kind, table_2_parameters(kind, invariants(q))))
     combos, where = np.unique(np.stack([ie, iq], axis=1), axis=0, return_inverse=True)
     codes = np.empty(len(combos), dtype=np.int8)

@@ -40,7 +40,13 @@ from typing import Any
 
 import numpy as np
 
-from quadric_contact.model.classification import TABLE_1_KINDS, QuadricKind
+from quadric_contact.model.classification import (
+    TABLE_1_KINDS,
+    QuadricKind,
+    principal_minor_sums_3,
+    principal_minor_sums_4,
+)
+from quadric_contact.model.quadric import Quadric
 from quadric_contact.modes.codes import SmallnessCode
 
 __all__ = [
@@ -161,8 +167,6 @@ def kind_signs(kind: QuadricKind) -> tuple[int, ...]:
     ``(det, detA, JA, E3, E2, trA, lambda_1, lambda_2, lambda_3)`` of the matrix with the
     canonical sign, read off the standard form of Table 1 (they depend only on the type).
     For ``E`` use ``kind_signs(QuadricKind.ELLIPSOID)``."""
-    from quadric_contact.model.classification import principal_minor_sums_3, principal_minor_sums_4
-    from quadric_contact.model.quadric import Quadric
 
     params = dict(zip(Quadric.standard_parameters(kind), (3, 2, 1), strict=False))
     q = Quadric.standard(kind, **params)

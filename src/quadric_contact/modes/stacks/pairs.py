@@ -12,6 +12,9 @@ from typing import Any
 
 import numpy as np
 
+from quadric_contact.exact.entries import ENTRY_INDICES
+from quadric_contact.modes.stacks.packing import unpack
+
 __all__ = ["MatrixStack", "Pairs", "as_fraction_array"]
 
 
@@ -72,8 +75,6 @@ class MatrixStack:
     @property
     def floats(self) -> np.ndarray:
         if self._floats is None:
-            from quadric_contact.modes.stacks.packing import unpack
-
             assert self.packed is not None
             self._floats = np.ascontiguousarray(unpack(self.packed))
         return self._floats
@@ -87,8 +88,6 @@ class MatrixStack:
     def rows_floats(self, rows: np.ndarray) -> np.ndarray:
         """``floats[rows]`` (a new ``(k, 4, 4)`` array), without unpacking the rest of a packed stack."""
         if self._floats is None:
-            from quadric_contact.modes.stacks.packing import unpack
-
             assert self.packed is not None
             return np.ascontiguousarray(unpack(self.packed[rows]))
         return np.ascontiguousarray(self._floats[rows])
@@ -123,8 +122,6 @@ class MatrixStack:
     def upper_exact(self, rows: np.ndarray) -> list[np.ndarray]:
         """The ten upper-entry columns of ``rows`` as object arrays of exact rationals
         (Fractions, or Python floats standing for their exact dyadic values)."""
-        from quadric_contact.exact.entries import ENTRY_INDICES
-
         if self.exact is not None:
             sub = self.exact[rows]
             return [sub[:, k] for k in range(10)]

@@ -15,10 +15,12 @@ from quadric_contact.exact.errors import (
     NotAnEllipsoidError,
     NotSymmetricError,
 )
+from quadric_contact.model.quadric import Quadric
+from quadric_contact.modes.codes import UNCERTAIN
 from quadric_contact.modes.kernels.support_drivers import check_stack
-from quadric_contact.modes.stacks.pairs import MatrixStack
+from quadric_contact.modes.stacks.pairs import MatrixStack, Pairs
 
-__all__ = ["raise_not_ellipsoid", "rows_view", "validate_rows"]
+__all__ = ["diagnose", "exact_matrix", "raise_not_ellipsoid", "rows_view", "validate_rows"]
 
 
 def rows_view(stack: MatrixStack, rows: np.ndarray) -> np.ndarray:
@@ -77,10 +79,8 @@ def validate_rows(stack: MatrixStack, rows: np.ndarray, name: str | None = None)
     )
 
 
-def exact_matrix(stack: MatrixStack, row: int) -> object:
+def exact_matrix(stack: MatrixStack, row: int) -> Quadric:
     """The exact :class:`~quadric_contact.Quadric` of a matrix of the stack."""
-    from quadric_contact.model.quadric import Quadric
-
     if stack.exact is not None:
         return Quadric._from_upper(tuple(stack.exact[row]))
     return Quadric.from_matrix(stack.rows_floats(np.array([row]))[0])
@@ -89,10 +89,23 @@ def exact_matrix(stack: MatrixStack, row: int) -> object:
 def raise_not_ellipsoid(stack: MatrixStack, row: int) -> None:
     """Raise :class:`NotAnEllipsoidError` for the matrix ``row`` (exact type in the details)."""
     q = exact_matrix(stack, row)
-    kind = q.kind  # type: ignore[attr-defined]
+    kind = q.kind
     raise NotAnEllipsoidError(
         f"{stack.where(row)} is not a real ellipsoid: it is {kind.value} ({kind.real_points})",
         q,
         kind=kind,
         index=int(row),
     )
+
+
+def diagnose(pairs: Pairs, which: np.ndarray) -> np.ndarray:
+    """Raise for the first really invalid pair among ``which`` (the pairs a kernel flagged
+    ``INVALID``); return ``UNCERTAIN`` for pairs flagged only because a plain float test could
+    not see ``E`` as an ellipsoid."""
+    e_rows, q_rows = pairs.e_rows_at(which), pairs.q_rows_at(which)
+    validate_rows(pairs.E, np.unique(e_rows))
+    validate_rows(pairs.Q, np.unique(q_rows))
+    for row in np.unique(e_rows):
+        if exact_matrix(pairs.E, int(row))._ellipsoid_sign() == 0:
+            raise_not_ellipsoid(pairs.E, int(row))
+    return np.full(which.size, UNCERTAIN, dtype=np.int8)
