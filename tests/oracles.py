@@ -61,11 +61,12 @@ def _criterion(what, E, Q, mode="certified"):
     """The paper's criterion on a stack (or one pair): the first stage of every mode, which
     these tests check mode by mode; ``mode.last`` counts its stages by name."""
     from quadric_contact.modes import StageCounts, get_mode
+    from quadric_contact.modes.codes import StageMethod
     from quadric_contact.modes.stacks.batch import as_stack, make_pairs
 
     m = get_mode(mode)
     pairs, shape = make_pairs(as_stack(E, "E"), as_stack(Q, "Q"))
-    codes, names, which = m.staged(f"criterion_{what}", pairs)
+    codes, names, which = m.staged(StageMethod(f"criterion_{what}"), pairs)
     counts = StageCounts()
     for k, name in enumerate(names):
         counts.add(name, int(np.count_nonzero(which == k)))

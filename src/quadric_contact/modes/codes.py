@@ -33,6 +33,7 @@ __all__ = [
     "Sign",
     "SmallnessCode",
     "StageCounts",
+    "StageMethod",
     "Step",
 ]
 
@@ -252,6 +253,31 @@ class Provenance:
         if self.arithmetic is None:
             return self.step.value
         return f"{self.step.value} ({self.arithmetic})"
+
+
+class StageMethod(Enum):
+    """A stage a number mode implements (:class:`~quadric_contact.modes.NumberMode`): what the
+    decision (:mod:`~quadric_contact.modes.decision.pipeline`) and the certified cascade ask a
+    mode to run, as data; :meth:`run` calls it."""
+
+    CRITERION_CONTACT = "criterion_contact"
+    """The criterion: non-real roots or not."""
+    CRITERION_REGION = "criterion_region"
+    """The criterion and Table 4's reading of the root signs."""
+    SEPARATION = "separation"
+    """The separation certificate."""
+    SMALLNESS = "smallness"
+    """Definition 1 through Tables 1-2."""
+
+    def run(self, mode: Any, pairs: Any) -> Any:
+        """The codes of this stage of ``mode`` for ``pairs``."""
+        if self is StageMethod.CRITERION_CONTACT:
+            return mode.criterion_contact(pairs)
+        if self is StageMethod.CRITERION_REGION:
+            return mode.criterion_region(pairs)
+        if self is StageMethod.SEPARATION:
+            return mode.separation(pairs)
+        return mode.smallness(pairs)
 
 
 @dataclass

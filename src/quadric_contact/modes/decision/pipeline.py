@@ -72,6 +72,7 @@ from quadric_contact.modes.codes import (
     Provenance,
     RegionCode,
     StageCounts,
+    StageMethod,
     Step,
 )
 from quadric_contact.modes.decision.answers import KINDS, UNCERTAIN_ROW, rows_from_masks
@@ -194,7 +195,7 @@ def _deciding_stages(which: np.ndarray, m: int) -> set[int]:
     return {k for k in range(m) if seen[k + 1]}
 
 
-def _staged(mode: NumberMode, method: str, pairs: Pairs) -> tuple[np.ndarray, list[str], np.ndarray]:
+def _staged(mode: NumberMode, method: StageMethod, pairs: Pairs) -> tuple[np.ndarray, list[str], np.ndarray]:
     return mode.staged(method, pairs)
 
 
@@ -409,7 +410,7 @@ def _decide_steps(mode: NumberMode, pairs: Pairs, question: str, counts: StageCo
         # structurally singular Q) would settle nothing that the separation stage does not
         crit, names, which, signs_first, deciding = _contact_with_signs(mode, pairs)
     else:
-        crit, names, which = _staged(mode, "criterion_contact", pairs)
+        crit, names, which = _staged(mode, StageMethod.CRITERION_CONTACT, pairs)
     labels = [Provenance(Step.CRITERION, name) for name in names]
     surfaceless = _is(klass, _CLASS_NO_SURFACE)
     if question == "region":
@@ -464,7 +465,7 @@ def _decide_steps(mode: NumberMode, pairs: Pairs, question: str, counts: StageCo
     # 3. separation: definite members, or four simple real roots without one.
     rest = np.flatnonzero(todo)
     if rest.size:
-        sep, names, which = _staged(mode, "separation", pairs.take(rest))
+        sep, names, which = _staged(mode, StageMethod.SEPARATION, pairs.take(rest))
         values = _from_separation(sep, question)
         for k, name in enumerate(names):
             hit = np.flatnonzero((which == k) & (values != UNCERTAIN))
@@ -546,7 +547,7 @@ def _contact_with_signs(
     which = np.zeros(pairs.n, dtype=np.int8)
     deciding = {0} if unsure.size < pairs.n else set()
     if unsure.size:
-        sub, sub_names, sub_which = _staged(mode, "criterion_contact", pairs.take(unsure))
+        sub, sub_names, sub_which = _staged(mode, StageMethod.CRITERION_CONTACT, pairs.take(unsure))
         names = sub_names
         crit[unsure] = sub
         which[unsure] = sub_which
@@ -731,7 +732,7 @@ def _overlap_steps(mode: NumberMode, pairs: Pairs, counts: StageCounts) -> np.nd
     # 2. separation: definite members, or four simple real roots without one.
     rest = np.flatnonzero(todo)
     if rest.size:
-        sep, names, which = _staged(mode, "separation", pairs.take(rest))
+        sep, names, which = _staged(mode, StageMethod.SEPARATION, pairs.take(rest))
         values = _overlap_from_separation(sep, qsign[rest], ellipsoid[rest], side[rest])
         # an ellipsoid Q whose side step 1 could not read (a rounded cylinder or paraboloid,
         # nearly singular): the surface of E misses Q's solid, so either the solids are apart
@@ -753,7 +754,7 @@ def _overlap_steps(mode: NumberMode, pairs: Pairs, counts: StageCounts) -> np.nd
     # of an ellipsoid or on the solid's side of a plane: overlapping).
     rest = np.flatnonzero(todo & (side == UNCERTAIN) & (plane | ellipsoid))
     if rest.size:
-        crit, names, which = _staged(mode, "criterion_region", pairs.take(rest))
+        crit, names, which = _staged(mode, StageMethod.CRITERION_REGION, pairs.take(rest))
         values = _overlap_from_criterion(crit, _side(crit, qsign[rest]), True)
         for k, name in enumerate(names):
             here = np.zeros(n, dtype=bool)

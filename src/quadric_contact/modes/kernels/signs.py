@@ -18,7 +18,7 @@ zero (:func:`plain_sign`), and :func:`dd_sign_within` reads a double-double valu
 One source, two backends
 ------------------------
 Each primitive is a plain function registered as a pair
-(:func:`~quadric_contact.modes.kernels._jit.jitable` with ``inline``): the name is the Python
+(``quadric_contact.modes.kernels._jit.jitable`` with ``inline``): the name is the Python
 function, which runs on scalars (the kernels' Python twins) and element by element on numpy
 columns (the numpy backend; :func:`columns` stores the signs as ``int8``), and compiled code
 that calls it calls its ``forceinline`` compiled side.  So the bodies branch on nothing: each

@@ -27,7 +27,7 @@ from typing import Any
 import numpy as np
 
 from quadric_contact.exact.errors import ChoiceError
-from quadric_contact.modes.codes import INVALID, UNCERTAIN
+from quadric_contact.modes.codes import INVALID, UNCERTAIN, StageMethod
 from quadric_contact.modes.decision.answers import (
     CONTACT_TABLE,
     ELLIPSOID_NOT,
@@ -394,10 +394,10 @@ class FloatMode(NumberMode):
         rows[used] = rows_from_masks(masks[used])
         return rows, masks
 
-    def with_candidates(self, method: str, pairs: Pairs) -> tuple[np.ndarray, np.ndarray | None]:
-        if method == "criterion_contact":
+    def with_candidates(self, method: StageMethod, pairs: Pairs) -> tuple[np.ndarray, np.ndarray | None]:
+        if method is StageMethod.CRITERION_CONTACT:
             return self._codes(pairs, None)
-        if method == "criterion_region":
+        if method is StageMethod.CRITERION_REGION:
             return self._codes(pairs, self._region_types(pairs))
         return super().with_candidates(method, pairs)
 

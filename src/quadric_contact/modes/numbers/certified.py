@@ -19,7 +19,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from quadric_contact.modes.codes import UNCERTAIN
+from quadric_contact.modes.codes import UNCERTAIN, StageMethod
 from quadric_contact.modes.decision.answers import UNCERTAIN_ROW
 from quadric_contact.modes.numbers.binary64 import FilterMode
 from quadric_contact.modes.numbers.number_mode import NumberMode
@@ -74,13 +74,13 @@ class CertifiedMode(NumberMode):
             raise ValueError("every stage of a certified cascade must be certified")
         self.stages = stages
 
-    def staged(self, method: str, pairs: Pairs) -> tuple[np.ndarray, list[str], np.ndarray]:
+    def staged(self, method: StageMethod, pairs: Pairs) -> tuple[np.ndarray, list[str], np.ndarray]:
         """Run ``method`` down the cascade: each stage gets what the previous ones left
         ``UNCERTAIN``."""
         return self.staged_rows(method, pairs)[:3]
 
     def staged_rows(
-        self, method: str, pairs: Pairs
+        self, method: StageMethod, pairs: Pairs
     ) -> tuple[np.ndarray, list[str], np.ndarray, np.ndarray | None]:
         stages = self.stages
         codes, maybe = stages[0].with_candidates(method, pairs)
@@ -95,28 +95,28 @@ class CertifiedMode(NumberMode):
                 break
             if stage in skip:
                 continue
-            sub = getattr(stage, method)(pairs.take(todo))
+            sub = method.run(stage, pairs.take(todo))
             codes[todo] = sub
             done = sub != UNCERTAIN
             which[todo[done]] = k
             todo = todo[~done]
         return codes, [_stage(s) for s in stages], which, later
 
-    def _first_decisive(self, method: str, pairs: Pairs) -> np.ndarray:
+    def _first_decisive(self, method: StageMethod, pairs: Pairs) -> np.ndarray:
         return self.staged(method, pairs)[0]
 
     def criterion_contact(self, pairs: Pairs) -> np.ndarray:
-        return self._first_decisive("criterion_contact", pairs)
+        return self._first_decisive(StageMethod.CRITERION_CONTACT, pairs)
 
     def criterion_region(self, pairs: Pairs) -> np.ndarray:
         # Each stage classifies the quadrics of the pairs it receives, with its own numbers.
-        return self._first_decisive("criterion_region", pairs)
+        return self._first_decisive(StageMethod.CRITERION_REGION, pairs)
 
     def separation(self, pairs: Pairs) -> np.ndarray:
-        return self._first_decisive("separation", pairs)
+        return self._first_decisive(StageMethod.SEPARATION, pairs)
 
     def smallness(self, pairs: Pairs) -> np.ndarray:
-        return self._first_decisive("smallness", pairs)
+        return self._first_decisive(StageMethod.SMALLNESS, pairs)
 
     def classify(self, Q: MatrixStack, rows: np.ndarray | None = None) -> np.ndarray:
         index = np.arange(len(Q)) if rows is None else np.asarray(rows)
@@ -137,10 +137,12 @@ class CertifiedMode(NumberMode):
         return f"CertifiedMode(stages={self.stages!r})"
 
 
-_CRITERION = frozenset({"criterion_contact", "criterion_region"})
+_CRITERION = frozenset({StageMethod.CRITERION_CONTACT, StageMethod.CRITERION_REGION})
 
 
-def _skipped_on_binary64(stages: tuple[NumberMode, ...], method: str, pairs: Pairs) -> tuple[NumberMode, ...]:
+def _skipped_on_binary64(
+    stages: tuple[NumberMode, ...], method: StageMethod, pairs: Pairs
+) -> tuple[NumberMode, ...]:
     """The middle stages that would only cost time on this batch: binary64 input, a criterion
     method, the last stage exact (it decides whatever they would have, for less: see
     :attr:`BallMode.before_exact_on_binary64`)."""
@@ -149,7 +151,7 @@ def _skipped_on_binary64(stages: tuple[NumberMode, ...], method: str, pairs: Pai
     if not isinstance(stages[-1], ExactMode):
         return ()
     return tuple(
-        s for s in stages[1:-1] if isinstance(s, BallMode) and method not in s.before_exact_on_binary64
+        s for s in stages[1:-1] if isinstance(s, BallMode) and method.value not in s.before_exact_on_binary64
     )
 
 

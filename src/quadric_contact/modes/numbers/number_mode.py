@@ -20,7 +20,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from quadric_contact.exact.errors import ChoiceError
-from quadric_contact.modes.codes import Provenance, StageCounts, Step
+from quadric_contact.modes.codes import Provenance, StageCounts, StageMethod, Step
 from quadric_contact.modes.decision.pipeline import decide, decide_overlap
 from quadric_contact.modes.stacks.pairs import MatrixStack, Pairs
 
@@ -185,21 +185,21 @@ class NumberMode(ABC):
         """:class:`SmallnessCode` of every pair (Tables 1-2, corrected)."""
         raise NotImplementedError(f"{type(self).__name__} does not decide smallness on arrays")
 
-    def with_candidates(self, method: str, pairs: Pairs) -> tuple[np.ndarray, np.ndarray | None]:
-        """``getattr(self, method)(pairs)`` and the entries that may be ``UNCERTAIN``
+    def with_candidates(self, method: StageMethod, pairs: Pairs) -> tuple[np.ndarray, np.ndarray | None]:
+        """``method.run(self, pairs)`` and the entries that may be ``UNCERTAIN``
         (increasing, a superset), or None when any may be: where a cascade looks for the
         entries of its next stage without searching the whole batch."""
-        return getattr(self, method)(pairs), None
+        return method.run(self, pairs), None
 
-    def staged(self, method: str, pairs: Pairs) -> tuple[np.ndarray, list[str], np.ndarray]:
+    def staged(self, method: StageMethod, pairs: Pairs) -> tuple[np.ndarray, list[str], np.ndarray]:
         """Run the stage ``method``: ``(codes, stage names, index of the stage that decided
         each entry or -1)``.  A cascade (the certified mode) reports each of its stages."""
-        codes = getattr(self, method)(pairs)
+        codes = method.run(self, pairs)
         which = np.negative((codes == 2).view(np.int8))  # 0 decided, -1 not
         return codes, [self.stage], which
 
     def staged_rows(
-        self, method: str, pairs: Pairs
+        self, method: StageMethod, pairs: Pairs
     ) -> tuple[np.ndarray, list[str], np.ndarray, np.ndarray | None]:
         """:meth:`staged` and the entries not decided by the first stage (a superset, or None
         when not known), so that the counts need not search the batch."""
@@ -229,7 +229,9 @@ def _stage_counts(
     return counts
 
 
-def _by_stages(step: Step, method: str) -> Callable[[NumberMode, Pairs], tuple[np.ndarray, StageCounts]]:
+def _by_stages(
+    step: Step, method: StageMethod
+) -> Callable[[NumberMode, Pairs], tuple[np.ndarray, StageCounts]]:
     """A question a mode answers by its stage ``method`` alone (down its cascade), counted as
     ``step``."""
 
@@ -245,7 +247,7 @@ QUESTIONS: dict[str, Callable[[NumberMode, Pairs], tuple[np.ndarray, StageCounts
     "region": lambda mode, pairs: decide(mode, pairs, "region"),
     "kind": lambda mode, pairs: decide(mode, pairs, "kind"),
     "overlap": decide_overlap,
-    "criterion": _by_stages(Step.CRITERION, "criterion_contact"),
-    "smallness": _by_stages(Step.SMALLNESS, "smallness"),
+    "criterion": _by_stages(Step.CRITERION, StageMethod.CRITERION_CONTACT),
+    "smallness": _by_stages(Step.SMALLNESS, StageMethod.SMALLNESS),
 }
 """The questions of :meth:`NumberMode.decide`: how each is answered (the codes and their counts)."""

@@ -75,7 +75,7 @@ One source, two backends
 ------------------------
 The row and pair arithmetic is written once as plain functions of scalars or numpy arrays
 (``select`` is ``numpy.where``; no Python branch depends on the data), each registered as a
-pair (:func:`~quadric_contact.modes.kernels._jit.jitable` with ``inline``).  The numpy backend
+pair (``quadric_contact.modes.kernels._jit.jitable`` with ``inline``).  The numpy backend
 calls them on whole columns; the compiled loops over blocks of rows call their compiled sides
 (``forceinline``, and ``select`` an LLVM ``select``), which LLVM inlines and vectorises.  The
 first call compiles the loops (about a minute; numba caches them on disk), unless the library
