@@ -23,13 +23,23 @@ DISC = ("100*(x - 17/20)**2 + y**2 + z**2 - 1", "x**2 + y**2 - z**2/100 - 1")  #
 IMAGINARY = ("x**2 + y**2 + z**2 - 1", "x**2 + y**2 + z**2 + 1")  # no real points
 TOUCHING = ("x**2 + y**2 + z**2 - 1", "(x - 2)**2 + y**2 + z**2 - 1")  # the filter cannot tell
 
-#: The answer of each pair in the filter mode, as a sequential call gives it.
-FILTER_ANSWERS = {
-    EX11: ("Remark 9", "transversal contact, decided in filter mode by criterion (filter)"),
-    DISC: ("separation certificate", "transversal contact, decided in filter mode by separation (filter)"),
-    IMAGINARY: ("no real points", "no transversal contact, decided in filter mode by no real points (type)"),
-    TOUCHING: (None, "filter mode cannot tell (undecided)"),
-}
+PAIRS = (EX11, DISC, IMAGINARY, TOUCHING)
+
+
+def _answer(pair, mode):
+    r = qc.transversal_contact(*pair, mode=mode)
+    return r.decided_by, r.reason
+
+
+@pytest.fixture(scope="module")
+def filter_answers():
+    """The answer of each pair in the filter mode, each from a sequential call on an instance of
+    its own; each pair is settled by a different step (or by none), so that a result that took
+    another caller's counts would name the wrong one."""
+    answers = {pair: _answer(pair, FilterMode()) for pair in PAIRS}
+    assert len({by for by, _ in answers.values()}) == len(PAIRS)
+    assert answers[TOUCHING][0] is None
+    return answers
 
 
 def _pairs(E, Q):
@@ -187,15 +197,15 @@ class _Interleaved(FilterMode):
 
 
 @pytest.mark.parametrize("second", [DISC, IMAGINARY, TOUCHING])
-def test_a_shared_instance_explains_each_callers_pair(second):
+def test_a_shared_instance_explains_each_callers_pair(second, filter_answers):
     """Two threads ask one instance about different pairs, and both calls record their counts
     before either builds its result: each result still names its own deciding stage."""
     mode = _Interleaved()
     with ThreadPoolExecutor(2) as pool:
         for _ in range(3):
             a, b = pool.map(lambda pair: qc.transversal_contact(*pair, mode=mode), [EX11, second])
-            assert (a.decided_by, a.reason) == FILTER_ANSWERS[EX11]
-            assert (b.decided_by, b.reason) == FILTER_ANSWERS[second]
+            assert (a.decided_by, a.reason) == filter_answers[EX11]
+            assert (b.decided_by, b.reason) == filter_answers[second]
     assert mode.counts.total == 6
 
 
@@ -223,15 +233,10 @@ def test_each_call_gets_its_own_counts_from_a_shared_instance():
     assert mode.counts.total == sum(sizes) and mode.counts.undecided == 0
 
 
-def test_single_pairs_from_many_threads_on_one_instance():
+def test_single_pairs_from_many_threads_on_one_instance(filter_answers):
     mode = FilterMode()
-    pairs = list(FILTER_ANSWERS) * 8
-
-    def ask(pair):
-        r = qc.transversal_contact(*pair, mode=mode)
-        return r.decided_by, r.reason
-
+    pairs = list(PAIRS) * 8
     with ThreadPoolExecutor(4) as pool:
-        got = list(pool.map(ask, pairs))
-    assert got == [FILTER_ANSWERS[p] for p in pairs]
+        got = list(pool.map(lambda pair: _answer(pair, mode), pairs))
+    assert got == [filter_answers[p] for p in pairs]
     assert mode.counts.total == len(pairs)
