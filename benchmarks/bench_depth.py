@@ -69,14 +69,15 @@ def main() -> None:
         crossing_ellipsoids_cells(Es, Ks)
         runs.append(time.perf_counter() - t0)
     out, flag, work = np.empty((n, 2)), np.empty(n, dtype=np.uint8), np.empty(n, dtype=np.int64)
+    best, cover = np.empty((n, 3)), np.zeros((n, 5))
     empty = []
     alone = np.empty(n)
     for k in range(n):
         t0 = time.perf_counter()
-        _kernel(Es, Ks, 1e-12, out, flag, work, k, k)
+        _kernel(Es, Ks, 1e-12, cover, out, flag, work, best, k, k)
         empty.append(time.perf_counter() - t0)
         t0 = time.perf_counter()
-        _kernel(Es, Ks, 1e-12, out, flag, work, k, k + 1)
+        _kernel(Es, Ks, 1e-12, cover, out, flag, work, best, k, k + 1)
         alone[k] = time.perf_counter() - t0
     alone -= np.median(empty)  # the call's own cost
     width = (enc[~rest, 1] - enc[~rest, 0]) / np.abs(enc[~rest, 1])

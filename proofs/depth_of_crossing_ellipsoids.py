@@ -28,6 +28,12 @@ Claim.
    the solid inside ``c + tau L B`` (``B`` the unit ball), and every point the kernel computes for
    a cell lies in the solid; the binary64 corner test passes only where the exact inequality of 2
    holds for the points computed.
+6. The cap (one pair, many digits).  Let ``F(u, lambda) = (grad phi(u) + lambda u, (|u|^2 - 1) / 2)``,
+   ``lo`` a lower bound of ``phi`` on the sphere, and ``X = U x L`` a box on which ``F`` has exactly
+   one zero ``(u_c, lambda_c)``, with ``L`` holding ``[-r, -lo]`` and ``r >= -lambda_c``.  If
+   ``phi >= r`` at every unit direction outside a cap ``C`` whose unit vectors lie in ``U``, then
+   ``depth = -lambda_c``.  In binary64, corners ``w`` that pass the kernel's cap test
+   ``w . c >= cos(0.8 a) |w|`` are within the angle ``0.9 a`` of ``c``.
 
 The argument.
 
@@ -49,6 +55,14 @@ The argument.
    the error bounds of binary64 arithmetic, as the module :mod:`quadric_contact.modes.distance.depth_kernel`
    states them.  With 1 and 2 the kernel's enclosure ``[-phi(u*) / |u*|, -r]`` (``phi(u*)``
    bounded through the outer ellipsoids, ``r`` through the inner points) holds the signed distance.
+6. At a zero of ``F``, ``|u| = 1`` and ``phi(u) = u . grad phi(u) = -lambda`` (Euler, as in
+   ``proofs/distance_of_separated_ellipsoids.py``), so ``depth <= -lambda_c``.  A global minimiser
+   ``u_g`` is a critical point of ``phi`` on the sphere (``phi`` is smooth away from 0 for
+   ellipsoids): ``(u_g, -phi(u_g))`` is a zero of ``F``.  If ``u_g`` is outside ``C``,
+   ``depth = phi(u_g) >= r >= -lambda_c``.  If inside with ``phi(u_g) < r``, then
+   ``-phi(u_g)`` lies in ``(-r, -lo]``, inside ``L``, and ``u_g`` in ``U``: the zero is the one of
+   ``X``, and ``depth = -lambda_c``.  The rounding: ``cos x <= 1 - x^2 / 2 + x^4 / 24``, so an
+   exact ``cos(w, c)`` at least that polynomial at ``x = 0.9 a`` puts ``w`` within ``0.9 a``.
 
 What is checked and how.  2 exactly on random rational cells (levels 0 to 6, every face): points
 ``z`` and targets ``r`` that pass the corner test, and a 9 x 9 grid of rational points of each
@@ -57,7 +71,12 @@ square (squares compared, no root taken); 4 the same way.  3 exactly on caps of 
 5 exactly on random binary64 ellipsoids (round, elongated to 1:100, far from the origin): the
 inner and outer ellipsoids through eigenvalue bounds of ``L^T A L`` found by rational bisection,
 the points through the exact quadratic form; the corner test on random and near-threshold binary64
-inputs against exact rational arithmetic.  Cross-check (full profile): the kernel's enclosures
+inputs against exact rational arithmetic.  6 by its rounding part, exactly, on binary64 corners
+near the threshold of the cap test; its logic is the argument above, and a cross-check (full
+profile) holds the route of :func:`quadric_contact.modes.distance.certified.crossing_ellipsoids`
+at 30 digits to the brute-force minimiser at 40 and checks it declines pairs with two equal
+minima.
+Cross-check (full profile): the kernel's enclosures
 against a brute-force minimiser of ``phi`` (a grid, then Newton's method at 40 digits, on the exact
 rational matrices) and against closed forms (two balls; a ball concentric with an ellipsoid).
 
@@ -82,7 +101,8 @@ proof = Proof(
     "Depth of crossing ellipsoids",
     "the signed distance of two crossing ellipsoids lies between minus a support bound at one "
     "direction and minus a target that every cell of a covering of the sphere certifies with one "
-    "point of the Minkowski difference",
+    "point of the Minkowski difference; for one pair, the value at the one zero of the support system "
+    "in a box equals the depth when the covering holds outside the box's cap",
     not_proven=(
         "the support-function form of the depth of convex solids, a standard fact not re-derived; "
         "the binary64 error bounds of the kernel, argued in its module and checked on examples"
@@ -502,3 +522,93 @@ def enclosures_hold() -> Finding:
         f"{(~rest).sum()} of 48 random pairs answered, each enclosure holding the 40-digit brute-force "
         "depth; the three closed forms inside their enclosures"
     )
+
+
+# -- 6: the cap ----------------------------------------------------------------------------------
+
+
+@proof.check(
+    "the kernel's binary64 cap test w . c >= cos(0.8 a) |w| passes only for corners within the "
+    "angle 0.9 a of c (random and near-threshold binary64 corners and centres, exactly)",
+    method=Method.COMPUTATION,
+)
+def cap_rounding() -> Finding:
+    import numpy as np
+
+    rng = np.random.default_rng(16)
+    passed = failed = 0
+    for _ in range(400):
+        a = float(10.0 ** rng.uniform(-6, -3))
+        c = rng.normal(size=3)
+        c /= np.linalg.norm(c)
+        axis = int(np.argmax(np.abs(c)))
+        sign = 1.0 if c[axis] > 0 else -1.0
+        # a direction at an angle near 0.8 a from c, snapped to dyadic gnomonic coordinates
+        e = np.cross(c, rng.normal(size=3))
+        e /= np.linalg.norm(e)
+        t = 0.8 * a * (1 + rng.uniform(-1e-6, 1e-6))
+        d = math.cos(t) * c + math.sin(t) * e
+        level = int(rng.integers(30, 53))
+        ca = round(d[(axis + 1) % 3] / abs(d[axis]) * 2**level) / 2**level
+        cb = round(d[(axis + 2) % 3] / abs(d[axis]) * 2**level) / 2**level
+        w = _face(axis, int(sign), F(ca), F(cb))
+        # the kernel's test, in binary64: its _on_face vector (exact) against c, and sqrt(1 + a^2 + b^2)
+        wf = [float(x) for x in w]
+        nq = math.sqrt((1.0 + ca * ca) + cb * cb)
+        if wf[0] * c[0] + wf[1] * c[1] + wf[2] * c[2] >= math.cos(0.8 * a) * nq:
+            x = F(0.9 * a)
+            P = 1 - x * x / 2 + x**4 / 24  # at least cos x
+            cf = [F(float(v)) for v in c]
+            wc = _dot(w, cf)
+            ensure(
+                wc > 0 and wc * wc >= P * P * _dot(w, w) * _dot(cf, cf),
+                f"a corner beyond 0.9 a: {w}, {c}, {a}",
+            )
+            passed += 1
+        else:
+            failed += 1
+    ensure(passed > 100 and failed > 100, "both outcomes near the threshold")
+    return agrees(f"{passed} passes, each within 0.9 a exactly; {failed} refusals near the threshold")
+
+
+@proof.check(
+    "the certified route for one crossing pair (kernel bound, one isolated root, covering outside "
+    "its cap) holds the brute-force depth at 30 digits, and declines pairs with two equal minima",
+    method=Method.CROSS_CHECK,
+    full=True,
+    size="12 random pairs and 4 pairs with two equal minima",
+)
+def cap_route_holds() -> Finding:
+    import mpmath
+    import numpy as np
+
+    from quadric_contact.model.quadric import Quadric
+    from quadric_contact.modes.distance.certified import crossing_ellipsoids
+    from quadric_contact.testing.samples import random_rotations
+    from quadric_contact.theory.overlap import solid_of
+
+    rng = np.random.default_rng(61)
+    answered = 0
+    for _ in range(12):
+        R1, R2 = random_rotations(2, rng)
+        E, K = (ellipsoid_matrix(rng.uniform(0.3, 1.5, 3), R, rng.uniform(-0.5, 0.5, 3)) for R in (R1, R2))
+        r = crossing_ellipsoids(Quadric.from_matrix(E).as_ellipsoid(), solid_of(Quadric.from_matrix(K)), 30)
+        if r is None:
+            continue
+        answered += 1
+        with mpmath.workdps(60):
+            value = -least_support(E, K)
+            mid, rad = (mpmath.mpf(x.str(60, radius=False)) for x in (r.distance.mid(), r.distance.rad()))
+            ensure(mid - rad <= value <= mid + rad, f"{value} outside {r.distance}")
+            ensure(rad <= abs(mid) * mpmath.mpf(10) ** -30, "30 digits")
+    ensure(answered >= 10, f"only {answered} of 12 answered")
+    declined = 0
+    for _ in range(4):
+        axes = np.array([3.0, 1.0, 0.5]) * rng.uniform(0.8, 1.2)
+        (R,) = random_rotations(1, rng)
+        E = ellipsoid_matrix(axes, R, np.zeros(3))
+        K = ellipsoid_matrix(axes, R, R @ np.array([rng.uniform(0.2, 1.0), 0.0, 0.0]))
+        r = crossing_ellipsoids(Quadric.from_matrix(E).as_ellipsoid(), solid_of(Quadric.from_matrix(K)), 15)
+        declined += r is None
+    ensure(declined == 4, f"{4 - declined} pairs with two equal minima answered by one root")
+    return agrees(f"{answered} of 12 enclosures hold the 40-digit depth; 4 of 4 symmetric pairs declined")

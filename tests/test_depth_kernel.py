@@ -240,16 +240,24 @@ def test_the_compiled_kernel_and_its_python_twin_give_the_same_bits():
         _mirrored(rng),
         _MISSED,
     ]
+    unit = _ellipsoid([1.0, 1.0, 1.0], np.eye(3), [0.0, 0.0, 0.0])
+    pairs.append((unit, _ellipsoid([1.0, 1.0, 1.0], np.eye(3), [1.0, 0.0, 0.0])))  # covered only, below
     ball = _ellipsoid([1.0, 1.0, 1.0], np.eye(3), [0.1, 0.2, 0.3])
     pairs.append((ball, ball))  # phi constant: the budget runs out, the pair is left
     Es, Ks = _stack(pairs)
     n = len(Es)
-    got = [(np.empty((n, 2)), np.empty(n, dtype=np.uint8), np.empty(n, dtype=np.int64)) for _ in range(2)]
-    _kernel(Es, Ks, 1e-12, *got[0], 0, n)
-    plain(_kernel)(Es, Ks, 1e-12, *got[1], 0, n)
+    got = [
+        (np.empty((n, 2)), np.empty(n, dtype=np.uint8), np.empty(n, dtype=np.int64), np.empty((n, 3)))
+        for _ in range(2)
+    ]
+    cover = np.zeros((n, 5))
+    cover[-2] = [1.0, 1.0, 0.0, 0.0, np.cos(0.1)]  # phi = 2 - u_x >= 1: a target and a cap
+    _kernel(Es, Ks, 1e-12, cover, *got[0], 0, n)
+    plain(_kernel)(Es, Ks, 1e-12, cover, *got[1], 0, n)
     for compiled, twin in zip(*got, strict=True):
-        assert np.array_equal(compiled, twin)
+        assert np.array_equal(compiled, twin, equal_nan=True)
     assert not got[0][1][:-1].any() and got[0][1][-1]
+    assert np.array_equal(got[0][0][-2], [-1.0, -1.0])
 
 
 # -- (c) what is left to the scalar path -------------------------------------------------------

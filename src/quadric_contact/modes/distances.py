@@ -31,7 +31,10 @@ of the sphere by cells each certified by a point of the Minkowski difference,
 ``max(10^-digits, 1e-12)`` relative wide; the pairs neither certifies (touching or nearly so,
 too shallow for the tolerance, not two ellipsoids), and every other stack, run the scalar path
 pair by pair.  One pair of binary64 ellipsoids in the ``float`` mode runs the same two kernels
-first: its answer is the stack of one's enclosure.
+first: its answer is the stack of one's enclosure.  One crossing pair in the ``certified``
+mode runs the depth kernel for a global lower bound and a minimiser, isolates the one root of
+the support system near it, and runs the kernel again to cover the rest of the sphere
+(:func:`~quadric_contact.modes.distance.certified.crossing_ellipsoids`).
 """
 
 from __future__ import annotations

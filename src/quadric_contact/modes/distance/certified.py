@@ -39,13 +39,14 @@ from quadric_contact.exact.errors import UndecidedError
 from quadric_contact.exact.precision import working_precision
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import Quadric, as_quadric
+from quadric_contact.modes.distance.depth_kernel import covered_outside_cap, depth_and_minimiser
 from quadric_contact.theory.contact_scale import centred_form
 from quadric_contact.theory.distance import CONVEX_SOLIDS, _solve3, is_sphere
 from quadric_contact.theory.distance_critical import critical_distance
 from quadric_contact.theory.overlap import overlap_exact, solid_of
 from quadric_contact.theory.results import OverlapCode
 
-__all__ = ["DistanceEnclosure", "apart_ellipsoids", "distance_certified"]
+__all__ = ["DistanceEnclosure", "apart_ellipsoids", "crossing_ellipsoids", "distance_certified"]
 
 MAX_BITS = 4096
 """The working precision at which an enclosure that is still too wide is returned as it is."""
@@ -296,21 +297,9 @@ def _support_system(
     return F, J
 
 
-def apart_ellipsoids(E: Quadric, K: Quadric, digits: int) -> DistanceEnclosure | None:
-    """Two ellipsoids whose solids are apart, from one isolated root (``proofs/
-    distance_of_separated_ellipsoids.py``): ``phi(u) = h_E(u) + h_K(-u)`` is convex and
-    ``dist(E, K) = -min over |u| <= 1 of phi(u)`` when positive.  A root of
-    ``grad phi(u) + lambda u = 0``, ``|u| = 1`` with ``lambda > 0`` is a KKT point of that convex
-    program, hence its minimum, and ``phi(u) = u . grad phi(u) = -lambda`` (``phi`` is positively
-    homogeneous): the distance is ``lambda``, the witnesses are the support points
-    ``c_E + sqrt(r_E) B_E u / |u|_B_E`` and ``c_K - sqrt(r_K) B_K u / |u|_B_K``, the normal of
-    ``K`` there is ``-u``.  Newton's method in binary64 then in balls finds the root; the
-    Krawczyk operator on a box around it proves it unique there and encloses it.  None where
-    the search fails or the test does not pass (the general route then answers)."""
-    forms = [centred_form(E), centred_form(K)]
-    Bs = [_inverse3(A) for A, _, _ in forms]
-    # binary64 start: Newton's method from the direction of the centres
-    fparts = [
+def _float_parts(forms: Sequence[Any], Bs: Sequence[Any]) -> list[Any]:
+    """The ``(c, B, sqrt r, sign)`` of ``E`` (sign 1) and ``K`` (sign -1) in binary64."""
+    return [
         (
             np.array([float(x) for x in c]),
             np.array([[float(x) for x in row] for row in B]),
@@ -319,14 +308,20 @@ def apart_ellipsoids(E: Quadric, K: Quadric, digits: int) -> DistanceEnclosure |
         )
         for (_, c, r), B, sign in zip(forms, Bs, (1, -1), strict=True)
     ]
-    axis = fparts[1][0] - fparts[0][0]
-    if not np.all(np.isfinite(axis)) or not np.any(axis):
-        return None
-    u = axis / np.linalg.norm(axis)
-    Fu, _ = _support_system(fparts, [*u, 0.0], 1.0, math.sqrt)
-    v = np.array([*u, -float(np.dot(u, Fu[:3]))])  # lambda = -u . grad phi(u): F's first part
+
+
+def _arb_parts(forms: Sequence[Any], Bs: Sequence[Any]) -> list[Any]:
+    """The ``(c, B, sqrt r, sign)`` of ``E`` and ``K`` in balls of the working precision."""
+    return [
+        ([_arb(x) for x in c], [[_arb(x) for x in row] for row in B], _arb(r).sqrt(), sign)
+        for (_, c, r), B, sign in zip(forms, Bs, (1, -1), strict=True)
+    ]
+
+
+def _float_newton(parts: Sequence[Any], v: np.ndarray) -> np.ndarray | None:
+    """Newton's method on ``F(u, lambda) = 0`` in binary64 from ``v``; None where it fails."""
     for _ in range(60):
-        Fv, Jv = _support_system(fparts, list(v), 1.0, math.sqrt)
+        Fv, Jv = _support_system(parts, list(v), 1.0, math.sqrt)
         try:
             step = np.linalg.solve(np.array(Jv, dtype=float), np.array(Fv, dtype=float))
         except np.linalg.LinAlgError:
@@ -336,53 +331,190 @@ def apart_ellipsoids(E: Quadric, K: Quadric, digits: int) -> DistanceEnclosure |
             return None
         if np.max(np.abs(step)) <= 1e-15 * (1.0 + np.max(np.abs(v))):
             break
-    if v[3] <= 0:
+    return v
+
+
+def _isolated_root(parts: Sequence[Any], v: Any, bits: int, radius: Sequence[Any] | None) -> Any:
+    """The Krawczyk operator at the working precision ``bits`` (inside ``working_precision``).
+
+    Newton's method on the midpoints from ``v`` gives ``m``; with ``X = m +- radius`` (by
+    default ``2^(40 - bits) (1 + |m_i|)``, a box of the precision's own size),
+    ``K(X) = m - Y F(m) + (I - Y J(X)) (X - m)`` in the interior of ``X`` proves ``F`` has exactly
+    one zero in ``X``, and it lies in ``K(X)``.  Returns ``(X, K(X))``, or None where a matrix is
+    singular or the test fails."""
+    one = flint.arb(1)
+    sqrt = flint.arb.sqrt
+    m = [flint.arb(float(x)) for x in v]
+    for _ in range(max(2, (bits // 50).bit_length() + 2)):
+        Fm, Jm = _support_system(parts, m, one, sqrt)
+        try:
+            step = flint.arb_mat([[x.mid() for x in row] for row in Jm]).solve(
+                flint.arb_mat([[x.mid()] for x in Fm])
+            )
+        except ZeroDivisionError:
+            return None
+        m = [(m[i] - step[i, 0]).mid() for i in range(4)]
+    if radius is None:
+        width = flint.arb(2) ** (40 - bits)
+        radius = [width * (1 + abs(m[i]).mid()) for i in range(4)]
+    X = [flint.arb(m[i], radius[i]) for i in range(4)]
+    Fm, Jm = _support_system(parts, m, one, sqrt)
+    try:
+        Y = flint.arb_mat([[x.mid() for x in row] for row in Jm]).inv()
+    except ZeroDivisionError:
+        return None
+    Y = flint.arb_mat([[Y[i, j].mid() for j in range(4)] for i in range(4)])
+    _, JX = _support_system(parts, X, one, sqrt)
+    R = flint.arb_mat(4, 4, [int(i == j) for i in range(4) for j in range(4)]) - Y * flint.arb_mat(JX)
+    Km = Y * flint.arb_mat([[x] for x in Fm])
+    D = R * flint.arb_mat([[X[i] - m[i]] for i in range(4)])
+    Kx = [m[i] - Km[i, 0] + D[i, 0] for i in range(4)]
+    if not all(X[i].contains_interior(Kx[i]) for i in range(4)):
+        return None
+    return X, Kx
+
+
+def _witnesses(parts: Sequence[Any], u_box: Sequence[Any]) -> tuple[Any, Any, Any]:
+    """The support points ``c_E + sqrt(r_E) B_E u / |u|_B_E`` and ``c_K - sqrt(r_K) B_K u /
+    |u|_B_K`` of a box of directions, and the normal ``-u`` of ``K`` at the second."""
+    points = []
+    for c, B, root_r, sign in parts:
+        Bu = [B[i][0] * u_box[0] + B[i][1] * u_box[1] + B[i][2] * u_box[2] for i in range(3)]
+        k = root_r / (u_box[0] * Bu[0] + u_box[1] * Bu[1] + u_box[2] * Bu[2]).sqrt()
+        points.append(tuple(c[i] + sign * k * Bu[i] for i in range(3)))
+    return points[0], points[1], tuple(-x for x in u_box)
+
+
+def _forms(E: Quadric, K: Quadric) -> tuple[list[Any], list[Any]]:
+    """The centred forms ``(A, c, r)`` of ``E`` and ``K`` and the inverses ``B = A^-1``."""
+    forms = [centred_form(E), centred_form(K)]
+    return forms, [_inverse3(A) for A, _, _ in forms]
+
+
+def apart_ellipsoids(
+    E: Quadric, K: Quadric, digits: int, known: tuple[list[Any], list[Any]] | None = None
+) -> DistanceEnclosure | None:
+    """Two ellipsoids whose solids are apart, from one isolated root (``proofs/
+    distance_of_separated_ellipsoids.py``): ``phi(u) = h_E(u) + h_K(-u)`` is convex and
+    ``dist(E, K) = -min over |u| <= 1 of phi(u)`` when positive.  A root of
+    ``grad phi(u) + lambda u = 0``, ``|u| = 1`` with ``lambda > 0`` is a KKT point of that convex
+    program, hence its minimum, and ``phi(u) = u . grad phi(u) = -lambda`` (``phi`` is positively
+    homogeneous): the distance is ``lambda``, the witnesses are the support points
+    ``c_E + sqrt(r_E) B_E u / |u|_B_E`` and ``c_K - sqrt(r_K) B_K u / |u|_B_K``, the normal of
+    ``K`` there is ``-u``.  Newton's method in binary64 then in balls finds the root; the
+    Krawczyk operator on a box around it proves it unique there and encloses it.  None where
+    the search fails or the test does not pass (the general route then answers); ``known``:
+    :func:`_forms` of the pair, when the caller has them."""
+    forms, Bs = known or _forms(E, K)
+    fparts = _float_parts(forms, Bs)
+    # binary64 start: Newton's method from the direction of the centres
+    axis = fparts[1][0] - fparts[0][0]
+    if not np.all(np.isfinite(axis)) or not np.any(axis):
+        return None
+    u = axis / np.linalg.norm(axis)
+    Fu, _ = _support_system(fparts, [*u, 0.0], 1.0, math.sqrt)
+    v = _float_newton(fparts, np.array([*u, -float(np.dot(u, Fu[:3]))]))  # lambda = -u . grad phi(u)
+    if v is None or v[3] <= 0:
         return None  # not apart (or not found): the general route
     bits = max(64, int(digits * 3.33) + 32)
     while bits <= MAX_BITS:
         with working_precision(bits):
-            one = flint.arb(1)
-            parts = [
-                ([_arb(x) for x in c], [[_arb(x) for x in row] for row in B], _arb(r).sqrt(), sign)
-                for (_, c, r), B, sign in zip(forms, Bs, (1, -1), strict=True)
-            ]
-            sqrt = flint.arb.sqrt
-            m = [flint.arb(float(x)) for x in v]
-            # Newton's method on the midpoints, to the working precision
-            for _ in range(max(2, (bits // 50).bit_length() + 2)):
-                Fm, Jm = _support_system(parts, m, one, sqrt)
-                try:
-                    step = flint.arb_mat([[x.mid() for x in row] for row in Jm]).solve(
-                        flint.arb_mat([[x.mid()] for x in Fm])
-                    )
-                except ZeroDivisionError:
-                    return None
-                m = [(m[i] - step[i, 0]).mid() for i in range(4)]
-            # Krawczyk: K(X) = m - Y F(m) + (I - Y J(X)) (X - m) inside X proves one root in X
-            width = flint.arb(2) ** (40 - bits)
-            X = [flint.arb(m[i], width * (1 + abs(m[i]).mid())) for i in range(4)]
-            Fm, Jm = _support_system(parts, m, one, sqrt)
-            try:
-                Y = flint.arb_mat([[x.mid() for x in row] for row in Jm]).inv()
-            except ZeroDivisionError:
+            parts = _arb_parts(forms, Bs)
+            root = _isolated_root(parts, v, bits, None)
+            if root is None or not root[1][3] > 0:
                 return None
-            Y = flint.arb_mat([[Y[i, j].mid() for j in range(4)] for i in range(4)])
-            _, JX = _support_system(parts, X, one, sqrt)
-            R = flint.arb_mat(4, 4, [int(i == j) for i in range(4) for j in range(4)]) - Y * flint.arb_mat(JX)
-            Km = Y * flint.arb_mat([[x] for x in Fm])
-            D = R * flint.arb_mat([[X[i] - m[i]] for i in range(4)])
-            Kx = [m[i] - Km[i, 0] + D[i, 0] for i in range(4)]
-            if not all(X[i].contains_interior(Kx[i]) for i in range(4)) or not Kx[3] > 0:
-                return None
-            u_box, dist = Kx[:3], Kx[3]
-            witnesses = []
-            for c, B, root_r, sign in parts:
-                Bu = [B[i][0] * u_box[0] + B[i][1] * u_box[1] + B[i][2] * u_box[2] for i in range(3)]
-                k = root_r / sqrt(u_box[0] * Bu[0] + u_box[1] * Bu[1] + u_box[2] * Bu[2])
-                witnesses.append(tuple(c[i] + sign * k * Bu[i] for i in range(3)))
-            normal = tuple(-x for x in u_box)
+            dist = root[1][3]
+            point_E, point_Q, normal = _witnesses(parts, root[1][:3])
         if _good(dist, digits, bits):
-            return DistanceEnclosure(dist, witnesses[0], witnesses[1], normal, bits, "ellipsoid-ellipsoid")
+            return DistanceEnclosure(dist, point_E, point_Q, normal, bits, "ellipsoid-ellipsoid")
+        bits *= 2
+    return None
+
+
+CAP = 1e-4
+"""The angular radius of the cap of directions the isolating box of a crossing pair holds."""
+
+
+def crossing_ellipsoids(
+    E: Quadric, K: Quadric, digits: int, known: tuple[list[Any], list[Any]] | None = None
+) -> DistanceEnclosure | None:
+    """Two crossing ellipsoids with binary64 entries, from one isolated root and a covering of
+    the rest of the sphere (``proofs/depth_of_crossing_ellipsoids.py``, "the cap"): the depth is
+    ``d* = min over unit u of phi(u)``.
+
+    1. The compiled depth kernel (:func:`~quadric_contact.modes.distance.depth_kernel.
+       depth_and_minimiser`) gives ``phi >= lo`` on the whole sphere and a float minimiser.
+    2. The Krawczyk operator on a box ``X``, ``u`` within ``w`` of the minimiser and ``lambda``
+       over an interval that holds ``[-r, -lo]``, proves ``F(u, lambda) = 0`` has one root in
+       ``X``; ``d_c = -lambda`` at it is a value of ``phi`` on the sphere (``phi(u) = -lambda``
+       at a root), so ``d* <= d_c``.
+    3. The kernel proves ``phi >= r`` outside the cap of directions within ``0.9 w`` of the
+       minimiser, with ``r >= d_c`` (binary64, rounded up).  The kernel excuses a cell whose
+       corners pass ``w . c >= cos(0.8 w) |w|`` in binary64, which puts them within ``0.9 w`` of
+       ``c`` (the rounding is far below ``cos(0.8 w) - cos(0.9 w)``); a unit vector within
+       ``0.9 w`` of ``c``, itself within ``0.1 w`` of the box's centre, lies in the box.
+
+    Then ``d* = d_c``: a global minimiser outside the cap has ``phi >= r >= d_c``; one inside with
+    ``phi < r`` is a critical point, a root ``(u, -phi(u))`` of ``F`` in ``X``, hence the root.
+    The witnesses are those of :func:`apart_ellipsoids` at the root.  None where a step fails
+    (two minima nearly equal, a flat ``phi``, entries that are not binary64): the general route
+    then answers; ``known`` as for :func:`apart_ellipsoids`."""
+    Ef, Kf = E.to_numpy(), K.to_numpy()
+    if not (
+        all(Fraction(float(Ef[i, j])) == E[i, j] for i in range(4) for j in range(4))
+        and all(Fraction(float(Kf[i, j])) == K[i, j] for i in range(4) for j in range(4))
+    ):
+        return None
+    found = depth_and_minimiser(Ef, Kf)
+    if found is None:
+        return None
+    lo, hi, u = found
+    forms, Bs = known or _forms(E, K)
+    fparts = _float_parts(forms, Bs)
+    v = _float_newton(fparts, np.array([*u, -hi]))
+    if v is None or not v[3] < 0 or abs(float(np.dot(v[:3], v[:3])) - 1) > 1e-12:
+        return None
+    centre = v[:3] / np.linalg.norm(v[:3])
+    for w, c in ((CAP, 256), (CAP, 4096), (CAP / 10, 4096)):
+        with working_precision(128):
+            parts = _arb_parts(forms, Bs)
+            # lambda's interval: it holds [-r, -lo] (r a few units in the last place above d_c,
+            # within the kernel's width of lo), with room for the image of the u-box, whose
+            # lambda part is about w^2 wide
+            lam_rad = flint.arb(c * w * w * hi + 4 * (hi - lo))
+            wide = _isolated_root(parts, v, 128, [flint.arb(w)] * 3 + [lam_rad])
+            if wide is None:
+                continue
+            X = wide[0]
+            if not all(abs(float(X[i].mid()) - centre[i]) <= 0.1 * w for i in range(3)):
+                continue  # the cap's centre must be within 0.1 w of the box's: the cap is in X
+            # the root, narrowly: a box inside X holds the one root of X
+            narrow = _isolated_root(parts, v, 128, None)
+            if narrow is None or not all(X[i].contains(narrow[0][i]) for i in range(4)):
+                continue
+            r = math.nextafter(float(-narrow[1][3].lower()), math.inf)  # d_c <= r
+            if not (X[3].contains(flint.arb(-r)) and X[3].contains(flint.arb(-lo))):
+                continue
+        if not covered_outside_cap(Ef, Kf, r, centre, math.cos(0.8 * w)):
+            return None  # phi below the root's value elsewhere: another (near) minimum
+        break
+    else:
+        return None
+    bits = max(64, int(digits * 3.33) + 32)
+    while bits <= MAX_BITS:
+        with working_precision(bits):
+            parts = _arb_parts(forms, Bs)
+            root = _isolated_root(parts, v, bits, None)
+            if root is None:
+                return None
+            Xn, Kn = root
+            # the narrow box in the wide one: the same root
+            if not all(X[i].contains(Xn[i]) for i in range(4)):
+                return None
+            dist = Kn[3]
+            point_E, point_Q, normal = _witnesses(parts, Kn[:3])
+        if _good(dist, digits, bits):
+            return DistanceEnclosure(dist, point_E, point_Q, normal, bits, "crossing ellipsoids")
         bits *= 2
     return None
 
@@ -392,9 +524,10 @@ def _curved(E: Quadric, K: Quadric, digits: int) -> DistanceEnclosure:
     (:mod:`quadric_contact.theory.distance_critical`); a non-convex solid needs the solids
     apart, decided exactly first."""
     if K.kind is QuadricKind.ELLIPSOID:
-        apart = apart_ellipsoids(E, K, digits)
-        if apart is not None:
-            return apart
+        both = _forms(E, K)
+        found = apart_ellipsoids(E, K, digits, both) or crossing_ellipsoids(E, K, digits, both)
+        if found is not None:
+            return found
     convex = K.kind in CONVEX_SOLIDS
     touching = False
     if not convex:

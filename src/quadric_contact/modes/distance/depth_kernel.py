@@ -121,7 +121,14 @@ from quadric_contact.modes.distance.apart_kernel import (
 from quadric_contact.modes.kernels._jit import njit
 from quadric_contact.modes.kernels.threads import kernel_stack, run_parallel
 
-__all__ = ["BUDGET", "MAX_LEVEL", "crossing_ellipsoids", "crossing_ellipsoids_cells"]
+__all__ = [
+    "BUDGET",
+    "MAX_LEVEL",
+    "covered_outside_cap",
+    "crossing_ellipsoids",
+    "crossing_ellipsoids_cells",
+    "depth_and_minimiser",
+]
 
 BUDGET = 4000
 """Cells (points of ``D``) a pair may use before it is left to the scalar path."""
@@ -567,10 +574,27 @@ def _depth_hi(c1: Any, L1: Any, t1: float, c2: Any, L2: Any, t2: float, u: Any) 
 
 @njit(twin_elements=_TWIN_ELEMENTS)
 def _kernel(
-    Es: Any, Ks: Any, tol: float, out: Any, flag: Any, work: Any, start: int, stop: int
+    Es: Any,
+    Ks: Any,
+    tol: float,
+    cover: Any,
+    out: Any,
+    flag: Any,
+    work: Any,
+    best: Any,
+    start: int,
+    stop: int,
 ) -> None:  # pragma: no cover
     """The pairs ``start:stop`` of the stacks: ``out`` their enclosures, ``flag`` 1 where left to
-    the scalar path, ``work`` the cells used."""
+    the scalar path, ``work`` the cells used, ``best`` the minimiser ``u*`` (a float unit vector;
+    nan where the pair is not read).
+
+    ``cover`` ``(n, 5)``: where ``cover[k, 0] > 0`` the pair is only covered, with the fixed
+    target ``r = cover[k, 0]`` and without Newton's method: a cell is accepted by the corner test
+    or when its four corners ``w`` have ``w . c >= cover[k, 4] |w|`` in binary64 (``c =
+    cover[k, 1:4]``, the cap of the caller's isolating box); a cell whose centre lies below
+    ``r`` fails the pair.  ``flag[k] = 0`` then means ``phi >= r`` on every direction the cap
+    does not hold (``out[k] = (-r, -r)``)."""
     Ms = np.empty((2, 4, 4))  # E and K, the inside negative
     adj = np.empty((2, 3, 3))
     ad = np.empty((2, 3, 3))
@@ -597,6 +621,7 @@ def _kernel(
         out[k, 1] = np.inf
         flag[k] = 1
         work[k] = 0
+        best[k, 0], best[k, 1], best[k, 2] = np.nan, np.nan, np.nan
         ok = True
         for i in range(4):
             for j in range(4):
@@ -619,10 +644,13 @@ def _kernel(
         L2 = L[1]
         for i in range(3):
             cd[i] = c[0, i] - c[1, i]
+        fixed = cover[k, 0] > 0  # cover only, with the caller's target and cap
+        cap = cover[k, 4]
         _starts(cd, L1, L2, st)
-        pending = 2
+        pending = 0 if fixed else 2
         f = np.inf  # phi at u, in binary64
-        dhi = np.inf  # the upper bound of the depth
+        dhi = cover[k, 0] if fixed else np.inf  # the upper bound of the depth
+        u[0], u[1], u[2] = cover[k, 1], cover[k, 2], cover[k, 3]
         rt = 0.0  # the target: the lower bound once every cell is accepted
         R2 = 0.0
         top = 0
@@ -655,7 +683,7 @@ def _kernel(
             if not (good and dhi < np.inf):
                 good = False
                 break
-            rt = _dn(dhi * shrink)
+            rt = dhi if fixed else _dn(dhi * shrink)
             if not (rt > _SMALL):
                 good = False
                 break
@@ -676,6 +704,16 @@ def _kernel(
                 w0, w1, w2 = 0.0, 0.0, 0.0
                 ax = face // 2
                 sgn = 1.0 if face % 2 == 0 else -1.0
+                if fixed:
+                    inside = True  # the cell's cone lies in the cap: its four corners do
+                    for corner in range(4):
+                        ca = a - h if corner % 2 == 0 else a + h
+                        cb = b - h if corner < 2 else b + h
+                        q0, q1, q2 = _on_face(ax, sgn, ca, cb)
+                        nq = math.sqrt((1.0 + ca * ca) + cb * cb)
+                        inside = inside and q0 * u[0] + q1 * u[1] + q2 * u[2] >= cap * nq
+                    if inside:
+                        continue
                 for attempt in range(2):
                     if attempt == 1:
                         if kind == 2:
@@ -711,7 +749,13 @@ def _kernel(
                         break
                 if accepted:
                     continue
-                if usable and kind == 2 and int(sk[top]) != 2 and restarts < _RESTARTS:
+                if fixed and usable and kind == 2:
+                    nw = math.sqrt((1.0 + a * a) + b * b)
+                    outside = w0 * u[0] + w1 * u[1] + w2 * u[2] < cap * nw
+                    if outside and dn + da * a + db * b < rt * nw:
+                        good = False  # phi below the target outside the cap: not isolated
+                        break
+                elif usable and kind == 2 and int(sk[top]) != 2 and restarts < _RESTARTS:
                     # a deeper local minimum than u's: where the cell's centre is below the
                     # target, or where a cell far from u for its size (more than 64 half-widths,
                     # it may lie across the edge of a region below the target; looked at on every
@@ -762,9 +806,14 @@ def _kernel(
             if not (good and restart):
                 break
         work[k] = cells
+        best[k, 0], best[k, 1], best[k, 2] = u[0], u[1], u[2]
         if not good:
             continue
-        if _up(dhi - rt) <= _dn(tol * rt):
+        if fixed:
+            out[k, 0] = -rt
+            out[k, 1] = -rt
+            flag[k] = 0
+        elif _up(dhi - rt) <= _dn(tol * rt):
             out[k, 0] = -dhi
             out[k, 1] = -rt
             flag[k] = 0
@@ -793,10 +842,63 @@ def crossing_ellipsoids_cells(
     """:func:`crossing_ellipsoids`, and the number of cells (points of ``D``) each pair used."""
     Es = kernel_stack(Es)
     Ks = kernel_stack(Ks)
+    out, rest, work, _ = _run(Es, Ks, tol, np.zeros((Es.shape[0], 5)))
+    return out, rest, work
+
+
+def depth_and_minimiser(
+    E: np.ndarray, K: np.ndarray, tol: float = 1e-12
+) -> tuple[float, float, np.ndarray] | None:
+    """One pair of crossing ellipsoids (binary64 ``4 x 4`` matrices): ``(lo, hi, u)`` with
+    ``lo <= depth <= hi`` (``phi >= lo`` on the whole sphere) and the float unit minimiser ``u``
+    whose ``phi(u) / |u|`` is at most ``hi``; None where the kernel leaves the pair.
+
+    Examples
+    --------
+    >>> E = np.diag([1.0, 1.0, 1.0, -1.0]); K = E.copy(); K[0, 3] = K[3, 0] = -1.0; K[3, 3] = 0.0
+    >>> lo, hi, u = depth_and_minimiser(E, K)   # unit balls at 0 and (1, 0, 0): depth 1
+    >>> bool(lo <= 1.0 <= hi), [round(abs(x), 9) for x in u]
+    (True, [1.0, 0.0, 0.0])
+    """
+    out, rest, _, best = _run(kernel_stack(E), kernel_stack(K), tol, np.zeros((1, 5)))
+    if rest[0]:
+        return None
+    return float(-out[0, 1]), float(-out[0, 0]), best[0].copy()
+
+
+def covered_outside_cap(E: np.ndarray, K: np.ndarray, r: float, centre: np.ndarray, cos_cap: float) -> bool:
+    """``phi(u) >= r`` proven for every unit ``u`` of one pair (binary64 ``4 x 4`` matrices)
+    with ``u . centre < cos_cap`` in binary64 (a cell is excused when its four corners ``w`` have
+    ``w . centre >= cos_cap |w|``, which puts its cone in the cap of the directions within
+    ``arccos(cos_cap)`` of ``centre``, up to the rounding of that test: the caller's margin).
+    False where a cell's centre outside the cap has a point of ``D`` below ``r`` (another
+    minimum), or the budget runs out.
+
+    Examples
+    --------
+    >>> E = np.diag([1.0, 1.0, 1.0, -1.0]); K = E.copy(); K[0, 3] = K[3, 0] = -1.0; K[3, 3] = 0.0
+    >>> x = np.array([1.0, 0.0, 0.0])           # the depth 1 is reached at u = x only
+    >>> covered_outside_cap(E, K, 1.0, x, math.cos(1e-3)), covered_outside_cap(E, K, 1.001, x, math.cos(1e-3))
+    (True, False)
+    """
+    cover = np.array([[r, *centre, cos_cap]], dtype=np.float64)
+    if not (r > 0 and np.all(np.isfinite(cover))):
+        raise ValueError("the target must be positive and the cap finite")
+    _, rest, _, _ = _run(kernel_stack(E), kernel_stack(K), 1e-12, cover)
+    return not bool(rest[0])
+
+
+def _run(
+    Es: np.ndarray, Ks: np.ndarray, tol: float, cover: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The kernel over read-only stacks: enclosures, the mask left, cells, minimisers."""
+    cover = np.ascontiguousarray(cover, dtype=np.float64).view()
+    cover.flags.writeable = False
     n = Es.shape[0]
     out = np.empty((n, 2))
     flag = np.empty(n, dtype=np.uint8)
     work = np.empty(n, dtype=np.int64)
+    best = np.empty((n, 3))
     if n:
         # a pair costs about what _WEIGHT pairs of the decision kernels cost: the stack is split
         # for the threads as if it had _WEIGHT times as many pairs (slice [a, b) of the weighted
@@ -804,7 +906,7 @@ def crossing_ellipsoids_cells(
         W = _WEIGHT
 
         def run(a: int, b: int) -> None:
-            _kernel(Es, Ks, float(tol), out, flag, work, (a + W - 1) // W, (b + W - 1) // W)
+            _kernel(Es, Ks, float(tol), cover, out, flag, work, best, (a + W - 1) // W, (b + W - 1) // W)
 
         run_parallel(run, n * W)
-    return out, flag.astype(bool), work
+    return out, flag.astype(bool), work, best

@@ -1,0 +1,123 @@
+"""Two crossing ellipsoids in the ``certified`` mode, one pair a call: the depth kernel's global
+lower bound, one root of the support system isolated on a box, and a covering of the rest of the
+sphere (``proofs/depth_of_crossing_ellipsoids.py``, "the cap").  Every enclosure holds the
+tests' brute-force minimiser's depth and agrees with the general route (every critical point of
+the contact system isolated); pairs the route cannot settle go to the general route."""
+
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+
+import flint
+import mpmath
+import numpy as np
+import pytest
+from tests.test_depth_kernel import _brute_depth, _mirrored, _two_minima
+
+import quadric_contact as qc
+from quadric_contact import Quadric
+from quadric_contact.exact.precision import working_precision
+from quadric_contact.modes.distance.certified import crossing_ellipsoids
+from quadric_contact.modes.distance.depth_kernel import covered_outside_cap, depth_and_minimiser
+from quadric_contact.testing.samples import ellipsoid_matrix, random_rotations
+from quadric_contact.theory.distance_critical import critical_distance
+from quadric_contact.theory.overlap import solid_of
+
+
+def _pair(rng, spread=0.5):
+    R1, R2 = random_rotations(2, rng)
+    return tuple(
+        ellipsoid_matrix(rng.uniform(0.3, 1.5, 3), R, rng.uniform(-spread, spread, 3)) for R in (R1, R2)
+    )
+
+
+def _quadrics(E, K):
+    return Quadric.from_matrix(E).as_ellipsoid(), solid_of(Quadric.from_matrix(K))
+
+
+def _holds(ball, value):
+    mid, rad = (mpmath.mpf(x.str(60, radius=False)) for x in (ball.mid(), ball.rad()))
+    return mid - rad <= value <= mid + rad
+
+
+@pytest.mark.parametrize("digits", [12, 15, 30])
+def test_each_enclosure_holds_the_brute_force_depth(digits):
+    rng = np.random.default_rng(digits)
+    answered = 0
+    for _ in range(6):
+        E, K = _pair(rng)
+        e, k = _quadrics(E, K)
+        r = crossing_ellipsoids(e, k, digits)
+        if r is None:
+            continue
+        answered += 1
+        with working_precision(dps=digits + 20):
+            assert _holds(r.distance, -_brute_depth(E, K, digits=digits + 8))
+        assert r.distance.rad() <= abs(r.distance.mid()) * flint.arb(10) ** -digits
+        # the witnesses: point_E = point_Q + distance * normal, the normal a unit vector
+        for i in range(3):
+            assert (r.point_Q[i] + r.distance * r.normal[i]).overlaps(r.point_E[i])
+        assert sum((x * x for x in r.normal), flint.arb(0)).overlaps(flint.arb(1))
+    assert answered >= 5
+
+
+def test_it_agrees_with_the_general_route_and_is_what_the_predicate_runs():
+    rng = np.random.default_rng(4)
+    for _ in range(2):
+        E, K = _pair(rng)
+        e, k = _quadrics(E, K)
+        fast = crossing_ellipsoids(e, k, 20)
+        assert fast is not None
+        general = critical_distance(e, k, convex=True, digits=20)
+        assert fast.distance.overlaps(general.distance)
+        for a, b in (
+            (fast.point_E, general.point_E),
+            (fast.point_Q, general.point_Q),
+            (fast.normal, general.normal),
+        ):
+            assert all(x.overlaps(y) for x, y in zip(a, b, strict=True))
+        r = qc.distance(E, K, digits=20)
+        assert r.method == "crossing ellipsoids" and r.distance.overlaps(fast.distance)
+        # the same number as the stack of one, which the kernel encloses at 1e-12
+        lo, hi = qc.distance(E[None], K[None])[0]
+        assert Fraction(lo) <= Fraction(float(r.distance.mid())) <= Fraction(hi)
+
+
+def test_two_equal_minima_are_left_to_the_general_route():
+    """Mirror images and identical ellipsoids shifted along an axis have two minima of equal
+    depth: the covering finds the other one below the root's value, and the route declines."""
+    rng = np.random.default_rng(2)
+    for E, K in (_mirrored(rng), _two_minima(rng)):
+        found = depth_and_minimiser(E, K)
+        assert found is not None  # the kernel encloses the depth ...
+        e, k = _quadrics(E, K)
+        assert crossing_ellipsoids(e, k, 15) is None  # ... but the minimiser is not isolated
+
+
+def test_the_covering_fails_where_phi_dips_below_the_target_outside_the_cap():
+    """Unit balls at 0 and (1, 0, 0): ``phi(u) = 2 - u_x`` (depth 1 at ``u = x``), below the target
+    ``2 - cos b`` exactly within the angle ``b`` of ``x``.  With a cap of half-angle ``a``, the
+    covering proves a target whose region below lies well inside the cap (``b = a / 2``) and
+    none whose region below reaches out of it (``b = 2 a``), nor any above the depth with the cap
+    on the wrong side."""
+    E = np.diag([1.0, 1.0, 1.0, -1.0])
+    K = E.copy()
+    K[0, 3] = K[3, 0] = -1.0
+    K[3, 3] = 0.0
+    x = np.array([1.0, 0.0, 0.0])
+    a = 0.1
+    assert covered_outside_cap(E, K, 1.0, x, math.cos(a))
+    assert covered_outside_cap(E, K, 2 - math.cos(a / 2), x, math.cos(a))
+    assert not covered_outside_cap(E, K, 2 - math.cos(2 * a), x, math.cos(a))
+    assert not covered_outside_cap(E, K, 1.0 + 1e-9, -x, math.cos(a))
+    with pytest.raises(ValueError):
+        covered_outside_cap(E, K, math.nan, x, math.cos(a))
+
+
+def test_entries_that_are_not_binary64_take_the_general_route():
+    e = Quadric.ellipsoid(Fraction(1, 3), Fraction(1, 2), Fraction(2, 3))
+    k = solid_of(Quadric.sphere(Fraction(1, 3), (Fraction(1, 5), 0, Fraction(1, 7))))
+    assert crossing_ellipsoids(e, k, 15) is None
+    r = qc.distance(e, k, digits=15)
+    assert r.method == "ellipsoid-quadric" and r.distance < 0
