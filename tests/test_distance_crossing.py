@@ -13,7 +13,7 @@ import flint
 import mpmath
 import numpy as np
 import pytest
-from tests.test_depth_kernel import _brute_depth, _mirrored, _two_minima
+from tests.test_depth_kernel import _brute_depth, _mirrored, _shallow, _two_minima
 
 import quadric_contact as qc
 from quadric_contact import Quadric
@@ -60,6 +60,19 @@ def test_each_enclosure_holds_the_brute_force_depth(digits):
             assert (r.point_Q[i] + r.distance * r.normal[i]).overlaps(r.point_E[i])
         assert sum((x * x for x in r.normal), flint.arb(0)).overlaps(flint.arb(1))
     assert answered >= 5
+
+
+@pytest.mark.parametrize("depth", [1e-2, 1e-4, 1e-6, 1e-9])
+def test_shallow_pairs_the_kernel_cannot_enclose_to_1e_12_are_answered(depth):
+    """The kernel only locates the minimum (at ``1e-6``, or ``1e-3``, relative): the digits come
+    from the root, so a depth far below the ellipsoids' size keeps its relative accuracy."""
+    E, K = _shallow(np.random.default_rng(1), depth)
+    e, k = _quadrics(E, K)
+    r = crossing_ellipsoids(e, k, 15)
+    assert r is not None
+    with working_precision(dps=70):
+        assert _holds(r.distance, -_brute_depth(E, K, digits=50))
+    assert r.distance < 0 and r.distance.rad() <= abs(r.distance.mid()) * flint.arb(10) ** -15
 
 
 def test_it_agrees_with_the_general_route_and_is_what_the_predicate_runs():

@@ -433,6 +433,11 @@ def apart_ellipsoids(
 
 CAP = 1e-4
 """The angular radius of the cap of directions the isolating box of a crossing pair holds."""
+LOCATE = 1e-6
+"""The relative width the depth kernel is asked for when it only locates the minimum: the
+global lower bound needs to be no tighter (the root's box holds the interval it leaves), and
+shallow pairs, which the kernel cannot enclose to ``1e-12``, are located at this width (or,
+shallower still, at a thousand times it)."""
 
 
 def crossing_ellipsoids(
@@ -443,7 +448,8 @@ def crossing_ellipsoids(
     ``d* = min over unit u of phi(u)``.
 
     1. The compiled depth kernel (:func:`~quadric_contact.modes.distance.depth_kernel.
-       depth_and_minimiser`) gives ``phi >= lo`` on the whole sphere and a float minimiser.
+       depth_and_minimiser`, at the width :data:`LOCATE`) gives ``phi >= lo`` on the whole
+       sphere and a float minimiser.
     2. The Krawczyk operator on a box ``X``, ``u`` within ``w`` of the minimiser and ``lambda``
        over an interval that holds ``[-r, -lo]``, proves ``F(u, lambda) = 0`` has one root in
        ``X``; ``d_c = -lambda`` at it is a value of ``phi`` on the sphere (``phi(u) = -lambda``
@@ -465,7 +471,7 @@ def crossing_ellipsoids(
         and all(Fraction(float(Kf[i, j])) == K[i, j] for i in range(4) for j in range(4))
     ):
         return None
-    found = depth_and_minimiser(Ef, Kf)
+    found = depth_and_minimiser(Ef, Kf, LOCATE) or depth_and_minimiser(Ef, Kf, 1e3 * LOCATE)
     if found is None:
         return None
     lo, hi, u = found
@@ -475,13 +481,15 @@ def crossing_ellipsoids(
     if v is None or not v[3] < 0 or abs(float(np.dot(v[:3], v[:3])) - 1) > 1e-12:
         return None
     centre = v[:3] / np.linalg.norm(v[:3])
+    # the longest semi-axis, about: sqrt(r) times the largest row sum of |A^-1|
+    size = max(root_r * math.sqrt(float(np.max(np.sum(np.abs(B), axis=1)))) for _, B, root_r, _ in fparts)
     for w, c in ((CAP, 256), (CAP, 4096), (CAP / 10, 4096)):
         with working_precision(128):
             parts = _arb_parts(forms, Bs)
             # lambda's interval: it holds [-r, -lo] (r a few units in the last place above d_c,
             # within the kernel's width of lo), with room for the image of the u-box, whose
-            # lambda part is about w^2 wide
-            lam_rad = flint.arb(c * w * w * hi + 4 * (hi - lo))
+            # lambda part is about w^2 times the ellipsoids' size wide
+            lam_rad = flint.arb(c * w * w * size + 4 * (hi - lo))
             wide = _isolated_root(parts, v, 128, [flint.arb(w)] * 3 + [lam_rad])
             if wide is None:
                 continue
