@@ -73,6 +73,12 @@ def test_shallow_pairs_the_kernel_cannot_enclose_to_1e_12_are_answered(depth):
     with working_precision(dps=70):
         assert _holds(r.distance, -_brute_depth(E, K, digits=50))
     assert r.distance < 0 and r.distance.rad() <= abs(r.distance.mid()) * flint.arb(10) ** -15
+    # the float mode, a pair and a stack of one, rounds the same route's balls outwards
+    f = qc.distance(E, K, mode="float")
+    assert not f.uncertain
+    for lo, hi in (f.bounds, tuple(qc.distance(E[None], K[None], mode="float")[0])):
+        assert Fraction(lo) <= Fraction(float(r.distance.mid())) <= Fraction(hi)
+        assert hi - lo <= 1e-15 * abs(hi)  # a few units in the last place
 
 
 def test_it_agrees_with_the_general_route_and_is_what_the_predicate_runs():

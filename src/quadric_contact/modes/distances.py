@@ -65,6 +65,7 @@ from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import as_quadric
 from quadric_contact.modes.distance.apart_kernel import separated_ellipsoids
 from quadric_contact.modes.distance.certified import DistanceEnclosure, apart_ellipsoids, distance_certified
+from quadric_contact.modes.distance.certified import crossing_ellipsoids as crossing_pair
 from quadric_contact.modes.distance.depth_kernel import crossing_ellipsoids
 from quadric_contact.modes.distance.scale_blocks import scale_stack
 from quadric_contact.modes.distance.scale_both import scale_both_stack
@@ -397,11 +398,12 @@ def _float(E: Any, Q: Any) -> FloatDistance:
             fast = _kernel_pair(e, K)
             if fast is not None:
                 return fast
-            # not binary64 entries, or left by the kernels: two ellipsoids apart have a certified
-            # route faster than the float search (one isolated root), rounded outwards
-            apart = apart_ellipsoids(e, K, 17)
-            if apart is not None:
-                return FloatDistance.of(*_float_bounds(*apart.bounds))
+            # not binary64 entries, or left by the kernels (touching, shallow): two ellipsoids
+            # have certified routes faster than the float search (one isolated root; for a
+            # crossing pair, with the kernel's covering of the rest), rounded outwards
+            found = apart_ellipsoids(e, K, 17) or crossing_pair(e, K, 17)
+            if found is not None:
+                return FloatDistance.of(*_float_bounds(*found.bounds))
         if K.kind is QuadricKind.PLANE or is_sphere(e):
             c = _certified(e, K, 17)  # None: a symmetric configuration, the exact answer
             bounds = _float_bounds(*c.bounds) if c is not None else enclosure(distance_exact(e, K).distance)
