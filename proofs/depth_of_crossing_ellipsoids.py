@@ -33,7 +33,10 @@ Claim.
    one zero ``(u_c, lambda_c)``, with ``L`` holding ``[-r, -lo]`` and ``r >= -lambda_c``.  If
    ``phi >= r`` at every unit direction outside a cap ``C`` whose unit vectors lie in ``U``, then
    ``depth = -lambda_c``.  In binary64, corners ``w`` that pass the kernel's cap test
-   ``w . c >= cos(0.8 a) |w|`` are within the angle ``0.9 a`` of ``c``.
+   ``w . c >= cos(0.8 a) |w|`` are within the angle ``0.9 a`` of ``c``.  For entries that are
+   not binary64 numbers the kernel covers the pair rounded to binary64, whose support
+   functions differ from the pair's by at most ``|c - c'| + ||M - M'||_F / (sqrt(m) + sqrt(m'))``
+   (``M = r A^-1``, ``m = r / max_i sum_j |A_ij|``).
 
 The argument.
 
@@ -63,6 +66,9 @@ The argument.
    ``-phi(u_g)`` lies in ``(-r, -lo]``, inside ``L``, and ``u_g`` in ``U``: the zero is the one of
    ``X``, and ``depth = -lambda_c``.  The rounding: ``cos x <= 1 - x^2 / 2 + x^4 / 24``, so an
    exact ``cos(w, c)`` at least that polynomial at ``x = 0.9 a`` puts ``w`` within ``0.9 a``.
+   The rounding gap: ``h(u) = u . c + sqrt(u^T M u)``, ``|sqrt(a) - sqrt(b)| = |a - b| /
+   (sqrt(a) + sqrt(b))``, ``|u^T (M - M') u| <= ||M - M'||_F`` for unit ``u``, and
+   ``u^T M u >= r / lambda_max(A) >= m`` (a row sum bounds ``lambda_max``).
 
 What is checked and how.  2 exactly on random rational cells (levels 0 to 6, every face): points
 ``z`` and targets ``r`` that pass the corner test, and a 9 x 9 grid of rational points of each
@@ -72,10 +78,11 @@ square (squares compared, no root taken); 4 the same way.  3 exactly on caps of 
 inner and outer ellipsoids through eigenvalue bounds of ``L^T A L`` found by rational bisection,
 the points through the exact quadratic form; the corner test on random and near-threshold binary64
 inputs against exact rational arithmetic.  6 by its rounding part, exactly, on binary64 corners
-near the threshold of the cap test; its logic is the argument above, and a cross-check (full
-profile) holds the route of :func:`quadric_contact.modes.distance.certified.crossing_ellipsoids`
-at 30 digits to the brute-force minimiser at 40 and checks it declines pairs with two equal
-minima.
+near the threshold of the cap test, and its gap bound against the support functions of rational
+ellipsoids and their roundings in 200-bit balls at sampled directions; its logic is the argument
+above, and a cross-check (full profile) holds the route of
+:func:`quadric_contact.modes.distance.certified.crossing_ellipsoids` at 30 digits to the
+brute-force minimiser at 40 and checks it declines pairs with two equal minima.
 Cross-check (full profile): the kernel's enclosures
 against a brute-force minimiser of ``phi`` (a grid, then Newton's method at 40 digits, on the exact
 rational matrices) and against closed forms (two balls; a ball concentric with an ellipsoid).
@@ -569,6 +576,58 @@ def cap_rounding() -> Finding:
             failed += 1
     ensure(passed > 100 and failed > 100, "both outcomes near the threshold")
     return agrees(f"{passed} passes, each within 0.9 a exactly; {failed} refusals near the threshold")
+
+
+@proof.check(
+    "the rounding gap bounds |h_Q(u) - h_Q'(u)| for rational ellipsoids Q and their binary64 "
+    "roundings Q' (200-bit balls at 300 directions each), and is within a factor 100 of the largest "
+    "difference seen",
+    method=Method.EVIDENCE,
+    size="8 ellipsoids, 2400 directions",
+)
+def rounding_gap() -> Finding:
+    import flint
+    import numpy as np
+
+    from quadric_contact.exact.precision import working_precision
+    from quadric_contact.model.motions import RigidMotion
+    from quadric_contact.model.quadric import Quadric
+    from quadric_contact.modes.distance.certified import _inverse3, _rounding_gap
+    from quadric_contact.theory.contact_scale import centred_form
+    from quadric_contact.theory.overlap import solid_of
+
+    def support(q: Any, u: Any) -> Any:
+        A, c, r = centred_form(q)
+        B = _inverse3(A)
+        quad = sum(u[i] * _ball(B[i][j]) * u[j] for i in range(3) for j in range(3))
+        return sum(u[i] * _ball(c[i]) for i in range(3)) + (_ball(r) * quad).sqrt()
+
+    def _ball(x: F) -> Any:
+        return flint.arb(x.numerator) / x.denominator
+
+    rng = np.random.default_rng(12)
+    turn = RigidMotion.from_quaternion(3, 1, -2, 1)
+    ratios = []
+    for _ in range(8):
+        axes = [F(int(x), 97) for x in rng.integers(20, 150, 3)]
+        centre = [F(int(x), 89) for x in rng.integers(-60, 60, 3)]
+        q = solid_of(Quadric.ellipsoid(*axes, center=centre).moved(turn))
+        rounded = Quadric.from_matrix([[F(float(x)) for x in row] for row in q.to_numpy()])
+        gap = _rounding_gap(q, q.to_numpy())
+        ensure(gap is not None and gap > 0, "a rational ellipsoid rounds to another one")
+        with working_precision(200):
+            worst = flint.arb(0)
+            for u in rng.normal(size=(300, 3)):
+                ub = [flint.arb(float(x)) for x in u / np.linalg.norm(u)]
+                d = abs(support(q, ub) - support(rounded, ub))
+                ensure(d < _ball(gap), f"a difference {d} above the gap {float(gap)}")
+                worst = max(worst, d.upper())
+            ratios.append(float(_ball(gap) / worst))
+    ensure(max(ratios) <= 100, f"the gap is {max(ratios):.0f} times the largest difference seen")
+    return agrees(
+        f"8 ellipsoids, 2400 directions: never above the gap; gap / largest seen "
+        f"{min(ratios):.1f} to {max(ratios):.1f}"
+    )
 
 
 @proof.check(

@@ -16,11 +16,12 @@ import pytest
 from tests.test_depth_kernel import _brute_depth, _mirrored, _shallow, _two_minima
 
 import quadric_contact as qc
-from quadric_contact import Quadric
+from quadric_contact import Quadric, RigidMotion
 from quadric_contact.exact.precision import working_precision
-from quadric_contact.modes.distance.certified import crossing_ellipsoids
+from quadric_contact.modes.distance.certified import _inverse3, _rounding_gap, crossing_ellipsoids
 from quadric_contact.modes.distance.depth_kernel import covered_outside_cap, depth_and_minimiser
 from quadric_contact.testing.samples import ellipsoid_matrix, random_rotations
+from quadric_contact.theory.contact_scale import centred_form
 from quadric_contact.theory.distance_critical import critical_distance
 from quadric_contact.theory.overlap import solid_of
 
@@ -134,9 +135,52 @@ def test_the_covering_fails_where_phi_dips_below_the_target_outside_the_cap():
         covered_outside_cap(E, K, math.nan, x, math.cos(a))
 
 
-def test_entries_that_are_not_binary64_take_the_general_route():
+def test_entries_that_are_not_binary64_run_the_kernel_on_the_rounded_pair():
+    """The kernel covers the pair rounded to binary64, within the rounding gap of the pair; the
+    root is the exact pair's: the same balls as the general route."""
     e = Quadric.ellipsoid(Fraction(1, 3), Fraction(1, 2), Fraction(2, 3))
-    k = solid_of(Quadric.sphere(Fraction(1, 3), (Fraction(1, 5), 0, Fraction(1, 7))))
-    assert crossing_ellipsoids(e, k, 15) is None
-    r = qc.distance(e, k, digits=15)
-    assert r.method == "ellipsoid-quadric" and r.distance < 0
+    k = solid_of(
+        Quadric.ellipsoid(
+            Fraction(2, 5), Fraction(1, 3), Fraction(3, 7), center=(Fraction(1, 5), 0, Fraction(1, 7))
+        )
+    )
+    assert _rounding_gap(k, k.to_numpy()) > 0  # 49/9 is not a binary64 number
+    r = crossing_ellipsoids(e, k, 20)
+    assert r is not None and r.distance < 0
+    assert r.distance.overlaps(critical_distance(e, k, convex=True, digits=20).distance)
+    assert qc.distance(e, k, digits=20).method == "crossing ellipsoids"
+
+
+def test_the_rounding_gap_bounds_the_support_functions_apart():
+    """``|h_Q(u) - h_Q'(u)|`` at 400 directions, in 200-bit balls, for rational ellipsoids and
+    their binary64 roundings: never above the gap, which is not far above the largest seen."""
+    rng = np.random.default_rng(9)
+    for _ in range(6):
+        axes = [Fraction(int(x), 97) for x in rng.integers(20, 150, 3)]
+        centre = [Fraction(int(x), 89) for x in rng.integers(-60, 60, 3)]
+        q = solid_of(Quadric.ellipsoid(*axes, center=centre).moved(_TURN))
+        rounded = Quadric.from_matrix([[Fraction(float(x)) for x in row] for row in q.to_numpy()])
+        gap = _rounding_gap(q, q.to_numpy())
+        assert gap > 0
+        with working_precision(200):
+            worst = flint.arb(0)
+            for u in rng.normal(size=(400, 3)):
+                u = [flint.arb(float(x)) for x in u / np.linalg.norm(u)]
+                d = _support(q, u) - _support(rounded, u)
+                worst = max(worst, abs(d).upper())
+                assert abs(d) < flint.arb(gap.numerator) / gap.denominator
+        assert worst.upper() * 100 >= flint.arb(gap.numerator) / gap.denominator  # not a vacuous bound
+
+
+_TURN = RigidMotion.from_quaternion(3, 1, -2, 1)
+
+
+def _support(q, u):
+    """``h(u) = u . c + sqrt(r u^T A^-1 u)`` of an ellipsoid, in balls."""
+    A, c, r = centred_form(q)
+    B = [[flint.arb(x.numerator) / x.denominator for x in row] for row in _inverse3(A)]
+    quad = sum((u[i] * B[i][j] * u[j] for i in range(3) for j in range(3)), flint.arb(0))
+    return (
+        sum((u[i] * flint.arb(c[i].numerator) / c[i].denominator for i in range(3)), flint.arb(0))
+        + (flint.arb(r.numerator) / r.denominator * quad).sqrt()
+    )

@@ -443,7 +443,7 @@ shallower still, at a thousand times it)."""
 def crossing_ellipsoids(
     E: Quadric, K: Quadric, digits: int, known: tuple[list[Any], list[Any]] | None = None
 ) -> DistanceEnclosure | None:
-    """Two crossing ellipsoids with binary64 entries, from one isolated root and a covering of
+    """Two crossing ellipsoids, from one isolated root and a covering of
     the rest of the sphere (``proofs/depth_of_crossing_ellipsoids.py``, "the cap"): the depth is
     ``d* = min over unit u of phi(u)``.
 
@@ -460,21 +460,25 @@ def crossing_ellipsoids(
        ``c`` (the rounding is far below ``cos(0.8 w) - cos(0.9 w)``); a unit vector within
        ``0.9 w`` of ``c``, itself within ``0.1 w`` of the box's centre, lies in the box.
 
+    Entries that are not binary64 numbers: the kernel runs on the pair rounded to binary64,
+    whose ``phi`` is within ``gap`` of the pair's on the whole sphere (:func:`_rounding_gap`), so
+    its lower bound less ``gap`` bounds ``phi`` below, and the covering is asked for ``r + gap``.
+
     Then ``d* = d_c``: a global minimiser outside the cap has ``phi >= r >= d_c``; one inside with
     ``phi < r`` is a critical point, a root ``(u, -phi(u))`` of ``F`` in ``X``, hence the root.
     The witnesses are those of :func:`apart_ellipsoids` at the root.  None where a step fails
-    (two minima nearly equal, a flat ``phi``, entries that are not binary64): the general route
-    then answers; ``known`` as for :func:`apart_ellipsoids`."""
+    (two minima nearly equal, a flat ``phi``, a rounded matrix that is no ellipsoid): the general
+    route then answers; ``known`` as for :func:`apart_ellipsoids`."""
     Ef, Kf = E.to_numpy(), K.to_numpy()
-    if not (
-        all(Fraction(float(Ef[i, j])) == E[i, j] for i in range(4) for j in range(4))
-        and all(Fraction(float(Kf[i, j])) == K[i, j] for i in range(4) for j in range(4))
-    ):
+    gaps = [_rounding_gap(E, Ef), _rounding_gap(K, Kf)]
+    if gaps[0] is None or gaps[1] is None:
         return None
+    gap = _float_up(gaps[0] + gaps[1])  # |phi - phi of the binary64 pair| <= gap on the sphere
     found = depth_and_minimiser(Ef, Kf, LOCATE) or depth_and_minimiser(Ef, Kf, 1e3 * LOCATE)
     if found is None:
         return None
     lo, hi, u = found
+    lo = _dn(_dn(lo) - gap)  # phi >= lo of the binary64 pair, less the gap
     forms, Bs = known or _forms(E, K)
     fparts = _float_parts(forms, Bs)
     v = _float_newton(fparts, np.array([*u, -hi]))
@@ -503,7 +507,8 @@ def crossing_ellipsoids(
             r = math.nextafter(float(-narrow[1][3].lower()), math.inf)  # d_c <= r
             if not (X[3].contains(flint.arb(-r)) and X[3].contains(flint.arb(-lo))):
                 continue
-        if not covered_outside_cap(Ef, Kf, r, centre, math.cos(0.8 * w)):
+        # phi of the binary64 pair >= r + gap outside the cap puts the pair's own phi >= r there
+        if not covered_outside_cap(Ef, Kf, _float_up(Fraction(r) + Fraction(gap)), centre, math.cos(0.8 * w)):
             return None  # phi below the root's value elsewhere: another (near) minimum
         break
     else:
@@ -525,6 +530,82 @@ def crossing_ellipsoids(
             return DistanceEnclosure(dist, point_E, point_Q, normal, bits, "crossing ellipsoids")
         bits *= 2
     return None
+
+
+def _rounding_gap(Q: Quadric, Qf: np.ndarray) -> Fraction | None:
+    """A bound of ``|h_Q(u) - h_Q'(u)|`` over unit ``u``, ``h`` the support functions of the
+    ellipsoid ``Q`` and of ``Q'``, its matrix rounded to binary64 (``Qf``); 0 when the entries are
+    binary64 numbers, None when ``Q'`` is no ellipsoid with the same inside.
+
+    With ``h(u) = u . c + sqrt(u^T M u)``, ``M = r A^-1`` (``M'`` likewise):
+    ``|h - h'| <= |c - c'| + |u^T (M - M') u| / (sqrt(u^T M u) + sqrt(u^T M' u))
+    <= |c - c'| + ||M - M'||_F / (sqrt(m) + sqrt(m'))``, ``m = r / max_i sum_j |A_ij|`` at most
+    the least eigenvalue of ``M`` (a row sum bounds the largest of ``A``)."""
+    rounded = [[Fraction(float(Qf[i, j])) for j in range(4)] for i in range(4)]
+    if all(rounded[i][j] == Q[i, j] for i in range(4) for j in range(4)):
+        return Fraction(0)
+    A2 = [row[:3] for row in rounded[:3]]
+    minors = (A2[0][0], A2[0][0] * A2[1][1] - A2[0][1] * A2[1][0], _det3(A2))
+    if not all(x > 0 for x in minors):
+        return None
+    Qr = Quadric.from_matrix(rounded)
+    forms = [centred_form(Q), centred_form(Qr)] if _inside_negative(Qr) else None
+    if forms is None:
+        return None
+    Ms, cs, least = [], [], []
+    for A, c, r in forms:
+        B = _inverse3(A)
+        Ms.append([[r * B[i][j] for j in range(3)] for i in range(3)])
+        cs.append(c)
+        least.append(r / max(sum(abs(x) for x in row) for row in A))
+    centre2 = sum(((cs[0][i] - cs[1][i]) ** 2 for i in range(3)), Fraction(0))
+    frob2 = sum(((Ms[0][i][j] - Ms[1][i][j]) ** 2 for i in range(3) for j in range(3)), Fraction(0))
+    return _sqrt_up(centre2) + _sqrt_up(frob2) / (_sqrt_dn(least[0]) + _sqrt_dn(least[1]))
+
+
+def _det3(A: Sequence[Sequence[Fraction]]) -> Fraction:
+    return (
+        A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1])
+        - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0])
+        + A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0])
+    )
+
+
+def _inside_negative(Q: Quadric) -> bool:
+    """``Q(c) < 0`` at the centre: the solid is the side the rounded matrix keeps."""
+    c = Q.center()
+    if c is None:
+        return False
+    x = [*c, Fraction(1)]
+    return sum(x[i] * Q[i, j] * x[j] for i in range(4) for j in range(4)) < 0
+
+
+def _sqrt_up(x: Fraction) -> Fraction:
+    """A rational at least ``sqrt(x)`` (``x >= 0``), within a relative ``2^-50``."""
+    if x == 0:
+        return Fraction(0)
+    s = Fraction(math.sqrt(float(x)))
+    while s * s < x:
+        s *= 1 + Fraction(1, 2**50)
+    return s
+
+
+def _sqrt_dn(x: Fraction) -> Fraction:
+    """A rational at most ``sqrt(x)`` (``x > 0``), within a relative ``2^-50``."""
+    s = Fraction(math.sqrt(float(x)))
+    while s * s > x:
+        s *= 1 - Fraction(1, 2**50)
+    return s
+
+
+def _float_up(x: Fraction) -> float:
+    """The least binary64 number at least ``x``."""
+    f = float(x)
+    return f if Fraction(f) >= x else math.nextafter(f, math.inf)
+
+
+def _dn(x: float) -> float:
+    return math.nextafter(x, -math.inf)
 
 
 def _curved(E: Quadric, K: Quadric, digits: int) -> DistanceEnclosure:
