@@ -249,11 +249,69 @@ def test_a_fixed_orientation_is_a_translation():
     assert d.available and d.minimum[0] <= F(3, 2) <= d.minimum[1]
 
 
-def test_a_cut_piece_is_not_available_in_either_reading():
-    tree = 'tree = { plane = "z = 5", minus = "p" }'
-    for extra in ("", 'reading = "paper"'):
-        d = one(tree=tree, scene_extra=extra)
-        assert not d.available and "cut by the plane(s) z = 5" in d.reason and "lower bound" in d.reason
+def _side_below(plane: str) -> str:
+    """The region (``R-`` or ``R+`` of the plane as the scene reads it) holding the point
+    ``(0, 0, -1)``: the sign of ``X^T P X`` there, computed from the plane's own matrix."""
+    P = Quadric.from_equation(plane)
+    X = (F(0), F(0), F(-1), F(1))
+    value = sum(P[i, j] * X[i] * X[j] for i in range(4) for j in range(4))
+    assert value != 0
+    return "minus" if value < 0 else "plus"
+
+
+@pytest.mark.parametrize("reading", ["", 'reading = "paper"'])
+@pytest.mark.parametrize("side", ["minus", "plus"])
+def test_a_cut_piece_keeps_the_side_of_its_tree(reading, side):
+    # The ball of radius 2 at the origin cut by the plane z = 0; the still ball of radius 1/2
+    # centred at (0, 0, 3).  Kept half below (z <= 0): the nearest point of the half ball to the
+    # centre is the centre of its flat face (the centre projects onto the plane inside the
+    # disc), so d = 3 - 1/2 = 5/2.  Kept half above: the nearest point is the top (0, 0, 2) of
+    # the sphere, d = 3 - 2 - 1/2 = 1/2.  Which half a side keeps is read off the plane's matrix
+    # (``_side_below``), so a flipped side gives the other value.
+    d = one(
+        piece='standard = "sphere"\nradius = 2',
+        tree=f'tree = {{ plane = "z = 0", {side} = "p" }}',
+        motion='{ type = "still" }',
+        scene_extra=reading,
+    )
+    expected = F(5, 2) if side == _side_below("z = 0") else F(1, 2)
+    lo, hi = d.minimum
+    assert d.available and lo <= expected <= hi and hi - lo <= DISTANCE_TOLERANCE, d
+
+
+def test_a_piece_in_two_leaves_is_the_union_of_its_parts():
+    # The ball of radius 2 kept where x >= 1 and where x <= -1 (two leaves of one piece), the
+    # still ball of radius 1/2 at (0, 0, 3): by symmetry both parts are as far; the nearest
+    # point of the part x >= 1 to the centre c = (0, 0, 3) is on the rim (1, 0, sqrt 3) of its
+    # flat face (the projection (1, 0, 3) of c on the plane is outside the disc y^2 + z^2 <= 3,
+    # and c - (1, 0, sqrt 3) = (-1, 0, 3 - sqrt 3) is a + b combination of the sphere's normal
+    # (1, 0, sqrt 3) and the face's (-1, 0, 0) with a = (3 - sqrt 3) / sqrt 3 > 0, b = a + 1 > 0),
+    # so d = sqrt(1 + (3 - sqrt 3)^2) - 1/2.
+    d = one(
+        piece='standard = "sphere"\nradius = 2',
+        tree='tree = { plane = "x = 1", plus = "p", minus = { plane = "x = -1", minus = "p" } }',
+        motion='{ type = "still" }',
+    )
+    expected = math.sqrt(1 + (3 - math.sqrt(3)) ** 2) - 0.5
+    lo, hi = d.minimum
+    assert d.available and float(lo) <= expected + 1e-15 and expected - 1e-15 <= float(hi)
+    assert hi - lo <= DISTANCE_TOLERANCE
+
+
+def test_a_cut_piece_crossed_is_not_available():
+    # the ball of radius 1/2 at height 3 moving down into the half ball z <= 0 of radius 2
+    d = one(
+        piece='standard = "sphere"\nradius = 2',
+        tree='tree = { plane = "z = 0", minus = "p" }',
+        motion='{ type = "linear", velocity = [0, 0, -2] }',
+    )
+    assert not d.available and d.reason.startswith("at t = ") and "cross or touch" in d.reason
+
+
+def test_a_cut_piece_that_is_not_convex_is_not_available():
+    # a hyperboloid of one sheet cut by a plane: its solid is not convex
+    d = one(piece='equation = "x^2 + y^2 - z^2 = 1"', tree='tree = { plane = "z = 5", minus = "p" }')
+    assert not d.available and "cut by the plane(s) z = 5" in d.reason and "not convex" in d.reason
 
 
 def test_the_inside_of_a_piece_is_its_solid():
@@ -363,5 +421,6 @@ def test_ball_over_saddle_sinks_into_the_ground_by_the_closed_form_depth():
     assert lowest - hi >= 0 and (lowest - hi) ** 2 <= radius_squared <= (lowest - lo) ** 2
     assert hi - lo <= scene.distance_tolerance and any(a <= t_low <= b for a, b in d.times)
     roof = result.distance("ball", "roof", "saddle")
-    assert not roof.available and "cut by the plane(s) y = 6, y = -6" in roof.reason
+    assert not roof.available
+    assert "R+ of its hyperbolic paraboloid, the complement of its solid" in roof.reason
     assert "least signed distance from saddle: not available" in result.format_text()

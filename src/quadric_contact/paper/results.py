@@ -41,6 +41,7 @@ FURTHER_RESULTS: tuple[str, ...] = (
     "Distance along a path",
     "Depth of crossing ellipsoids",
     "Distance of separated ellipsoids",
+    "Distance to cut pieces",
 )
 """Results from outside the paper that the package relies on and proves in ``proofs/``
 alongside the paper's (after them, in this order): the separation condition of two
@@ -55,6 +56,8 @@ reduction of the contacts of two moving ellipsoids with each other to the real r
 discriminant in time (:mod:`quadric_contact.scenes.mutual`); the bound on the displacement of
 a rigidly moving ellipsoid's points by which the least distance along a path is enclosed
 (:mod:`quadric_contact.scenes.path_distance`); the certificate by which the depth of two
-crossing ellipsoids is enclosed on stacks (:mod:`quadric_contact.modes.distance.depth_kernel`); and the
+crossing ellipsoids is enclosed on stacks (:mod:`quadric_contact.modes.distance.depth_kernel`); the
 isolated root by which the distance of two separated ellipsoids and its witnesses are enclosed
-in the ``certified`` mode (:mod:`quadric_contact.modes.distance.certified`)."""
+in the ``certified`` mode (:mod:`quadric_contact.modes.distance.certified`); and the duality
+bounds by which the distance of an ellipsoid from a convex piece cut by planes is enclosed
+(:mod:`quadric_contact.modes.distance.pieces`)."""

@@ -26,17 +26,23 @@ is reached.  The bound is first order: near a minimum passed at a steady speed t
 must shrink like the tolerance, so a tolerance of about ``10^-3`` of the path's scale is within
 a few hundred evaluations.  The number of evaluations is bounded (``max_evaluations``): when the
 budget runs out first, the enclosure reached is returned, wider than the tolerance.
+
+In place of ``Q``, a function may give the distance at each time (the moved ellipsoid, a
+:class:`~quadric_contact.model.quadric.Quadric`, to an enclosure ``(lo, hi)``): the distance of
+the ellipsoid from any fixed set moves by at most ``delta`` too, so the same bound holds for a
+piece cut by planes (:func:`quadric_contact.modes.distance.pieces.cut_piece_distance`).
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
 from quadric_contact.exact.errors import UndecidedError
 from quadric_contact.exact.rational import to_fraction
-from quadric_contact.model.quadric import as_quadric
+from quadric_contact.model.quadric import Quadric, as_quadric
 from quadric_contact.modes.distances import distance
 from quadric_contact.scenes.broadphase import _sqrt_up, ellipsoid_extents, poly_range
 from quadric_contact.scenes.trajectory import MotionSegment, Trajectory
@@ -115,7 +121,10 @@ def path_distance(
     Parameters
     ----------
     E0 : the ellipsoid in its initial placement
-    Q : a quadric with a solid (as :func:`quadric_contact.distance`)
+    Q : a quadric with a solid (as :func:`quadric_contact.distance`), or a function
+        From the moved ellipsoid (a :class:`~quadric_contact.model.quadric.Quadric`) to a
+        rational enclosure ``(lo, hi)`` of its distance from a fixed set (raising
+        :class:`~quadric_contact.exact.errors.UndecidedError` where it does not decide).
     trajectory : Trajectory
         Translations and rotations (a polynomial quaternion per segment).
     t0, t1 : numbers, ``t0 < t1``
@@ -145,9 +154,25 @@ def path_distance(
     (True, True)
     >>> any(a <= 1 <= b for a, b in r.times)
     True
+
+    The same flight over the ball of radius 2 cut to ``z <= 0``, through a distance function: the
+    nearest point is the centre of the flat face, at ``2 + (t - 1)^2 - 1`` from the ball:
+
+    >>> from quadric_contact.modes.distance.pieces import cut_piece_distance
+    >>> half = lambda placed: cut_piece_distance(placed, Quadric.sphere(2), [("z", "R-")], digits=8).bounds
+    >>> r = path_distance(Quadric.sphere(1), half, path, 0, 2, tolerance="1/100")
+    >>> float(r.minimum[0]) <= 1 <= float(r.minimum[1])
+    True
     """
     e = as_quadric(E0, "E").as_ellipsoid()
-    q = as_quadric(Q, "Q")
+    if callable(Q) and not isinstance(Q, Quadric):
+        given: Callable[[Quadric], Any] = Q
+    else:
+        q = as_quadric(Q, "Q")
+
+        def given(placed: Quadric) -> Any:
+            return distance([placed], q)[0]
+
     t0, t1 = to_fraction(t0), to_fraction(t1)
     tol = to_fraction(tolerance)
     if not t0 < t1:
@@ -162,7 +187,7 @@ def path_distance(
         if t not in cache:
             placed = trajectory.placed(e, t, t0, t1)
             try:
-                lo, hi = distance([placed], q)[0]
+                lo, hi = given(placed)
             except UndecidedError as exc:
                 raise UndecidedError(f"at t = {t}: {exc}", placed, time=t, evaluations=len(cache)) from exc
             cache[t] = (Fraction(lo), Fraction(hi))

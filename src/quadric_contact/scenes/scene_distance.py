@@ -10,19 +10,23 @@ whose union holds every time at which the minimum is reached.  The enclosure is 
 scene's ``distance_tolerance`` wide unless the budget of ``distance_evaluations`` distances
 runs out first; then the report gives the enclosure reached and says so.
 
-The solid is the piece's inside (``inside = "R-"`` or ``"R+"`` of its quadric as given).
-Where the method does not answer, the pair is reported as *not available*, with the reason,
-and nothing else is put in its place:
+The solid is the piece's inside (``inside = "R-"`` or ``"R+"`` of its quadric as given).  A
+piece cut by planes of its object's tree is its solid intersected with the half-spaces on its
+path (``plus``: ``R+`` of the plane as given, ``minus``: ``R-``); a piece in several leaves is
+the union of its cut parts.  Where the solid is convex, ``d`` is the certified distance of
+:func:`quadric_contact.modes.distance.pieces.cut_piece_distance` (the least of the parts'),
+in either reading of the scene.  Where the method does not answer, the pair is reported as
+*not available*, with the reason, and nothing else is put in its place:
 
-* the piece is cut by planes of its object's tree: the distance to the quadric as cut is a
-  constrained problem (boundary curves and corners), and the whole quadric's distance is
-  only a lower bound of it (the cut solid is a part of the whole one), in either reading of
-  the scene;
+* the piece is cut by planes and its solid is not convex (hyperboloids, the hyperbolic
+  paraboloid and cylinder): the distance to a non-convex solid as cut is not computed (the
+  whole quadric's is only a lower bound of it);
 * the piece's inside is the complement of its quadric's solid (an ``R+`` ellipsoid, say),
   except for a plane, whose other side is a half-space too;
 * a distance along the path is not decided (a crossing of a solid that is not convex, whose
-  penetration depth is not computed; a symmetric configuration of critical points): the
-  reason names the time.
+  penetration depth is not computed; an ellipsoid crossing or touching a cut piece, whose
+  penetration depth is not computed either; a symmetric configuration of critical points):
+  the reason names the time.
 """
 
 from __future__ import annotations
@@ -36,6 +40,7 @@ from typing import Any
 from quadric_contact.exact.errors import QuadricContactError
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import Quadric
+from quadric_contact.modes.distance.pieces import HalfSpace, half_space, union_distance
 from quadric_contact.scenes.composite import Composite, Piece, Split
 from quadric_contact.scenes.ledger import Ledger
 from quadric_contact.scenes.path_distance import path_distance
@@ -45,6 +50,7 @@ from quadric_contact.scenes.scene_model import (
     MovingEllipsoid,
     Scene,
 )
+from quadric_contact.theory.distance import CONVEX_SOLIDS
 from quadric_contact.theory.overlap import SOLID_KINDS
 from quadric_contact.theory.results import Region
 
@@ -213,6 +219,27 @@ def _cutting_planes(obj: Composite) -> dict[str, list[str]]:
     return out
 
 
+def _cutting_paths(obj: Composite) -> dict[str, list[list[HalfSpace]]]:
+    """Piece name -> one list of half-spaces per leaf holding it (``plus`` is ``R+`` of the
+    ``Split``'s plane as given, ``minus`` is ``R-``); an empty list for a piece that is not cut
+    (the root, or a piece outside the tree)."""
+    out: dict[str, list[list[HalfSpace]]] = {}
+
+    def walk(node: Split | Piece | None, path: tuple[HalfSpace, ...]) -> None:
+        if node is None:
+            return
+        if isinstance(node, Piece):
+            out.setdefault(node.name, []).append(list(path))
+            return
+        walk(node.plus, (*path, half_space(node.plane, Region.R_PLUS, node.name)))
+        walk(node.minus, (*path, half_space(node.plane, Region.R_MINUS, node.name)))
+
+    walk(obj.root, ())
+    for p in obj.extra_pieces:
+        out.setdefault(p.name, []).append([])
+    return out
+
+
 def _solid(piece: Piece) -> tuple[Quadric | None, str]:
     """The quadric whose solid (that of :func:`quadric_contact.distance`) is the piece's
     inside, or None and why there is none."""
@@ -245,8 +272,9 @@ def piece_distances(
     target ``object/piece``).
     """
     cut = _cutting_planes(obj)
+    paths = _cutting_paths(obj)
     return [
-        _piece_distance(scene, ell, obj, piece, cut.get(piece.name, []), ledger)
+        _piece_distance(scene, ell, obj, piece, cut.get(piece.name, []), ledger, paths.get(piece.name, [[]]))
         for piece in obj.pieces
         if wanted(piece)
     ]
@@ -259,6 +287,7 @@ def _piece_distance(
     piece: Piece,
     planes: Sequence[str],
     ledger: Ledger,
+    parts: Sequence[Sequence[HalfSpace]] = ((),),
 ) -> PieceDistance:
     def result(**found: Any) -> PieceDistance:
         return PieceDistance(
@@ -272,20 +301,30 @@ def _piece_distance(
 
     solid, why = _solid(piece)
     reasons = []
-    if planes:
+    cut = bool(planes) and all(parts)  # a part with no plane is the whole solid, holding the others
+    if cut and solid is not None and solid.kind not in CONVEX_SOLIDS:
         reasons.append(
-            f"the piece is cut by the plane(s) {', '.join(planes)} of its object: the distance to the "
-            "quadric as cut is not computed (the whole quadric's is only a lower bound of it)"
+            f"the piece is cut by the plane(s) {', '.join(planes)} of its object and its solid "
+            f"({solid.kind.value}) is not convex: the distance to the quadric as cut is not computed "
+            "(the whole quadric's is only a lower bound of it)"
         )
     if why:
         reasons.append(why)
     if reasons or solid is None:
         return result(minimum=None, reason="; ".join(reasons))
+    target_solid: Any = solid
+    if cut:
+        convex = solid
+        cut_parts = [list(p) for p in parts]
+
+        def target_solid(placed: Quadric) -> tuple[Fraction, Fraction]:
+            return union_distance(placed, convex, cut_parts).bounds
+
     target = f"{obj.name}/{piece.name}"
     try:
         r = path_distance(
             ell.quadric,
-            solid,
+            target_solid,
             ell.trajectory,
             scene.span[0],
             scene.span[1],

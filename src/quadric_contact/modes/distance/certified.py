@@ -447,9 +447,9 @@ def crossing_ellipsoids(
     the rest of the sphere (``proofs/depth_of_crossing_ellipsoids.py``, "the cap"): the depth is
     ``d* = min over unit u of phi(u)``.
 
-    1. The compiled depth kernel (:func:`~quadric_contact.modes.distance.depth_kernel.
-       depth_and_minimiser`, at the width :data:`LOCATE`) gives ``phi >= lo`` on the whole
-       sphere and a float minimiser.
+    1. The compiled depth kernel
+       (:func:`~quadric_contact.modes.distance.depth_kernel.depth_and_minimiser`, at the width
+       :data:`LOCATE`) gives ``phi >= lo`` on the whole sphere and a float minimiser.
     2. The Krawczyk operator on a box ``X``, ``u`` within ``w`` of the minimiser and ``lambda``
        over an interval that holds ``[-r, -lo]``, proves ``F(u, lambda) = 0`` has one root in
        ``X``; ``d_c = -lambda`` at it is a value of ``phi`` on the sphere (``phi(u) = -lambda``
