@@ -18,7 +18,13 @@ from tests.test_depth_kernel import _brute_depth, _mirrored, _shallow, _two_mini
 import quadric_contact as qc
 from quadric_contact import Quadric, RigidMotion
 from quadric_contact.exact.precision import working_precision
-from quadric_contact.modes.distance.certified import _inverse3, _rounding_gap, crossing_ellipsoids
+from quadric_contact.modes.distance.certified import (
+    MAX_BITS,
+    _inverse3,
+    _rounding_gap,
+    apart_ellipsoids,
+    crossing_ellipsoids,
+)
 from quadric_contact.modes.distance.depth_kernel import covered_outside_cap, depth_and_minimiser
 from quadric_contact.testing.samples import ellipsoid_matrix, random_rotations
 from quadric_contact.theory.contact_scale import centred_form
@@ -184,3 +190,16 @@ def _support(q, u):
         sum((u[i] * flint.arb(c[i].numerator) / c[i].denominator for i in range(3)), flint.arb(0))
         + (flint.arb(r.numerator) / r.denominator * quad).sqrt()
     )
+
+
+def test_more_digits_than_the_precision_bound_are_enclosed_at_the_bound():
+    """Digits beyond ``MAX_BITS`` give the enclosure at ``MAX_BITS``, as the general route does,
+    within the same bounded work, rather than a fall back to the general route."""
+    E, K = _pair(np.random.default_rng(4))
+    e, k = _quadrics(E, K)
+    r = crossing_ellipsoids(e, k, 10**5)
+    assert r is not None and r.bits == MAX_BITS and r.method == "crossing ellipsoids"
+    assert r.distance.rad() <= abs(r.distance.mid()) * flint.arb(10) ** -1200
+    far = Quadric.from_matrix(K).moved(RigidMotion.from_quaternion(1, 0, 0, 0, (6, 0, 0)))
+    a = apart_ellipsoids(e, solid_of(far), 10**5)
+    assert a is not None and a.bits == MAX_BITS and a.distance > 0

@@ -20,10 +20,12 @@ from quadric_contact.exact.errors import (
     NotAPlaneError,
     QuadricContactError,
     UndecidedError,
+    WorkLimitError,
 )
 from quadric_contact.exact.precision import working_precision
 from quadric_contact.model.quadric import Quadric
 from quadric_contact.modes.distance.pieces import (
+    MAX_DIGITS,
     ConvexSolid,
     CutPieceDistance,
     HalfSpace,
@@ -324,6 +326,10 @@ def test_bad_input_raises_the_package_errors():
         cut_piece_distance(E, BALL2, [HalfSpace((F(0), F(0), F(0)), F(1))])
     with pytest.raises(QuadricContactError, match="digits"):
         cut_piece_distance(E, BALL2, [("z", "R-")], digits=0)
+    with pytest.raises(WorkLimitError, match="MAX_DIGITS") as refused:
+        cut_piece_distance(E, BALL2, [("z", "R-")], digits=MAX_DIGITS + 1)
+    assert refused.value.details["limit"] == MAX_DIGITS
+    assert cut_piece_distance(E, BALL2, [("z", "R-")], digits=MAX_DIGITS).distance > 0  # the bound is reached
     with pytest.raises(ExcludedQuadricError):
         cut_piece_distance(E, "x^2 + y^2 - z^2", [("z", "R-")])  # a cone has no solid
     with pytest.raises(QuadricContactError, match="at least one part"):

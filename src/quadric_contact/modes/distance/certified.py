@@ -416,8 +416,8 @@ def apart_ellipsoids(
     v = _float_newton(fparts, np.array([*u, -float(np.dot(u, Fu[:3]))]))  # lambda = -u . grad phi(u)
     if v is None or v[3] <= 0:
         return None  # not apart (or not found): the general route
-    bits = max(64, int(digits * 3.33) + 32)
-    while bits <= MAX_BITS:
+    bits = min(max(64, int(digits * 3.33) + 32), MAX_BITS)
+    while True:
         with working_precision(bits):
             parts = _arb_parts(forms, Bs)
             root = _isolated_root(parts, v, bits, None)
@@ -425,10 +425,9 @@ def apart_ellipsoids(
                 return None
             dist = root[1][3]
             point_E, point_Q, normal = _witnesses(parts, root[1][:3])
-        if _good(dist, digits, bits):
+        if _good(dist, digits, bits) or bits >= MAX_BITS:
             return DistanceEnclosure(dist, point_E, point_Q, normal, bits, "ellipsoid-ellipsoid")
-        bits *= 2
-    return None
+        bits = min(2 * bits, MAX_BITS)
 
 
 CAP = 1e-4
@@ -513,8 +512,8 @@ def crossing_ellipsoids(
         break
     else:
         return None
-    bits = max(64, int(digits * 3.33) + 32)
-    while bits <= MAX_BITS:
+    bits = min(max(64, int(digits * 3.33) + 32), MAX_BITS)
+    while True:
         with working_precision(bits):
             parts = _arb_parts(forms, Bs)
             root = _isolated_root(parts, v, bits, None)
@@ -526,10 +525,9 @@ def crossing_ellipsoids(
                 return None
             dist = Kn[3]
             point_E, point_Q, normal = _witnesses(parts, Kn[:3])
-        if _good(dist, digits, bits):
+        if _good(dist, digits, bits) or bits >= MAX_BITS:
             return DistanceEnclosure(dist, point_E, point_Q, normal, bits, "crossing ellipsoids")
-        bits *= 2
-    return None
+        bits = min(2 * bits, MAX_BITS)
 
 
 def _rounding_gap(Q: Quadric, Qf: np.ndarray) -> Fraction | None:

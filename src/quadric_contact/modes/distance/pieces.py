@@ -63,6 +63,7 @@ from quadric_contact.exact.errors import (
     NotAPlaneError,
     QuadricContactError,
     UndecidedError,
+    WorkLimitError,
 )
 from quadric_contact.exact.precision import working_precision
 from quadric_contact.model.classification import QuadricKind
@@ -75,6 +76,7 @@ from quadric_contact.theory.overlap import solid_of
 from quadric_contact.theory.results import Region
 
 __all__ = [
+    "MAX_DIGITS",
     "ConvexSolid",
     "CutPieceDistance",
     "HalfSpace",
@@ -82,6 +84,10 @@ __all__ = [
     "half_space",
     "union_distance",
 ]
+
+MAX_DIGITS = 300
+"""The most significant digits :func:`cut_piece_distance` is asked for: Newton's method runs at
+``digits + 20`` digits in mpmath, about a second a pair at this bound."""
 
 Vec = tuple[Fraction, Fraction, Fraction]
 Mat = tuple[Vec, Vec, Vec]
@@ -671,7 +677,8 @@ def cut_piece_distance(E: Any, Q: Any, halfspaces: Sequence[Any], *, digits: int
         ``"R+"`` (:func:`half_space`).  Empty: the whole solid, answered by
         :func:`quadric_contact.distance` (signed: a depth for a crossing pair).
     digits : int
-        Significant digits of the enclosure (at least 1).
+        Significant digits of the enclosure, from 1 to :data:`MAX_DIGITS` (the search runs at
+        ``digits + 20`` digits: the bound keeps a pair within seconds).
 
     Returns
     -------
@@ -688,6 +695,8 @@ def cut_piece_distance(E: Any, Q: Any, halfspaces: Sequence[Any], *, digits: int
         the cut piece has no interior point, or the enclosure does not reach the digits asked.
     NotAnEllipsoidError, NotAPlaneError, ExcludedQuadricError, QuadricContactError
         Bad input.
+    WorkLimitError
+        ``digits`` above :data:`MAX_DIGITS`, before any work.
 
     Examples
     --------
@@ -705,6 +714,14 @@ def cut_piece_distance(E: Any, Q: Any, halfspaces: Sequence[Any], *, digits: int
     """
     if isinstance(digits, bool) or not isinstance(digits, int) or digits < 1:
         raise QuadricContactError(f"digits must be a positive integer, got {digits!r}", digits)
+    if digits > MAX_DIGITS:
+        raise WorkLimitError(
+            f"the distance to a cut piece is computed to at most {MAX_DIGITS} digits (MAX_DIGITS), "
+            f"{digits} were asked",
+            digits,
+            limit=MAX_DIGITS,
+            needed=digits,
+        )
     e = as_quadric(E, "E").as_ellipsoid()
     hs = [_as_half_space(h) for h in halfspaces]
     if not hs:
