@@ -190,12 +190,19 @@ def test_float_mode_encloses_the_certified_value():
     assert stack.shape == (2, 2) and np.all(stack[:, 0] <= stack[:, 1])
 
 
-def test_crossing_a_non_convex_solid_is_refused_with_the_reason():
+def test_crossing_a_non_convex_solid_is_bracketed_in_every_mode_that_answers():
+    """The depth into a hyperboloid's solid: the certified bracket (an inscribed ellipsoid, a
+    free translation checked exactly), the float mode rounding it outwards; the exact mode,
+    which has no algebraic route for an ellipsoid that is not a sphere, refuses."""
     q = TYPES[QuadricKind.HYPERBOLOID_ONE_SHEET].moved(MOTION)
     e = _ellipsoid((Fraction(5, 2), Fraction(7, 3), Fraction(-3, 2)))
-    for mode in ("certified", "float"):
-        with pytest.raises(UndecidedError, match="not convex"):
-            qc.distance(e, q, mode=mode)
+    r = qc.distance(e, q)
+    assert r.method == "inscribed ellipsoid" and r.distance < 0
+    f = qc.distance(e, q, mode="float")
+    lo, hi = r.bounds
+    assert Fraction(f.bounds[0]) <= hi and lo <= Fraction(f.bounds[1])  # both hold the depth
+    with pytest.raises(UndecidedError, match="not a sphere"):
+        qc.distance(e, q, mode="exact")
 
 
 def test_two_ellipsoids_on_an_axis():

@@ -412,7 +412,9 @@ def _float(E: Any, Q: Any) -> FloatDistance:
         if not convex:
             code = overlap_exact(e, K).code
             if code is OverlapCode.OVERLAPPING:
-                distance_certified(e, K)  # raises with the reason
+                # the depth into a solid that is not convex: the certified bracket (an inscribed
+                # ellipsoid, a free translation), rounded outwards; raises with the reason
+                return FloatDistance.of(*_float_bounds(*distance_certified(e, K, digits=17).bounds))
             if code is OverlapCode.TOUCHING:
                 return FloatDistance(0.0, 0.0, False)
         return FloatDistance.of(*critical_distance_binary64(e, K, convex=convex))

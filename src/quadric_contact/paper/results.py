@@ -42,6 +42,7 @@ FURTHER_RESULTS: tuple[str, ...] = (
     "Depth of crossing ellipsoids",
     "Distance of separated ellipsoids",
     "Distance to cut pieces",
+    "Depth into non-convex solids",
 )
 """Results from outside the paper that the package relies on and proves in ``proofs/``
 alongside the paper's (after them, in this order): the separation condition of two
@@ -58,6 +59,8 @@ a rigidly moving ellipsoid's points by which the least distance along a path is 
 (:mod:`quadric_contact.scenes.path_distance`); the certificate by which the depth of two
 crossing ellipsoids is enclosed on stacks (:mod:`quadric_contact.modes.distance.depth_kernel`); the
 isolated root by which the distance of two separated ellipsoids and its witnesses are enclosed
-in the ``certified`` mode (:mod:`quadric_contact.modes.distance.certified`); and the duality
+in the ``certified`` mode (:mod:`quadric_contact.modes.distance.certified`); the duality
 bounds by which the distance of an ellipsoid from a convex piece cut by planes is enclosed
-(:mod:`quadric_contact.modes.distance.pieces`)."""
+(:mod:`quadric_contact.modes.distance.pieces`); and the bracket of the depth into a solid that is
+not convex between an inscribed ellipsoid and a free translation
+(:mod:`quadric_contact.modes.distance.nonconvex`)."""

@@ -23,9 +23,9 @@ in either reading of the scene.  Where the method does not answer, the pair is r
   whole quadric's is only a lower bound of it);
 * the piece's inside is the complement of its quadric's solid (an ``R+`` ellipsoid, say),
   except for a plane, whose other side is a half-space too;
-* a distance along the path is not decided (a crossing of a solid that is not convex, whose
-  penetration depth is not computed; an ellipsoid crossing or touching a cut piece, whose
-  penetration depth is not computed either; a symmetric configuration of critical points):
+* a distance along the path is not decided (a crossing of a solid that is not convex where
+  the bracket of its depth does not close; an ellipsoid crossing or touching a cut piece,
+  whose penetration depth is not computed; a symmetric configuration of critical points):
   the reason names the time.
 """
 

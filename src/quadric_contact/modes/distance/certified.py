@@ -40,6 +40,7 @@ from quadric_contact.exact.precision import working_precision
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import Quadric, as_quadric
 from quadric_contact.modes.distance.depth_kernel import covered_outside_cap, depth_and_minimiser
+from quadric_contact.modes.distance.nonconvex import nonconvex_depth
 from quadric_contact.theory.contact_scale import centred_form
 from quadric_contact.theory.distance import CONVEX_SOLIDS, _solve3, is_sphere
 from quadric_contact.theory.distance_critical import critical_distance
@@ -254,9 +255,28 @@ def distance_certified(E: Any, Q: Any, *, digits: int = 15) -> DistanceEnclosure
     K = solid_of(Q)
     if K.kind is QuadricKind.PLANE:
         return _plane(e, K, digits)
+    code = None if K.kind in CONVEX_SOLIDS else overlap_exact(e, K).code
+    if code is OverlapCode.OVERLAPPING:
+        return _nonconvex(e, K, digits)
     if is_sphere(e):
         return _sphere(e, K, digits)
-    return _curved(e, K, digits)
+    return _curved(e, K, digits, code)
+
+
+def _nonconvex(E: Quadric, K: Quadric, digits: int) -> DistanceEnclosure:
+    """The depth into a solid that is not convex, between an inscribed ellipsoid and a free
+    translation checked exactly (:mod:`quadric_contact.modes.distance.nonconvex`)."""
+    found = nonconvex_depth(E, K, digits, _ellipsoids)
+    if found is None:
+        raise UndecidedError(
+            f"the ellipsoid crosses the solid of {K.kind.value}, which is not convex: its penetration "
+            "depth (the translation distance) was not certified (no inscribed ellipsoid tried met a "
+            "free translation: a nearest free position touching in two points, say)",
+            E,
+            other=K,
+        )
+    # no witnesses: the inscribed ellipsoid's contact is K's only where the two bounds are equal
+    return DistanceEnclosure(found.distance, None, None, None, found.bits, "inscribed ellipsoid")
 
 
 def _inverse3(A: Sequence[Sequence[Fraction]]) -> list[list[Fraction]]:
@@ -606,7 +626,12 @@ def _dn(x: float) -> float:
     return math.nextafter(x, -math.inf)
 
 
-def _curved(E: Quadric, K: Quadric, digits: int) -> DistanceEnclosure:
+def _ellipsoids(E: Quadric, K: Quadric, digits: int) -> DistanceEnclosure:
+    """Two ellipsoids (a sphere too), by the routes of :func:`_curved`."""
+    return _curved(E, K, digits)
+
+
+def _curved(E: Quadric, K: Quadric, digits: int, code: OverlapCode | None = None) -> DistanceEnclosure:
     """Any ellipsoid against a curved quadric: the extremal contact critical point
     (:mod:`quadric_contact.theory.distance_critical`); a non-convex solid needs the solids
     apart, decided exactly first."""
@@ -618,14 +643,9 @@ def _curved(E: Quadric, K: Quadric, digits: int) -> DistanceEnclosure:
     convex = K.kind in CONVEX_SOLIDS
     touching = False
     if not convex:
-        code = overlap_exact(E, K).code
+        code = code or overlap_exact(E, K).code
         if code is OverlapCode.OVERLAPPING:
-            raise UndecidedError(
-                f"the ellipsoid crosses the solid of {K.kind.value}, which is not convex: its "
-                "penetration depth (the translation distance) is not computed",
-                E,
-                other=K,
-            )
+            return _nonconvex(E, K, digits)
         touching = code is OverlapCode.TOUCHING
     r = critical_distance(E, K, convex=convex, digits=digits)
     dist = flint.arb(0) if touching else r.distance
