@@ -488,7 +488,12 @@ def crossing_ellipsoids(
     The witnesses are those of :func:`apart_ellipsoids` at the root.  None where a step fails
     (two minima nearly equal, a flat ``phi``, a rounded matrix that is no ellipsoid): the general
     route then answers; ``known`` as for :func:`apart_ellipsoids`."""
-    Ef, Kf = E.to_numpy(), K.to_numpy()
+    try:
+        Ef, Kf = E.to_numpy(), K.to_numpy()
+    except OverflowError:
+        return None  # entries beyond binary64: the general route refuses or answers
+    if not (np.all(np.isfinite(Ef)) and np.all(np.isfinite(Kf))):
+        return None
     gaps = [_rounding_gap(E, Ef), _rounding_gap(K, Kf)]
     if gaps[0] is None or gaps[1] is None:
         return None

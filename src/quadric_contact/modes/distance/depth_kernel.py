@@ -857,7 +857,7 @@ def depth_and_minimiser(
     --------
     >>> E = np.diag([1.0, 1.0, 1.0, -1.0]); K = E.copy(); K[0, 3] = K[3, 0] = -1.0; K[3, 3] = 0.0
     >>> lo, hi, u = depth_and_minimiser(E, K)   # unit balls at 0 and (1, 0, 0): depth 1
-    >>> bool(lo <= 1.0 <= hi), [round(abs(x), 9) for x in u]
+    >>> bool(lo <= 1.0 <= hi), [round(abs(float(x)), 9) for x in u]
     (True, [1.0, 0.0, 0.0])
     """
     out, rest, _, best = _run(kernel_stack(E), kernel_stack(K), tol, np.zeros((1, 5)))

@@ -78,12 +78,17 @@ def inscribed_ellipsoid(K: Quadric, y: Any, width: Fraction) -> Quadric | None:
     >>> C.kind.value, C.equation()
     ('ellipsoid', 'x**2 + y**2 + z**2 - 1')
     """
-    A = np.array([[float(K[i, j]) for j in range(3)] for i in range(3)])
+    try:
+        A = np.array([[float(K[i, j]) for j in range(3)] for i in range(3)])
+        yq = [Fraction(v) if isinstance(v, (int, Fraction)) else Fraction(float(v)) for v in y]
+    except (OverflowError, ValueError):
+        return None  # beyond binary64 (the eigenvectors are binary64), or not finite
+    if not np.all(np.isfinite(A)):
+        return None
     vals, vecs = np.linalg.eigh(A)
     top = float(np.max(np.abs(vals)))
     if not top > 0:
         return None
-    yq = [Fraction(float(v)) if not isinstance(v, Fraction) else v for v in y]
     M = [[K[i, j] for j in range(4)] for i in range(4)]
     added = False
     for lam, vec in zip(vals, vecs.T, strict=True):
@@ -113,12 +118,11 @@ def inscribed_ellipsoid(K: Quadric, y: Any, width: Fraction) -> Quadric | None:
     return C
 
 
-def _nearest_surface_point(K: Quadric, c: np.ndarray) -> np.ndarray | None:
+def _nearest_surface_point(Kf: np.ndarray, c: np.ndarray) -> np.ndarray | None:
     """A float point of the surface of ``K`` nearest ``c`` (the least of the critical points of
-    ``|p - c|^2`` on it that a scan of the multiplier finds): the seed of the point of tangency."""
-    A = np.array([[float(K[i, j]) for j in range(3)] for i in range(3)])
-    b = np.array([float(K[i, 3]) for i in range(3)])
-    q = float(K[3, 3])
+    ``|p - c|^2`` on it that a scan of the multiplier finds; ``Kf`` its binary64 matrix): the seed
+    of the point of tangency."""
+    A, b, q = Kf[:3, :3], Kf[:3, 3], float(Kf[3, 3])
     vals, V = np.linalg.eigh(A)
     cc, bb = V.T @ c, V.T @ b
 
@@ -179,11 +183,16 @@ def nonconvex_depth(
     centre = E.center()
     if centre is None:
         return None
-    start = _nearest_surface_point(K, np.array([float(x) for x in centre]))
+    try:
+        Ef, Kf = E.to_numpy(), K.to_numpy()
+        cf = np.array([float(x) for x in centre])
+    except OverflowError:
+        return None  # entries beyond binary64: no search in binary64
+    if not (np.all(np.isfinite(Ef)) and np.all(np.isfinite(Kf)) and np.all(np.isfinite(cf))):
+        return None
+    start = _nearest_surface_point(Kf, cf)
     if start is None:
         return None
-    Ef = E.to_numpy()
-    Kf = K.to_numpy()
     tol = Fraction(1, 10 ** (digits + 1))
     for width in WIDTHS:
         y = _tangency(Ef, Kf, start, width)
