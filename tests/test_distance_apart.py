@@ -36,6 +36,19 @@ def _pairs(n, seed):
     return out
 
 
+def agrees_with_the_general_route(fast, e, k, digits):
+    """The distance and the three witnesses overlap the balls of the general route (every
+    critical point of the contact system isolated)."""
+    general = critical_distance(e, k, convex=True, digits=digits)
+    assert fast.distance.overlaps(general.distance)
+    for a, b in (
+        (fast.point_E, general.point_E),
+        (fast.point_Q, general.point_Q),
+        (fast.normal, general.normal),
+    ):
+        assert all(x.overlaps(y) for x, y in zip(a, b, strict=True))
+
+
 @pytest.mark.parametrize("seed", [0, 1])
 def test_the_isolated_root_agrees_with_the_general_route(seed):
     answered = 0
@@ -44,14 +57,7 @@ def test_the_isolated_root_agrees_with_the_general_route(seed):
         if fast is None:
             continue
         answered += 1
-        general = critical_distance(e, k, convex=True, digits=20)
-        assert fast.distance.overlaps(general.distance)
-        for a, b in (
-            (fast.point_E, general.point_E),
-            (fast.point_Q, general.point_Q),
-            (fast.normal, general.normal),
-        ):
-            assert all(x.overlaps(y) for x, y in zip(a, b, strict=True))
+        agrees_with_the_general_route(fast, e, k, 20)
         assert fast.distance.rad() <= abs(fast.distance.mid()) * flint.arb(10) ** -20
         r = qc.distance(e, k, digits=20)
         assert r.method == "ellipsoid-ellipsoid" and r.distance.overlaps(fast.distance)

@@ -14,6 +14,7 @@ import mpmath
 import numpy as np
 import pytest
 from tests.test_depth_kernel import _brute_depth, _mirrored, _shallow, _two_minima
+from tests.test_distance_apart import agrees_with_the_general_route
 
 import quadric_contact as qc
 from quadric_contact import Quadric, RigidMotion
@@ -95,14 +96,7 @@ def test_it_agrees_with_the_general_route_and_is_what_the_predicate_runs():
         e, k = _quadrics(E, K)
         fast = crossing_ellipsoids(e, k, 20)
         assert fast is not None
-        general = critical_distance(e, k, convex=True, digits=20)
-        assert fast.distance.overlaps(general.distance)
-        for a, b in (
-            (fast.point_E, general.point_E),
-            (fast.point_Q, general.point_Q),
-            (fast.normal, general.normal),
-        ):
-            assert all(x.overlaps(y) for x, y in zip(a, b, strict=True))
+        agrees_with_the_general_route(fast, e, k, 20)
         r = qc.distance(E, K, digits=20)
         assert r.method == "crossing ellipsoids" and r.distance.overlaps(fast.distance)
         # the same number as the stack of one, which the kernel encloses at 1e-12
