@@ -18,10 +18,10 @@ Claim.
 4. Upper bound.  If the interiors of ``E + v`` and ``K`` are disjoint, ``depth(E, K) <= |v|``.
 
 Hence ``-|v| <= -depth(E, K) <= -depth(E, C)``: the certified route encloses ``-depth(E, C)``
-(two ellipsoids, :mod:`quadric_contact.modes.distance.certified`), lengthens ``C``'s nearest free
-translation by ``10^-(digits + 2)``, decides exactly that ``E + v`` does not overlap ``K``
-(:func:`quadric_contact.theory.overlap.overlap_exact`), and answers only where the two ends
-agree to the digits asked.
+to ``digits + 2`` digits (two ellipsoids, :mod:`quadric_contact.modes.distance.certified`),
+lengthens ``C``'s nearest free translation by ``10^-(digits + 1)``, decides exactly that
+``E + v`` does not overlap ``K`` (:func:`quadric_contact.theory.overlap.overlap_exact`), and
+answers only where the two ends agree to the digits asked.
 
 The argument.
 

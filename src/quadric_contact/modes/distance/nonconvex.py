@@ -14,7 +14,7 @@ is enclosed by two certificates:
   whose eigenvalues are not positive, and the ``s_i`` make ``C`` an ellipsoid tangent to ``K``
   at ``y``; its depth is certified by the routes of two crossing ellipsoids, which the caller
   hands in (:mod:`quadric_contact.modes.distance.certified`);
-* upper bound: ``C``'s nearest free translation ``v``, lengthened by ``10^-(digits + 2)`` and
+* upper bound: ``C``'s nearest free translation ``v``, lengthened by ``10^-(digits + 1)`` and
   made rational, is checked free of ``K`` exactly
   (:func:`~quadric_contact.theory.overlap.overlap_exact` on ``E + v``: apart or touching), so
   ``depth(E, K) <= |v|``.
