@@ -206,3 +206,35 @@ stack = np.array([np.array(qc.Quadric.sphere(Fraction(1, 2), [Fraction(float(v))
                   for c in centres])
 enc = qc.contact_scale(stack, np.array(body.matrix, dtype=float))
 print(enc[:3], "widest:", float(np.max((enc[:, 1] - enc[:, 0]) / enc[:, 1])))
+
+# %% [markdown]
+# ## Into a solid that is not convex, and a piece cut by planes
+#
+# The depth into a hyperboloid's solid can be reached with two contacts at once, which no
+# single critical point describes.  It is bracketed instead: adding squares of linear forms
+# that vanish at a point of the surface, `Q + sum s_i l_i^2`, gives an ellipsoid *inside* the
+# solid and tangent to it there, whose depth is a lower bound; the translation that frees `E`
+# from that ellipsoid, made a little longer and decided free of the hyperboloid exactly, is an
+# upper bound.  A ball in the cap of a hyperboloid of two sheets leaves it downwards by
+# `11/10 + 1/5 - 1 = 3/10`:
+
+# %%
+cap_ball = "x^2 + y^2 + (z - 11/10)^2 - 1/25"
+r = qc.distance(cap_ball, "x^2 + y^2 - z^2 + 1", digits=25)
+print(r.method, r.distance.str(25, radius=False))
+
+# %% [markdown]
+# A scene's piece is its quadric's solid cut by the planes on its path in the object's tree.
+# For a convex solid, weak duality encloses the distance: points of the two solids bound it
+# above, a separating direction with multipliers of the planes bounds it below.  The unit ball
+# at height 4 above the ball of radius 2 cut to `x >= 1`: the nearest point is on the rim of the
+# cut, `(1, 0, sqrt 3)`.
+
+# %%
+import flint
+
+from quadric_contact.modes.distance.pieces import cut_piece_distance
+
+r = cut_piece_distance("x^2 + y^2 + (z - 4)^2 - 1", "x^2 + y^2 + z^2 - 4", [("x - 1", "R+")])
+rim = (1 + (4 - flint.arb(3).sqrt()) ** 2).sqrt() - 1
+print(r.distance.str(15, radius=False), r.distance.overlaps(rim))
