@@ -37,12 +37,13 @@ import numpy as np
 
 from quadric_contact.exact.errors import UndecidedError
 from quadric_contact.exact.precision import working_precision
+from quadric_contact.exact.rational import fraction_of
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import Quadric, as_quadric
 from quadric_contact.modes.distance.depth_kernel import covered_outside_cap, depth_and_minimiser
 from quadric_contact.modes.distance.nonconvex import nonconvex_depth
 from quadric_contact.theory.contact_scale import centred_form
-from quadric_contact.theory.distance import CONVEX_SOLIDS, _solve3, is_sphere
+from quadric_contact.theory.distance import CONVEX_SOLIDS, _det3, _solve3, is_sphere
 from quadric_contact.theory.distance_critical import critical_distance
 from quadric_contact.theory.overlap import overlap_exact, solid_of
 from quadric_contact.theory.results import OverlapCode
@@ -79,17 +80,11 @@ class DistanceEnclosure:
     @property
     def bounds(self) -> tuple[Fraction, Fraction]:
         """Rational ends ``lo <= distance <= hi``."""
-        mid, rad = _fraction(self.distance.mid()), _fraction(self.distance.rad())
+        mid, rad = fraction_of(self.distance.mid()), fraction_of(self.distance.rad())
         return mid - rad, mid + rad  # exactly: lower()/upper() would round to the context's precision
 
     def __float__(self) -> float:
         return float(self.distance.mid())
-
-
-def _fraction(x: Any) -> Fraction:
-    m, e = x.mid().man_exp()
-    m, e = int(m), int(e)
-    return Fraction(m * 2**e) if e >= 0 else Fraction(m, 2**-e)
 
 
 def _arb(x: Fraction) -> Any:
@@ -494,7 +489,8 @@ def crossing_ellipsoids(
         return None  # entries beyond binary64: the general route refuses or answers
     if not (np.all(np.isfinite(Ef)) and np.all(np.isfinite(Kf))):
         return None
-    gaps = [_rounding_gap(E, Ef), _rounding_gap(K, Kf)]
+    forms, Bs = known or _forms(E, K)
+    gaps = [_rounding_gap(E, Ef, forms[0]), _rounding_gap(K, Kf, forms[1])]
     if gaps[0] is None or gaps[1] is None:
         return None
     gap = _float_up(gaps[0] + gaps[1])  # |phi - phi of the binary64 pair| <= gap on the sphere
@@ -502,8 +498,7 @@ def crossing_ellipsoids(
     if found is None:
         return None
     lo, hi, u = found
-    lo = _dn(_dn(lo) - gap)  # phi >= lo of the binary64 pair, less the gap
-    forms, Bs = known or _forms(E, K)
+    lo = _dn(lo - gap)  # phi >= lo of the binary64 pair, less the gap (rounded down)
     fparts = _float_parts(forms, Bs)
     v = _float_newton(fparts, np.array([*u, -hi]))
     if v is None or not v[3] < 0 or abs(float(np.dot(v[:3], v[:3])) - 1) > 1e-12:
@@ -555,10 +550,11 @@ def crossing_ellipsoids(
         bits = min(2 * bits, MAX_BITS)
 
 
-def _rounding_gap(Q: Quadric, Qf: np.ndarray) -> Fraction | None:
+def _rounding_gap(Q: Quadric, Qf: np.ndarray, form: Any = None) -> Fraction | None:
     """A bound of ``|h_Q(u) - h_Q'(u)|`` over unit ``u``, ``h`` the support functions of the
     ellipsoid ``Q`` and of ``Q'``, its matrix rounded to binary64 (``Qf``); 0 when the entries are
-    binary64 numbers, None when ``Q'`` is no ellipsoid with the same inside.
+    binary64 numbers, None when ``Q'`` is no ellipsoid with the same inside; ``form``: the
+    :func:`~quadric_contact.theory.contact_scale.centred_form` of ``Q``, when the caller has it.
 
     With ``h(u) = u . c + sqrt(u^T M u)``, ``M = r A^-1`` (``M'`` likewise):
     ``|h - h'| <= |c - c'| + |u^T (M - M') u| / (sqrt(u^T M u) + sqrt(u^T M' u))
@@ -572,9 +568,9 @@ def _rounding_gap(Q: Quadric, Qf: np.ndarray) -> Fraction | None:
     if not all(x > 0 for x in minors):
         return None
     Qr = Quadric.from_matrix(rounded)
-    forms = [centred_form(Q), centred_form(Qr)] if _inside_negative(Qr) else None
-    if forms is None:
+    if not _inside_negative(Qr):
         return None
+    forms = [form or centred_form(Q), centred_form(Qr)]
     Ms, cs, least = [], [], []
     for A, c, r in forms:
         B = _inverse3(A)
@@ -586,21 +582,10 @@ def _rounding_gap(Q: Quadric, Qf: np.ndarray) -> Fraction | None:
     return _sqrt_up(centre2) + _sqrt_up(frob2) / (_sqrt_dn(least[0]) + _sqrt_dn(least[1]))
 
 
-def _det3(A: Sequence[Sequence[Fraction]]) -> Fraction:
-    return (
-        A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1])
-        - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0])
-        + A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0])
-    )
-
-
 def _inside_negative(Q: Quadric) -> bool:
     """``Q(c) < 0`` at the centre: the solid is the side the rounded matrix keeps."""
     c = Q.center()
-    if c is None:
-        return False
-    x = [*c, Fraction(1)]
-    return sum(x[i] * Q[i, j] * x[j] for i in range(4) for j in range(4)) < 0
+    return c is not None and Q.value_at(c) < 0
 
 
 def _sqrt_up(x: Fraction) -> Fraction:

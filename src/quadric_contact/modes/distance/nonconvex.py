@@ -39,6 +39,7 @@ import numpy as np
 
 from quadric_contact.exact.errors import QuadricContactError, UndecidedError
 from quadric_contact.exact.precision import working_precision
+from quadric_contact.exact.rational import fraction_of
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import Quadric
 from quadric_contact.modes.distance.depth_kernel import depth_and_minimiser
@@ -53,15 +54,6 @@ WIDTHS = (Fraction(1, 8), Fraction(1), Fraction(1, 64))
 MOVES = 60
 """At most how many times the point of tangency moves to the inscribed ellipsoid's contact point
 (binary64, a depth kernel call each: about 30 microseconds)."""
-
-
-def _frac(x: Any) -> Fraction:
-    """An arb ball's midpoint, or a float, as the exact rational it is."""
-    if isinstance(x, float):
-        return Fraction(x)
-    m, e = x.mid().man_exp()
-    m, e = int(m), int(e)
-    return Fraction(m * 2**e) if e >= 0 else Fraction(m, 2**-e)
 
 
 def inscribed_ellipsoid(K: Quadric, y: Any, width: Fraction) -> Quadric | None:
@@ -110,10 +102,7 @@ def inscribed_ellipsoid(K: Quadric, y: Any, width: Fraction) -> Quadric | None:
     if C.kind is not QuadricKind.ELLIPSOID:
         return None
     centre = C.center()
-    if centre is None:
-        return None
-    X = [*centre, Fraction(1)]
-    if not sum(X[i] * M[i][j] * X[j] for i in range(4) for j in range(4)) < 0:
+    if centre is None or not C.value_at(centre) < 0:
         return None
     return C
 
@@ -207,16 +196,16 @@ def nonconvex_depth(
             continue
         if not inner.distance < 0 or inner.normal is None or inner.point_Q is None:
             continue
-        lower = _frac(inner.distance) + _frac(inner.distance.rad())  # -depth(E, C) <= this
-        depth_c = -_frac(inner.distance)
-        v = [depth_c * (1 + tol) * _frac(x) for x in inner.normal]
+        depth_c = -fraction_of(inner.distance.mid())
+        lower = -depth_c + fraction_of(inner.distance.rad())  # -depth(E, C) <= this
+        v = [depth_c * (1 + tol) * fraction_of(x.mid()) for x in inner.normal]
         if overlap_exact(E.translated(v), K).code is OverlapCode.OVERLAPPING:
             continue
         norm2 = sum((x * x for x in v), Fraction(0))
         bits = max(64, int(digits * 3.33) + 40)
         with working_precision(bits):
             root = flint.arb(flint.fmpq(norm2.numerator, norm2.denominator)).sqrt()
-            lo = -(_frac(root) + _frac(root.rad()))  # -depth(E, K) >= -|v|
+            lo = -(fraction_of(root.mid()) + fraction_of(root.rad()))  # -depth(E, K) >= -|v|
             if lower - lo > abs(lo) * Fraction(1, 10**digits):
                 continue
             ball = flint.arb(flint.fmpq(lo.numerator, lo.denominator)).union(

@@ -66,6 +66,7 @@ from quadric_contact.exact.errors import (
     WorkLimitError,
 )
 from quadric_contact.exact.precision import working_precision
+from quadric_contact.exact.rational import fraction_of
 from quadric_contact.model.classification import QuadricKind
 from quadric_contact.model.quadric import Quadric, as_quadric
 from quadric_contact.modes.distance.certified import DistanceEnclosure
@@ -118,12 +119,6 @@ def _frac(x: Any) -> Fraction:
     sign, man, exp, _ = x._mpf_
     man, exp = (-1) ** sign * int(man), int(exp)
     return Fraction(man * 2**exp) if exp >= 0 else Fraction(man, 2**-exp)
-
-
-def _arb_fraction(x: Any) -> Fraction:
-    m, e = x.man_exp()
-    m, e = int(m), int(e)
-    return Fraction(m * 2**e) if e >= 0 else Fraction(m, 2**-e)
 
 
 @dataclass(frozen=True)
@@ -752,8 +747,8 @@ def cut_piece_distance(E: Any, Q: Any, halfspaces: Sequence[Any], *, digits: int
     if result is None:
         raise UndecidedError("no exact points of the solids were found near the optimum", Q)
     lo, hi, x, y, mu = result
-    lo_q = _arb_fraction(lo.mid()) - _arb_fraction(lo.rad())  # exactly (lower() rounds)
-    hi_q = _arb_fraction(hi.mid()) + _arb_fraction(hi.rad())
+    lo_q = fraction_of(lo.mid()) - fraction_of(lo.rad())  # exactly (lower() rounds)
+    hi_q = fraction_of(hi.mid()) + fraction_of(hi.rad())
     if lo_q <= 0:
         raise UndecidedError(
             f"E and the piece cut by {names} are not proven apart: they cross or touch, or are too close "
